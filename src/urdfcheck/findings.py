@@ -1,0 +1,89 @@
+"""Findings: what every stage of the pipeline hands to the reports."""
+from __future__ import annotations
+
+import enum
+import re
+from dataclasses import dataclass, field
+
+
+class Severity(enum.IntEnum):
+    INFO = 1
+    WARNING = 2
+    ERROR = 3
+
+    @classmethod
+    def parse(cls, text: str) -> "Severity":
+        try:
+            return cls[text.strip().upper()]
+        except KeyError:
+            raise ValueError(f"unknown severity {text!r} (use error, warning or info)") from None
+
+    def __str__(self) -> str:
+        return self.name.lower()
+
+
+@dataclass(frozen=True)
+class Location:
+    """Where something was written. `via` holds the xacro macro call sites, innermost first."""
+
+    file: str
+    line: int | None = None
+    column: int | None = None
+    via: tuple["Location", ...] = ()
+
+    def __str__(self) -> str:
+        out = self.file
+        if self.line:
+            out += f":{self.line}"
+            if self.column:
+                out += f":{self.column}"
+        return out
+
+
+@dataclass(frozen=True)
+class Finding:
+    code: str
+    severity: Severity
+    message: str
+    location: Location
+    name: str = ""  # rule name (kebab-case), for reports
+    related: tuple[Location, ...] = ()
+    model: str = ""  # the entry model the finding came from
+    variant: str = ""  # xacro argument set name, when several were linted
+
+    def sort_key(self):
+        loc = self.location
+        return (loc.file, loc.line or 0, loc.column or 0, self.code, self.message, self.variant)
+
+
+_CONTROL = re.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+_WORKFLOW = re.compile(r"::|##vso\[|##\[")
+MAX_TEXT = 500
+
+
+def clean_text(text: object, limit: int = MAX_TEXT) -> str:
+    """Make text from an untrusted model safe to print in any report format.
+
+    Strips ANSI escapes and control characters, defuses CI workflow commands
+    (`::error`, `##vso[`), and truncates absurdly long values.
+    """
+    s = _CONTROL.sub("", str(text).replace("\n", " ").replace("\t", " "))
+    s = _WORKFLOW.sub(lambda m: m.group(0)[0] + "\u200b" + m.group(0)[1:], s)
+    if len(s) > limit:
+        s = s[: limit - 1] + "\u2026"
+    return s
+
+
+@dataclass
+class Problem:
+    """What a check yields. The engine turns it into a Finding; a check never computes file/line.
+
+    `at` is a model part (anything with a `.loc` Location) or a Location; `related` likewise.
+    """
+
+    message: str
+    at: object = None
+    related: tuple = ()
+    severity: Severity | None = None  # None: the catalogue default
+    code: str | None = None  # for checks that serve several codes
+    data: dict = field(default_factory=dict)

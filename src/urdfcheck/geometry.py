@@ -1,0 +1,105 @@
+"""Small pure-Python rigid-transform helpers (4x4 as nested tuples), for the lint path where numpy is not loaded.
+
+URDF conventions: rpy are fixed-axis roll about x, then pitch about y, then yaw about z, i.e. R = Rz(y) Ry(p) Rx(r).
+"""
+from __future__ import annotations
+
+import math
+
+Mat = tuple  # 4 rows of 4 floats
+
+
+def identity() -> Mat:
+    return ((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0), (0.0, 0.0, 0.0, 1.0))
+
+
+def rpy_matrix(r: float, p: float, y: float) -> tuple:
+    cr, sr = math.cos(r), math.sin(r)
+    cp, sp = math.cos(p), math.sin(p)
+    cy, sy = math.cos(y), math.sin(y)
+    return (
+        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+        (-sp, cp * sr, cp * cr),
+    )
+
+
+def axis_angle_matrix(axis, angle: float) -> tuple:
+    """Rotation about a unit axis (Rodrigues)."""
+    x, y, z = axis
+    c, s = math.cos(angle), math.sin(angle)
+    t = 1.0 - c
+    return (
+        (t * x * x + c, t * x * y - s * z, t * x * z + s * y),
+        (t * x * y + s * z, t * y * y + c, t * y * z - s * x),
+        (t * x * z - s * y, t * y * z + s * x, t * z * z + c),
+    )
+
+
+def from_rt(rot, xyz) -> Mat:
+    return (
+        (rot[0][0], rot[0][1], rot[0][2], float(xyz[0])),
+        (rot[1][0], rot[1][1], rot[1][2], float(xyz[1])),
+        (rot[2][0], rot[2][1], rot[2][2], float(xyz[2])),
+        (0.0, 0.0, 0.0, 1.0),
+    )
+
+
+def pose_matrix(xyz, rpy) -> Mat:
+    return from_rt(rpy_matrix(*rpy), xyz)
+
+
+def compose(a: Mat, b: Mat) -> Mat:
+    return tuple(
+        tuple(sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)) for i in range(4)
+    )
+
+
+def inverse(m: Mat) -> Mat:
+    r = [[m[j][i] for j in range(3)] for i in range(3)]  # transpose
+    t = [-(r[i][0] * m[0][3] + r[i][1] * m[1][3] + r[i][2] * m[2][3]) for i in range(3)]
+    return from_rt(r, t)
+
+
+def translation(m: Mat) -> tuple[float, float, float]:
+    return (m[0][3], m[1][3], m[2][3])
+
+
+def rotate(m: Mat, v) -> tuple[float, float, float]:
+    return tuple(m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2] for i in range(3))
+
+
+def norm(v) -> float:
+    return math.sqrt(sum(c * c for c in v))
+
+
+def quaternion(m: Mat) -> tuple[float, float, float, float]:
+    """(x, y, z, w) of the rotation part, w >= 0."""
+    tr = m[0][0] + m[1][1] + m[2][2]
+    if tr > 0:
+        s = math.sqrt(tr + 1.0) * 2
+        w, x = 0.25 * s, (m[2][1] - m[1][2]) / s
+        y, z = (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s
+    elif m[0][0] > m[1][1] and m[0][0] > m[2][2]:
+        s = math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2]) * 2
+        w, x = (m[2][1] - m[1][2]) / s, 0.25 * s
+        y, z = (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s
+    elif m[1][1] > m[2][2]:
+        s = math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2]) * 2
+        w, x = (m[0][2] - m[2][0]) / s, (m[0][1] + m[1][0]) / s
+        y, z = 0.25 * s, (m[1][2] + m[2][1]) / s
+    else:
+        s = math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1]) * 2
+        w, x = (m[1][0] - m[0][1]) / s, (m[0][2] + m[2][0]) / s
+        y, z = (m[1][2] + m[2][1]) / s, 0.25 * s
+    if w < 0:
+        x, y, z, w = -x, -y, -z, -w
+    return (x, y, z, w)
+
+
+def rpy(m: Mat) -> tuple[float, float, float]:
+    """Roll, pitch, yaw of the rotation part (URDF convention)."""
+    pitch = math.atan2(-m[2][0], math.hypot(m[0][0], m[1][0]))
+    if abs(math.cos(pitch)) < 1e-12:
+        return (0.0, pitch, math.atan2(-m[0][1], m[1][1]))
+    return (math.atan2(m[2][1], m[2][2]), pitch, math.atan2(m[1][0], m[0][0]))
