@@ -132,6 +132,42 @@ class Block:
 
 
 @dataclass(frozen=True)
+class Interface:
+    name: str
+    loc: Location
+
+
+@dataclass(frozen=True)
+class HardwareItem:
+    """A <joint>, <sensor> or <gpio> inside <ros2_control>."""
+
+    kind: str
+    name: str
+    loc: Location
+    command: tuple[Interface, ...] = ()
+    state: tuple[Interface, ...] = ()
+
+
+@dataclass(frozen=True)
+class Ros2Control:
+    name: str
+    type: str
+    loc: Location
+    plugin: str = ""
+    joints: tuple[HardwareItem, ...] = ()
+    sensors: tuple[HardwareItem, ...] = ()
+    gpios: tuple[HardwareItem, ...] = ()
+    in_gazebo: bool = False  # written inside a <gazebo> block, where ros2_control never reads it
+
+
+@dataclass(frozen=True)
+class Transmission:
+    name: str
+    loc: Location
+    joints: tuple[Interface, ...] = ()  # joint names with their locations
+
+
+@dataclass(frozen=True)
 class Issue:
     """A problem found while building the model (bad number, unknown element...), reported by its rule."""
 
@@ -153,6 +189,8 @@ class Model:
     blocks: tuple[Block, ...]
     issues: tuple[Issue, ...]
     source: str  # the entry file
+    ros2_control: tuple[Ros2Control, ...] = ()
+    transmissions: tuple[Transmission, ...] = ()
 
     # --- derived structure -------------------------------------------------
     @property

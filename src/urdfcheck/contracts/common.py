@@ -1,0 +1,80 @@
+"""Shared small types for the consumer readers: a located value and the reader error."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from ..findings import Location
+
+
+class ConsumerError(Exception):
+    """A consumer file (parameter YAML, launch file) could not be read.
+
+    Never a traceback for the user: the engine reports it as C007 at `location`.
+    """
+
+    def __init__(self, message: str, location: Location):
+        super().__init__(message)
+        self.message = message
+        self.location = location
+
+    def __str__(self) -> str:
+        return f"{self.location}: {self.message}"
+
+
+@dataclass(frozen=True)
+class Value:
+    """A value read from a consumer file, with where it was written.
+
+    `default` is True when the reader supplied the value because the file did not set it
+    (then `loc` points at the owning node or controller).
+    """
+
+    value: Any
+    loc: Location
+    default: bool = False
+
+    def __str__(self) -> str:
+        return str(self.value)
+
+
+def as_str_list(value: Any) -> list[str] | None:
+    """A YAML value that should be a list of strings (a single string is accepted). None: not that shape."""
+    if isinstance(value, str):
+        return [value]
+    if isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
+        return list(value)
+    return None
+
+
+def as_float(value: Any) -> float | None:
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, (int, float)):
+        f = float(value)
+        return f if f == f and f not in (float("inf"), float("-inf")) else None
+    if isinstance(value, str):
+        try:
+            f = float(value.strip())
+        except ValueError:
+            return None
+        return f if f == f and f not in (float("inf"), float("-inf")) else None
+    return None
+
+
+_TRUE = {"true", "yes", "on", "1"}
+_FALSE = {"false", "no", "off", "0"}
+
+
+def as_bool(value: Any) -> bool | None:
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, int):
+        return bool(value)
+    if isinstance(value, str):
+        s = value.strip().lower()
+        if s in _TRUE:
+            return True
+        if s in _FALSE:
+            return False
+    return None

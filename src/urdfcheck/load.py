@@ -1,0 +1,211 @@
+"""Load: path -> expanded XML with a source map (plain URDF or xacro) -> Model.
+
+Every failure is a located Finding; nothing here raises on bad input except `load_model`, which raises
+LoadError (carrying the findings) for callers that need a model or nothing.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import xmlfront
+from .findings import Finding, Location, Severity
+from .packages import Resolver
+from .suppress import Suppression
+
+MAX_BYTES = xmlfront.MAX_BYTES
+XACRO_TIMEOUT = 20.0
+XACRO_MEMORY = 2 * 1024**3
+
+# Severity of load findings; the catalogue may override the names but these codes are fixed here
+# because loading happens before any rule runs.
+_LOAD_SEVERITY = {"X003": Severity.WARNING}
+
+
+def display(path: str | os.PathLike) -> str:
+    """Path as shown in reports: relative to the working directory when below it."""
+    p = os.path.abspath(path)
+    cwd = os.getcwd()
+    if p == cwd or p.startswith(cwd.rstrip(os.sep) + os.sep):
+        return os.path.relpath(p, cwd)
+    return p
+
+
+XACRO_NS = "http://www.ros.org/wiki/xacro"
+
+
+def is_xacro(path: Path, root=None) -> bool:
+    """A .xacro file, or a file whose parsed tree uses xacro elements (some packages name them .urdf)."""
+    if path.name.endswith(".xacro"):
+        return True
+    if root is None:
+        return False
+    return any(isinstance(el.tag, str) and el.tag.startswith("{" + XACRO_NS + "}") for el in root.iter())
+
+
+@dataclass
+class Expanded:
+    entry: str  # display path of the entry file
+    xacro: bool
+    root: object | None = None  # lxml root element of the (expanded) document
+    files: list[str] = field(default_factory=list)  # display paths, index = marker file index
+    findings: list[Finding] = field(default_factory=list)
+    suppressions: list[Suppression] = field(default_factory=list)
+    declared_args: dict = field(default_factory=dict)
+    args: dict = field(default_factory=dict)
+    text: str | None = None  # expanded XML with markers (xacro only)
+    resolver: Resolver | None = None
+    _cache: dict = field(default_factory=dict)
+
+    def clean_text(self) -> str:
+        """The expanded document exactly as stock xacro prints it (no source markers)."""
+        from .xacro.expand import STRIP_RE
+
+        if self.text is not None:
+            return STRIP_RE.sub("", self.text)
+        with open(self.entry, "rb") as f:
+            return f.read().decode("utf-8", "replace")
+
+    def locate(self, el) -> Location:
+        """Source location of an element of `root` (xacro markers or lxml line numbers)."""
+        if not self.xacro:
+            return Location(self.entry, el.sourceline)
+        from .xacro.expand import SRC_ATTR
+
+        node = el
+        while node is not None:
+            m = node.get(SRC_ATTR) if isinstance(node.tag, str) else None
+            if m:
+                loc = self._cache.get(m)
+                if loc is None:
+                    loc = self._cache[m] = self._decode(m)
+                return loc
+            node = node.getparent()
+        return Location(self.entry, None)
+
+    def _decode(self, marker: str) -> Location:
+        parts = []
+        for item in marker.split(";"):
+            if not item:
+                continue
+            i, _, line = item.partition(":")
+            try:
+                parts.append((self.files[int(i)], int(line)))
+            except (ValueError, IndexError):
+                continue
+        if not parts:
+            return Location(self.entry, None)
+        via = tuple(Location(f, ln) for f, ln in parts[1:])
+        return Location(parts[0][0], parts[0][1], via=via)
+
+
+def _finding(code: str, message: str, file: str, line: int | None = None, column: int | None = None,
+             via=()) -> Finding:
+    from .findings import clean_text
+
+    return Finding(code=code, severity=_LOAD_SEVERITY.get(code, Severity.ERROR), message=clean_text(message),
+                   location=Location(file, line, column, tuple(via)))
+
+
+def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict | None = None,
+           trusted: bool = False, allow_env=(), timeout: float = XACRO_TIMEOUT,
+           memory: int = XACRO_MEMORY, environ: dict | None = None) -> Expanded:
+    """Read and (for xacro) expand one entry model. Problems are findings on the result."""
+    p = Path(path)
+    shown = display(p)
+    resolver = Resolver(packages, near=p.resolve(), environ=environ)
+    out = Expanded(entry=shown, xacro=False, files=[shown], args=dict(args or {}), resolver=resolver)
+    try:
+        with open(p, "rb") as f:
+            data = f.read(MAX_BYTES + 1)
+    except OSError as e:
+        out.findings.append(_finding("X001", f"cannot read file: {e.strerror}", shown))
+        return out
+    if is_xacro(p):
+        out.xacro = True
+        _expand_xacro(out, p, data, trusted, allow_env, timeout, memory)
+        return out
+    try:
+        root, warnings = xmlfront.parse(data)
+    except xmlfront.XmlRefused as r:
+        out.findings.append(_finding(r.issue.code, r.issue.message, shown, r.issue.line, r.issue.column))
+        return out
+    if is_xacro(p, root):
+        out.xacro = True
+        _expand_xacro(out, p, data, trusted, allow_env, timeout, memory)
+        return out
+    for w in warnings:
+        out.findings.append(_finding(w.code, w.message, shown, w.line))
+    from .suppress import scan_comments
+
+    out.suppressions = [Suppression(shown, a, b, c, d) for a, b, c, d in scan_comments(root)]
+    out.root = root
+    return out
+
+
+def _expand_xacro(out: Expanded, p: Path, data: bytes, trusted, allow_env, timeout, memory) -> None:
+    from . import worker
+    from .xacro import expand as xexpand
+
+    opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver)
+    res = worker.run(xexpand.expand, str(p), opts, timeout=timeout, memory=memory)
+    if isinstance(res, worker.Failure):
+        what = {"timeout": "xacro expansion timed out", "memory": "xacro expansion ran out of memory",
+                "output": "xacro expansion produced too much output"}.get(res.kind, "xacro expansion failed")
+        code = "X012" if res.kind in ("timeout", "memory", "output") else "X010"
+        out.findings.append(_finding(code, f"{what}: {res.message}", out.entry, 1))
+        return
+    out.files = [display(f) for f in res["files"]] or [out.entry]
+    out.declared_args = dict(res.get("args", {}))
+    for idx, first, last, codes, cline in res["suppressions"]:
+        out.suppressions.append(Suppression(out.files[idx], first, last, codes, cline))
+    for idx, code, message, line in res.get("xml_warnings", []):
+        out.findings.append(_finding(code, message, out.files[idx], line))
+    for kind, text, marker in res.get("warnings", []):
+        if kind in ("warning", "error") and text.strip():
+            loc = out._decode(marker) if marker else Location(out.entry, None)
+            out.findings.append(Finding("X010", Severity.WARNING, f"xacro {kind}: " + _short(text),
+                                        loc))
+    err = res.get("error")
+    if err is not None:
+        loc = out._decode(err["marker"]) if err.get("marker") else Location(out.entry, None)
+        out.findings.append(_finding(err["code"], err["message"], loc.file, loc.line, via=loc.via))
+        return
+    out.text = res["xml"]
+    try:
+        root, _ = xmlfront.parse(out.text.encode("utf-8"))
+    except xmlfront.XmlRefused as r:
+        out.findings.append(_finding(r.issue.code, "expanded document: " + r.issue.message, out.entry))
+        return
+    out.root = root
+
+
+def _short(text: str) -> str:
+    from .findings import clean_text
+
+    return clean_text(text.strip().splitlines()[0] if text.strip() else text)
+
+
+class LoadError(Exception):
+    def __init__(self, findings: list[Finding]):
+        super().__init__("; ".join(f"{f.location}: {f.code} {f.message}" for f in findings) or "cannot load")
+        self.findings = findings
+
+
+def build_model(exp: Expanded):
+    """Model for an expanded document, or None when there is no document."""
+    if exp.root is None:
+        return None
+    from .build import build
+
+    return build(exp.root, exp.locate, exp.entry)
+
+
+def load_model(path, args: dict | None = None, **kwargs):
+    """Model or LoadError. For `tree`, `tf`, `publish`, `verify` and API users."""
+    exp = expand(path, args, **kwargs)
+    errors = [f for f in exp.findings if f.severity >= Severity.ERROR]
+    if exp.root is None or errors:
+        raise LoadError(errors or exp.findings)
+    return build_model(exp)

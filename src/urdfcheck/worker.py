@@ -1,0 +1,137 @@
+"""Run a function in a forked child with memory, CPU and wall-clock limits.
+
+Forking keeps start-up cost near zero (the child inherits the imported modules) and lets the child
+patch module globals freely: nothing it does reaches the parent. A crash, an out-of-memory or a
+time-out comes back as a `Failure`, never as a result.
+"""
+from __future__ import annotations
+
+import os
+import pickle
+import select
+import signal
+import sys
+import time
+from dataclasses import dataclass
+
+DEFAULT_MEMORY = 2 * 1024**3
+DEFAULT_TIMEOUT = 20.0
+MAX_RESULT = 256 * 1024 * 1024
+
+
+@dataclass(frozen=True)
+class Failure:
+    kind: str  # "timeout", "memory", "crashed", "output", "error"
+    message: str
+    stderr: str = ""
+
+
+def _limit(memory: int | None, cpu: float | None) -> None:
+    import resource
+
+    if memory:
+        resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+    if cpu:
+        secs = int(cpu) + 1
+        resource.setrlimit(resource.RLIMIT_CPU, (secs, secs + 1))
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+
+
+def run(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFAULT_MEMORY,
+        capture_fd2: bool = False, **kwargs):
+    """fn(*args, **kwargs) in a child. Returns its (picklable) result or a Failure."""
+    if not hasattr(os, "fork"):  # pragma: no cover - non-POSIX: no isolation available
+        return fn(*args, **kwargs)
+    rfd, wfd = os.pipe()
+    efd_r = efd_w = None
+    if capture_fd2:
+        efd_r, efd_w = os.pipe()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    pid = os.fork()
+    if pid == 0:  # child
+        code = 0
+        try:
+            os.close(rfd)
+            if efd_w is not None:
+                os.close(efd_r)
+                os.dup2(efd_w, 2)
+            _limit(memory, timeout)
+            try:
+                payload = ("ok", fn(*args, **kwargs))
+            except MemoryError:
+                payload = ("memory", "out of memory")
+            except RecursionError:
+                payload = ("error", "recursion too deep")
+            except BaseException as e:  # report, never propagate into the parent's code path
+                payload = ("error", f"{type(e).__name__}: {e}")
+            try:
+                data = pickle.dumps(payload, protocol=pickle.HIGHEST_PROTOCOL)
+            except MemoryError:
+                data = pickle.dumps(("memory", "out of memory"))
+            except Exception as e:
+                data = pickle.dumps(("error", f"result not transferable: {e}"))
+            view = memoryview(data)
+            while view:
+                n = os.write(wfd, view)
+                view = view[n:]
+        except BaseException:
+            code = 70
+        finally:
+            os._exit(code)
+    os.close(wfd)
+    if efd_w is not None:
+        os.close(efd_w)
+    chunks, size, errs = [], 0, []
+    deadline = time.monotonic() + timeout
+    failure = None
+    fds = [rfd] + ([efd_r] if efd_r is not None else [])
+    open_fds = set(fds)
+    try:
+        while rfd in open_fds:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                failure = Failure("timeout", f"did not finish within {timeout:g} s")
+                break
+            ready, _, _ = select.select(list(open_fds), [], [], left)
+            for fd in ready:
+                block = os.read(fd, 1 << 20)
+                if not block:
+                    open_fds.discard(fd)
+                elif fd == rfd:
+                    chunks.append(block)
+                    size += len(block)
+                    if size > MAX_RESULT:
+                        failure = Failure("output", f"output larger than {MAX_RESULT} bytes")
+                        open_fds.discard(rfd)
+                else:
+                    if sum(len(e) for e in errs) < 65536:
+                        errs.append(block)
+    finally:
+        if failure is not None:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+        _, status = os.waitpid(pid, 0)
+        for fd in fds:
+            try:
+                os.close(fd)
+            except OSError:
+                pass
+    stderr = b"".join(errs).decode("utf-8", "replace")
+    if failure is not None:
+        return Failure(failure.kind, failure.message, stderr)
+    if os.WIFSIGNALED(status):
+        sig = os.WTERMSIG(status)
+        if sig in (signal.SIGXCPU, signal.SIGKILL):
+            return Failure("timeout", f"used more than {timeout:g} s of CPU", stderr)
+        name = signal.Signals(sig).name if sig in signal.Signals._value2member_map_ else str(sig)
+        return Failure("crashed", f"crashed with signal {name}", stderr)
+    try:
+        kind, value = pickle.loads(b"".join(chunks))
+    except Exception:
+        return Failure("crashed", f"exited with status {os.WEXITSTATUS(status)} and no result", stderr)
+    if kind == "ok":
+        return value
+    return Failure(kind, value, stderr)

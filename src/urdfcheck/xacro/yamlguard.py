@@ -1,0 +1,48 @@
+"""Refuse YAML files that would blow up when xacro loads them (size, alias bombs)."""
+from __future__ import annotations
+
+import yaml
+
+MAX_BYTES = 8 * 1024 * 1024
+MAX_NODES = 1_000_000
+
+
+class YamlRefused(Exception):
+    def __init__(self, message: str):
+        super().__init__(message)
+        self.code = "X012"
+        self.message = message
+
+
+def expanded_size(node, memo=None) -> int:
+    """Number of nodes the document has once aliases are expanded (aliases share node objects)."""
+    memo = {} if memo is None else memo
+    key = id(node)
+    if key in memo:
+        return memo[key]
+    memo[key] = 1  # cycles count once
+    if isinstance(node, yaml.SequenceNode):
+        total = 1 + sum(expanded_size(n, memo) for n in node.value)
+    elif isinstance(node, yaml.MappingNode):
+        total = 1 + sum(expanded_size(k, memo) + expanded_size(v, memo) for k, v in node.value)
+    else:
+        total = 1
+    memo[key] = min(total, MAX_NODES + 1)
+    return memo[key]
+
+
+def check_yaml_text(text: str, name: str = "YAML") -> None:
+    if len(text) > MAX_BYTES:
+        raise YamlRefused(f"{name} is larger than {MAX_BYTES} bytes")
+    if "&" not in text:
+        return
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    node = yaml.compose(text, Loader=loader)
+    if node is not None and expanded_size(node) > MAX_NODES:
+        raise YamlRefused(f"{name} expands to more than {MAX_NODES} nodes through aliases (a YAML bomb)")
+
+
+def check_yaml_file(path: str) -> None:
+    with open(path, "rb") as f:
+        data = f.read(MAX_BYTES + 1)
+    check_yaml_text(data.decode("utf-8", "replace"), path)

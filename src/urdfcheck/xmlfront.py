@@ -1,0 +1,130 @@
+"""Hardened XML front end for untrusted model files.
+
+lxml with entity resolution, DTD loading and network off. Constructs that parsers disagree on (a DOCTYPE,
+entity declarations, processing instructions, trailing content) are refused as findings instead of being
+"recovered" differently by each consumer.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from lxml import etree
+
+MAX_BYTES = 32 * 1024 * 1024
+MAX_DEPTH = 200
+MAX_ELEMENTS = 2_000_000
+MAX_ATTR_LEN = 1_000_000
+
+_DECL = re.compile(rb"^\s*<\?xml\s+([^?]*)\?>")
+_DECL_ATTR = re.compile(rb"(version|encoding|standalone)\s*=\s*[\"']([^\"']*)[\"']")
+
+
+@dataclass(frozen=True)
+class XmlIssue:
+    code: str
+    message: str
+    line: int | None = None
+    column: int | None = None
+
+
+class XmlRefused(Exception):
+    """The document cannot be used; `issue` says why and where."""
+
+    def __init__(self, issue: XmlIssue):
+        super().__init__(issue.message)
+        self.issue = issue
+
+
+def _parser() -> etree.XMLParser:
+    return etree.XMLParser(
+        resolve_entities=False,
+        no_network=True,
+        load_dtd=False,
+        dtd_validation=False,
+        huge_tree=False,
+        remove_comments=False,
+        remove_pis=False,
+        collect_ids=False,
+    )
+
+
+def _line_of(data: bytes, offset: int) -> int:
+    return data.count(b"\n", 0, offset) + 1
+
+
+def check_declaration(data: bytes) -> list[XmlIssue]:
+    m = _DECL.match(data)
+    if not m:
+        return []
+    out = []
+    attrs = {k.decode(): v.decode("latin-1") for k, v in _DECL_ATTR.findall(m.group(1))}
+    if attrs.get("version", "1.0") != "1.0":
+        out.append(XmlIssue("X003", f"XML declaration says version {attrs['version']!r}; ROS parsers expect 1.0", 1))
+    enc = attrs.get("encoding")
+    if enc is not None and enc.lower().replace("_", "-") not in ("utf-8", "utf8", "ascii", "us-ascii"):
+        out.append(XmlIssue("X003", f"XML declaration says encoding {enc!r}; ROS tools read URDF as UTF-8", 1))
+    return out
+
+
+def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
+    """Parse untrusted bytes. Returns (root, warnings); raises XmlRefused for unusable documents."""
+    if len(data) > MAX_BYTES:
+        raise XmlRefused(XmlIssue("X004", f"file is {len(data)} bytes; the limit is {MAX_BYTES}"))
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise XmlRefused(XmlIssue("X001", f"invalid UTF-8 ({e.reason})", _line_of(data, e.start))) from None
+    warnings = check_declaration(data)
+    try:
+        root = etree.fromstring(data, _parser())
+    except etree.XMLSyntaxError as e:
+        line, col = (e.position if e.position else (e.lineno, None))
+        msg = str(e.msg if hasattr(e, "msg") and e.msg else e)
+        msg = re.sub(r",? line \d+, column \d+.*$", "", msg)
+        code = "X002" if "Extra content" in msg else "X001"
+        if code == "X002":
+            msg = "content after the root element (a second root or trailing text)"
+        raise XmlRefused(XmlIssue(code, f"malformed XML: {msg}", line or None, col or None)) from None
+    except ValueError as e:  # e.g. unicode strings with an encoding declaration
+        raise XmlRefused(XmlIssue("X001", f"malformed XML: {e}")) from None
+    tree = root.getroottree()
+    info = tree.docinfo
+    if info.doctype or info.internalDTD is not None:
+        raise XmlRefused(XmlIssue("X002", "DOCTYPE declarations are not allowed in robot descriptions "
+                                          "(entities expand differently in each ROS parser)", 1))
+    for sib in root.itersiblings(preceding=True):
+        if isinstance(sib, etree._ProcessingInstruction):
+            raise XmlRefused(XmlIssue("X002", f"processing instruction <?{sib.target}?> before the root element",
+                                      sib.sourceline))
+    for sib in root.itersiblings():
+        if isinstance(sib, etree._ProcessingInstruction):
+            raise XmlRefused(XmlIssue("X002", f"processing instruction <?{sib.target}?> after the root element",
+                                      sib.sourceline))
+    _check_shape(root)
+    return root, warnings
+
+
+def _check_shape(root: etree._Element) -> None:
+    count = 0
+    for el in root.iter():
+        count += 1
+        if count > MAX_ELEMENTS:
+            raise XmlRefused(XmlIssue("X004", f"more than {MAX_ELEMENTS} XML nodes", el.sourceline))
+        if isinstance(el, etree._Entity):
+            raise XmlRefused(XmlIssue("X002", f"entity reference &{el.name}; is not allowed", el.sourceline))
+        if isinstance(el, etree._ProcessingInstruction):
+            raise XmlRefused(XmlIssue("X002", f"processing instruction <?{el.target}?> inside the document",
+                                      el.sourceline))
+        if not isinstance(el.tag, str):
+            continue
+        for k, v in el.attrib.items():
+            if len(v) > MAX_ATTR_LEN:
+                raise XmlRefused(XmlIssue("X004", f"attribute {k!r} is {len(v)} characters long", el.sourceline))
+    # Depth: walk only elements, iteratively.
+    stack = [(root, 1)]
+    while stack:
+        el, d = stack.pop()
+        if d > MAX_DEPTH:
+            raise XmlRefused(XmlIssue("X004", f"elements nested deeper than {MAX_DEPTH}", el.sourceline))
+        stack.extend((c, d + 1) for c in el if isinstance(c.tag, str))
