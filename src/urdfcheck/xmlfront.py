@@ -16,8 +16,8 @@ MAX_DEPTH = 200
 MAX_ELEMENTS = 2_000_000
 MAX_ATTR_LEN = 1_000_000
 
-_DECL = re.compile(rb"^\s*<\?xml\s+([^?]*)\?>")
-_DECL_ATTR = re.compile(rb"(version|encoding|standalone)\s*=\s*[\"']([^\"']*)[\"']")
+_DECL = re.compile(rb"^(\xef\xbb\xbf)?\s*<\?xml(\s[^?]*)?\?>")
+_DECL_ATTR = re.compile(rb"([A-Za-z_:][-\w.:]*)\s*=\s*[\"']([^\"']*)[\"']")
 
 
 @dataclass(frozen=True)
@@ -53,18 +53,36 @@ def _line_of(data: bytes, offset: int) -> int:
     return data.count(b"\n", 0, offset) + 1
 
 
-def check_declaration(data: bytes) -> list[XmlIssue]:
+def check_declaration(data: bytes) -> tuple[list[XmlIssue], bytes]:
+    """Issues with the <?xml ...?> declaration, and the data to parse.
+
+    TinyXML (urdfdom) accepts a malformed declaration such as `<?xml verison="1.0"?>` and so does the
+    robot; we report it and parse the document with the declaration blanked out (lines unchanged).
+    """
     m = _DECL.match(data)
     if not m:
-        return []
+        return [], data
     out = []
-    attrs = {k.decode(): v.decode("latin-1") for k, v in _DECL_ATTR.findall(m.group(1))}
-    if attrs.get("version", "1.0") != "1.0":
+    body = m.group(2) or b""
+    pairs = _DECL_ATTR.findall(body)
+    attrs = {k.decode("latin-1"): v.decode("latin-1") for k, v in pairs}
+    leftover = _DECL_ATTR.sub(b"", body).strip()
+    odd = [k for k in attrs if k not in ("version", "encoding", "standalone")]
+    if odd or leftover or "version" not in attrs:
+        what = f"unknown attribute {odd[0]!r}" if odd else ("no version" if "version" not in attrs
+                                                             else "stray text")
+        out.append(XmlIssue("X003", f"malformed XML declaration ({what}); strict XML parsers reject the file", 1))
+    elif attrs["version"] != "1.0":
         out.append(XmlIssue("X003", f"XML declaration says version {attrs['version']!r}; ROS parsers expect 1.0", 1))
     enc = attrs.get("encoding")
     if enc is not None and enc.lower().replace("_", "-") not in ("utf-8", "utf8", "ascii", "us-ascii"):
         out.append(XmlIssue("X003", f"XML declaration says encoding {enc!r}; ROS tools read URDF as UTF-8", 1))
-    return out
+    if not out:
+        return out, data
+    # parse what ROS parses: the bytes as UTF-8, whatever the declaration claims
+    start = m.start(0) + len(m.group(1) or b"")
+    blank = bytes(b if b in b"\r\n" else 32 for b in data[start:m.end(0)])
+    return out, data[:start] + blank + data[m.end(0):]
 
 
 def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
@@ -75,7 +93,7 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
         data.decode("utf-8")
     except UnicodeDecodeError as e:
         raise XmlRefused(XmlIssue("X001", f"invalid UTF-8 ({e.reason})", _line_of(data, e.start))) from None
-    warnings = check_declaration(data)
+    warnings, data = check_declaration(data)
     try:
         root = etree.fromstring(data, _parser())
     except etree.XMLSyntaxError as e:

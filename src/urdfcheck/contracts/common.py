@@ -33,6 +33,10 @@ class Value:
     value: Any
     loc: Location
     default: bool = False
+    items: tuple = ()  # for a list: the Location of each element
+
+    def item_loc(self, i: int) -> Location:
+        return self.items[i] if 0 <= i < len(self.items) else self.loc
 
     def __str__(self) -> str:
         return str(self.value)

@@ -28,7 +28,7 @@ from ..findings import Location
 from .common import ConsumerError
 
 MAX_BYTES = 2 * 1024 * 1024
-MAX_NODES = 200_000
+MAX_NODES = 100_000
 MAX_DEPTH = 256
 
 _MERGE_TAG = "tag:yaml.org,2002:merge"
@@ -145,7 +145,7 @@ class _Builder:
         self._tick(node)
         if depth > MAX_DEPTH:
             raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", _mark_loc(self.file, node.start_mark))
-        self.value_locs.setdefault(path, _mark_loc(self.file, node.start_mark))
+        self.value_locs[path] = _mark_loc(self.file, node.start_mark)
         if isinstance(node, yaml.ScalarNode):
             return self.scalar(node)
         key = id(node)
@@ -187,6 +187,13 @@ class _Builder:
             if merging and k in out:
                 continue
             if k in out:
+                if isinstance(out[k], dict) and isinstance(vnode, yaml.MappingNode):
+                    # rcl reads parameter files event by event: a repeated node key adds to the node
+                    self.notes.append((f"duplicate key {k!r}; the two mappings are merged", _mark_loc(self.file, knode.start_mark)))
+                    self._tick(vnode)
+                    self.key_locs[path + (k,)] = _mark_loc(self.file, knode.start_mark)
+                    _deep_update(out[k], self.mapping(vnode, path + (k,), depth + 1))
+                    continue
                 self.notes.append((f"duplicate key {k!r}; the last one wins", _mark_loc(self.file, knode.start_mark)))
                 n = len(path) + 1
                 for table in (self.value_locs, self.key_locs):
@@ -209,6 +216,57 @@ class _Builder:
                 finally:
                     self._stack.discard(key)
         return out
+
+
+def _deep_update(dst: dict, src: dict) -> None:
+    for k, v in src.items():
+        if isinstance(v, dict) and isinstance(dst.get(k), dict):
+            _deep_update(dst[k], v)
+        else:
+            dst[k] = v
+
+
+def _children(node):
+    if isinstance(node, yaml.SequenceNode):
+        return list(node.value)
+    if isinstance(node, yaml.MappingNode):
+        return [n for kv in node.value for n in kv]
+    return []
+
+
+def _refuse_bombs(root, file: str, max_nodes: int) -> None:
+    """Cheap pre-pass: expanded node count with memoisation (aliases share node objects), so a bomb is
+    refused in time proportional to its text, before anything is expanded."""
+    sizes: dict[int, int] = {}
+    state: dict[int, int] = {}  # 1: on the stack, 2: done
+    stack = [(root, False)]
+    while stack:  # iterative post-order over unique nodes
+        node, expanded = stack.pop()
+        key = id(node)
+        if expanded:
+            total = 1 + sum(sizes.get(id(c), 1) for c in _children(node))
+            sizes[key] = min(total, max_nodes + 1)
+            state[key] = 2
+            continue
+        if key in state:
+            continue  # done already, or a cycle (the builder reports cycles)
+        state[key] = 1
+        stack.append((node, True))
+        for c in _children(node):
+            if id(c) not in state:
+                stack.append((c, False))
+    if sizes[id(root)] <= max_nodes:
+        return
+    node = root
+    while True:  # descend to the smallest node that is still too big: that is where the bomb is
+        big = [c for c in _children(node) if sizes.get(id(c), 1) > max_nodes]
+        if not big:
+            break
+        node = big[0]
+    raise ConsumerError(
+        f"YAML expands to more than {max_nodes} nodes through aliases (a YAML bomb); refused",
+        _mark_loc(file, node.start_mark),
+    )
 
 
 def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES) -> YamlDoc:
@@ -239,6 +297,7 @@ def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_
         raise ConsumerError("YAML nested too deeply; refused", Location(file)) from None
     if root is None:
         return YamlDoc(file, None)
+    _refuse_bombs(root, file, max_nodes)
     b = _Builder(file, max_nodes)
     try:
         data = b.build(root, ())

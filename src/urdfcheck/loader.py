@@ -20,7 +20,7 @@ XACRO_MEMORY = 2 * 1024**3
 
 # Severity of load findings; the catalogue may override the names but these codes are fixed here
 # because loading happens before any rule runs.
-_LOAD_SEVERITY = {"X003": Severity.WARNING}
+_LOAD_SEVERITY = {"X003": Severity.WARNING, "X016": Severity.WARNING}
 
 
 def display(path: str | os.PathLike) -> str:
@@ -165,8 +165,7 @@ def _expand_xacro(out: Expanded, p: Path, data: bytes, trusted, allow_env, timeo
     for kind, text, marker in res.get("warnings", []):
         if kind in ("warning", "error") and text.strip():
             loc = out._decode(marker) if marker else Location(out.entry, None)
-            out.findings.append(Finding("X010", Severity.WARNING, f"xacro {kind}: " + _short(text),
-                                        loc))
+            out.findings.append(Finding("X016", Severity.WARNING, f"xacro {kind}: " + _short(text), loc))
     err = res.get("error")
     if err is not None:
         loc = out._decode(err["marker"]) if err.get("marker") else Location(out.entry, None)

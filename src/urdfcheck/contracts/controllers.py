@@ -1,0 +1,562 @@
+"""Controllers (ros2_control / ros_control) and custom drivers, read from parameter files.
+
+ROS 2 (`controller_manager` parameter files)::
+
+    controller_manager:
+      ros__parameters:
+        update_rate: 100
+        diffbot_base_controller:
+          type: diff_drive_controller/DiffDriveController      # declared here ...
+    diffbot_base_controller:
+      ros__parameters:
+        type: diff_drive_controller/DiffDriveController        # ... and/or here (Jazzy and later)
+        left_wheel_names: [left_wheel_joint]
+
+ROS 1 (`rosparam load`): any mapping with a `type: pkg/Class` entry is a controller named by its key path
+("diffbot_controller", "ns/arm_controller").
+
+Several files for the same controller are merged in order (a later file wins), as the controller manager
+does with several `--param-file`s or `rosparam load`s; so `diffbot_controllers.yaml` followed by
+`diffbot_multipliers.yaml` gives one controller with the multipliers.
+
+Chained controllers (`left_wheel_names: [pid_left/left_wheel_joint]`, where `pid_left` is a declared
+controller) resolve to the last joint name; such uses are marked `via` and carry no interface claims
+(the interfaces they use are the upstream controller's references).
+
+A *custom driver* (a vendor node that is not a ros2_control controller) is described by key paths in
+the config (`DriverSpec`) and read with `read_driver`.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from typing import Iterable, Mapping, Sequence
+
+from ..findings import Location
+from .common import ConsumerError, Value, as_bool, as_float, as_str_list
+from .params import NodeParams, ParamFile, lookup, merge_nodes, read_params
+
+# --- controller kinds --------------------------------------------------------------------------------
+DIFF_DRIVE = "diff_drive"
+JTC = "joint_trajectory"
+JSB = "joint_state_broadcaster"
+FORWARD = "forward_command"
+GROUP = "joint_group"
+JSC = "joint_state_controller"  # ROS 1
+OTHER = "other"
+
+_ROS2_TYPES = {
+    "diff_drive_controller/DiffDriveController": DIFF_DRIVE,
+    "joint_trajectory_controller/JointTrajectoryController": JTC,
+    "joint_state_broadcaster/JointStateBroadcaster": JSB,
+    "forward_command_controller/ForwardCommandController": FORWARD,
+    "forward_command_controller/MultiInterfaceForwardCommandController": FORWARD,
+    "position_controllers/JointGroupPositionController": GROUP,
+    "velocity_controllers/JointGroupVelocityController": GROUP,
+    "effort_controllers/JointGroupEffortController": GROUP,
+}
+_GROUP_INTERFACE = {"position_controllers": "position", "velocity_controllers": "velocity", "effort_controllers": "effort"}
+_ROS1_JOINT_PACKAGES = ("position_controllers", "velocity_controllers", "effort_controllers", "pos_vel_controllers",
+                        "pos_vel_acc_controllers", "joint_trajectory_controller", "forward_command_controller")
+_FRAME_PARAMS = ("frame_id", "sensor_frame_id")  # broadcasters (force/torque, IMU) stamp their messages with these
+
+
+def kind_of(type_name: str, ros: int) -> str:
+    if ros == 2:
+        return _ROS2_TYPES.get(type_name, OTHER)
+    if type_name == "diff_drive_controller/DiffDriveController":
+        return DIFF_DRIVE
+    if type_name == "joint_state_controller/JointStateController":
+        return JSC
+    pkg, _, cls = type_name.partition("/")
+    if pkg in _ROS1_JOINT_PACKAGES:
+        return JTC if "Trajectory" in cls else GROUP
+    return OTHER
+
+
+@dataclass(frozen=True)
+class JointUse:
+    """A joint a controller or driver commands, and the hardware interfaces it needs on it."""
+
+    joint: str
+    loc: Location
+    owner: str
+    command: tuple[str, ...] = ()
+    state: tuple[str, ...] = ()
+    role: str = "joint"  # joint, left_wheel, right_wheel
+    via: str = ""  # upstream controller when chained (no interface claims then)
+    written: str = ""  # the name as written, when it differs (chained)
+
+
+@dataclass(frozen=True)
+class DriveSpec:
+    """What a differential drive (controller or driver) believes about the wheels."""
+
+    owner: str
+    loc: Location
+    left: tuple[JointUse, ...]
+    right: tuple[JointUse, ...]
+    left_loc: Location
+    right_loc: Location
+    wheel_separation: Value | None
+    wheel_radius: Value | None
+    separation_multiplier: Value | None = None
+    left_radius_multiplier: Value | None = None
+    right_radius_multiplier: Value | None = None
+    wheels_per_side: Value | None = None
+    from_urdf: bool = False  # ROS 1: separation/radius not set are computed from the URDF by the controller
+
+    @staticmethod
+    def _num(v: Value | None, default: float = 1.0) -> float:
+        f = as_float(v.value) if v is not None else None
+        return default if f is None else f
+
+    @property
+    def separation(self) -> float | None:
+        """wheel_separation x wheel_separation_multiplier (None when not set / not a number)."""
+        if self.wheel_separation is None:
+            return None
+        s = as_float(self.wheel_separation.value)
+        return None if s is None else s * self._num(self.separation_multiplier)
+
+    def radius(self, side: str) -> float | None:
+        if self.wheel_radius is None:
+            return None
+        r = as_float(self.wheel_radius.value)
+        m = self.left_radius_multiplier if side == "left" else self.right_radius_multiplier
+        return None if r is None else r * self._num(m)
+
+
+@dataclass(frozen=True)
+class OdomTF:
+    """An odom -> base transform a controller or driver broadcasts."""
+
+    parent: str
+    child: str
+    owner: str
+    loc: Location
+    enabled: bool = True
+
+
+@dataclass
+class Controller:
+    name: str  # controller name (node basename)
+    node: str  # fully qualified node key ("/ns/name"), "/name" when not namespaced
+    type: str
+    type_loc: Location
+    loc: Location
+    kind: str
+    ros: int
+    file: str
+    params: dict[str, Value] = field(default_factory=dict)
+    joints: tuple[JointUse, ...] = ()  # commanded joints (and, for JSB with a list, the broadcast joints)
+    broadcasts_all: bool = False  # a state broadcaster for every hardware joint
+    state_joints: tuple[JointUse, ...] = ()  # explicit state-source joints (JSB `joints`)
+    drive: DriveSpec | None = None
+    odom_tf: OdomTF | None = None
+    frames: tuple[Value, ...] = ()  # frame ids the controller stamps data with / expects in the tree
+    notes: list = field(default_factory=list)  # (message, Location)
+
+    @property
+    def namespace(self) -> str:
+        ns = self.node.rsplit("/", 1)[0]
+        return ns or "/"
+
+
+@dataclass
+class ControllerSet:
+    controllers: dict[str, Controller]  # by node key
+    files: tuple[str, ...]
+    notes: list = field(default_factory=list)
+
+    def by_name(self, name: str) -> Controller | None:
+        for c in self.controllers.values():
+            if c.name == name or c.node == name:
+                return c
+        return None
+
+    def __iter__(self):
+        return iter(self.controllers.values())
+
+    def __len__(self):
+        return len(self.controllers)
+
+
+# --- helpers -----------------------------------------------------------------------------------------
+def _is_type_string(v) -> bool:
+    return isinstance(v, str) and "/" in v and " " not in v.strip() and not v.strip().startswith("/")
+
+
+def _norm_frame(s: str) -> str:
+    return s.strip().lstrip("/")
+
+
+def _tf_prefix(params: Mapping[str, Value], namespace: str) -> str:
+    """diff_drive_controller's frame prefix (Humble..Kilted `tf_frame_prefix_enable`; Lyrical `~`)."""
+    enable_v = params.get("tf_frame_prefix_enable")
+    prefix_v = params.get("tf_frame_prefix")
+    enable = as_bool(enable_v.value) if enable_v is not None else None
+    prefix = str(prefix_v.value) if prefix_v is not None and prefix_v.value is not None else ""
+    if enable is False:
+        return ""
+    if "~" in prefix:
+        prefix = prefix.replace("~", namespace)
+    elif not prefix and enable is True:
+        prefix = namespace
+    prefix = prefix.strip("/")
+    return prefix + "/" if prefix else ""
+
+
+def _str_list(params: Mapping[str, Value], key: str, notes: list) -> tuple[list[str], Value] | None:
+    v = params.get(key)
+    if v is None:
+        return None
+    lst = as_str_list(v.value)
+    if lst is None:
+        if v.value is None:
+            return [], v
+        notes.append((f"'{key}' should be a list of strings, got {type(v.value).__name__}", v.loc))
+        return None
+    return lst, v
+
+
+class _Reader:
+    def __init__(self, files: Sequence[ParamFile]):
+        self.files = list(files)
+        self.notes: list = []
+
+    # ROS 2 ---------------------------------------------------------------------------------------
+    def ros2(self) -> dict[str, Controller]:
+        files = [f for f in self.files if f.dialect == "ros2"]
+        nodes = merge_nodes(files)
+        declared: dict[str, tuple[str, Value]] = {}  # node key -> (type, type Value)
+        for key, node in nodes.items():
+            manager_like = "controller_manager" in node.basename or "update_rate" in node.params
+            for pname, v in node.params.items():
+                head, dot, tail = pname.rpartition(".")
+                if tail != "type" or not head or "." in head or not _is_type_string(v.value):
+                    continue
+                if not manager_like and v.value not in _ROS2_TYPES:
+                    continue
+                ckey = (node.namespace.rstrip("/") + "/" + head) if node.namespace != "/" else "/" + head
+                declared[ckey] = (str(v.value).strip(), v)
+        out: dict[str, Controller] = {}
+        for key, node in nodes.items():
+            tv = node.params.get("type")
+            if tv is None or not _is_type_string(tv.value):
+                continue
+            t = str(tv.value).strip()
+            prev_key = key if key in declared else next(
+                (k for k in declared if k.rsplit("/", 1)[-1] == node.basename), None)
+            if prev_key is not None:
+                prev = declared.pop(prev_key)
+                if prev[0] != t:
+                    self.notes.append((f"controller {node.basename} is declared as {prev[0]} in the controller "
+                                       f"manager but as {t} in its own parameters", tv.loc))
+            declared[key] = (t, tv)
+        for ckey, (tname, tv) in declared.items():
+            node = nodes.get(ckey) or self._match_node(nodes, ckey)
+            name = ckey.rsplit("/", 1)[-1]
+            params = dict(node.params) if node is not None else {}
+            out[ckey] = Controller(
+                name=name, node=ckey, type=tname, type_loc=tv.loc, loc=node.loc if node else tv.loc,
+                kind=kind_of(tname, 2), ros=2, file=(node.file if node else tv.loc.file), params=params,
+            )
+        return out
+
+    @staticmethod
+    def _match_node(nodes: dict[str, NodeParams], ckey: str) -> NodeParams | None:
+        base = ckey.rsplit("/", 1)[-1]
+        for k, n in nodes.items():
+            if n.basename == base and k != ckey:
+                return n
+        return None
+
+    # ROS 1 ---------------------------------------------------------------------------------------
+    def ros1(self) -> dict[str, Controller]:
+        files = [f for f in self.files if f.dialect == "ros1"]
+        nodes = merge_nodes(files)
+        out: dict[str, Controller] = {}
+        for key, node in nodes.items():
+            for pname, v in node.params.items():
+                head, _, tail = pname.rpartition(".")
+                if pname != "type" and tail != "type":
+                    continue
+                if not _is_type_string(v.value):
+                    continue
+                prefix = head
+                ckey = key if not prefix else (key.rstrip("/") + "/" + prefix.replace(".", "/"))
+                params = node.sub(prefix) if prefix else {k: x for k, x in node.params.items()}
+                name = ckey.rsplit("/", 1)[-1]
+                tname = str(v.value).strip()
+                out[ckey] = Controller(
+                    name=name, node=ckey, type=tname, type_loc=v.loc, loc=node.loc if not prefix else v.loc,
+                    kind=kind_of(tname, 1), ros=1, file=v.loc.file, params=params,
+                )
+        return out
+
+
+def _resolve_chain(name: str, controller_names: set[str]) -> tuple[str, str]:
+    """'pid_left/left_wheel_joint' -> ('left_wheel_joint', 'pid_left') when pid_left is a controller."""
+    via = ""
+    parts = name.split("/")
+    while len(parts) > 1 and parts[0] in controller_names:
+        via = via or parts[0]
+        parts = parts[1:]
+    return ("/".join(parts), via) if via else (name, "")
+
+
+def _joint_uses(names: list[str], src: Value | Location, owner: str, names_set: set[str], command=(), state=(),
+                role="joint") -> tuple[JointUse, ...]:
+    out = []
+    for i, n in enumerate(names):
+        loc = src.item_loc(i) if isinstance(src, Value) else src
+        joint, via = _resolve_chain(n, names_set)
+        if via:
+            out.append(JointUse(joint, loc, owner, (), (), role, via, n))
+        else:
+            out.append(JointUse(n, loc, owner, tuple(command), tuple(state), role))
+    return tuple(out)
+
+
+def _finish(c: Controller, names_set: set[str]) -> None:
+    p = c.params
+    notes = c.notes
+    if c.kind == DIFF_DRIVE:
+        _finish_diff_drive(c, names_set)
+    elif c.kind == JTC:
+        joints = _str_list(p, "joints", notes)
+        if c.ros == 2:
+            cmd = _str_list(p, "command_interfaces", notes)
+            st = _str_list(p, "state_interfaces", notes)
+            cmd_l = cmd[0] if cmd else []
+            st_l = st[0] if st else []
+        else:
+            pkg = c.type.partition("/")[0]
+            cmd_l = [] if pkg == "joint_trajectory_controller" else [_GROUP_INTERFACE.get(pkg, "")] if pkg in _GROUP_INTERFACE else []
+            st_l = []
+        if joints:
+            c.joints = _joint_uses(joints[0], joints[1], c.name, names_set, cmd_l, st_l)
+        else:
+            notes.append((f"{c.name}: no 'joints' list", c.loc))
+    elif c.kind == FORWARD:
+        iface = p.get("interface_name")
+        joints = _str_list(p, "joints", notes)
+        if joints is None and "joint" in p and isinstance(p["joint"].value, str):  # MultiInterface
+            ifaces = _str_list(p, "interface_names", notes)
+            c.joints = _joint_uses([p["joint"].value], p["joint"], c.name, names_set, ifaces[0] if ifaces else ())
+        elif joints:
+            cmd = [str(iface.value)] if iface is not None and iface.value else []
+            c.joints = _joint_uses(joints[0], joints[1], c.name, names_set, cmd)
+    elif c.kind == GROUP:
+        pkg = c.type.partition("/")[0]
+        iface = _GROUP_INTERFACE.get(pkg, "")
+        joints = _str_list(p, "joints", notes)
+        if joints is None and "joint" in p and isinstance(p["joint"].value, str):
+            joints = ([p["joint"].value], p["joint"])
+        if joints:
+            c.joints = _joint_uses(joints[0], joints[1], c.name, names_set, [iface] if iface and c.ros == 2 else [])
+    elif c.kind == JSB:
+        joints = _str_list(p, "joints", notes)
+        ifaces = _str_list(p, "interfaces", notes)
+        if joints and joints[0]:
+            c.state_joints = _joint_uses(joints[0], joints[1], c.name, names_set, (), ifaces[0] if ifaces else ())
+            extra = _str_list(p, "extra_joints", notes)
+            del extra  # extra joints are published as zero state; they need no hardware
+        else:
+            c.broadcasts_all = True
+    elif c.kind == JSC:
+        c.broadcasts_all = True
+    # any controller: odometry of other drive types, and stamped frames
+    if c.kind != DIFF_DRIVE:
+        en = p.get("enable_odom_tf")
+        if en is not None and as_bool(en.value) and ("odom_frame_id" in p or "base_frame_id" in p):
+            prefix = _tf_prefix(p, c.namespace) if c.ros == 2 else ""
+            odom = p.get("odom_frame_id")
+            base = p.get("base_frame_id")
+            c.odom_tf = OdomTF(prefix + _norm_frame(str(odom.value) if odom else "odom"),
+                               prefix + _norm_frame(str(base.value) if base else "base_link"), c.name, en.loc)
+            if base is not None:
+                c.frames += (Value(c.odom_tf.child, base.loc),)
+    for fp in _FRAME_PARAMS:
+        v = p.get(fp)
+        if v is not None and isinstance(v.value, str) and v.value.strip():
+            c.frames += (Value(_norm_frame(v.value), v.loc),)
+
+
+def _finish_diff_drive(c: Controller, names_set: set[str]) -> None:
+    p = c.params
+    notes = c.notes
+    if c.ros == 2:
+        lk, rk = "left_wheel_names", "right_wheel_names"
+        feedback = as_bool(p["position_feedback"].value) if "position_feedback" in p else True
+        cmd, st = ("velocity",), ("position" if feedback is not False else "velocity",)
+    else:
+        lk, rk = "left_wheel", "right_wheel"
+        cmd, st = (), ()
+    sides = {}
+    for side, key in (("left", lk), ("right", rk)):
+        got = _str_list(p, key, notes)
+        if got is None:
+            if key not in p:
+                notes.append((f"{c.name}: '{key}' is not set", c.loc))
+            sides[side] = ((), c.loc)
+        else:
+            sides[side] = (_joint_uses(got[0], got[1], c.name, names_set, cmd, st, role=f"{side}_wheel"), got[1].loc)
+    c.joints = sides["left"][0] + sides["right"][0]
+
+    def val(key: str, default=None) -> Value | None:
+        if key in p:
+            return p[key]
+        return None if default is None else Value(default, c.loc, default=True)
+
+    if c.ros == 1:
+        base_mult = val("wheel_radius_multiplier", 1.0)
+        lmult = p.get("left_wheel_radius_multiplier", base_mult)
+        rmult = p.get("right_wheel_radius_multiplier", base_mult)
+    else:
+        lmult = val("left_wheel_radius_multiplier", 1.0)
+        rmult = val("right_wheel_radius_multiplier", 1.0)
+    c.drive = DriveSpec(
+        owner=c.name, loc=c.loc, left=sides["left"][0], right=sides["right"][0],
+        left_loc=sides["left"][1], right_loc=sides["right"][1],
+        wheel_separation=val("wheel_separation"), wheel_radius=val("wheel_radius"),
+        separation_multiplier=val("wheel_separation_multiplier", 1.0),
+        left_radius_multiplier=lmult, right_radius_multiplier=rmult,
+        wheels_per_side=val("wheels_per_side"), from_urdf=(c.ros == 1),
+    )
+    prefix = _tf_prefix(p, c.namespace) if c.ros == 2 else ""
+    odom_v = val("odom_frame_id", "odom")
+    base_v = val("base_frame_id", "base_link")
+    en_v = val("enable_odom_tf", True)
+    enabled = as_bool(en_v.value)
+    if enabled is None:
+        notes.append((f"{c.name}: enable_odom_tf is not a boolean: {en_v.value!r}", en_v.loc))
+        enabled = True
+    odom = prefix + _norm_frame(str(odom_v.value))
+    base = prefix + _norm_frame(str(base_v.value))
+    c.odom_tf = OdomTF(odom, base, c.name, en_v.loc, enabled)
+    c.frames += (Value(base, base_v.loc, base_v.default),)
+
+
+def read_controllers(files: Iterable[ParamFile | str | os.PathLike]) -> ControllerSet:
+    """Controllers declared in parameter files (merged in order). Paths are read; ConsumerError propagates."""
+    pfs = [f if isinstance(f, ParamFile) else read_params(f) for f in files]
+    r = _Reader(pfs)
+    ctrls = {**r.ros1(), **r.ros2()}
+    names = {c.name for c in ctrls.values()}
+    for c in ctrls.values():
+        _finish(c, names)
+    notes = list(r.notes)
+    for pf in pfs:
+        notes.extend(pf.notes)
+    return ControllerSet(ctrls, tuple(pf.path for pf in pfs), notes)
+
+
+# --- custom drivers ----------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class DriverSpec:
+    """How to read a custom driver's parameter file: key paths (dotted) into the node's parameters."""
+
+    file: str
+    node: str = ""
+    name: str = ""
+    joints: tuple[str, ...] = ()
+    left_wheels: tuple[str, ...] = ()
+    right_wheels: tuple[str, ...] = ()
+    wheel_separation: str | None = None
+    wheel_radius: str | None = None
+    frames: tuple[str, ...] = ()
+    odom_tf: str | None = None
+    odom_frame: str | None = None
+    base_frame: str | None = None
+    loc: Location | None = None  # where the spec was written (the config)
+
+
+@dataclass
+class Driver:
+    name: str
+    file: str
+    loc: Location
+    joints: tuple[JointUse, ...] = ()
+    drive: DriveSpec | None = None
+    frames: tuple[Value, ...] = ()
+    odom_tf: OdomTF | None = None
+    missing: list = field(default_factory=list)  # (key path, Location of the spec): described but not in the file
+    notes: list = field(default_factory=list)
+
+
+def read_driver(spec: DriverSpec, files: Sequence[ParamFile] | None = None) -> Driver:
+    """Read a custom driver described by `spec`. Raises ConsumerError when its file cannot be read."""
+    pfs = list(files) if files is not None else [read_params(spec.file)]
+    name = spec.name or spec.node or os.path.splitext(os.path.basename(spec.file))[0]
+    drv = Driver(name, spec.file, Location(spec.file))
+    spec_loc = spec.loc or Location(spec.file)
+
+    def get(key: str | None) -> Value | None:
+        if not key:
+            return None
+        v = lookup(pfs, key, spec.node)
+        if v is None:
+            drv.missing.append((key, spec_loc))
+        return v
+
+    def names(keys: Sequence[str], role: str) -> tuple[JointUse, ...]:
+        out = []
+        for k in keys:
+            v = get(k)
+            if v is None:
+                continue
+            lst = as_str_list(v.value)
+            if lst is None:
+                drv.notes.append((f"driver key '{k}' should name joints, got {v.value!r}", v.loc))
+                continue
+            out.extend(JointUse(n, v.item_loc(i) if isinstance(v.value, list) else v.loc, name, role=role)
+                       for i, n in enumerate(lst))
+        return tuple(out)
+
+    left = names(spec.left_wheels, "left_wheel")
+    right = names(spec.right_wheels, "right_wheel")
+    others = names(spec.joints, "joint")
+    seen = {(j.joint, j.loc) for j in left + right}
+    drv.joints = left + right + tuple(j for j in others if (j.joint, j.loc) not in seen)
+    if spec.wheel_separation or spec.wheel_radius or left or right:
+        drv.drive = DriveSpec(
+            owner=name, loc=drv.loc, left=left, right=right,
+            left_loc=left[0].loc if left else spec_loc, right_loc=right[0].loc if right else spec_loc,
+            wheel_separation=get(spec.wheel_separation), wheel_radius=get(spec.wheel_radius),
+        )
+    for k in spec.frames:
+        v = get(k)
+        if v is not None:
+            if isinstance(v.value, str) and v.value.strip():
+                drv.frames += (Value(_norm_frame(v.value), v.loc),)
+            else:
+                drv.notes.append((f"driver key '{k}' should be a frame id, got {v.value!r}", v.loc))
+    if spec.odom_tf:
+        v = get(spec.odom_tf)
+        if v is not None:
+            on = as_bool(v.value)
+            if on is None:
+                drv.notes.append((f"driver key '{spec.odom_tf}' should be a boolean, got {v.value!r}", v.loc))
+            odom = get(spec.odom_frame) if spec.odom_frame else None
+            base = get(spec.base_frame) if spec.base_frame else None
+            drv.odom_tf = OdomTF(
+                _norm_frame(str(odom.value)) if odom is not None else "odom",
+                _norm_frame(str(base.value)) if base is not None else "",  # "": the configured base frame
+                name, v.loc, bool(on),
+            )
+            if base is not None:
+                drv.frames += (Value(drv.odom_tf.child, base.loc),)
+    return drv
+
+
+def load_controllers(paths: Iterable[str | os.PathLike]) -> tuple[ControllerSet, list[ConsumerError]]:
+    """Read what can be read; unreadable files come back as errors (reported as C007)."""
+    pfs, errors = [], []
+    for p in paths:
+        try:
+            pfs.append(read_params(p))
+        except ConsumerError as e:
+            errors.append(e)
+    return read_controllers(pfs), errors

@@ -1,0 +1,142 @@
+"""Run the checks over a model: selection, severities, locations, suppressions.
+
+A check only yields Problems pointing at model parts; this module turns them into Findings. A check
+that raises becomes an R001 finding, never a traceback.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from . import rulebook
+from .findings import Finding, Location, Problem, Severity, clean_text
+
+
+@dataclass
+class Selection:
+    select: tuple[str, ...] = ("ALL",)
+    ignore: tuple[str, ...] = ()
+    severity: dict = field(default_factory=dict)  # code or prefix -> Severity
+    options: dict = field(default_factory=dict)  # code -> {option: value}
+
+    def enabled(self, code: str) -> bool:
+        return rulebook.matches(code, self.select) and not rulebook.matches(code, self.ignore)
+
+    def severity_of(self, code: str, default: Severity) -> Severity:
+        best = None
+        for key, sev in self.severity.items():
+            if code.startswith(key) and (best is None or len(key) > len(best[0])):
+                best = (key, sev)
+        return best[1] if best else default
+
+
+@dataclass
+class Context:
+    """What a check may look at besides the model."""
+
+    selection: Selection = field(default_factory=Selection)
+    expanded: object = None  # load.Expanded (entry, files, resolver)
+    config: object = None  # config.Config or None
+    contracts: object = None  # the consumers read for this model (controllers, launch files...)
+    variant: str = ""
+    options: dict = field(default_factory=dict)  # the running rule's options (catalogue defaults + config)
+
+    @property
+    def resolver(self):
+        return getattr(self.expanded, "resolver", None)
+
+
+def _loc(at, default: Location) -> Location:
+    if at is None:
+        return default
+    if isinstance(at, Location):
+        return at
+    loc = getattr(at, "loc", None)
+    return loc if isinstance(loc, Location) else default
+
+
+def run_checks(model, ctx: Context) -> list[Finding]:
+    cat = rulebook.catalogue()
+    checks = rulebook.load_checks()
+    out: list[Finding] = []
+    done = set()
+    for code in sorted(checks):
+        fn = checks[code]
+        if fn in done:
+            continue
+        done.add(fn)
+        codes = [c for c in fn.codes if ctx.selection.enabled(c)]
+        if not codes:
+            continue
+        first = cat.get(codes[0])
+        opts = dict(first.options) if first else {}
+        opts.update(ctx.selection.options.get(codes[0], {}))
+        ctx.options = opts
+        try:
+            for p in fn(model, ctx) or ():
+                f = _finding(p, fn, model, ctx, cat)
+                if f is not None:
+                    out.append(f)
+        except Exception as e:  # a broken rule must not hide the others
+            if ctx.selection.enabled("R001"):
+                out.append(Finding("R001", Severity.ERROR,
+                                   clean_text(f"rule {'/'.join(fn.codes)} crashed: {type(e).__name__}: {e}"),
+                                   model.loc, name="rule-crashed"))
+    return out
+
+
+def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
+    code = p.code or fn.codes[0]
+    if not ctx.selection.enabled(code):
+        return None
+    info = cat.get(code)
+    default = p.severity or (info.severity if info else Severity.ERROR)
+    return Finding(
+        code=code,
+        severity=ctx.selection.severity_of(code, default),
+        message=clean_text(p.message),
+        location=_loc(p.at, model.loc),
+        name=info.name if info else "",
+        related=tuple(_loc(r, model.loc) for r in p.related),
+    )
+
+
+def finish(findings: list[Finding], selection: Selection, suppressions=(), model: str = "",
+           variant: str = "") -> list[Finding]:
+    """Apply selection and severity to load findings too, fill names, drop suppressed, report unused."""
+    cat = rulebook.catalogue()
+    kept = []
+    used = set()
+    for f in findings:
+        if not selection.enabled(f.code):
+            continue
+        info = cat.get(f.code)
+        sev = selection.severity_of(f.code, f.severity if f.name or not info else info.severity)
+        hit = _suppressed(f, suppressions)
+        if hit is not None:
+            used.add(hit)
+            continue
+        kept.append(Finding(f.code, sev, f.message, f.location, f.name or (info.name if info else ""),
+                            f.related, model or f.model, variant or f.variant))
+    if selection.enabled("R002"):
+        for i, s in enumerate(suppressions):
+            if i in used:
+                continue
+            live = [c for c in s.codes if selection.enabled(c)]
+            if not live:
+                continue
+            info = cat.get("R002")
+            kept.append(Finding("R002", selection.severity_of("R002", info.severity if info else Severity.WARNING),
+                                f"unused suppression of {', '.join(live)}", Location(s.file, s.comment_line),
+                                "unused-suppression", (), model, variant))
+    return kept
+
+
+def _suppressed(f: Finding, suppressions) -> int | None:
+    locs = (f.location,) + f.location.via
+    for i, s in enumerate(suppressions):
+        if f.code not in s.codes and "ALL" not in s.codes:
+            continue
+        for loc in locs:
+            if loc.file == s.file and (s.first == 0 or (loc.line is not None and s.first <= loc.line <= s.last)):
+                return i
+    return None

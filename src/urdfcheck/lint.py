@@ -1,0 +1,120 @@
+"""`lint`: load each entry model (and each variant), build it, run the checks, collect findings."""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import engine, loader as load
+from .findings import Finding, Location, Severity
+
+
+@dataclass
+class Target:
+    """One model to lint: an entry file with one xacro argument set."""
+
+    path: Path
+    args: dict = field(default_factory=dict)
+    variant: str = ""
+    contracts: object = None  # consumers declared or discovered for this model
+    packages: dict = field(default_factory=dict)
+
+
+@dataclass
+class Result:
+    findings: list[Finding]
+    targets: list[Target]
+    models: dict = field(default_factory=dict)  # (entry, variant) -> Model (None when it failed to load)
+
+    def worst(self) -> Severity | None:
+        return max((f.severity for f in self.findings), default=None)
+
+    def failed(self, fail_on: Severity) -> bool:
+        return any(f.severity >= fail_on for f in self.findings)
+
+
+_SKIP = {".git", "build", "install", "log", "node_modules", "__pycache__", ".venv"}
+
+
+def entry_models(folder: Path) -> list[Path]:
+    """Entry models of a package: URDF files, and xacro files with a <robot> root that no other file includes."""
+    import re
+
+    files = []
+    for dirpath, dirnames, filenames in os.walk(folder):
+        dirnames[:] = sorted(d for d in dirnames if d not in _SKIP and not d.startswith("."))
+        for n in sorted(filenames):
+            if n.endswith((".urdf", ".xacro")):
+                files.append(Path(dirpath) / n)
+    included = set()
+    robots = []
+    for f in files:
+        try:
+            head = f.read_bytes()[:1_000_000].decode("utf-8", "replace")
+        except OSError:
+            continue
+        for m in re.finditer(r"<xacro:include\s[^>]*filename\s*=\s*[\"']([^\"']+)", head):
+            included.add(os.path.basename(m.group(1)))
+        if re.search(r"<robot[\s>]", head):
+            robots.append(f)
+    return [f for f in robots if f.name not in included or f.suffix == ".urdf"]
+
+
+def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
+                config=None, keep_model=False) -> tuple[list[Finding], object]:
+    exp = load.expand(t.path, t.args, packages=t.packages, trusted=trusted, allow_env=allow_env, timeout=timeout)
+    findings = list(exp.findings)
+    model = load.build_model(exp)
+    if model is not None:
+        ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=t.contracts,
+                             variant=t.variant)
+        findings.extend(engine.run_checks(model, ctx))
+    shown = exp.entry
+    return engine.finish(findings, selection, exp.suppressions, model=shown, variant=t.variant), model
+
+
+def lint_targets(targets: list[Target], selection: engine.Selection | None = None, **kw) -> Result:
+    selection = selection or engine.Selection()
+    all_findings: list[Finding] = []
+    models = {}
+    for t in targets:
+        found, model = lint_target(t, selection, **kw)
+        models[(str(t.path), t.variant)] = model
+        all_findings.extend(found)
+    return Result(_dedupe(all_findings), targets, models)
+
+
+def _dedupe(findings: list[Finding]) -> list[Finding]:
+    """The same problem seen in several variants is reported once, naming the variants."""
+    seen: dict = {}
+    for f in findings:
+        key = (f.code, f.message, f.location, f.model)
+        if key in seen:
+            prev = seen[key]
+            if f.variant and f.variant not in prev.variant.split(","):
+                seen[key] = Finding(prev.code, prev.severity, prev.message, prev.location, prev.name,
+                                    prev.related, prev.model, ",".join(filter(None, [prev.variant, f.variant])))
+            continue
+        seen[key] = f
+    return sorted(seen.values(), key=Finding.sort_key)
+
+
+def targets_for(paths: list[str], args: dict | None = None, packages: dict | None = None) -> list[Target]:
+    """Targets for plain paths (files or package folders), no config."""
+    out = []
+    for raw in paths:
+        p = Path(raw)
+        if p.is_dir():
+            out.extend(Target(e, dict(args or {}), packages=dict(packages or {})) for e in entry_models(p))
+        else:
+            out.append(Target(p, dict(args or {}), packages=dict(packages or {})))
+    return out
+
+
+def missing_paths(paths: list[str]) -> list[str]:
+    return [p for p in paths if not os.path.exists(p)]
+
+
+def no_models_finding(folder: str) -> Finding:
+    return Finding("X001", Severity.WARNING, "no URDF or xacro entry model found in this folder",
+                   Location(folder), name="xml-syntax")

@@ -1,0 +1,47 @@
+"""JSON report, schema `urdfcheck.schemas/report.schema.json` (version 1)."""
+from __future__ import annotations
+
+import json
+
+from ..findings import clean_text
+
+SCHEMA_VERSION = 1
+
+
+def location(loc) -> dict:
+    out = {"file": clean_text(loc.file, 4096), "line": loc.line, "column": loc.column}
+    if loc.via:
+        out["via"] = [{"file": clean_text(v.file, 4096), "line": v.line} for v in loc.via]
+    return out
+
+
+def as_dict(result) -> dict:
+    from .. import __version__
+
+    counts = {"error": 0, "warning": 0, "info": 0}
+    for f in result.findings:
+        counts[str(f.severity)] += 1
+    return {
+        "schema_version": SCHEMA_VERSION,
+        "tool": {"name": "urdfcheck", "version": __version__},
+        "models": [{"path": clean_text(str(t.path), 4096), "variant": t.variant,
+                    "args": {k: clean_text(v) for k, v in sorted(t.args.items())}} for t in result.targets],
+        "summary": counts,
+        "findings": [
+            {
+                "code": f.code,
+                "name": f.name,
+                "severity": str(f.severity),
+                "message": clean_text(f.message),
+                "location": location(f.location),
+                "related": [location(r) for r in f.related],
+                "model": clean_text(f.model, 4096),
+                "variant": f.variant,
+            }
+            for f in result.findings
+        ],
+    }
+
+
+def render(result, **_) -> str:
+    return json.dumps(as_dict(result), indent=2, sort_keys=True) + "\n"

@@ -1,0 +1,42 @@
+"""Human text: grouped by file, `file:line:col  CODE  message`, colour on a terminal, one summary line."""
+from __future__ import annotations
+
+from ..findings import Severity, clean_text
+
+_COLOURS = {Severity.ERROR: "\x1b[31m", Severity.WARNING: "\x1b[33m", Severity.INFO: "\x1b[36m"}
+_BOLD, _DIM, _RESET = "\x1b[1m", "\x1b[2m", "\x1b[0m"
+
+
+def render(result, colour: bool = False, **_) -> str:
+    def c(code, text):
+        return f"{code}{text}{_RESET}" if colour else text
+
+    lines = []
+    current = None
+    for f in result.findings:
+        loc = f.location
+        if loc.file != current:
+            if current is not None:
+                lines.append("")
+            lines.append(c(_BOLD, clean_text(loc.file)))
+            current = loc.file
+        where = clean_text(str(loc))
+        tag = f"{f.code}"
+        extra = f" [{f.variant}]" if f.variant else ""
+        lines.append(f"{where}  {c(_COLOURS[f.severity], tag)}  {c(_DIM, str(f.severity))}  "
+                     f"{clean_text(f.message)}{extra}")
+        for v in loc.via:
+            lines.append(c(_DIM, f"    via macro call at {clean_text(str(v))}"))
+        for r in f.related:
+            lines.append(c(_DIM, f"    see also {clean_text(str(r))}"))
+    counts = {s: sum(1 for f in result.findings if f.severity == s) for s in Severity}
+    n_models = len(result.targets)
+    if result.findings:
+        lines.append("")
+        parts = [f"{counts[s]} {s}{'s' if counts[s] != 1 else ''}" for s in (Severity.ERROR, Severity.WARNING,
+                                                                           Severity.INFO) if counts[s]]
+        lines.append(f"Found {len(result.findings)} finding{'s' if len(result.findings) != 1 else ''} "
+                     f"({', '.join(parts)}) in {n_models} model{'s' if n_models != 1 else ''}.")
+    else:
+        lines.append(f"All checks passed: {n_models} model{'s' if n_models != 1 else ''}, no findings.")
+    return "\n".join(lines) + "\n"

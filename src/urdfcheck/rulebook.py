@@ -1,0 +1,111 @@
+"""Rule registry: check functions (code) and their catalogue entries (top-level `rules/*.yaml`).
+
+The catalogue is the single source for a rule's name, default severity, summary, rationale, fix and
+examples: the engine, `urdfcheck rules`, the generated docs and SARIF metadata all read it.
+"""
+from __future__ import annotations
+
+import functools
+import importlib
+import pkgutil
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+from .findings import Severity
+
+CHECKS: dict[str, Callable] = {}  # code -> check function (one function may serve several codes)
+_CHECK_PACKAGES = ("urdfcheck.checks", "urdfcheck.contracts.checks")
+
+
+def check(*codes: str):
+    """Register `fn(model, ctx) -> Iterable[Problem]` for the given codes."""
+
+    def deco(fn):
+        fn.codes = codes
+        for c in codes:
+            if c in CHECKS and CHECKS[c] is not fn:
+                raise RuntimeError(f"rule {c} registered twice ({CHECKS[c].__name__}, {fn.__name__})")
+            CHECKS[c] = fn
+        return fn
+
+    return deco
+
+
+@dataclass(frozen=True)
+class RuleInfo:
+    code: str
+    name: str
+    severity: Severity
+    family: str
+    summary: str
+    rationale: str = ""
+    fix: str = ""
+    examples: dict = field(default_factory=dict)
+    options: dict = field(default_factory=dict)
+    path: str = ""
+
+
+class CatalogueError(Exception):
+    pass
+
+
+def catalogue_dir() -> Path:
+    """Installed wheels carry the catalogue inside the package; a source checkout reads `rules/`."""
+    here = Path(__file__).resolve().parent
+    inside = here / "catalogue"
+    if inside.is_dir():
+        return inside
+    return here.parent.parent / "rules"
+
+
+_REQUIRED = ("code", "name", "severity", "family", "summary", "rationale", "fix", "examples")
+
+
+@functools.lru_cache(maxsize=None)
+def catalogue() -> dict[str, RuleInfo]:
+    import yaml
+
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    out: dict[str, RuleInfo] = {}
+    folder = catalogue_dir()
+    for path in sorted(folder.glob("*.yaml")):
+        with open(path, encoding="utf-8") as f:
+            data = yaml.load(f, Loader=loader)
+        missing = [k for k in _REQUIRED if k not in (data or {})]
+        if missing:
+            raise CatalogueError(f"{path.name}: missing {', '.join(missing)}")
+        code = str(data["code"])
+        if path.stem != code:
+            raise CatalogueError(f"{path.name}: file name must be the code {code}")
+        out[code] = RuleInfo(
+            code=code, name=str(data["name"]), severity=Severity.parse(data["severity"]),
+            family=str(data["family"]), summary=str(data["summary"]).strip(),
+            rationale=str(data["rationale"]).strip(), fix=str(data["fix"]).strip(),
+            examples=dict(data["examples"] or {}), options=dict(data.get("options") or {}), path=str(path),
+        )
+    return out
+
+
+@functools.lru_cache(maxsize=None)
+def load_checks() -> dict[str, Callable]:
+    for pkg_name in _CHECK_PACKAGES:
+        try:
+            pkg = importlib.import_module(pkg_name)
+        except ModuleNotFoundError as e:
+            if e.name == pkg_name:
+                continue
+            raise
+        if hasattr(pkg, "__path__"):
+            for mod in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda m: m.name):
+                importlib.import_module(f"{pkg_name}.{mod.name}")
+    return dict(CHECKS)
+
+
+def info(code: str) -> RuleInfo | None:
+    return catalogue().get(code)
+
+
+def matches(code: str, patterns) -> bool:
+    """ruff-style selection: a pattern is a full code or a prefix ('S', 'J00', 'ALL')."""
+    return any(p == "ALL" or code.startswith(p) for p in patterns)
