@@ -34,7 +34,7 @@ from typing import Iterable, Mapping, Sequence
 
 from ..findings import Location
 from .common import ConsumerError, Value, as_bool, as_float, as_str_list
-from .params import NodeParams, ParamFile, lookup, merge_nodes, read_params
+from .params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
 
 # --- controller kinds --------------------------------------------------------------------------------
 DIFF_DRIVE = "diff_drive"
@@ -240,7 +240,6 @@ class _Reader:
                     continue
                 ckey = (node.namespace.rstrip("/") + "/" + head) if node.namespace != "/" else "/" + head
                 declared[ckey] = (str(v.value).strip(), v)
-        out: dict[str, Controller] = {}
         for key, node in nodes.items():
             tv = node.params.get("type")
             if tv is None or not _is_type_string(tv.value):
@@ -254,10 +253,27 @@ class _Reader:
                     self.notes.append((f"controller {node.basename} is declared as {prev[0]} in the controller "
                                        f"manager but as {t} in its own parameters", tv.loc))
             declared[key] = (t, tv)
-        for ckey, (tname, tv) in declared.items():
+        # a wildcard declaration ("/**/ctrl") applies to every concrete node it matches ("/robot1/ctrl")
+        instances: dict[str, tuple[str, Value]] = {}
+        for ckey, tv in declared.items():
+            if "*" in ckey:
+                hits = [k for k in nodes if "*" not in k and k not in declared and node_key_matches(ckey, k)]
+                for k in hits:
+                    instances.setdefault(k, tv)
+                if hits:
+                    continue
+            instances[ckey] = tv
+        wild = [k for k in nodes if "*" in k]
+        out: dict[str, Controller] = {}
+        for ckey, (tname, tv) in instances.items():
             node = nodes.get(ckey) or self._match_node(nodes, ckey)
+            params: dict[str, Value] = {}
+            for w in wild:  # rclcpp applies wildcard entries first, the node's own entry last
+                if w != ckey and node_key_matches(w, ckey):
+                    params.update(nodes[w].params)
+            if node is not None:
+                params.update(node.params)
             name = ckey.rsplit("/", 1)[-1]
-            params = dict(node.params) if node is not None else {}
             out[ckey] = Controller(
                 name=name, node=ckey, type=tname, type_loc=tv.loc, loc=node.loc if node else tv.loc,
                 kind=kind_of(tname, 2), ros=2, file=(node.file if node else tv.loc.file), params=params,
@@ -268,7 +284,7 @@ class _Reader:
     def _match_node(nodes: dict[str, NodeParams], ckey: str) -> NodeParams | None:
         base = ckey.rsplit("/", 1)[-1]
         for k, n in nodes.items():
-            if n.basename == base and k != ckey:
+            if n.basename == base and k != ckey and "*" not in k:
                 return n
         return None
 

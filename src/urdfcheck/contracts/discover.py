@@ -1,0 +1,155 @@
+"""Zero-config discovery of what to lint in a package directory.
+
+* entry models: every `.urdf`, and every `.xacro` whose root element is `<robot>`, that is not included by
+  another xacro of the package (`xacro:include filename="..."`, matched on the path tail) and that does more
+  than define macros/properties (a pure macro library has only `xacro:macro`/`property`/`arg`/`include`
+  children and expands to an empty robot);
+* parameter YAML: `*.yaml`/`*.yml` in any `config/`, `params/` or `param/` directory;
+* launch files: `*.launch`, `*.launch.xml`, `*.launch.py`, `*.launch.yaml`, `*.launch.yml` in any `launch/`
+  directory.
+
+Hidden directories and build output (`build`, `install`, `log`, `devel`, `node_modules`) are skipped; at most
+`max_files` files are looked at. Output lists are sorted. Files are only read (and the xacro ones only their
+first `HEAD_BYTES` for the root check), never expanded.
+"""
+from __future__ import annotations
+
+import os
+import re
+from dataclasses import dataclass
+
+from lxml import etree
+
+SKIP_DIRS = {"build", "install", "log", "devel", "node_modules", "__pycache__", "venv"}
+PARAM_DIRS = {"config", "params", "param"}
+LAUNCH_DIRS = {"launch"}
+LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml")
+MAX_FILES = 20_000
+HEAD_BYTES = 4 * 1024 * 1024
+
+_INCLUDE = re.compile(r"""<\s*xacro:include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
+_ROOT = re.compile(r"<\s*([A-Za-z_][\w:.-]*)")
+_DEFINITION_TAGS = {"macro", "property", "arg", "include"}
+_XACRO_NS = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro", "http://wiki.ros.org/xacro")
+
+
+@dataclass(frozen=True)
+class Discovered:
+    root: str
+    models: tuple[str, ...]
+    params: tuple[str, ...]
+    launch: tuple[str, ...]
+    libraries: tuple[str, ...] = ()  # xacro files skipped as included or macro-only
+
+
+def _walk(root: str, max_files: int):
+    n = 0
+    for dirpath, dirnames, filenames in os.walk(root, followlinks=False):
+        dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d not in SKIP_DIRS)
+        for f in sorted(filenames):
+            n += 1
+            if n > max_files:
+                return
+            yield dirpath, f
+
+
+def _read_head(path: str) -> str:
+    try:
+        with open(path, "rb") as f:
+            return f.read(HEAD_BYTES).decode("utf-8", "replace")
+    except OSError:
+        return ""
+
+
+def _root_tag(text: str) -> str | None:
+    i = 0
+    while True:
+        m = _ROOT.search(text, i)
+        if not m:
+            return None
+        # skip <?xml ...?>, <!-- -->, <!DOCTYPE>
+        before = text[m.start(): m.start() + 2]
+        if before.startswith("<?") or before.startswith("<!"):
+            i = m.end()
+            continue
+        start = text.rfind("<!--", 0, m.start())
+        if start != -1 and text.find("-->", start) > m.start():
+            i = text.find("-->", start) + 3
+            continue
+        return m.group(1)
+
+
+def _is_library(text: str) -> bool:
+    """Only definitions at the top level (macros, properties, args, includes): expands to an empty robot."""
+    try:
+        parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False,
+                                 remove_comments=True, remove_pis=True, recover=False)
+        root = etree.fromstring(text.encode("utf-8"), parser)
+    except etree.XMLSyntaxError:
+        return False  # let the linter report it
+    kids = [c for c in root if isinstance(c.tag, str)]
+    if not kids:
+        return False
+    for c in kids:
+        q = etree.QName(c)
+        if q.namespace in _XACRO_NS and q.localname in _DEFINITION_TAGS:
+            continue
+        return False
+    return any(etree.QName(c).localname == "macro" for c in kids)
+
+
+def _tail_match(ref: str, rel: str) -> bool:
+    """Does an include reference (possibly `$(find pkg)/urdf/x.xacro`) point at package file `rel`?"""
+    ref = ref.replace("\\", "/")
+    ref = re.sub(r"\$\([^)]*\)", "", ref).lstrip("/")
+    parts = [p for p in ref.split("/") if p not in ("", ".")]
+    rparts = rel.replace("\\", "/").split("/")
+    if not parts:
+        return False
+    if parts[-1] != rparts[-1]:
+        return False
+    # the longest common tail must cover everything after the last unknown prefix
+    k = 1
+    while k < len(parts) and k < len(rparts) and parts[-1 - k] == rparts[-1 - k]:
+        k += 1
+    return k == len(parts) or k >= 1
+
+
+def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES) -> Discovered:
+    root = os.path.abspath(str(package_dir))
+    urdfs, xacros, params, launches = [], [], [], []
+    for dirpath, f in _walk(root, max_files):
+        path = os.path.join(dirpath, f)
+        rel = os.path.relpath(path, root)
+        parts = rel.replace("\\", "/").split("/")[:-1]
+        low = f.lower()
+        if low.endswith(".urdf"):
+            urdfs.append(path)
+        elif low.endswith(".xacro"):
+            xacros.append(path)
+        elif low.endswith((".yaml", ".yml")) and not low.endswith((".launch.yaml", ".launch.yml")) \
+                and any(p in PARAM_DIRS for p in parts):
+            params.append(path)
+        if low.endswith(LAUNCH_SUFFIXES) and any(p in LAUNCH_DIRS for p in parts):
+            launches.append(path)
+    texts = {p: _read_head(p) for p in xacros}
+    included: set[str] = set()
+    refs = [m.group(2) for t in texts.values() for m in _INCLUDE.finditer(t)]
+    for p in xacros:
+        rel = os.path.relpath(p, root)
+        if any(_tail_match(r, rel) for r in refs):
+            included.add(p)
+    models, libs = list(urdfs), []
+    for p in xacros:
+        if p in included:
+            libs.append(p)
+            continue
+        tag = _root_tag(texts[p])
+        if tag is None or tag.split(":")[-1] != "robot":
+            libs.append(p)
+            continue
+        if _is_library(texts[p]):
+            libs.append(p)
+            continue
+        models.append(p)
+    return Discovered(root, tuple(sorted(models)), tuple(sorted(params)), tuple(sorted(launches)), tuple(sorted(libs)))

@@ -1,0 +1,748 @@
+"""Launch files, read statically (never imported, never executed) for the TF-relevant nodes they start.
+
+Formats: ROS 1 XML (`.launch`), ROS 2 XML (`.launch.xml`), ROS 2 YAML (`.launch.yaml`/`.launch.yml`) and
+ROS 2 Python (`.launch.py`, parsed with `ast`; only literal values are used).
+
+What is reported (`LaunchInfo`):
+
+* `static_tfs`: `static_transform_publisher` nodes (`tf` or `tf2_ros`) as `StaticTF(parent, child, xyz, rpy, ...)`.
+  Argument forms: ROS 1 `x y z yaw pitch roll parent child [period]` and `x y z qx qy qz qw parent child
+  [period]` (`tf` takes the period, `tf2_ros` does not); ROS 2 positional (the same two without period) and
+  the flag form `--x --y --z --roll --pitch --yaw --qx --qy --qz --qw --frame-id --child-frame-id`.
+  Note the ROS positional order is yaw pitch roll; `rpy` in the result is (roll, pitch, yaw).
+* `state_publishers`: robot_state_publisher nodes with their literal `frame_prefix` (ROS 2) / `tf_prefix` (ROS 1).
+* `joint_state_publishers`: joint_state_publisher(_gui) nodes (a joint state source for every joint).
+* `nodes`: every node found, `spawned` controllers (controller_manager spawner arguments), `param_files`,
+  `includes` (recorded, not followed) and `notes` for what was skipped (non-literal values, unknown
+  substitutions, conditions that could not be decided).
+
+Substitutions resolved: `$(arg x)` / `$(var x)` from `<arg default|value>` / `<let>` and the caller's `args`,
+`$(find pkg)` / `$(find-pkg-share pkg)` from the caller's `packages` map, `$(dirname)`, `$(anon n)`.
+Anything else (`$(env)`, `$(eval)`, `$(command)`, ...) leaves the value unresolved: the item is skipped
+with a note. A node with an `if`/`unless` that cannot be decided is kept with `condition` set.
+"""
+from __future__ import annotations
+
+import ast
+import math
+import os
+import re
+import shlex
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+from lxml import etree
+
+from .. import geometry
+from ..findings import Location
+from .common import ConsumerError, Value, as_bool
+from .yamlsrc import YamlDoc, parse_yaml
+
+MAX_BYTES = 2 * 1024 * 1024
+MAX_ELEMENTS = 100_000
+
+
+# --- results -----------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class StaticTF:
+    parent: str
+    child: str
+    xyz: tuple[float, float, float]
+    rpy: tuple[float, float, float]
+    loc: Location
+    source_file: str
+    condition: str | None = None  # an if/unless we could not decide
+    node_name: str = ""
+
+
+@dataclass(frozen=True)
+class StatePublisher:
+    """A robot_state_publisher node."""
+
+    name: str
+    namespace: str
+    frame_prefix: str | None  # None: set but not literal; "" when not set
+    loc: Location
+    source_file: str
+    prefix_loc: Location | None = None
+    condition: str | None = None
+
+
+@dataclass(frozen=True)
+class JointStatePublisher:
+    name: str
+    package: str
+    loc: Location
+    source_file: str
+    condition: str | None = None
+
+
+@dataclass(frozen=True)
+class LaunchNode:
+    package: str
+    executable: str
+    name: str
+    namespace: str
+    args: tuple[str, ...] | None  # None: not literal
+    loc: Location
+    params: Mapping[str, Value] = field(default_factory=dict)  # literal inline parameters
+    param_files: tuple[str, ...] = ()
+    condition: str | None = None
+
+
+@dataclass
+class LaunchInfo:
+    path: str
+    format: str  # "ros1-xml", "ros2-xml", "ros2-yaml", "ros2-py"
+    nodes: list[LaunchNode] = field(default_factory=list)
+    static_tfs: list[StaticTF] = field(default_factory=list)
+    state_publishers: list[StatePublisher] = field(default_factory=list)
+    joint_state_publishers: list[JointStatePublisher] = field(default_factory=list)
+    spawned: list[tuple[str, Location]] = field(default_factory=list)  # controller names given to spawners
+    param_files: list[tuple[str, Location]] = field(default_factory=list)
+    includes: list[tuple[str, Location]] = field(default_factory=list)
+    notes: list[tuple[str, Location]] = field(default_factory=list)
+
+
+# --- substitutions -----------------------------------------------------------------------------------
+_SUBST = re.compile(r"\$\(\s*([A-Za-z][\w-]*)((?:\s+[^()$]*)?)\)")
+
+
+class _Subst:
+    def __init__(self, path: str, args: Mapping[str, str] | None, packages: Mapping[str, str] | None):
+        self.path = path
+        self.overrides = dict(args or {})
+        self.vars: dict[str, str | None] = {}  # None: declared, value unknown
+        self.packages = dict(packages or {})
+
+    def declare(self, name: str, default: str | None) -> None:
+        """<arg name default=...>: the caller's value wins (None: unknown)."""
+        if name in self.overrides:
+            self.vars[name] = str(self.overrides[name])
+        else:
+            self.vars[name] = default
+
+    def fix(self, name: str, value: str | None) -> None:
+        """<arg name value=...> / <let>: not overridable (None: not literal, unknown)."""
+        self.vars[name] = value
+
+    def __call__(self, text: str | None) -> tuple[str | None, bool]:
+        """(substituted text, fully resolved?)"""
+        if text is None:
+            return None, True
+        ok = True
+        for _ in range(32):  # innermost first; bounded
+            m = _SUBST.search(text)
+            if not m:
+                break
+            kind, arg = m.group(1), m.group(2).strip()
+            rep = self._one(kind, arg)
+            if rep is None:
+                ok = False
+                rep = "\x00" + kind + "\x00"  # mark, so the loop ends; restored below
+            text = text[: m.start()] + rep + text[m.end():]
+        if "\x00" in text:
+            text = re.sub(r"\x00([\w-]+)\x00", r"$(\1 ?)", text)
+        if "$(" in text:
+            ok = False
+        return text, ok
+
+    def _one(self, kind: str, arg: str) -> str | None:
+        if kind in ("arg", "var"):
+            v = self.vars.get(arg)
+            if v is None and arg in self.overrides:
+                v = str(self.overrides[arg])
+            return v
+        if kind in ("find", "find-pkg-share", "find-pkg-prefix"):
+            return self.packages.get(arg)
+        if kind == "dirname":
+            return os.path.dirname(os.path.abspath(self.path))
+        if kind == "filename":
+            return os.path.abspath(self.path)
+        if kind == "anon":
+            return f"{arg}_anon"
+        return None  # env, optenv, eval, command, exec-in-pkg, ...: never evaluated
+
+
+def _condition(subst: _Subst, if_text: str | None, unless_text: str | None) -> tuple[bool, str | None]:
+    """(active?, undecided condition text). Inactive nodes are dropped."""
+    for text, want in ((if_text, True), (unless_text, False)):
+        if text is None:
+            continue
+        val, ok = subst(text)
+        b = as_bool(val) if ok else None
+        if b is None:
+            return True, f"{'if' if want else 'unless'}={text}"
+        if b != want:
+            return False, None
+    return True, None
+
+
+# --- static_transform_publisher arguments ------------------------------------------------------------
+def _num(tok: str) -> float:
+    f = float(tok)
+    if not math.isfinite(f):
+        raise ValueError(f"not a finite number: {tok!r}")
+    return f
+
+
+def _quat_rpy(qx: float, qy: float, qz: float, qw: float) -> tuple[float, float, float]:
+    n = math.sqrt(qx * qx + qy * qy + qz * qz + qw * qw)
+    if n < 1e-9:
+        raise ValueError("quaternion has zero length")
+    x, y, z, w = qx / n, qy / n, qz / n, qw / n
+    rot = (
+        (1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)),
+        (2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)),
+        (2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)),
+    )
+    return tuple(geometry.rpy(geometry.from_rt(rot, (0, 0, 0))))
+
+
+_FLAG_KEYS = {"--x", "--y", "--z", "--qx", "--qy", "--qz", "--qw", "--roll", "--pitch", "--yaw",
+              "--frame-id", "--child-frame-id"}
+
+
+def parse_static_tf_args(tokens: list[str], ros: int, package: str = "tf2_ros"):
+    """Parse static_transform_publisher arguments -> (parent, child, xyz, rpy). Raises ValueError."""
+    toks = list(tokens)
+    if "--ros-args" in toks:
+        toks = toks[: toks.index("--ros-args")]
+    toks = [t for t in toks if ":=" not in t]  # ROS 1 remappings such as __name:=x
+    if any(t in _FLAG_KEYS for t in toks):
+        vals: dict[str, str] = {}
+        i = 0
+        while i < len(toks):
+            t = toks[i]
+            if t in _FLAG_KEYS and i + 1 < len(toks):
+                vals[t] = toks[i + 1]
+                i += 2
+            else:
+                raise ValueError(f"unexpected argument {t!r}")
+        if "--frame-id" not in vals or "--child-frame-id" not in vals:
+            raise ValueError("--frame-id and --child-frame-id are required")
+        xyz = tuple(_num(vals.get(k, "0")) for k in ("--x", "--y", "--z"))
+        if any(k in vals for k in ("--qx", "--qy", "--qz", "--qw")):
+            rpy = _quat_rpy(*(_num(vals.get(k, "1" if k == "--qw" else "0")) for k in ("--qx", "--qy", "--qz", "--qw")))
+        else:
+            rpy = tuple(_num(vals.get(k, "0")) for k in ("--roll", "--pitch", "--yaw"))
+        return vals["--frame-id"], vals["--child-frame-id"], xyz, rpy
+    n = len(toks)
+    if ros == 1 and package == "tf":
+        shapes = {9: "ypr", 10: "quat"}  # tf always takes the period (ms) last
+    elif ros == 1:
+        shapes = {8: "ypr", 9: "quat", 10: "quat"}
+    else:
+        shapes = {8: "ypr", 9: "quat"}
+    shape = shapes.get(n)
+    if shape is None:
+        raise ValueError(f"{n} arguments; expected x y z yaw pitch roll parent child or x y z qx qy qz qw parent child")
+    xyz = (_num(toks[0]), _num(toks[1]), _num(toks[2]))
+    if shape == "ypr":
+        yaw, pitch, roll = _num(toks[3]), _num(toks[4]), _num(toks[5])
+        rpy = (roll, pitch, yaw)
+        parent, child = toks[6], toks[7]
+    else:
+        rpy = _quat_rpy(_num(toks[3]), _num(toks[4]), _num(toks[5]), _num(toks[6]))
+        parent, child = toks[7], toks[8]
+    return parent, child, xyz, rpy
+
+
+def _frame(s: str) -> str:
+    return s.strip().lstrip("/")
+
+
+# --- shared node handling ----------------------------------------------------------------------------
+_STATIC_PKGS = ("tf", "tf2_ros")
+_JSP_PKGS = ("joint_state_publisher", "joint_state_publisher_gui")
+
+
+def _record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
+    info.nodes.append(node)
+    pkg, exe = node.package, node.executable
+    if pkg in _STATIC_PKGS and exe in ("static_transform_publisher", "static_transform_publisher_node"):
+        if node.args is None:
+            info.notes.append(("static_transform_publisher arguments are not literal; skipped", node.loc))
+            return
+        try:
+            parent, child, xyz, rpy = parse_static_tf_args(list(node.args), ros, pkg)
+        except ValueError as e:
+            info.notes.append((f"static_transform_publisher arguments not understood ({e}); skipped", node.loc))
+            return
+        info.static_tfs.append(StaticTF(_frame(parent), _frame(child), xyz, rpy, node.loc, info.path,
+                                        node.condition, node.name))
+    elif pkg == "robot_state_publisher" and exe in ("robot_state_publisher", "state_publisher"):
+        key = "frame_prefix" if ros == 2 else "tf_prefix"
+        v = node.params.get(key)
+        if v is None:
+            prefix, ploc = "", None
+        elif isinstance(v.value, str) and "$(" not in v.value:
+            prefix, ploc = v.value, v.loc
+        else:
+            prefix, ploc = None, v.loc
+        info.state_publishers.append(StatePublisher(node.name or "robot_state_publisher", node.namespace, prefix,
+                                                    node.loc, info.path, ploc, node.condition))
+    elif pkg in _JSP_PKGS:
+        info.joint_state_publishers.append(JointStatePublisher(node.name or pkg, pkg, node.loc, info.path, node.condition))
+    elif pkg == "controller_manager" and exe in ("spawner", "spawner.py", "controller_manager"):
+        if node.args is None:
+            info.notes.append((f"spawner arguments are not literal; the controllers it starts are unknown", node.loc))
+        if node.args:
+            toks = list(node.args)
+            i = 0
+            while i < len(toks):
+                t = toks[i]
+                if t in ("-c", "--controller-manager", "-p", "--param-file", "-n", "--namespace", "-t",
+                         "--controller-type", "--controller-manager-timeout", "--switch-timeout",
+                         "--service-call-timeout", "--controller-ros-args", "--ns", "--timeout",
+                         "--shutdown-timeout"):
+                    if t in ("-p", "--param-file") and i + 1 < len(toks):
+                        info.param_files.append((toks[i + 1], node.loc))
+                    i += 2
+                    continue
+                if t.startswith("-") or t in ("spawn", "load", "start", "stop"):
+                    i += 1
+                    continue
+                info.spawned.append((t, node.loc))
+                i += 1
+    for pf in node.param_files:
+        info.param_files.append((pf, node.loc))
+
+
+def _split_args(text: str) -> list[str] | None:
+    try:
+        return shlex.split(text)
+    except ValueError:
+        return None
+
+
+# --- XML (ROS 1 and ROS 2) ---------------------------------------------------------------------------
+def _xml_root(data: bytes, path: str):
+    if b"<!DOCTYPE" in data[:4096].upper() or b"<!ENTITY" in data.upper():
+        raise ConsumerError("launch file has a DOCTYPE or entity declaration; refused", Location(path, 1))
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
+                             huge_tree=False, remove_comments=True, remove_pis=True, collect_ids=False)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError as e:
+        line = e.position[0] if getattr(e, "position", None) else None
+        col = e.position[1] + 1 if getattr(e, "position", None) else None
+        raise ConsumerError(f"XML syntax error: {e.msg}", Location(path, line, col)) from None
+    n = 0
+    for _ in root.iter():
+        n += 1
+        if n > MAX_ELEMENTS:
+            raise ConsumerError(f"launch file has more than {MAX_ELEMENTS} elements; refused", Location(path))
+    return root
+
+
+def _tag(el) -> str:
+    t = el.tag
+    return t if isinstance(t, str) else ""
+
+
+class _XmlReader:
+    def __init__(self, path: str, root, args, packages):
+        self.path = path
+        self.root = root
+        self.subst = _Subst(path, args, packages)
+        ros2 = root.xpath("boolean(.//*[@exec] | .//let | .//push-ros-namespace | .//push_ros_namespace)")
+        self.ros = 2 if ros2 or "$(var " in etree.tostring(root, encoding="unicode") else 1
+        self.info = LaunchInfo(path, "ros2-xml" if self.ros == 2 else "ros1-xml")
+
+    def loc(self, el) -> Location:
+        return Location(self.path, el.sourceline)
+
+    def attr(self, el, name: str) -> tuple[str | None, bool]:
+        return self.subst(el.get(name))
+
+    def run(self) -> LaunchInfo:
+        if _tag(self.root) != "launch":
+            raise ConsumerError(f"root element is <{_tag(self.root)}>, not <launch>", self.loc(self.root))
+        self.walk(self.root, "", None)
+        return self.info
+
+    def walk(self, parent, ns: str, cond: str | None) -> None:
+        for el in parent:
+            tag = _tag(el)
+            if not tag:
+                continue
+            active, c = _condition(self.subst, el.get("if"), el.get("unless"))
+            if not active:
+                continue
+            c = c or cond
+            if tag == "arg":
+                name = el.get("name")
+                if name:
+                    if el.get("value") is not None:
+                        v, ok = self.attr(el, "value")
+                        self.subst.fix(name, v if ok else None)
+                    else:
+                        d, ok = self.attr(el, "default")
+                        self.subst.declare(name, d if ok else None)
+            elif tag == "let":
+                name = el.get("name")
+                v, ok = self.attr(el, "value")
+                if name:
+                    self.subst.fix(name, v if ok else None)
+            elif tag == "group":
+                gns = el.get("ns") or el.get("namespace")
+                sub_ns = ns
+                if gns:
+                    v, ok = self.subst(gns)
+                    sub_ns = _join_ns(ns, v if ok else "?")
+                self.walk(el, sub_ns, c)
+            elif tag in ("push-ros-namespace", "push_ros_namespace"):
+                v, ok = self.attr(el, "namespace")
+                ns = _join_ns(ns, v if ok else "?")
+            elif tag == "include":
+                f, ok = self.attr(el, "file")
+                self.info.includes.append((f or "", self.loc(el)))
+            elif tag == "rosparam":
+                if (el.get("command") or "load") == "load" and el.get("file"):
+                    f, ok = self.attr(el, "file")
+                    if ok:
+                        self.info.param_files.append((f, self.loc(el)))
+                    else:
+                        self.info.notes.append((f"rosparam file {el.get('file')!r} not resolved", self.loc(el)))
+            elif tag == "node":
+                self.node(el, ns, c)
+
+    def node(self, el, ns: str, cond: str | None) -> None:
+        pkg, _ = self.attr(el, "pkg")
+        exe, _ = self.subst(el.get("exec") or el.get("type") or el.get("executable"))
+        name, _ = self.attr(el, "name")
+        nns = el.get("ns") or el.get("namespace")
+        if nns:
+            v, ok = self.subst(nns)
+            ns = _join_ns(ns, v if ok else "?")
+        args = None
+        if el.get("args") is not None:
+            text, ok = self.attr(el, "args")
+            args = _split_args(text) if ok else None  # _record_node notes it where it matters
+        else:
+            args = ()
+        params: dict[str, Value] = {}
+        pfiles: list[str] = []
+        for ch in el:
+            t = _tag(ch)
+            if t == "param":
+                if ch.get("from") is not None:
+                    f, ok = self.attr(ch, "from")
+                    if ok:
+                        pfiles.append(f)
+                    continue
+                pname = ch.get("name")
+                if not pname:
+                    continue
+                raw = ch.get("value")
+                if raw is None:
+                    params[pname] = Value(None, self.loc(ch))  # command=/textfile=: not literal
+                    continue
+                v, ok = self.subst(raw)
+                params[pname] = Value(v if ok else None, self.loc(ch))
+            elif t == "rosparam" and ch.get("file"):
+                f, ok = self.attr(ch, "file")
+                if ok:
+                    pfiles.append(f)
+        node = LaunchNode(pkg or "", exe or "", name or "", ns or "/", tuple(args) if args is not None else None,
+                          self.loc(el), params, tuple(pfiles), cond)
+        _record_node(self.info, node, self.ros)
+
+
+def _join_ns(ns: str, sub: str | None) -> str:
+    if not sub:
+        return ns or "/"
+    if sub.startswith("/"):
+        return "/" + sub.strip("/")
+    return "/" + "/".join(s for s in (ns.strip("/"), sub.strip("/")) if s)
+
+
+# --- YAML (ROS 2) ------------------------------------------------------------------------------------
+class _YamlReader:
+    def __init__(self, doc: YamlDoc, args, packages):
+        self.doc = doc
+        self.subst = _Subst(doc.file, args, packages)
+        self.info = LaunchInfo(doc.file, "ros2-yaml")
+
+    def run(self) -> LaunchInfo:
+        data = self.doc.data
+        if not isinstance(data, dict) or "launch" not in data:
+            raise ConsumerError("a YAML launch file needs a top-level 'launch:' list", self.doc.loc())
+        items = data["launch"]
+        if not isinstance(items, list):
+            raise ConsumerError("'launch:' must be a list", self.doc.loc("launch"))
+        self.walk(items, ("launch",), "/", None)
+        return self.info
+
+    def s(self, v) -> tuple[str | None, bool]:
+        if v is None:
+            return None, True
+        if isinstance(v, bool):
+            return ("true" if v else "false"), True
+        return self.subst(str(v))
+
+    def walk(self, items: list, path: tuple, ns: str, cond: str | None) -> None:
+        for i, item in enumerate(items):
+            if not isinstance(item, dict) or len(item) != 1:
+                continue
+            (tag, body), = item.items()
+            p = path + (i, tag)
+            if not isinstance(body, dict):
+                continue
+            active, c = _condition(self.subst, _opt_str(body.get("if")), _opt_str(body.get("unless")))
+            if not active:
+                continue
+            c = c or cond
+            if tag == "arg" and body.get("name"):
+                if "value" in body:
+                    v, ok = self.s(body.get("value"))
+                    self.subst.fix(str(body["name"]), v if ok else None)
+                else:
+                    d, ok = self.s(body.get("default"))
+                    self.subst.declare(str(body["name"]), d if ok else None)
+            elif tag == "let" and body.get("name"):
+                v, ok = self.s(body.get("value"))
+                self.subst.fix(str(body["name"]), v if ok else None)
+            elif tag == "group":
+                sub_ns = ns
+                for key in ("namespace", "ns"):
+                    if body.get(key):
+                        v, ok = self.s(body[key])
+                        sub_ns = _join_ns(ns, v if ok else "?")
+                children = body.get("children")
+                if isinstance(children, list):
+                    self.walk(children, p + ("children",), sub_ns, c)
+            elif tag in ("push-ros-namespace", "push_ros_namespace"):
+                v, ok = self.s(body.get("namespace"))
+                ns = _join_ns(ns, v if ok else "?")
+            elif tag == "include":
+                f, _ = self.s(body.get("file"))
+                self.info.includes.append((f or "", self.doc.loc(*p)))
+            elif tag == "node":
+                self.node(body, p, ns, c)
+
+    def node(self, body: dict, p: tuple, ns: str, cond: str | None) -> None:
+        loc = self.doc.key_loc(*p)
+        pkg, _ = self.s(body.get("pkg"))
+        exe, _ = self.s(body.get("exec") or body.get("executable"))
+        name, _ = self.s(body.get("name"))
+        if body.get("namespace"):
+            v, ok = self.s(body["namespace"])
+            ns = _join_ns(ns, v if ok else "?")
+        args = ()
+        if body.get("args") is not None:
+            raw = body["args"]
+            if isinstance(raw, list):
+                vals = [self.s(x) for x in raw]
+                args = tuple(v for v, _ in vals) if all(ok for _, ok in vals) else None
+            else:
+                text, ok = self.s(raw)
+                args = _split_args(text) if ok else None
+        params: dict[str, Value] = {}
+        pfiles: list[str] = []
+        plist = body.get("param")
+        if isinstance(plist, list):
+            for j, entry in enumerate(plist):
+                if not isinstance(entry, dict):
+                    continue
+                eloc = self.doc.loc(*p, "param", j)
+                if "from" in entry:
+                    f, ok = self.s(entry["from"])
+                    if ok:
+                        pfiles.append(f)
+                elif "name" in entry:
+                    v, ok = self.s(entry.get("value"))
+                    params[str(entry["name"])] = Value(v if ok else None, self.doc.loc(*p, "param", j, "value") or eloc)
+        node = LaunchNode(pkg or "", exe or "", name or "", ns, tuple(args) if args is not None else None,
+                          loc, params, tuple(pfiles), cond)
+        _record_node(self.info, node, 2)
+
+
+def _opt_str(v) -> str | None:
+    if v is None:
+        return None
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    return str(v)
+
+
+# --- Python (ROS 2), by ast ---------------------------------------------------------------------------
+class _PyReader:
+    """Reads `Node(...)` calls with literal keyword values. Nothing is imported or executed."""
+
+    def __init__(self, path: str, tree: ast.AST, args, packages):
+        self.path = path
+        self.tree = tree
+        self.overrides = dict(args or {})
+        self.defaults: dict[str, str] = {}
+        self.info = LaunchInfo(path, "ros2-py")
+
+    def loc(self, node: ast.AST) -> Location:
+        return Location(self.path, getattr(node, "lineno", None), (getattr(node, "col_offset", -1) + 1) or None)
+
+    @staticmethod
+    def _callee(call: ast.Call) -> str:
+        f = call.func
+        if isinstance(f, ast.Name):
+            return f.id
+        if isinstance(f, ast.Attribute):
+            return f.attr
+        return ""
+
+    def run(self) -> LaunchInfo:
+        calls = [n for n in ast.walk(self.tree) if isinstance(n, ast.Call)]
+        calls.sort(key=lambda c: (c.lineno, c.col_offset))
+        for c in calls:  # launch argument defaults first
+            if self._callee(c) == "DeclareLaunchArgument" and c.args and isinstance(c.args[0], ast.Constant):
+                kw = {k.arg: k.value for k in c.keywords if k.arg}
+                d = kw.get("default_value")
+                if isinstance(d, ast.Constant) and isinstance(d.value, (str, int, float, bool)):
+                    self.defaults[str(c.args[0].value)] = str(d.value)
+        for c in calls:
+            if self._callee(c) == "Node":
+                self.node(c)
+        return self.info
+
+    def literal(self, node: ast.AST) -> tuple[Any, bool]:
+        """A literal value; LaunchConfiguration('x') resolves to its default. (value, ok)."""
+        if isinstance(node, ast.Constant):
+            return node.value, True
+        if isinstance(node, (ast.List, ast.Tuple)):
+            vals = [self.literal(e) for e in node.elts]
+            return [v for v, _ in vals], all(ok for _, ok in vals)
+        if isinstance(node, ast.Dict):
+            out, ok_all = {}, True
+            for k, v in zip(node.keys, node.values):
+                if k is None:
+                    ok_all = False
+                    continue
+                kv, kok = self.literal(k)
+                vv, vok = self.literal(v)
+                if kok and isinstance(kv, str):
+                    out[kv] = vv if vok else None
+                ok_all = ok_all and kok and vok
+            return out, ok_all
+        if isinstance(node, ast.Call) and self._callee(node) == "LaunchConfiguration" and node.args:
+            a = node.args[0]
+            if isinstance(a, ast.Constant) and isinstance(a.value, str):
+                name = a.value
+                if name in self.overrides:
+                    return str(self.overrides[name]), True
+                kw = {k.arg: k.value for k in node.keywords if k.arg}
+                d = kw.get("default")
+                if isinstance(d, ast.Constant):
+                    return str(d.value), True
+                if name in self.defaults:
+                    return self.defaults[name], True
+        return None, False
+
+    def node(self, call: ast.Call) -> None:
+        kw = {k.arg: k.value for k in call.keywords if k.arg}
+        loc = self.loc(call)
+
+        def text(*names) -> str:
+            for n in names:
+                if n in kw:
+                    v, ok = self.literal(kw[n])
+                    return str(v) if ok and v is not None else ""
+            return ""
+
+        pkg = text("package")
+        exe = text("executable", "node_executable")
+        name = text("name", "node_name")
+        ns = text("namespace", "node_namespace") or "/"
+        cond = None
+        if "condition" in kw:
+            cond_node = kw["condition"]
+            decided = None
+            if isinstance(cond_node, ast.Call) and cond_node.args:
+                v, ok = self.literal(cond_node.args[0])
+                b = as_bool(v) if ok else None
+                if b is not None:
+                    decided = b if self._callee(cond_node) == "IfCondition" else (not b if self._callee(cond_node) == "UnlessCondition" else None)
+            if decided is False:
+                return
+            if decided is None:
+                try:
+                    cond = f"condition={ast.unparse(cond_node)[:120]}"
+                except (RecursionError, ValueError):
+                    cond = "condition=?"
+        args: tuple[str, ...] | None = ()
+        if "arguments" in kw:
+            v, ok = self.literal(kw["arguments"])
+            if ok and isinstance(v, list) and all(isinstance(x, (str, int, float)) for x in v):
+                args = tuple(str(x) for x in v)
+            else:
+                args = None
+        params: dict[str, Value] = {}
+        pfiles: list[str] = []
+        if "parameters" in kw and isinstance(kw["parameters"], (ast.List, ast.Tuple)):
+            for el in kw["parameters"].elts:
+                if isinstance(el, ast.Dict):
+                    for k, v in zip(el.keys, el.values):
+                        kv, kok = self.literal(k) if k is not None else (None, False)
+                        if not kok or not isinstance(kv, str):
+                            continue
+                        vv, vok = self.literal(v)
+                        params[kv] = Value(vv if vok else None, self.loc(v))
+                else:
+                    vv, vok = self.literal(el)
+                    if vok and isinstance(vv, str):
+                        pfiles.append(vv)
+        node = LaunchNode(pkg, exe, name, ns, args, loc, params, tuple(pfiles), cond)
+        _record_node(self.info, node, 2)
+
+
+# --- entry point -------------------------------------------------------------------------------------
+def launch_format(path: str) -> str | None:
+    p = path.lower()
+    if p.endswith(".py"):
+        return "py"
+    if p.endswith((".yaml", ".yml")):
+        return "yaml"
+    if p.endswith((".launch", ".xml")):
+        return "xml"
+    return None
+
+
+def parse_launch(data: bytes | str, path: str, *, args: Mapping[str, str] | None = None,
+                 packages: Mapping[str, str] | None = None) -> LaunchInfo:
+    """Read launch file content. Raises ConsumerError when it cannot be read at all."""
+    raw = data.encode("utf-8") if isinstance(data, str) else data
+    if len(raw) > MAX_BYTES:
+        raise ConsumerError(f"launch file is larger than {MAX_BYTES} bytes; refused", Location(path))
+    fmt = launch_format(path)
+    if fmt == "yaml":
+        return _YamlReader(parse_yaml(raw, path), args, packages).run()
+    if fmt == "py":
+        try:
+            text = raw.decode("utf-8-sig")
+        except UnicodeDecodeError as e:
+            raise ConsumerError(f"not valid UTF-8 ({e.reason})", Location(path)) from None
+        try:
+            tree = ast.parse(text, filename=path)
+        except SyntaxError as e:
+            raise ConsumerError(f"Python syntax error: {e.msg}", Location(path, e.lineno, e.offset)) from None
+        except (RecursionError, MemoryError, ValueError):
+            raise ConsumerError("Python launch file nested too deeply or otherwise unparsable; refused", Location(path)) from None
+        return _PyReader(path, tree, args, packages).run()
+    if fmt == "xml":
+        root = _xml_root(raw, path)
+        return _XmlReader(path, root, args, packages).run()
+    raise ConsumerError("unknown launch file type (expected .launch, .launch.xml, .launch.py, .launch.yaml)", Location(path))
+
+
+def read_launch(path: str | os.PathLike, *, args: Mapping[str, str] | None = None,
+                packages: Mapping[str, str] | None = None) -> LaunchInfo:
+    """Read a launch file. Raises ConsumerError (unreadable, too large, bad syntax)."""
+    file = str(path)
+    try:
+        size = os.path.getsize(file)
+        if size > MAX_BYTES:
+            raise ConsumerError(f"launch file is larger than {MAX_BYTES} bytes ({size}); refused", Location(file))
+        with open(file, "rb") as f:
+            raw = f.read(MAX_BYTES + 1)
+    except OSError as e:
+        raise ConsumerError(f"cannot read file: {e.strerror or e}", Location(file)) from None
+    return parse_launch(raw, file, args=args, packages=packages)

@@ -1,0 +1,67 @@
+import json
+import os
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+CORPUS = Path(os.environ.get("URDFCHECK_CORPUS", REPO.parent / "shared" / "corpus"))
+
+
+@pytest.fixture
+def corpus():
+    if not CORPUS.is_dir():
+        pytest.skip("shared corpus not present")
+    return CORPUS
+
+
+def run_cli(args, cwd=None):
+    """Run the real CLI entry point in-process; returns (exit code, stdout, stderr)."""
+    import contextlib
+    import io
+
+    from urdfcheck.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    old = os.getcwd()
+    try:
+        if cwd is not None:
+            os.chdir(cwd)
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main([str(a) for a in args])
+    finally:
+        os.chdir(old)
+    return code, out.getvalue(), err.getvalue()
+
+
+def lint_json(args, cwd=None):
+    code, out, err = run_cli(["lint", "--format", "json", "--no-config", *args], cwd=cwd)
+    assert code in (0, 1), (code, err)
+    return code, json.loads(out)
+
+
+def write_example(example: dict, folder: Path) -> Path:
+    """Materialise a catalogue example; returns the path to lint."""
+    files = dict(example.get("files") or {})
+    if "urdf" in example:
+        files["robot.urdf"] = example["urdf"]
+    if "xacro" in example:
+        files["robot.urdf.xacro"] = example["xacro"]
+    for name, content in files.items():
+        p = folder / name
+        p.parent.mkdir(parents=True, exist_ok=True)
+        p.write_text(content, encoding="utf-8")
+    if example.get("lint"):
+        return folder / example["lint"]
+    if "urdf" in example:
+        return folder / "robot.urdf"
+    if "xacro" in example:
+        return folder / "robot.urdf.xacro"
+    return folder
+
+
+def example_args(example: dict) -> list[str]:
+    out = []
+    for k, v in (example.get("args") or {}).items():
+        out += ["--arg", f"{k}:={v}"]
+    return out + [str(f) for f in example.get("flags") or []]

@@ -1,0 +1,66 @@
+"""Every catalogue entry is complete, and its examples behave as documented through the real CLI."""
+import re
+
+import pytest
+
+from urdfcheck import rulebook
+from urdfcheck.findings import Severity
+
+from conftest import example_args, lint_json, write_example
+
+CATALOGUE = rulebook.catalogue()
+WITH_EXAMPLES = sorted(c for c, r in CATALOGUE.items() if r.examples)
+
+
+def test_catalogue_is_not_empty():
+    assert len(CATALOGUE) >= 19
+
+
+@pytest.mark.parametrize("code", sorted(CATALOGUE))
+def test_entry_is_complete(code):
+    r = CATALOGUE[code]
+    assert re.fullmatch(r"[A-Z]\d{3}", r.code)
+    assert re.fullmatch(r"[a-z0-9]+(-[a-z0-9]+)*", r.name), r.name
+    assert isinstance(r.severity, Severity)
+    for field in ("summary", "rationale", "fix"):
+        assert len(getattr(r, field)) > 20, f"{code}: {field} is too thin"
+
+
+def test_names_are_unique():
+    names = [r.name for r in CATALOGUE.values()]
+    assert len(names) == len(set(names))
+
+
+def test_every_check_has_an_entry_and_vice_versa():
+    checks = rulebook.load_checks()
+    load_time = {c for c in CATALOGUE if c[0] in "XR"}  # produced by the loader/engine, not by checks
+    assert set(checks) - set(CATALOGUE) == set(), "checks without catalogue entry"
+    assert set(CATALOGUE) - set(checks) - load_time == set(), "catalogue entries without a check"
+
+
+def test_only_runner_rules_lack_examples():
+    assert [c for c in CATALOGUE if not CATALOGUE[c].examples] == [c for c in ["R001"] if c in CATALOGUE]
+
+
+@pytest.mark.parametrize("code", WITH_EXAMPLES)
+def test_failing_example_reports_the_code(code, tmp_path):
+    ex = CATALOGUE[code].examples["fail"]
+    target = write_example(ex, tmp_path)
+    exit_code, report = lint_json([target, *example_args(ex)], cwd=tmp_path)
+    hits = [f for f in report["findings"] if f["code"] == code]
+    assert hits, f"{code} not reported; got {[(f['code'], f['message']) for f in report['findings']]}"
+    assert all(f["name"] == CATALOGUE[code].name for f in hits)
+    assert all(f["location"]["file"] for f in hits)
+    if CATALOGUE[code].severity >= Severity.WARNING:
+        assert exit_code == 1
+
+
+@pytest.mark.parametrize("code", WITH_EXAMPLES)
+def test_passing_example_does_not_report_the_code(code, tmp_path):
+    ex = CATALOGUE[code].examples["pass"]
+    target = write_example(ex, tmp_path)
+    _, report = lint_json([target, *example_args(ex)], cwd=tmp_path)
+    hits = [f for f in report["findings"] if f["code"] == code]
+    assert not hits, hits
+    errors = [f for f in report["findings"] if f["severity"] == "error"]
+    assert not errors, f"the passing example of {code} has errors: {errors}"
