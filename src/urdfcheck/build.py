@@ -18,7 +18,6 @@ from .model import (Block, Geometry, HardwareItem, Inertial, Interface, Issue, J
                     MaterialRef, Mimic, Model, Pose, Ros2Control, Shape, Transmission)
 
 SRC_ATTR = "__ucsrc"
-_NUM = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 
 # element -> (attributes, child elements) of the URDF core; extension blocks are not checked
 SCHEMA = {
@@ -50,6 +49,8 @@ SCHEMA = {
     "mimic": ({"joint", "multiplier", "offset"}, set()),
     "safety_controller": ({"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}, set()),
 }
+for _attrs, _ in SCHEMA.values():
+    _attrs.add(SRC_ATTR)  # the xacro source marker is ours, never "unknown"
 # children that real-world packages carry and URDF parsers ignore without harm
 _TOLERATED = {"robot": {"sensor"}, "collision": {"verbose"}, "link": {"self_collision_checking"}}
 
@@ -70,12 +71,13 @@ class _Builder:
             if required:
                 self.issue("U006", f"<{el.tag}> has no {attr!r} attribute", el)
             return default
-        if not _NUM.match(raw):
+        try:
+            value = float(raw)
+        except ValueError:
             self.issue("U005", f"<{el.tag} {attr}={raw!r}> is not a number", el)
             return default
-        value = float(raw)
-        if not math.isfinite(value):
-            self.issue("U005", f"<{el.tag} {attr}={raw!r}> is not a finite number", el)
+        if value - value != 0.0 or "_" in raw:  # nan/inf, or Python-only digit separators
+            self.issue("U005", f"<{el.tag} {attr}={raw!r}> is not a finite plain number", el)
             return default
         return value
 
@@ -89,135 +91,132 @@ class _Builder:
         if len(parts) != n:
             self.issue("U004", f"<{el.tag} {attr}={raw!r}> has {len(parts)} values; {n} expected", el)
             return default
-        out = []
-        for p in parts:
-            if not _NUM.match(p) or not math.isfinite(float(p)):
-                self.issue("U005", f"<{el.tag} {attr}={raw!r}>: {p!r} is not a finite number", el)
-                return default
-            out.append(float(p))
-        return tuple(out)
-
-    def check_shape(self, el) -> None:
-        """Unknown attributes and child elements of URDF core elements (typos such as <orign>)."""
-        spec = SCHEMA.get(el.tag)
-        if spec is None:
-            return
-        attrs, children = spec
-        for a in el.attrib:
-            if a == SRC_ATTR or a.startswith("{") or a in attrs:
-                continue
-            hint = _hint(a, attrs)
-            self.issue("U003", f"<{el.tag}> has unknown attribute {a!r}{hint}", el)
-        tolerated = _TOLERATED.get(el.tag, set())
-        for c in el:
-            if not isinstance(c.tag, str) or c.tag.startswith("{") or c.tag in children or c.tag in tolerated:
-                continue
-            if not children and el.tag != "robot":
-                self.issue("U002", f"<{el.tag}> takes no child elements; <{c.tag}> is ignored", c)
-            else:
-                self.issue("U002", f"unknown element <{c.tag}> in <{el.tag}>{_hint(c.tag, children)}; "
-                                   "URDF parsers ignore it", c)
+        try:
+            out = tuple(map(float, parts))
+        except ValueError:
+            out = None
+        if out is None or "_" in raw or not all(map(math.isfinite, out)):
+            self.issue("U005", f"<{el.tag} {attr}={raw!r}>: not {n} finite plain numbers", el)
+            return default
+        return out
 
     # --- parts -------------------------------------------------------------------
-    def pose(self, parent) -> Pose:
-        el = parent.find("origin")
-        if el is None:
-            return Pose()
-        self.check_shape(el)
-        return Pose(self.vector(el, "xyz", 3, (0.0, 0.0, 0.0)), self.vector(el, "rpy", 3, (0.0, 0.0, 0.0)),
-                    self.locate(el))
+    # Each element's children are walked once with a dispatch on the tag (lxml proxies are costly).
+    def pose(self, el) -> Pose:
+        self.check(el, "origin")
+        return Pose(self.vector(el, "xyz", 3, _ZERO), self.vector(el, "rpy", 3, _ZERO), self.locate(el))
 
-    def geometry(self, parent) -> Geometry | None:
-        g = parent.find("geometry")
-        if g is None:
-            return None
-        self.check_shape(g)
-        shapes = [c for c in g if isinstance(c.tag, str)]
+    def geometry(self, g) -> Geometry:
+        self.check(g, "geometry")
+        shapes = [c for c in g if isinstance(c.tag, str) and not c.tag.startswith("{")]
         if not shapes:
             return Geometry("", self.locate(g))
         if len(shapes) > 1:
             self.issue("U002", f"<geometry> holds {len(shapes)} shapes; URDF parsers use only the first", shapes[1])
         s = shapes[0]
-        self.check_shape(s)
+        tag = s.tag
+        if tag in _SHAPES:
+            self.check(s, tag)
+        else:
+            self.unknown("geometry", s)
         loc = self.locate(s)
-        if s.tag == "box":
+        if tag == "box":
             return Geometry("box", loc, size=self.vector(s, "size", 3, None, required=True))
-        if s.tag in ("cylinder", "capsule"):
-            return Geometry(s.tag, loc, radius=self.number(s, "radius", None, required=True),
+        if tag == "cylinder" or tag == "capsule":
+            return Geometry(tag, loc, radius=self.number(s, "radius", None, required=True),
                             length=self.number(s, "length", None, required=True))
-        if s.tag == "sphere":
+        if tag == "sphere":
             return Geometry("sphere", loc, radius=self.number(s, "radius", None, required=True))
-        if s.tag == "mesh":
+        if tag == "mesh":
             fn = s.get("filename")
             if not fn:
                 self.issue("U006", "<mesh> has no 'filename' attribute", s)
-            return Geometry("mesh", loc, filename=fn or None, scale=self.vector(s, "scale", 3, (1.0, 1.0, 1.0)))
-        return Geometry(s.tag, loc)
+            return Geometry("mesh", loc, filename=fn or None, scale=self.vector(s, "scale", 3, _ONE))
+        return Geometry(tag, loc)
 
-    def color(self, mat) -> tuple | None:
-        c = mat.find("color")
-        if c is None:
-            return None
-        self.check_shape(c)
-        return self.vector(c, "rgba", 4, None, required=True)
-
-    def texture(self, mat) -> str | None:
-        t = mat.find("texture")
-        return t.get("filename") if t is not None else None
+    def _colour_texture(self, mat):
+        rgba = texture = None
+        for c in mat:
+            if c.tag == "color":
+                self.check(c, "color")
+                rgba = self.vector(c, "rgba", 4, None, required=True)
+            elif c.tag == "texture":
+                self.check(c, "texture")
+                texture = c.get("filename")
+            else:
+                self.unknown("material", c)
+        return rgba, texture
 
     def material(self, el) -> Material | None:
-        self.check_shape(el)
+        self.check(el, "material")
         name = el.get("name")
         if not name:
             self.issue("U006", "<material> has no 'name' attribute", el)
             return None
-        return Material(name, self.locate(el), self.color(el), self.texture(el))
+        rgba, texture = self._colour_texture(el)
+        return Material(name, self.locate(el), rgba, texture)
 
     def shape(self, el, kind: str) -> Shape:
-        self.check_shape(el)
-        mat = None
-        m = el.find("material") if kind == "visual" else None
-        if m is not None:
-            self.check_shape(m)
-            mat = MaterialRef(m.get("name") or "", self.locate(m), self.color(m), self.texture(m))
-        return Shape(kind, self.locate(el), el.get("name") or "", self.pose(el), self.geometry(el), mat)
+        self.check(el, kind)
+        origin, geometry, mat = _POSE0, None, None
+        for c in el:
+            tag = c.tag
+            if tag == "origin":
+                origin = self.pose(c)
+            elif tag == "geometry":
+                geometry = self.geometry(c)
+            elif tag == "material" and kind == "visual":
+                self.check(c, "material")
+                rgba, texture = self._colour_texture(c)
+                mat = MaterialRef(c.get("name") or "", self.locate(c), rgba, texture)
+            else:
+                self.unknown(kind, c)
+        return Shape(kind, self.locate(el), el.get("name") or "", origin, geometry, mat)
 
     def inertial(self, el) -> Inertial:
-        self.check_shape(el)
-        mass_el = el.find("mass")
-        mass = mass_loc = None
-        if mass_el is not None:
-            self.check_shape(mass_el)
-            mass = self.number(mass_el, "value", None, required=True)
-            mass_loc = self.locate(mass_el)
-        inertia = inertia_loc = None
-        i_el = el.find("inertia")
-        if i_el is not None:
-            self.check_shape(i_el)
-            vals = [self.number(i_el, k, None, required=True) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")]
-            inertia = tuple(v if v is not None else 0.0 for v in vals)
-            inertia_loc = self.locate(i_el)
-        return Inertial(self.locate(el), self.pose(el), mass, mass_loc, inertia, inertia_loc)
+        self.check(el, "inertial")
+        origin, mass, mass_loc, inertia, inertia_loc = _POSE0, None, None, None, None
+        for c in el:
+            tag = c.tag
+            if tag == "mass":
+                self.check(c, "mass")
+                mass = self.number(c, "value", None, required=True)
+                mass_loc = self.locate(c)
+            elif tag == "inertia":
+                self.check(c, "inertia")
+                number = self.number
+                inertia = tuple(number(c, k, 0.0, required=True) for k in _INERTIA)
+                inertia_loc = self.locate(c)
+            elif tag == "origin":
+                origin = self.pose(c)
+            else:
+                self.unknown("inertial", c)
+        return Inertial(self.locate(el), origin, mass, mass_loc, inertia, inertia_loc)
 
     def link(self, el) -> Link | None:
-        self.check_shape(el)
+        self.check(el, "link")
         name = el.get("name")
         if not name:
             self.issue("U006", "<link> has no 'name' attribute", el)
             return None
-        inertials = el.findall("inertial")
-        if len(inertials) > 1:
-            self.issue("U002", f"link {name!r} has {len(inertials)} <inertial> elements; only the first is used",
-                       inertials[1])
-        return Link(
-            name, self.locate(el),
-            self.inertial(inertials[0]) if inertials else None,
-            tuple(self.shape(v, "visual") for v in el.findall("visual")),
-            tuple(self.shape(c, "collision") for c in el.findall("collision")),
-        )
+        inertial, visuals, collisions = None, [], []
+        for c in el:
+            tag = c.tag
+            if tag == "visual":
+                visuals.append(self.shape(c, "visual"))
+            elif tag == "collision":
+                collisions.append(self.shape(c, "collision"))
+            elif tag == "inertial":
+                if inertial is None:
+                    inertial = self.inertial(c)
+                else:
+                    self.issue("U002", f"link {name!r} has more than one <inertial>; only the first is used", c)
+            else:
+                self.unknown("link", c)
+        return Link(name, self.locate(el), inertial, tuple(visuals), tuple(collisions))
 
     def joint(self, el) -> Joint | None:
-        self.check_shape(el)
+        self.check(el, "joint")
         name = el.get("name")
         if not name:
             self.issue("U006", "<joint> has no 'name' attribute", el)
@@ -227,56 +226,54 @@ class _Builder:
             self.issue("U006", f"joint {name!r} has no 'type' attribute", el)
             jtype = ""
         ends = {}
+        origin, axis, axis_loc, limit, mimic, dyn = _POSE0, _X, None, None, None, {}
+        for c in el:
+            tag = c.tag
+            if tag == "parent" or tag == "child":
+                self.check(c, tag)
+                link = c.get("link")
+                if not link:
+                    self.issue("U006", f"<{tag}> of joint {name!r} has no 'link' attribute", c)
+                ends[tag] = (link or None, self.locate(c))
+            elif tag == "origin":
+                origin = self.pose(c)
+            elif tag == "axis":
+                self.check(c, "axis")
+                axis = self.vector(c, "xyz", 3, _X, required=True)
+                axis_loc = self.locate(c)
+            elif tag == "limit":
+                self.check(c, "limit")
+                needs = jtype == "revolute" or jtype == "prismatic"
+                limit = Limit(self.locate(c), self.number(c, "lower"), self.number(c, "upper"),
+                              self.number(c, "effort", required=needs), self.number(c, "velocity", required=needs))
+            elif tag == "mimic":
+                self.check(c, "mimic")
+                target = c.get("joint")
+                if not target:
+                    self.issue("U006", f"<mimic> of joint {name!r} has no 'joint' attribute", c)
+                else:
+                    mimic = Mimic(self.locate(c), target, self.number(c, "multiplier", 1.0),
+                                  self.number(c, "offset", 0.0))
+            elif tag == "dynamics":
+                self.check(c, "dynamics")
+                for k in ("damping", "friction"):
+                    v = self.number(c, k)
+                    if v is not None:
+                        dyn[k] = v
+            elif tag == "calibration" or tag == "safety_controller":
+                self.check(c, tag)
+                for k in c.keys():
+                    if k in SCHEMA[tag][0] and k != SRC_ATTR:
+                        self.number(c, k)
+            else:
+                self.unknown("joint", c)
         for end in ("parent", "child"):
-            e = el.find(end)
-            if e is None:
+            if end not in ends:
                 self.issue("U006", f"joint {name!r} has no <{end}> element", el)
                 ends[end] = (None, None)
-                continue
-            self.check_shape(e)
-            link = e.get("link")
-            if not link:
-                self.issue("U006", f"<{end}> of joint {name!r} has no 'link' attribute", e)
-            ends[end] = (link or None, self.locate(e))
-        axis, axis_loc = (1.0, 0.0, 0.0), None
-        a = el.find("axis")
-        if a is not None:
-            self.check_shape(a)
-            axis = self.vector(a, "xyz", 3, (1.0, 0.0, 0.0), required=True)
-            axis_loc = self.locate(a)
-        limit = None
-        lim = el.find("limit")
-        if lim is not None:
-            self.check_shape(lim)
-            needs = jtype in ("revolute", "prismatic")
-            limit = Limit(self.locate(lim), self.number(lim, "lower"), self.number(lim, "upper"),
-                          self.number(lim, "effort", required=needs), self.number(lim, "velocity", required=needs))
-        mimic = None
-        mi = el.find("mimic")
-        if mi is not None:
-            self.check_shape(mi)
-            target = mi.get("joint")
-            if not target:
-                self.issue("U006", f"<mimic> of joint {name!r} has no 'joint' attribute", mi)
-            else:
-                mimic = Mimic(self.locate(mi), target, self.number(mi, "multiplier", 1.0),
-                              self.number(mi, "offset", 0.0))
-        dyn = {}
-        d = el.find("dynamics")
-        if d is not None:
-            self.check_shape(d)
-            for k in ("damping", "friction"):
-                v = self.number(d, k)
-                if v is not None:
-                    dyn[k] = v
-        for tag in ("calibration", "safety_controller"):
-            sub = el.find(tag)
-            if sub is not None:
-                self.check_shape(sub)
-                for k in SCHEMA[tag][0]:
-                    self.number(sub, k)
-        return Joint(name, jtype, self.locate(el), ends["parent"][0], ends["child"][0], self.pose(el), axis,
-                     axis_loc, limit, mimic, MappingProxyType(dyn), ends["parent"][1], ends["child"][1])
+        return Joint(name, jtype, self.locate(el), ends["parent"][0], ends["child"][0], origin, axis,
+                     axis_loc, limit, mimic, MappingProxyType(dyn) if dyn else _NODYN,
+                     ends["parent"][1], ends["child"][1])
 
     def ros2_control(self, el, in_gazebo: bool) -> Ros2Control:
         items = {"joint": [], "sensor": [], "gpio": []}
@@ -297,6 +294,37 @@ class _Builder:
         joints = tuple(Interface(j.get("name") or "", self.locate(j)) for j in el.findall("joint"))
         return Transmission(el.get("name") or "", self.locate(el), joints)
 
+    # --- unknown elements and attributes (typos such as <orign>) ------------------
+    def check(self, el, tag: str) -> None:
+        """Unknown attributes of a URDF core element; for leaf elements also any child element."""
+        attrs, children = SCHEMA[tag]
+        keys = el.keys()
+        if keys and not attrs.issuperset(keys):
+            for a in keys:
+                if a not in attrs and not a.startswith("{"):
+                    self.issue("U003", f"<{tag}> has unknown attribute {a!r}{_hint(a, attrs)}", el)
+        if not children and len(el):
+            for c in el:
+                if isinstance(c.tag, str) and not c.tag.startswith("{"):
+                    self.issue("U002", f"<{tag}> takes no child elements; <{c.tag}> is ignored", c)
+
+    def unknown(self, parent_tag: str, c) -> None:
+        tag = c.tag
+        if not isinstance(tag, str) or tag.startswith("{") or tag in _TOLERATED.get(parent_tag, ()):
+            return
+        allowed = SCHEMA[parent_tag][1]
+        self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{_hint(tag, allowed)}; "
+                           "URDF parsers ignore it", c)
+
+
+_ZERO = (0.0, 0.0, 0.0)
+_ONE = (1.0, 1.0, 1.0)
+_X = (1.0, 0.0, 0.0)
+_POSE0 = Pose()
+_NODYN = MappingProxyType({})
+_INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_SHAPES = ("box", "cylinder", "capsule", "sphere", "mesh")
+
 
 def _hint(word: str, options) -> str:
     close = difflib.get_close_matches(word, sorted(options), n=1, cutoff=0.75)
@@ -312,7 +340,8 @@ def build(root, locate: Callable[[object], Location], source: str) -> Model:
     b = _Builder(locate, source)
     if root.tag != "robot":
         b.issue("U001", f"the root element is <{root.tag}>, not <robot>", root)
-    b.check_shape(root)
+    if root.tag == "robot":
+        b.check(root, "robot")
     links, joints, materials, blocks, r2c, trans = [], [], [], [], [], []
     for el in root:
         if not isinstance(el.tag, str):
@@ -338,6 +367,8 @@ def build(root, locate: Callable[[object], Location], source: str) -> Model:
                     r2c.append(b.ros2_control(inner, True))
             else:
                 trans.append(b.transmission(el))
+        elif root.tag == "robot":
+            b.unknown("robot", el)
     return Model(
         name=root.get("name") or "",
         loc=locate(root),

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 from . import rulebook
 from .findings import Finding, Location, Problem, Severity, clean_text
+from .suppress import is_yaml, yaml_suppressions
 
 
 @dataclass
@@ -115,6 +116,8 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
         if hit is not None:
             used.add(hit)
             continue
+        if is_yaml(f.location.file) and _suppressed(f, yaml_suppressions(f.location.file)) is not None:
+            continue  # `# urdfcheck: ignore[...]` in the YAML file the finding points into
         kept.append(Finding(f.code, sev, f.message, f.location, f.name or (info.name if info else ""),
                             f.related, model or f.model, variant or f.variant))
     if selection.enabled("R002"):

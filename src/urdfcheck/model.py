@@ -1,12 +1,14 @@
 """The robot model: immutable, built from the parsed XML, every part carrying its source location.
 
+Parts are NamedTuples: immutable and cheap to create (a 10,000-link model builds ~150,000 of them).
+
 Only plain Python here (no numpy) so that `lint` stays fast; poses are composed with `urdfcheck.geometry`.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from types import MappingProxyType
-from typing import Mapping
+from typing import Mapping, NamedTuple
 
 from .findings import Location
 
@@ -16,15 +18,13 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
 
 
-@dataclass(frozen=True)
-class Pose:
+class Pose(NamedTuple):
     xyz: Vec3 = (0.0, 0.0, 0.0)
     rpy: Vec3 = (0.0, 0.0, 0.0)
     loc: Location | None = None
 
 
-@dataclass(frozen=True)
-class Inertial:
+class Inertial(NamedTuple):
     loc: Location
     origin: Pose = Pose()
     mass: float | None = None  # None: no <mass> element or no value
@@ -34,8 +34,7 @@ class Inertial:
     inertia_loc: Location | None = None
 
 
-@dataclass(frozen=True)
-class Geometry:
+class Geometry(NamedTuple):
     kind: str  # box, cylinder, sphere, mesh, capsule, or the unknown tag name; "" when empty
     loc: Location
     size: Vec3 | None = None  # box
@@ -45,16 +44,14 @@ class Geometry:
     scale: Vec3 | None = None  # mesh
 
 
-@dataclass(frozen=True)
-class MaterialRef:
+class MaterialRef(NamedTuple):
     name: str
     loc: Location
     rgba: tuple[float, ...] | None = None  # given inline
     texture: str | None = None
 
 
-@dataclass(frozen=True)
-class Shape:
+class Shape(NamedTuple):
     """A <visual> or <collision>."""
 
     kind: str  # "visual" or "collision"
@@ -65,8 +62,7 @@ class Shape:
     material: MaterialRef | None = None  # visual only
 
 
-@dataclass(frozen=True)
-class Link:
+class Link(NamedTuple):
     name: str
     loc: Location
     inertial: Inertial | None = None
@@ -74,8 +70,7 @@ class Link:
     collisions: tuple[Shape, ...] = ()
 
 
-@dataclass(frozen=True)
-class Limit:
+class Limit(NamedTuple):
     loc: Location
     lower: float | None = None
     upper: float | None = None
@@ -83,16 +78,14 @@ class Limit:
     velocity: float | None = None
 
 
-@dataclass(frozen=True)
-class Mimic:
+class Mimic(NamedTuple):
     loc: Location
     joint: str
     multiplier: float = 1.0
     offset: float = 0.0
 
 
-@dataclass(frozen=True)
-class Joint:
+class Joint(NamedTuple):
     name: str
     type: str
     loc: Location
@@ -103,7 +96,7 @@ class Joint:
     axis_loc: Location | None = None  # None: no <axis> element (the default x axis)
     limit: Limit | None = None
     mimic: Mimic | None = None
-    dynamics: Mapping[str, float] = field(default_factory=dict)
+    dynamics: Mapping[str, float] = MappingProxyType({})
     parent_loc: Location | None = None
     child_loc: Location | None = None
 
@@ -112,16 +105,14 @@ class Joint:
         return self.type in MOVABLE_TYPES
 
 
-@dataclass(frozen=True)
-class Material:
+class Material(NamedTuple):
     name: str
     loc: Location
     rgba: tuple[float, ...] | None = None
     texture: str | None = None
 
 
-@dataclass(frozen=True)
-class Block:
+class Block(NamedTuple):
     """A raw extension block (<ros2_control>, <transmission>, <gazebo>) kept for later rules."""
 
     tag: str
@@ -131,14 +122,12 @@ class Block:
     parent_tag: str = "robot"
 
 
-@dataclass(frozen=True)
-class Interface:
+class Interface(NamedTuple):
     name: str
     loc: Location
 
 
-@dataclass(frozen=True)
-class HardwareItem:
+class HardwareItem(NamedTuple):
     """A <joint>, <sensor> or <gpio> inside <ros2_control>."""
 
     kind: str
@@ -148,8 +137,7 @@ class HardwareItem:
     state: tuple[Interface, ...] = ()
 
 
-@dataclass(frozen=True)
-class Ros2Control:
+class Ros2Control(NamedTuple):
     name: str
     type: str
     loc: Location
@@ -160,15 +148,13 @@ class Ros2Control:
     in_gazebo: bool = False  # written inside a <gazebo> block, where ros2_control never reads it
 
 
-@dataclass(frozen=True)
-class Transmission:
+class Transmission(NamedTuple):
     name: str
     loc: Location
     joints: tuple[Interface, ...] = ()  # joint names with their locations
 
 
-@dataclass(frozen=True)
-class Issue:
+class Issue(NamedTuple):
     """A problem found while building the model (bad number, unknown element...), reported by its rule."""
 
     code: str

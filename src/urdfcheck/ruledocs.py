@@ -2,8 +2,18 @@
 from __future__ import annotations
 
 import json
+import re
 
 from . import rulebook
+
+_CODE_SPAN = re.compile(r"(`[^`\n]*`)")
+
+
+def md(text: str) -> str:
+    """Catalogue prose for Markdown: `<robot>` outside code spans would be eaten as an HTML tag."""
+    return "".join(part if part.startswith("`") and part.endswith("`") and len(part) > 1
+                   else part.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+                   for part in _CODE_SPAN.split(text))
 
 
 def _example(ex: dict) -> str:
@@ -23,12 +33,30 @@ def _example(ex: dict) -> str:
     return "\n".join(out)
 
 
-def page_markdown(r: rulebook.RuleInfo) -> str:
-    parts = [f"## {r.code} {r.name}\n", f"Default severity: **{r.severity}**. Family: {r.family}.\n",
-             f"**What it checks.** {r.summary}\n", f"**Why it matters.** {r.rationale}\n"]
+def _example_text(ex: dict) -> str:
+    """An example for a terminal: file name, then the content indented (no Markdown fences)."""
+    if not ex:
+        return ""
+    files = dict(ex.get("files") or {})
+    if "urdf" in ex:
+        files["robot.urdf"] = ex["urdf"]
+    if "xacro" in ex:
+        files["robot.urdf.xacro"] = ex["xacro"]
+    out = []
+    for name, content in files.items():
+        out.append(f"  {name}:")
+        out += ["    " + ln if ln.strip() else "" for ln in str(content).rstrip().splitlines()]
+    if ex.get("args"):
+        out.append("  xacro arguments: " + " ".join(f"{k}:={v}" for k, v in ex["args"].items()))
+    return "\n".join(out) + "\n"
+
+
+def help_markdown(r: rulebook.RuleInfo) -> str:
+    """Why, the failing example, the fix and the passing example (SARIF `help.markdown`, rule pages)."""
+    parts = [f"**Why it matters.** {md(r.rationale)}\n"]
     if r.examples.get("fail"):
         parts.append("**Example that fails:**\n\n" + _example(r.examples["fail"]))
-    parts.append(f"**Use instead.** {r.fix}\n")
+    parts.append(f"**Use instead.** {md(r.fix)}\n")
     if r.examples.get("pass"):
         parts.append(_example(r.examples["pass"]))
     if r.options:
@@ -37,13 +65,27 @@ def page_markdown(r: rulebook.RuleInfo) -> str:
     return "\n".join(parts)
 
 
+def help_text(r: rulebook.RuleInfo) -> str:
+    """Plain-text help: the fix and the examples (SARIF `help.text`)."""
+    lines = ["Fix:", r.fix]
+    if r.examples.get("fail"):
+        lines += ["", "Fails:", _example_text(r.examples["fail"])]
+    if r.examples.get("pass"):
+        lines += ["Passes:", _example_text(r.examples["pass"])]
+    if r.options:
+        lines += ["Options: " + ", ".join(f"{k} (default {v})" for k, v in r.options.items())]
+    return "\n".join(lines).rstrip() + "\n"
+
+
+def page_markdown(r: rulebook.RuleInfo) -> str:
+    parts = [f"## {r.code} {r.name}\n", f"Default severity: **{r.severity}**. Family: {r.family}.\n",
+             f"**What it checks.** {md(r.summary)}\n", help_markdown(r)]
+    return "\n".join(parts)
+
+
 def page_text(r: rulebook.RuleInfo) -> str:
     lines = [f"{r.code}  {r.name}  ({r.severity}, {r.family})", "", r.summary, "", "Why it matters:",
-             r.rationale, "", "Fix:", r.fix]
-    if r.examples.get("fail"):
-        lines += ["", "Fails:", _example(r.examples["fail"])]
-    if r.examples.get("pass"):
-        lines += ["Passes:", _example(r.examples["pass"])]
+             r.rationale, "", help_text(r)]
     return "\n".join(lines).rstrip() + "\n"
 
 
@@ -71,10 +113,15 @@ def listing(fmt: str = "text") -> str:
     return "".join(f"{r.code}  {r.name:<{width}}  {str(r.severity):<7}  {r.summary}\n" for r in rules)
 
 
+def _cell(text: str) -> str:
+    return md(" ".join(text.split())).replace("|", "\\|")
+
+
 def rules_markdown() -> str:
     """The whole docs/rules.md (generated; a test fails when the committed file is stale)."""
     rules = sorted(rulebook.catalogue().values(), key=lambda r: r.code)
     head = ["# urdfcheck rules", "", "Generated from `rules/*.yaml` by `urdfcheck rules --format markdown`; "
             "do not edit by hand.", "", "| code | name | default | summary |", "| --- | --- | --- | --- |"]
-    head += [f"| [{r.code}](#{r.code.lower()}-{r.name}) | {r.name} | {r.severity} | {r.summary} |" for r in rules]
+    head += [f"| [{r.code}](#{r.code.lower()}-{r.name}) | {r.name} | {r.severity} | {_cell(r.summary)} |"
+             for r in rules]
     return "\n".join(head) + "\n\n" + "\n".join(page_markdown(r) for r in rules)

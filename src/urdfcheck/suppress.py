@@ -60,3 +60,130 @@ def scan_comments(root) -> list[tuple[int, int, tuple[str, ...], int]]:
                 continue
             out.append((target.sourceline, _last_line(target), codes, c.sourceline))
     return out
+
+
+# --- YAML files (controller/driver parameters that contract findings point into) -------------------
+#
+#     # urdfcheck: ignore[C001] reason        on its own line: the next content line and the block under it
+#     joints: [a, b]  # urdfcheck: ignore[C001] reason    trailing: that line and the block under it
+#     # urdfcheck: ignore-file[C010] reason   anywhere: the whole file
+#
+# The engine reads a YAML file's suppressions lazily (only when a finding points into it) and caches
+# them per (path, mtime, size); see `yaml_suppressions`. Unused YAML suppressions are not reported
+# as R002, because a YAML file is only read when a finding points into it.
+
+YAML_SUFFIXES = (".yaml", ".yml")
+
+
+def _yaml_comment(line: str) -> int:
+    """Index of the `#` that starts a comment on a YAML line, or -1 (quotes are respected)."""
+    quote = None
+    i = 0
+    while i < len(line):
+        ch = line[i]
+        if quote == "'":
+            if ch == "'":
+                if i + 1 < len(line) and line[i + 1] == "'":
+                    i += 1
+                else:
+                    quote = None
+        elif quote == '"':
+            if ch == "\\":
+                i += 1
+            elif ch == '"':
+                quote = None
+        elif ch in "'\"" and (i == 0 or line[i - 1] in " \t[{,:-?"):
+            quote = ch
+        elif ch == "#" and (i == 0 or line[i - 1] in " \t"):
+            return i
+        i += 1
+    return -1
+
+
+def _indent(line: str) -> int:
+    return len(line) - len(line.lstrip(" "))
+
+
+def scan_yaml_comments(text: str) -> list[tuple[int, int, tuple[str, ...], int]]:
+    """(first, last, codes, comment_line) for every `# urdfcheck: ignore[...]` comment in YAML text.
+
+    Same tuples as `scan_comments`: lines are 1-based; `first == 0` means the whole file. A comment on
+    its own line covers the next content line, a trailing comment its own line; either way the block
+    below that line (following lines indented deeper, blank and comment lines included) is covered too.
+    """
+    lines = text.splitlines()
+    # per line: (is content, indent, comment text)
+    info = []
+    for raw in lines:
+        pos = _yaml_comment(raw)
+        body = raw if pos < 0 else raw[:pos]
+        comment = "" if pos < 0 else raw[pos + 1:]
+        content = body.strip() not in ("", "---", "...")
+        info.append((content, _indent(body.replace("\t", " ")), comment))
+
+    def block_end(start: int) -> int:
+        """Last line (0-based) of the block that starts at content line `start`."""
+        base = info[start][1]
+        pos = _yaml_comment(lines[start])
+        opens = (lines[start] if pos < 0 else lines[start][:pos]).rstrip().endswith(":")
+        last = start
+        for k in range(start + 1, len(lines)):
+            content, ind, _ = info[k]
+            if not content:
+                continue
+            # `key:` may hold a sequence written at its own indent ("key:\n- a\n- b")
+            same_level_item = opens and ind == base and lines[k].lstrip(" ").startswith("-")
+            if ind <= base and not same_level_item:
+                break
+            last = k
+        return last
+
+    out = []
+    for i, (content, _ind, comment) in enumerate(info):
+        if not comment:
+            continue
+        parsed = parse_comment(comment)
+        if parsed is None:
+            continue
+        kind, codes = parsed
+        if kind == "ignore-file":
+            out.append((0, 10**9, codes, i + 1))
+            continue
+        target = i if content else next((k for k in range(i + 1, len(info)) if info[k][0]), None)
+        if target is None:
+            continue
+        out.append((target + 1, block_end(target) + 1, codes, i + 1))
+    return out
+
+
+_YAML_CACHE: dict = {}
+
+
+def yaml_suppressions(file: str) -> list[Suppression]:
+    """Suppressions written in the YAML file `file` (a finding's `Location.file`), read once and cached.
+
+    An unreadable file has none. The cache key includes mtime and size, so an edited file is re-read.
+    """
+    import os
+
+    try:
+        st = os.stat(file)
+    except OSError:
+        return []
+    key = (file, st.st_mtime_ns, st.st_size)
+    hit = _YAML_CACHE.get(key)
+    if hit is None:
+        try:
+            with open(file, "rb") as f:
+                text = f.read(16 * 1024 * 1024).decode("utf-8", "replace")
+        except OSError:
+            text = ""
+        hit = [Suppression(file, a, b, c, d) for a, b, c, d in scan_yaml_comments(text)]
+        if len(_YAML_CACHE) > 256:
+            _YAML_CACHE.clear()
+        _YAML_CACHE[key] = hit
+    return hit
+
+
+def is_yaml(file: str) -> bool:
+    return file.lower().endswith(YAML_SUFFIXES)

@@ -98,21 +98,32 @@ def _is_library(text: str) -> bool:
     return any(etree.QName(c).localname == "macro" for c in kids)
 
 
-def _tail_match(ref: str, rel: str) -> bool:
-    """Does an include reference (possibly `$(find pkg)/urdf/x.xacro`) point at package file `rel`?"""
-    ref = ref.replace("\\", "/")
-    ref = re.sub(r"\$\([^)]*\)", "", ref).lstrip("/")
-    parts = [p for p in ref.split("/") if p not in ("", ".")]
-    rparts = rel.replace("\\", "/").split("/")
-    if not parts:
-        return False
-    if parts[-1] != rparts[-1]:
-        return False
-    # the longest common tail must cover everything after the last unknown prefix
-    k = 1
-    while k < len(parts) and k < len(rparts) and parts[-1 - k] == rparts[-1 - k]:
-        k += 1
-    return k == len(parts) or k >= 1
+def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
+    """Package xacro files an include reference may point at.
+
+    A plain relative reference resolves against the including file. A `$(find pkg)/a/b.xacro` reference
+    matches files whose path ends with `a/b.xacro` (source and install layouts differ, so the package
+    prefix is not used); when none does, any file called `b.xacro`.
+    """
+    ref = ref.strip().replace("\\", "/")
+    if not ref:
+        return set()
+    if "$(" not in ref and "${" not in ref:
+        cand = os.path.normpath(ref if os.path.isabs(ref) else os.path.join(os.path.dirname(includer), ref))
+        return {cand} if cand in xacros else set()
+    tail = re.sub(r"^.*\)", "", ref).lstrip("/")  # text after the last substitution
+    if "${" in tail or not tail:
+        return set()
+    tail_parts = [p for p in tail.split("/") if p not in ("", ".")]
+    if not tail_parts:
+        return set()
+    def ends_with(path: str) -> bool:
+        parts = path.replace("\\", "/").split("/")
+        return parts[-len(tail_parts):] == tail_parts
+    hits = {x for x in xacros if ends_with(x)}
+    if not hits:
+        hits = {x for x in xacros if os.path.basename(x) == tail_parts[-1]}
+    return hits
 
 
 def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES) -> Discovered:
@@ -134,11 +145,9 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES) -> D
             launches.append(path)
     texts = {p: _read_head(p) for p in xacros}
     included: set[str] = set()
-    refs = [m.group(2) for t in texts.values() for m in _INCLUDE.finditer(t)]
-    for p in xacros:
-        rel = os.path.relpath(p, root)
-        if any(_tail_match(r, rel) for r in refs):
-            included.add(p)
+    for p, t in texts.items():
+        for m in _INCLUDE.finditer(t):
+            included |= _included_files(m.group(2), p, xacros) - {p}
     models, libs = list(urdfs), []
     for p in xacros:
         if p in included:

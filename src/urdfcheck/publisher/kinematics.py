@@ -101,7 +101,7 @@ def matrix_from_tq(t, q) -> tuple:
 
 
 def rpy_from_matrix(m) -> tuple[float, float, float]:
-    """Roll, pitch, yaw like tf2's Matrix3x3::getRPY (solution 1)."""
+    """Roll, pitch, yaw (fixed axes x, y, z; the convention of URDF and tf2's getRPY). At gimbal lock yaw = 0."""
     if abs(m[2][0]) >= 1.0:
         yaw = 0.0
         if m[2][0] < 0:

@@ -102,7 +102,7 @@ def render_mermaid(data: dict) -> str:
     for e in data["edges"]:
         arrow = "-.->" if e["publication"] != "dynamic" else "-->"
         if e["publication"] == "none":
-            arrow = "~~~"
+            arrow = "--x"
         lines.append(f'    {_mermaid_id(e["parent"], ids)} {arrow}|"{_mermaid_text(_label(e))}"| {_mermaid_id(e["child"], ids)}')
     return "\n".join(lines)
 

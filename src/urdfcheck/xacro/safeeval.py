@@ -207,6 +207,7 @@ _METHODS: dict[type, frozenset[str]] = {
     frozenset: frozenset({"union", "intersection", "difference", "symmetric_difference", "issubset",
                           "issuperset", "isdisjoint", "copy"}),
     range: frozenset({"start", "stop", "step", "index", "count"}),
+    slice: frozenset({"start", "stop", "step"}),
     type(None): frozenset(),
 }
 
@@ -550,10 +551,10 @@ class _Run:
         elts = target.elts
         stars = [i for i, e in enumerate(elts) if isinstance(e, ast.Starred)]
         try:
-            it = iter(value)
+            it = self.iterate(value)
         except TypeError:
             raise TypeError(f"cannot unpack non-iterable {type(value).__name__} object") from None
-        items = list(self._counted(it))
+        items = list(it)
         if not stars:
             if len(items) < len(elts):
                 raise ValueError(f"not enough values to unpack (expected {len(elts)}, got {len(items)})")
@@ -577,19 +578,18 @@ class _Run:
         """Yield once per binding of the comprehension's loop variables that passes all conditions."""
         def rec(i, it):
             gen = gens[i]
-            for item in it:
-                self.tick()
+            for item in it:  # `it` comes from iterate(): already charged to the budget
                 self.assign(gen.target, item, local.values)
                 if all(self.ev(cond, local) for cond in gen.ifs):
                     if i + 1 < len(gens):
-                        yield from rec(i + 1, iter(self.ev(gens[i + 1].iter, local)))
+                        yield from rec(i + 1, self.iterate(self.ev(gens[i + 1].iter, local)))
                     else:
                         yield
         return rec(0, first_iter)
 
     def comprehension(self, node, scope):
         # the first iterable is evaluated in the enclosing scope, eagerly (as Python does)
-        first = iter(self.ev(node.generators[0].iter, scope))
+        first = self.iterate(self.ev(node.generators[0].iter, scope))
         names = set()
         for g in node.generators:
             _target_names(g.target, names)
@@ -963,13 +963,15 @@ def default_evaluator(global_symbols, limits: Limits | None = None) -> Evaluator
     return ev
 
 
-# $(eval ...): only these builtins (True/False/None are constants in Python 3)
-_SUBST_BUILTINS = {f.__name__: f for f in (int, float, str, bool, len, min, max, abs, round)}
+# $(eval ...): stock eval() there has the *real* builtins; we keep a few harmless ones (True/False/None
+# are constants in Python 3). list/dict/map are what substitution_args' own (ineffective) restricted
+# __builtins__ meant to offer.
+_SUBST_BUILTINS = {f.__name__: f for f in (int, float, str, bool, len, min, max, abs, round, list, dict, map)}
 
 
 def _refused_in_eval(name):
-    def refuse(*args, **kwargs):
-        raise Refused(f"{name}(...)", f"{name}() inside $(eval) is not allowed here")
+    def refuse(*args, **kwargs):  # evaluate_substitution fills in the expression text
+        raise Refused("", f"{name}() inside $(eval) is not allowed (no confined version was supplied)")
     refuse.__name__ = refuse.__qualname__ = name
     return refuse
 
@@ -1032,7 +1034,12 @@ def evaluate_substitution(s: str, context: dict, *, functions: dict | None = Non
     ev = evaluator or _SUBST_EVALUATOR
     # eval() of a string skips leading spaces and tabs only; inside comprehensions only globals
     # (i.e. the builtins) are visible, not the locals mapping
-    return str(ev._run(s.lstrip(" \t"), "<string>", top, builtin, extra))
+    try:
+        return str(ev._run(s.lstrip(" \t"), "<string>", top, builtin, extra))
+    except Refused as e:
+        if e.expr:
+            raise
+        raise Refused(s, e.reason) from None
 
 
 _SUBST_EVALUATOR = Evaluator()

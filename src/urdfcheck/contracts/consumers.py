@@ -1,0 +1,192 @@
+"""The consumers of one model, read once: what the contract (C) and TF (T) checks look at.
+
+`consumers_for_model(model_config, config)` reads what the config declares for a model;
+`discover_consumers(entry_path, model)` is the zero-config fallback: parameter files and launch files of the
+package enclosing the model (see `discover`), associated with the model when the package has only one
+entry model, or when they name one of its joints (parameter files) / its file name (launch files).
+
+Reading never raises: unreadable files become `errors` (`ConsumerError`, reported as C007).
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Mapping
+
+from ..findings import Location
+from .common import ConsumerError
+from .controllers import ControllerSet, Driver, read_controllers, read_driver
+from .graph import TFClaim, claims_from_owners
+from .launch import LaunchInfo, read_launch
+from .localization import LocalizationNode, localization_from_params
+from .params import ParamFile, read_params
+
+DEFAULT_FRAMES = {"map": "map", "odom": "odom", "base": "base_link"}
+
+
+@dataclass
+class Consumers:
+    controllers: ControllerSet = field(default_factory=lambda: ControllerSet({}, ()))
+    drivers: list[Driver] = field(default_factory=list)
+    launch: list[LaunchInfo] = field(default_factory=list)
+    localization: list[LocalizationNode] = field(default_factory=list)
+    tf_owners: list[TFClaim] = field(default_factory=list)  # declared in the config
+    frames: dict = field(default_factory=lambda: dict(DEFAULT_FRAMES))  # REP-105 names: map, odom, base
+    frame_prefix: str = ""  # the config's robot_state_publisher frame_prefix for this model
+    errors: list[ConsumerError] = field(default_factory=list)
+    notes: list = field(default_factory=list)  # (message, Location)
+    origin: str = "config"  # "config" or "discovered"
+    files: dict = field(default_factory=dict)  # kind -> [paths read]
+
+    @property
+    def empty(self) -> bool:
+        return not (len(self.controllers) or self.drivers or self.launch or self.localization or self.tf_owners
+                    or self.errors)
+
+    def joint_uses(self):
+        """Every (JointUse, owner kind) a controller or driver names."""
+        for c in self.controllers:
+            for u in c.joints + c.state_joints:
+                yield u, "controller", c
+        for d in self.drivers:
+            for u in d.joints:
+                yield u, "driver", d
+
+    def launch_frame_prefix(self) -> str | None:
+        """The frame_prefix of the one robot_state_publisher in the launch files, if exactly one (literal)."""
+        rsps = [s for li in self.launch for s in li.state_publishers if not s.condition]
+        if len(rsps) == 1 and rsps[0].frame_prefix is not None:
+            return rsps[0].frame_prefix
+        return None
+
+    @property
+    def rsp_prefix(self) -> str:
+        if self.frame_prefix:
+            return self.frame_prefix
+        return self.launch_frame_prefix() or ""
+
+
+class _Reader:
+    def __init__(self):
+        self.cache: dict[str, ParamFile | ConsumerError] = {}
+
+    def params(self, path: str, errors: list) -> ParamFile | None:
+        got = self.cache.get(path)
+        if got is None:
+            try:
+                got = read_params(path)
+            except ConsumerError as e:
+                got = e
+            self.cache[path] = got
+        if isinstance(got, ConsumerError):
+            if got not in errors:
+                errors.append(got)
+            return None
+        return got
+
+
+def _read_launch(paths, out: Consumers, args=None, packages=None) -> None:
+    for p in paths:
+        try:
+            out.launch.append(read_launch(p, args=args, packages=packages))
+        except ConsumerError as e:
+            out.errors.append(e)
+    for li in out.launch:
+        out.notes.extend(li.notes)
+
+
+def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None = None,
+                        reader: _Reader | None = None) -> Consumers:
+    """Consumers declared in the config for one model (`config.ModelConfig`)."""
+    r = reader or _Reader()
+    out = Consumers(origin="config")
+    if config is not None:
+        out.frames = {**DEFAULT_FRAMES, **dict(config.frames)}
+        out.tf_owners = claims_from_owners(dict(config.tf_owners), dict(config.tf_owner_locs), Location(config.path))
+    out.frame_prefix = mc.frame_prefix
+    pfs = [pf for pf in (r.params(p, out.errors) for p in mc.controllers) if pf is not None]
+    out.controllers = read_controllers(pfs)
+    out.notes.extend(out.controllers.notes)
+    for c in out.controllers:
+        out.notes.extend(c.notes)
+    for d in mc.drivers:
+        pf = r.params(d.file, out.errors)
+        if pf is None:
+            continue
+        drv = read_driver(d.spec(), [pf])
+        out.drivers.append(drv)
+    loc_pfs = [pf for pf in (r.params(p, out.errors) for p in mc.localization) if pf is not None]
+    out.localization = localization_from_params(loc_pfs)
+    pk = dict(packages or (config.packages if config is not None else {}))
+    _read_launch(mc.launch, out, dict(mc.launch_args), pk)
+    out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
+                 "launch": list(mc.launch), "localization": list(mc.localization)}
+    return out
+
+
+# --- zero-config -----------------------------------------------------------------------------------------
+def _package_root(entry: str) -> Path | None:
+    p = Path(os.path.abspath(entry)).parent
+    for d in (p, *p.parents):
+        if (d / "package.xml").is_file():
+            return d
+    return None
+
+
+def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | None = None) -> Consumers | None:
+    """Consumers found next to a model without a config; None when the model is in no ROS package."""
+    from .discover import discover
+
+    root = _package_root(entry)
+    if root is None:
+        return None
+    found = discover(root)
+    single = len(found.models) <= 1
+    joints = set(model.joints) if model is not None else set()
+    out = Consumers(origin="discovered")
+    r = _Reader()
+    pfs = []
+    for p in found.params:
+        errs: list = []
+        pf = r.params(p, errs)
+        if pf is None:
+            if single:
+                out.errors.extend(errs)
+            continue
+        if single or _names_a_joint(pf, joints):
+            pfs.append(pf)
+    out.controllers = read_controllers(pfs)
+    for c in out.controllers:
+        out.notes.extend(c.notes)
+    out.localization = localization_from_params(pfs)
+    base = os.path.basename(entry)
+    launches = []
+    for p in found.launch:
+        if single or _mentions(p, base):
+            launches.append(p)
+    pk = dict(packages or {})
+    _read_launch(launches, out, None, pk)
+    out.files = {"params": [pf.path for pf in pfs], "launch": launches}
+    return out
+
+
+def _names_a_joint(pf: ParamFile, joints: set[str]) -> bool:
+    if not joints:
+        return False
+    for node in pf.nodes.values():
+        for v in node.params.values():
+            val = v.value
+            if isinstance(val, str) and val in joints:
+                return True
+            if isinstance(val, list) and any(isinstance(x, str) and x in joints for x in val):
+                return True
+    return False
+
+
+def _mentions(path: str, name: str) -> bool:
+    try:
+        with open(path, "rb") as f:
+            return name.encode() in f.read(2 * 1024 * 1024)
+    except OSError:
+        return False

@@ -1,0 +1,358 @@
+"""The deployment TF graph: who publishes which parent -> child transform, and what is wrong with it.
+
+Claims (`TFClaim(parent, child, owner, kind, loc)`) come from
+
+* the model, published by robot_state_publisher (`claims_from_model`): fixed and planar joints are static
+  (/tf_static; RSP publishes a planar joint at its zero position), revolute/continuous/prismatic joints are
+  dynamic (/tf), floating joints are skipped (RSP does not publish them). Only the first joint per child
+  link is used (a second parent is the model's own structure error);
+* static_transform_publisher nodes in launch files (static);
+* controllers and drivers that broadcast odometry (dynamic odom -> base);
+* localization (robot_localization, AMCL) (dynamic);
+* owners declared in the config (`tf_owners: {"map->odom": amcl}`) (dynamic).
+
+Frame names are compared without a leading "/". Analyses return `TFProblem`s (never findings): the check
+layer turns them into T001..T006.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Iterable, Mapping, Sequence
+
+from ..findings import Location
+
+STATIC = "static"
+DYNAMIC = "dynamic"
+RSP = "robot_state_publisher"
+
+
+@dataclass(frozen=True)
+class TFClaim:
+    parent: str
+    child: str
+    owner: str  # "robot_state_publisher", "static_transform_publisher <name>", a controller name, "amcl", ...
+    kind: str  # "static" or "dynamic"
+    loc: Location
+    source: str = ""  # "model", "launch", "controller", "driver", "localization", "config"
+
+    @property
+    def edge(self) -> tuple[str, str]:
+        return (self.parent, self.child)
+
+
+@dataclass(frozen=True)
+class TFProblem:
+    code: str  # T001..T006
+    message: str
+    claims: tuple[TFClaim, ...] = ()
+    frames: tuple[str, ...] = ()
+    loc: Location | None = None  # the primary location (first claim's when None)
+
+    @property
+    def at(self) -> Location | None:
+        if self.loc is not None:
+            return self.loc
+        return self.claims[0].loc if self.claims else None
+
+    @property
+    def related(self) -> tuple[Location, ...]:
+        first = self.at
+        out = []
+        for c in self.claims:
+            if c.loc != first and c.loc not in out:
+                out.append(c.loc)
+        return tuple(out)
+
+
+def norm(frame: str) -> str:
+    return str(frame).strip().lstrip("/")
+
+
+@dataclass
+class TFGraph:
+    claims: list[TFClaim] = field(default_factory=list)
+    notes: list = field(default_factory=list)  # (message, Location): claims left out (conditional launch nodes)
+
+    def add(self, claim: TFClaim) -> None:
+        c = TFClaim(norm(claim.parent), norm(claim.child), claim.owner, claim.kind, claim.loc, claim.source)
+        if c not in self.claims:
+            self.claims.append(c)
+
+    def extend(self, claims: Iterable[TFClaim]) -> "TFGraph":
+        for c in claims:
+            self.add(c)
+        return self
+
+    @property
+    def frames(self) -> list[str]:
+        out: dict[str, None] = {}
+        for c in self.claims:
+            out.setdefault(c.parent)
+            out.setdefault(c.child)
+        return list(out)
+
+    def by_child(self) -> dict[str, list[TFClaim]]:
+        out: dict[str, list[TFClaim]] = {}
+        for c in self.claims:
+            out.setdefault(c.child, []).append(c)
+        return out
+
+    def children(self) -> dict[str, list[str]]:
+        out: dict[str, list[str]] = {}
+        for c in self.claims:
+            lst = out.setdefault(c.parent, [])
+            if c.child not in lst:
+                lst.append(c.child)
+        return out
+
+    def roots(self) -> list[str]:
+        kids = {c.child for c in self.claims}
+        return [f for f in self.frames if f not in kids]
+
+    def has_frame(self, frame: str) -> bool:
+        f = norm(frame)
+        return any(c.parent == f or c.child == f for c in self.claims)
+
+
+# --- claim sources -----------------------------------------------------------------------------------
+def claims_from_model(model, prefix: str = "", owner: str = RSP) -> list[TFClaim]:
+    """robot_state_publisher's transforms for a Model (frame_prefix applied)."""
+    out = []
+    seen: set[str] = set()
+    for j in model.joint_list:
+        if j.parent is None or j.child is None or j.child in seen:
+            continue
+        seen.add(j.child)
+        if j.type == "floating":
+            continue
+        kind = STATIC if j.type in ("fixed", "planar") else DYNAMIC
+        out.append(TFClaim(prefix + j.parent, prefix + j.child, owner, kind, j.loc, "model"))
+    return out
+
+
+def claims_from_static_tfs(static_tfs: Iterable, notes: list | None = None) -> list[TFClaim]:
+    out = []
+    for s in static_tfs:
+        if getattr(s, "condition", None):
+            if notes is not None:
+                notes.append((f"static transform {s.parent} -> {s.child} is conditional ({s.condition}); "
+                               f"left out of the TF graph", s.loc))
+            continue
+        owner = "static_transform_publisher" + (f" {s.node_name}" if getattr(s, "node_name", "") else "")
+        out.append(TFClaim(s.parent, s.child, owner, STATIC, s.loc, "launch"))
+    return out
+
+
+def claims_from_odom(odom_tfs: Iterable, base_frame: str = "base_link", source: str = "controller") -> list[TFClaim]:
+    """From `controllers.OdomTF`s (enabled ones); an empty child means the configured base frame."""
+    out = []
+    for o in odom_tfs:
+        if o is None or not o.enabled:
+            continue
+        out.append(TFClaim(o.parent, o.child or base_frame, o.owner, DYNAMIC, o.loc, source))
+    return out
+
+
+def claims_from_localization(nodes: Iterable) -> list[TFClaim]:
+    out = []
+    for n in nodes:
+        e = n.edge()
+        if e is None:
+            continue
+        owner = {"ekf": "robot_localization (ekf)", "ukf": "robot_localization (ukf)"}.get(n.kind, n.kind)
+        out.append(TFClaim(e[0], e[1], f"{owner} {n.node}", DYNAMIC, n.edge_loc, "localization"))
+    return out
+
+
+def parse_edge(text: str) -> tuple[str, str] | None:
+    """"map->odom", "map -> odom", "map/odom"? only the arrow forms."""
+    for sep in ("->", "→", " to "):
+        if sep in text:
+            a, b = text.split(sep, 1)
+            a, b = norm(a), norm(b)
+            if a and b:
+                return a, b
+    return None
+
+
+def claims_from_owners(owners: Mapping[str, str], locs: Mapping[str, Location] | None = None,
+                       default_loc: Location | None = None) -> list[TFClaim]:
+    out = []
+    for edge_text, owner in owners.items():
+        e = parse_edge(edge_text)
+        if e is None:
+            continue
+        loc = (locs or {}).get(edge_text) or default_loc or Location("<config>")
+        out.append(TFClaim(e[0], e[1], str(owner), DYNAMIC, loc, "config"))
+    return out
+
+
+# --- analyses ----------------------------------------------------------------------------------------
+def _who(c: TFClaim) -> str:
+    return f"{c.owner} ({c.kind}, {c.loc})"
+
+
+def duplicate_owners(g: TFGraph) -> list[TFProblem]:
+    """T001: the same parent -> child edge claimed by two publishers (even with equal values)."""
+    out = []
+    for child, claims in g.by_child().items():
+        by_parent: dict[str, list[TFClaim]] = {}
+        for c in claims:
+            by_parent.setdefault(c.parent, []).append(c)
+        for parent, cs in by_parent.items():
+            kinds = {c.kind for c in cs}
+            if len(cs) < 2 or len(kinds) > 1:
+                continue  # mixed kinds: T002
+            names = " and ".join(_who(c) for c in cs)
+            out.append(TFProblem("T001", f"{parent} -> {child} is published by {len(cs)} publishers: {names}; "
+                                         f"tf2 sees the transform flip between them", tuple(cs), (parent, child)))
+    return out
+
+
+def static_and_dynamic(g: TFGraph) -> list[TFProblem]:
+    """T002: a frame that is the child of a static and of a dynamic transform."""
+    out = []
+    for child, claims in g.by_child().items():
+        st = [c for c in claims if c.kind == STATIC]
+        dy = [c for c in claims if c.kind == DYNAMIC]
+        if st and dy:
+            cs = tuple(dy + st)
+            out.append(TFProblem(
+                "T002",
+                f"frame {child} is published both on /tf (by {', '.join(_who(c) for c in dy)}) and on "
+                f"/tf_static (by {', '.join(_who(c) for c in st)}); the static one never expires and masks the other",
+                cs, (child,)))
+    return out
+
+
+def multiple_parents(g: TFGraph) -> list[TFProblem]:
+    """T003: a frame given two different parents (a TF tree allows one)."""
+    out = []
+    for child, claims in g.by_child().items():
+        parents: dict[str, TFClaim] = {}
+        for c in claims:
+            parents.setdefault(c.parent, c)
+        if len(parents) > 1:
+            cs = tuple(parents.values())
+            desc = ", ".join(f"{p} (by {_who(c)})" for p, c in parents.items())
+            out.append(TFProblem("T003", f"frame {child} has {len(parents)} parents: {desc}; tf2 re-parents it "
+                                         f"with every message", cs, (child,)))
+    return out
+
+
+def cycles(g: TFGraph) -> list[TFProblem]:
+    """T004: parent -> child chains that come back to where they started (each cycle reported once)."""
+    adj: dict[str, list[TFClaim]] = {}
+    for c in g.claims:
+        adj.setdefault(c.parent, []).append(c)
+    out, seen_cycles = [], set()
+    color: dict[str, int] = {}
+    for start in g.frames:
+        if color.get(start):
+            continue
+        # iterative DFS keeping the path
+        stack = [(start, iter(adj.get(start, ())))]
+        path: list[TFClaim] = []
+        color[start] = 1
+        while stack:
+            frame, it = stack[-1]
+            nxt = next(it, None)
+            if nxt is None:
+                stack.pop()
+                color[frame] = 2
+                if path:
+                    path.pop()
+                continue
+            if color.get(nxt.child) == 1:  # back edge: a cycle
+                frames_on = [s[0] for s in stack]
+                i = frames_on.index(nxt.child)
+                cyc = path[i:] + [nxt]
+                key = frozenset((c.parent, c.child) for c in cyc)
+                if key not in seen_cycles:
+                    seen_cycles.add(key)
+                    ring = " -> ".join([c.parent for c in cyc] + [cyc[0].parent])
+                    out.append(TFProblem("T004", f"TF cycle: {ring}", tuple(cyc), tuple(c.parent for c in cyc)))
+                continue
+            if color.get(nxt.child) == 2:
+                continue
+            color[nxt.child] = 1
+            path.append(nxt)
+            stack.append((nxt.child, iter(adj.get(nxt.child, ()))))
+    return out
+
+
+def not_one_tree(g: TFGraph, frames: Mapping[str, str] | None = None, at: Location | None = None) -> list[TFProblem]:
+    """T005: the combined graph has several roots. `frames` gives the REP-105 names (map, odom, base)."""
+    names = {"map": "map", "odom": "odom", "base": "base_link", **(frames or {})}
+    roots = g.roots()
+    if len(roots) <= 1:
+        return []
+    kids = g.children()
+
+    def size(r: str) -> int:
+        seen, stack = set(), [r]
+        while stack:
+            f = stack.pop()
+            if f in seen:
+                continue
+            seen.add(f)
+            stack.extend(kids.get(f, ()))
+        return len(seen)
+
+    def describe(r: str) -> str:
+        n = size(r)
+        return f"{r} ({n} frame{'s' if n != 1 else ''})"
+
+    hint = ""
+    m, o, b = norm(names["map"]), norm(names["odom"]), norm(names["base"])
+    rs = set(roots)
+    if o in rs and any(r not in (m, o) for r in rs):
+        other = [r for r in roots if r not in (m, o)]
+        hint = (f"; nothing publishes {o} -> {other[0]} (the odometry source: a drive controller with "
+                f"enable_odom_tf, robot_localization, or a driver)")
+    elif m in rs and o in g.frames and o not in rs:
+        hint = f"; nothing publishes {m} -> {o} (localization: AMCL, SLAM or robot_localization with world_frame={m})"
+    elif m in rs and o in rs:
+        hint = f"; nothing publishes {m} -> {o}"
+    main = max(roots, key=size)
+    # point at a claim of a smaller tree: that is usually the odd one
+    claims = tuple(next(c for c in g.claims if c.parent == r) for r in roots if r != main)
+    return [TFProblem("T005", f"the TF graph is {len(roots)} separate trees rooted at "
+                              f"{', '.join(describe(r) for r in roots)}{hint}",
+                      claims, tuple(roots), at)]
+
+
+@dataclass(frozen=True)
+class PublisherInfo:
+    """A robot_state_publisher instance (from a launch file or the config)."""
+
+    name: str
+    frame_prefix: str | None  # None: unknown (not literal)
+    loc: Location
+    namespace: str = "/"
+
+
+def prefix_collisions(publishers: Sequence[PublisherInfo]) -> list[TFProblem]:
+    """T006: two robot_state_publishers with the same frame_prefix publish the same frames."""
+    by_prefix: dict[str, list[PublisherInfo]] = {}
+    for p in publishers:
+        if p.frame_prefix is None:
+            continue
+        by_prefix.setdefault(norm(p.frame_prefix), []).append(p)
+    out = []
+    for prefix, ps in by_prefix.items():
+        if len(ps) < 2:
+            continue
+        what = f"frame_prefix {prefix!r}" if prefix else "no frame_prefix"
+        claims = tuple(TFClaim(prefix, "", p.name, STATIC, p.loc, "launch") for p in ps)
+        out.append(TFProblem(
+            "T006",
+            f"{len(ps)} robot_state_publishers run with {what} "
+            f"({', '.join(f'{p.name} in {p.namespace} at {p.loc}' for p in ps)}); their frames collide in /tf",
+            claims, (), ps[0].loc))
+    return out
+
+
+def analyze(g: TFGraph, frames: Mapping[str, str] | None = None, publishers: Sequence[PublisherInfo] = ()) -> list[TFProblem]:
+    return (duplicate_owners(g) + static_and_dynamic(g) + multiple_parents(g) + cycles(g)
+            + not_one_tree(g, frames) + prefix_collisions(publishers))

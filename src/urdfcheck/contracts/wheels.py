@@ -1,0 +1,283 @@
+"""Wheel geometry in the model versus what a differential-drive controller or driver is told.
+
+`check_drive(model, drive)` measures, at the zero configuration (`model.world_poses()`, pure Python):
+
+* separation: the left and right wheel joint frames (averaged per side) projected on the first left wheel's
+  axis, in the base frame; compared with `wheel_separation x wheel_separation_multiplier`. A ROS 1
+  controller given no `wheel_separation` computes the plain distance between the wheel joint origins, which
+  is compared with the projected separation instead;
+* radius: each wheel link's collision (else visual) cylinder or sphere, compared with
+  `wheel_radius x left/right_wheel_radius_multiplier`; a cylinder whose axis is not the joint axis is not
+  a wheel rolling on its radius; a ROS 1 controller with no `wheel_radius` needs such a shape;
+* axes: every wheel axis parallel or anti-parallel to the first left one;
+* counts: as many wheels left as right (none on a side and the controller refuses to start);
+* sides: the left wheels should be on the +y side of the base (REP-103: x forward, y left).
+
+Results are structured (`DriveReport`); `DriveReport.problems()` lists them as `WheelProblem`s with the
+rule code they belong to. Unknown or non-movable wheel joints are left to the generic joint checks.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from .. import geometry as G
+from ..findings import Location, Severity
+from .controllers import DriveSpec, JointUse
+
+DEFAULT_TOLERANCE = 1e-3  # m
+DEFAULT_ANGLE_TOLERANCE = 1e-3  # rad
+
+
+@dataclass(frozen=True)
+class Wheel:
+    use: JointUse
+    side: str  # "left" / "right"
+    link: str
+    position: tuple[float, float, float]  # joint frame origin in the base frame
+    axis: tuple[float, float, float]  # unit, in the base frame
+    joint_loc: Location
+    radius: float | None = None
+    shape_kind: str = ""  # "cylinder", "sphere", "" (none usable)
+    shape_loc: Location | None = None
+    shape_from: str = ""  # "collision" / "visual"
+    cylinder_misaligned: float | None = None  # angle (rad) between the cylinder axis and the joint axis
+
+
+@dataclass(frozen=True)
+class WheelProblem:
+    code: str
+    message: str
+    at: Location
+    related: tuple[Location, ...] = ()
+    severity: Severity | None = None
+    data: dict = field(default_factory=dict)
+
+
+@dataclass
+class DriveReport:
+    drive: DriveSpec
+    base_frame: str
+    wheels: list[Wheel] = field(default_factory=list)
+    measured_separation: float | None = None
+    urdf_distance: float | None = None  # |left - right| (what a ROS 1 controller computes)
+    expected_separation: float | None = None
+    sides_swapped: bool | None = None
+    problems_: list[WheelProblem] = field(default_factory=list)
+    notes: list = field(default_factory=list)
+
+    def problems(self) -> list[WheelProblem]:
+        return list(self.problems_)
+
+
+def _unit(v):
+    n = G.norm(v)
+    return None if n < 1e-12 else tuple(c / n for c in v)
+
+
+def _dot(a, b) -> float:
+    return sum(x * y for x, y in zip(a, b))
+
+
+def _sub(a, b):
+    return tuple(x - y for x, y in zip(a, b))
+
+
+def _mean(vs):
+    n = len(vs)
+    return tuple(sum(v[i] for v in vs) / n for i in range(3))
+
+
+def _angle(a, b) -> float:
+    """Angle between two lines (parallel or anti-parallel count as 0)."""
+    d = min(1.0, abs(_dot(a, b)))
+    return math.acos(d)
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.6g}"
+
+
+def _wheel_shape(link):
+    """First cylinder or sphere among the collisions, else among the visuals."""
+    for kind, shapes in (("collision", link.collisions), ("visual", link.visuals)):
+        for s in shapes:
+            g = s.geometry
+            if g is not None and g.kind in ("cylinder", "sphere") and g.radius is not None:
+                return kind, s
+    return "", None
+
+
+def _base_frame(model, poses, drive: DriveSpec, base: str | None) -> str | None:
+    if base and base in poses:
+        return base
+    for u in drive.left + drive.right:
+        j = model.joints.get(u.joint)
+        if j is not None and j.child in poses:
+            chain = model.chain_to_root(j.child)
+            return chain[-1].parent if chain else j.child
+    return None
+
+
+def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, tolerance: float = DEFAULT_TOLERANCE,
+                angle_tolerance: float = DEFAULT_ANGLE_TOLERANCE) -> DriveReport:
+    poses = model.world_poses()
+    base = _base_frame(model, poses, drive, base_frame)
+    rep = DriveReport(drive, base or "")
+    # --- counts (needs no geometry) ---------------------------------------------------------------
+    nl, nr = len(drive.left), len(drive.right)
+    if nl != nr:
+        empty = nl == 0 or nr == 0
+        side_empty = "left" if nl == 0 else "right"
+        msg = (f"{drive.owner} has {nl} left and {nr} right wheel joint(s)"
+               + (f"; with no {side_empty} wheels the controller refuses to start" if empty else
+                  "; a differential drive expects the same number on each side"))
+        at = drive.left_loc if nl == 0 else drive.right_loc if nr == 0 else (drive.left_loc if nl < nr else drive.right_loc)
+        rep.problems_.append(WheelProblem("C013", msg, at, (drive.right_loc if at == drive.left_loc else drive.left_loc,),
+                                          Severity.ERROR if empty else None, {"left": nl, "right": nr}))
+    if base is None:
+        rep.notes.append(("no wheel joint of the drive is in the model; geometry not compared", drive.loc))
+        return rep
+    inv_base = G.inverse(poses[base])
+    # --- per wheel ----------------------------------------------------------------------------------
+    for side, uses in (("left", drive.left), ("right", drive.right)):
+        for u in uses:
+            j = model.joints.get(u.joint)
+            if j is None or not j.movable or j.child not in poses:
+                continue
+            t = G.compose(inv_base, poses[j.child])
+            axis = _unit(G.rotate(t, j.axis))
+            if axis is None:
+                continue  # zero axis: a joint rule reports it
+            link = model.links.get(j.child)
+            radius = shape_kind = shape_from = None
+            shape_loc = None
+            misaligned = None
+            if link is not None:
+                shape_from, shape = _wheel_shape(link)
+                if shape is not None:
+                    g = shape.geometry
+                    radius, shape_kind, shape_loc = g.radius, g.kind, g.loc
+                    if g.kind == "cylinder":
+                        zc = _unit(G.rotate(G.pose_matrix(shape.origin.xyz, shape.origin.rpy), (0.0, 0.0, 1.0)))
+                        ja = _unit(j.axis)
+                        if zc is not None and ja is not None:
+                            ang = _angle(zc, ja)
+                            if ang > angle_tolerance:
+                                misaligned = ang
+            rep.wheels.append(Wheel(u, side, j.child, G.translation(t), axis, j.loc, radius, shape_kind or "",
+                                    shape_loc, shape_from or "", misaligned))
+    lefts = [w for w in rep.wheels if w.side == "left"]
+    rights = [w for w in rep.wheels if w.side == "right"]
+    ref = lefts[0] if lefts else (rights[0] if rights else None)
+    # --- axes ---------------------------------------------------------------------------------------
+    if ref is not None:
+        for w in rep.wheels:
+            if w is ref:
+                continue
+            ang = _angle(ref.axis, w.axis)
+            if ang > angle_tolerance:
+                rep.problems_.append(WheelProblem(
+                    "C012",
+                    f"wheel joint {w.use.joint} turns about {_vec(w.axis)} but {ref.use.joint} about {_vec(ref.axis)} "
+                    f"(in {base}); they are {math.degrees(ang):.3g} degrees apart, so the wheels fight each other",
+                    w.joint_loc, (ref.joint_loc, w.use.loc), None,
+                    {"angle": ang, "joint": w.use.joint, "reference": ref.use.joint}))
+    # --- separation ---------------------------------------------------------------------------------
+    if lefts and rights:
+        pl, pr = _mean([w.position for w in lefts]), _mean([w.position for w in rights])
+        d = _sub(pl, pr)
+        rep.measured_separation = abs(_dot(d, ref.axis))
+        rep.urdf_distance = G.norm(d)
+        lateral = d[1]
+        if abs(lateral) > tolerance:
+            rep.sides_swapped = lateral < 0
+        expected = drive.separation
+        rep.expected_separation = expected
+        names = f"{', '.join(w.use.joint for w in lefts)} / {', '.join(w.use.joint for w in rights)}"
+        data = {"measured": rep.measured_separation, "expected": expected, "distance": rep.urdf_distance,
+                "tolerance": tolerance}
+        if rep.measured_separation <= tolerance:
+            rep.problems_.append(WheelProblem(
+                "C010",
+                f"the wheels of {drive.owner} ({names}) are {_fmt(rep.urdf_distance)} m apart but 0 m apart along "
+                f"their axis {_vec(ref.axis)}: they sit one behind the other, not side by side",
+                lefts[0].joint_loc, (rights[0].joint_loc,), None, data))
+        elif expected is None:
+            sep = drive.wheel_separation
+            if drive.from_urdf and sep is None:
+                if abs(rep.urdf_distance - rep.measured_separation) > tolerance:
+                    rep.problems_.append(WheelProblem(
+                        "C010",
+                        f"{drive.owner} sets no wheel_separation, so the ROS 1 controller uses the distance between "
+                        f"the wheel joint origins, {_fmt(rep.urdf_distance)} m; the wheels are "
+                        f"{_fmt(rep.measured_separation)} m apart along their axis",
+                        drive.loc, (lefts[0].joint_loc, rights[0].joint_loc), None, data))
+            elif sep is None:
+                rep.problems_.append(WheelProblem(
+                    "C010",
+                    f"{drive.owner} sets no wheel_separation (it defaults to 0); the model's wheels are "
+                    f"{_fmt(rep.measured_separation)} m apart ({names})",
+                    drive.loc, (lefts[0].joint_loc, rights[0].joint_loc), None, data))
+            else:
+                rep.notes.append((f"wheel_separation {sep.value!r} is not a number", sep.loc))
+        elif abs(expected - rep.measured_separation) > tolerance:
+            sep = drive.wheel_separation
+            mult = drive.separation_multiplier
+            how = f"wheel_separation {_fmt(float(sep.value))}" if sep is not None else "wheel_separation"
+            if mult is not None and not mult.default and (mult.value != 1 and mult.value != 1.0):
+                how += f" x wheel_separation_multiplier {mult.value} = {_fmt(expected)}"
+            rep.problems_.append(WheelProblem(
+                "C010",
+                f"{drive.owner}: {how} m, but the model's wheels ({names}) are {_fmt(rep.measured_separation)} m "
+                f"apart along their axis (difference {_fmt(abs(expected - rep.measured_separation))} m, "
+                f"tolerance {_fmt(tolerance)} m)",
+                sep.loc if sep is not None else drive.loc, (lefts[0].joint_loc, rights[0].joint_loc), None, data))
+    # --- radii --------------------------------------------------------------------------------------
+    for w in rep.wheels:
+        expected = drive.radius(w.side)
+        rad_v = drive.wheel_radius
+        if w.cylinder_misaligned is not None:
+            rep.problems_.append(WheelProblem(
+                "C011",
+                f"wheel link {w.link}: its {w.shape_from} cylinder's axis is {math.degrees(w.cylinder_misaligned):.3g} "
+                f"degrees off the joint axis of {w.use.joint}, so the wheel does not roll on its radius "
+                f"(check the <origin rpy> of the cylinder)",
+                w.shape_loc or w.joint_loc, (w.joint_loc,), None, {"angle": w.cylinder_misaligned, "link": w.link}))
+            continue
+        if w.radius is None:
+            if drive.from_urdf and rad_v is None:
+                rep.problems_.append(WheelProblem(
+                    "C011",
+                    f"{drive.owner} sets no wheel_radius and wheel link {w.link} has no cylinder or sphere "
+                    f"collision/visual geometry: the ROS 1 controller cannot compute the radius and will not start",
+                    w.joint_loc, (drive.loc,), Severity.ERROR, {"link": w.link}))
+            elif expected is not None:
+                rep.notes.append((f"wheel link {w.link} has no cylinder or sphere to compare wheel_radius with",
+                                  w.joint_loc))
+            continue
+        if expected is None:
+            if rad_v is None and not drive.from_urdf:
+                rep.problems_.append(WheelProblem(
+                    "C011",
+                    f"{drive.owner} sets no wheel_radius (it defaults to 0); wheel link {w.link} has radius "
+                    f"{_fmt(w.radius)} m",
+                    drive.loc, (w.shape_loc or w.joint_loc,), None, {"measured": w.radius, "expected": None}))
+            continue
+        if abs(expected - w.radius) > tolerance:
+            mult = drive.left_radius_multiplier if w.side == "left" else drive.right_radius_multiplier
+            how = f"wheel_radius {_fmt(float(rad_v.value))}"
+            if mult is not None and not mult.default and mult.value not in (1, 1.0):
+                how += f" x {w.side} radius multiplier {mult.value} = {_fmt(expected)}"
+            rep.problems_.append(WheelProblem(
+                "C011",
+                f"{drive.owner}: {how} m, but wheel link {w.link} ({w.use.joint}) has a {w.shape_from} {w.shape_kind} "
+                f"of radius {_fmt(w.radius)} m (difference {_fmt(abs(expected - w.radius))} m, tolerance "
+                f"{_fmt(tolerance)} m)",
+                rad_v.loc, (w.shape_loc or w.joint_loc,), None,
+                {"measured": w.radius, "expected": expected, "link": w.link, "tolerance": tolerance}))
+    return rep
+
+
+def _vec(v) -> str:
+    return "(" + " ".join(f"{0.0 if abs(c) < 5e-7 else c:.3g}" for c in v) + ")"

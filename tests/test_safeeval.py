@@ -1,0 +1,380 @@
+"""The allow-list expression evaluator that replaces eval() inside xacro."""
+import math
+import os
+import re
+import time
+
+import pytest
+import xacro
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+from xacro import substitution_args as subst
+
+from urdfcheck.xacro.safeeval import (Evaluator, Limits, Refused, default_evaluator, evaluate_substitution,
+                                      validate)
+
+# ----------------------------------------------------------------------------------------------
+# Differential test against eval()
+# ----------------------------------------------------------------------------------------------
+
+FUNCS = {"len": len, "abs": abs, "min": min, "max": max, "round": round, "str": str, "int": int,
+         "float": float, "bool": bool}
+pytestmark = pytest.mark.filterwarnings("ignore::SyntaxWarning")  # compile() of odd generated literals
+
+# small limits keep eval() cheap on the (few) generated expressions we refuse
+DIFF = Evaluator(FUNCS.values(), limits=Limits(max_len=100_000, max_bits=10_000, max_iter=100_000))
+
+
+def fresh_symbols():
+    return {"x": 3, "y": -2.5, "z": 0, "s": "ab c", "L": [1, 2, 3], "T": (1, "a", 2.0), "E": [],
+            "W": ["x", "yy"], **FUNCS}
+
+
+leaves = st.one_of(
+    st.integers(-20, 20).map(str),
+    st.sampled_from(["0.0", "-0.0", "1.5", "2.25", "1e10", "1e308", "0.1", "True", "False", "None"]),
+    st.sampled_from(["''", "'a'", "'ab c'", "'3'", "'1.5'", "[]", "[1, 2]", "['a', 'b']", "(1,)", "()"]),
+    st.sampled_from(["x", "y", "z", "s", "L", "T", "E", "W"]),
+)
+BINOPS = ["+", "-", "*", "/", "//", "%", "<", ">", "<=", ">=", "==", "!=", "&", "|", "^", "and", "or",
+          "in", "not in"]
+
+
+def extend(sub):
+    two = st.tuples(sub, sub)
+    return st.one_of(
+        st.builds(lambda ab, op: f"({ab[0]} {op} {ab[1]})", two, st.sampled_from(BINOPS)),
+        st.builds(lambda a, e: f"({a} ** {e})", sub, st.sampled_from(["0", "1", "2", "3", "-1", "-2", "0.5"])),
+        st.builds(lambda a, op, n: f"({a} {op} {n})", sub, st.sampled_from(["<<", ">>"]), st.integers(0, 8)),
+        st.builds(lambda a, op: f"({op}{a})", sub, st.sampled_from(["-", "+", "~", "not "])),
+        st.builds(lambda a, b, c: f"({a} if {b} else {c})", sub, sub, sub),
+        st.builds(lambda a, b, c: f"({a} < {b} <= {c})", sub, sub, sub),
+        st.builds(lambda ab: f"{ab[0]}[{ab[1]}]", two),
+        st.builds(lambda a, b, c: f"{a}[{b}:{c}]", sub, sub, sub),
+        st.builds(lambda a, k: f"{a}[::{k}]", sub, st.sampled_from(["1", "-1", "2", "0"])),
+        st.builds(lambda ab: f"[{ab[0]}, {ab[1]}]", two),
+        st.builds(lambda ab: f"({ab[0]}, {ab[1]})", two),
+        st.builds(lambda ab: f"{{{ab[0]}: {ab[1]}}}", two),
+        st.builds(lambda a, f: f"{f}({a})", sub, st.sampled_from(["len", "abs", "round", "str", "int",
+                                                                 "float", "bool"])),
+        st.builds(lambda ab, f: f"{f}({ab[0]}, {ab[1]})", two, st.sampled_from(["min", "max", "round"])),
+        st.builds(lambda ab, m: f"{ab[0]}.{m}({ab[1]})", two, st.sampled_from(["count", "index", "split"])),
+        st.builds(lambda a, m: f"{a}.{m}()", sub, st.sampled_from(["upper", "strip", "is_integer",
+                                                                  "bit_length", "copy"])),
+        st.builds(lambda a, b: f"[(v, {b}) for v in {a}]", sub, sub),
+        st.builds(lambda a, b: f"[v for v in {a} if v != {b}]", sub, sub),
+        st.builds(lambda a: f"{{v: 1 for v in {a}}}", sub),
+        st.builds(lambda a, b: f'f"{{{a}!r}}-{{{b}}}"', sub, sub),
+    )
+
+
+expressions = st.recursive(leaves, extend, max_leaves=12)
+
+
+def outcome(fn):
+    try:
+        value = fn()
+    except Refused:
+        raise
+    except Exception as e:  # noqa: BLE001 - the class is what we compare
+        return ("raised", type(e))
+    return ("value", type(value), repr(value))
+
+
+@settings(max_examples=600, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
+                                                                  HealthCheck.too_slow])
+@given(expressions)
+def test_same_value_type_and_exception_as_eval(expr):
+    try:
+        mine = outcome(lambda: DIFF.evaluate(expr, fresh_symbols()))
+    except Refused:
+        assume(False)  # a resource guard fired: eval() could take unbounded time, nothing to compare
+    ref = outcome(lambda: eval(compile(expr.strip(), "<expression>", "eval"), {"__builtins__": {}, **fresh_symbols()}))
+    assert mine == ref, expr
+
+
+@pytest.mark.parametrize("expr", [
+    "undefined_name", "1/0", "1 % 0", "'a' + 1", "[1][5]", "{}['k']", "'a'.nope", "(1).nope", "int('x')",
+    "len(5)", "5()", "x()", "[v for v in 5]", "{**5}", "dict(**{1: 2})", "float('inf') // 0",
+    "round(float('nan'))", "(1, 2).index(9)", "[a for a, b in [(1,)]]", "[a for a, b in [(1, 2, 3)]]",
+    "'{}'.format()", "'{0'.format(1)", "min([])", "1 if", "s[1.5]", "f'{s:d}'",
+])
+def test_benign_errors_have_pythons_exception_class(expr):
+    symbols = fresh_symbols()
+    ref = outcome(lambda: eval(compile(expr.strip(), "<expression>", "eval"), {"__builtins__": {}, **symbols}))
+    mine = outcome(lambda: DIFF.evaluate(expr, fresh_symbols()))
+    assert ref[0] == "raised" and mine == ref
+
+
+def test_comprehension_scopes_and_laziness():
+    ev = Evaluator([any, all, list, sum])
+    sym = {"any": any, "all": all, "list": list, "sum": sum, "v": 100, "L": [1, 2]}
+    for expr in ["[v for v in L]", "v", "[[v * w for w in L] for v in L]", "any(1 / v for v in [1, 0])",
+                 "list((v, w) for v in L for w in [v, v + 1] if w > 1)", "sum(v for v in L)",
+                 "{v: w for v, *w in [(1, 2, 3), (4,)]}", "[v for v in L if v for v in [v * 10]]"]:
+        assert ev.evaluate(expr, dict(sym)) == eval(expr, {"__builtins__": {}, **sym}), expr
+    # late binding of an outer comprehension variable inside a lazy generator (closure semantics)
+    expr = "[list(g) for g in [(v for q in [0]) for v in L]]"
+    assert ev.evaluate(expr, dict(sym)) == eval(expr, {"__builtins__": {}, **sym}) == [[2], [2]]
+
+
+# ----------------------------------------------------------------------------------------------
+# Attacks: refused, with a reason, quickly
+# ----------------------------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def ev():
+    return default_evaluator(xacro._global_symbols)
+
+
+def xacro_table(**props):
+    table = xacro.Table(xacro._global_symbols)
+    for k, v in props.items():
+        dict.__setitem__(table, k, v)  # store objects as-is (Table would re-parse strings)
+    return table
+
+
+ATTACKS = [
+    ("(lambda: 0)()", "lambda"),
+    ("(lambda f: f(f))(lambda f: f(f))", "lambda"),
+    ("[c for c in ().__class__.__bases__]", "attribute '__"),
+    ("[c for c in ().__class__.__bases__[0].__subclasses__()]", "__"),
+    ("python.vars(python)", "vars"),
+    ("python.type(1)", "type"),
+    ("python.type(python)('X', (), {})", "type"),
+    ("vars_alias(python)", "call of 'vars'"),
+    ("type_alias(1).mro()", "call of 'type'"),
+    ("'{0.__class__}'.format(1)", "attribute or index"),
+    ("'{0.real}'.format(1)", "attribute or index"),
+    ("'{0[0]}'.format([1])", "attribute or index"),
+    ("template.format(1)", "attribute or index"),
+    ("'{x.__class__}'.format_map(dict(x=1))", "attribute or index"),
+    ("python.str.format('{0.__class__}', 1)", "attribute 'format' of type 'str'"),
+    ("python.dict.get(python, 'type')", "attribute 'get' of type 'dict'"),
+    ("gen.gi_frame.f_globals", "gi_frame"),
+    ("xacro.arg.func_globals", "func_globals"),
+    ("list(python.map(python.type, [1]))", "passing 'type'"),
+    ("python.sorted([1, 2], key=python.vars)", "passing 'vars'"),
+    ("python.max([1], key=evil)", "passing 'system'"),
+    ("evil('true')", "call of 'system'"),
+    ("yaml_fn('x')", "call of"),
+    ("python.update(x=1)", "NameSpace.update"),
+    ("python.top()", "call of"),
+    ("(x := 1)", "assignment expression"),
+    ("__builtins__", "name '__builtins__'"),
+    ("_hidden", "name '_hidden'"),
+    ("10**10**8", "exponent too large"),
+    ("(-7)**10**9", "exponent too large"),
+    ("'a'*10**9", "repetition"),
+    ("10**9*'a'", "repetition"),
+    ("[0]*10**8", "repetition"),
+    ("(1, 2)*10**8", "repetition"),
+    ("1<<10**7", "shift too large"),
+    ("(10**50000)*(10**50000)", "too large"),
+    ("[x for x in python.range(10**9)]", "iteration"),
+    ("{x: x for x in python.range(10**12)}", "iteration"),
+    ("[*python.range(10**8)]", "iteration"),
+    ("python.list(python.range(10**8))", "iteration"),
+    ("python.sum(python.range(10**12))", "iteration"),
+    ("python.sum([[0] * 10**6] * 100, [])", "longer"),
+    ("1.5 in python.range(10**12)", "iteration"),
+    ("math.factorial(10**6)", "factorial"),
+    ("math.comb(10**6, 5 * 10**5)", "comb"),
+    ("math.perm(10**6)", "perm"),
+    ("math.prod(python.range(1, 10**5))", "prod"),
+    ("round(1, -10**8)", "ndigits"),
+    ("'x'.center(10**9)", "width"),
+    ("'x'.zfill(10**9)", "width"),
+    ("'{:>{}}'.format('a', 10**9)", "width"),
+    ("'{:>1000000000}'.format('a')", "width"),
+    ("f'{1:>{10**9}}'", "width"),
+    ("'%*d' % (10**9, 1)", "width"),
+    ("'%.1000000000f' % 1.0", "width"),
+    ("'ab' * 5000000 + 'cd' * 5000000 + 'e'", "concatenation"),
+    ("('a'*10**6).replace('', 'b'*100)", "replace"),
+    ("xacro.tokenize('x' + 'a'*40, 'x](a|a)*c[x')", "tokenize"),
+    ("-" * 150 + "1", "nested"),
+    ("[" * 150 + "]" * 150, "nested"),
+    ("1" + "+1" * 5000, "nested"),
+    ("x" * 100_001, "longer than"),
+]
+
+
+@pytest.mark.parametrize("expr,needle", ATTACKS, ids=[a[0][:40] for a in ATTACKS])
+def test_attack_is_refused_quickly(ev, expr, needle):
+    table = xacro_table(vars_alias=xacro._global_symbols["python"]["vars"], type_alias=type, evil=os.system,
+                        template="{0.__class__}", gen=(i for i in [1]), yaml_fn=print)
+    start = time.perf_counter()
+    with pytest.raises(Refused) as info:
+        ev.evaluate(expr, table)
+    assert time.perf_counter() - start < 0.5
+    assert needle in info.value.reason, info.value.reason
+    assert info.value.expr == expr.strip()
+    assert info.value.reason in str(info.value)
+
+
+def test_static_refusals_need_no_context():
+    assert validate("(lambda: 1)()") == "lambda is not allowed"
+    assert "__class__" in validate("().__class__")
+    assert "python.type" in validate("python.type(1)")
+    assert "attribute or index" in validate("'{0.__class__}'.format(1)")
+    assert validate("radians(90) * 2 if a else [v for v in python.range(3)]") is None
+    with pytest.raises(SyntaxError):
+        validate("1 +")
+
+
+def test_huge_comprehension_charges_the_whole_evaluation(ev):
+    # nested loops: the budget is per evaluation, not per loop
+    with pytest.raises(Refused, match="iteration"):
+        ev.evaluate("[a for a in python.range(2000) for b in python.range(2000)]", xacro_table())
+    # a generator created by one evaluation keeps its budget when consumed later
+    g = ev.evaluate("(a for a in python.range(10) for b in python.range(10**6))", xacro_table())
+    with pytest.raises(Refused, match="iteration"):
+        ev.evaluate("python.sum(g)", xacro_table(g=g))
+
+
+def test_allow_and_disallow(ev):
+    local = Evaluator([len])
+    f = os.getcwd
+    with pytest.raises(Refused):
+        local.evaluate("f()", {"f": f})
+    local.allow(f)
+    assert local.evaluate("f()", {"f": f}) == os.getcwd()
+    local.disallow(f)
+    with pytest.raises(Refused):
+        local.evaluate("f()", {"f": f})
+
+
+# ----------------------------------------------------------------------------------------------
+# Real expressions from the corpus
+# ----------------------------------------------------------------------------------------------
+
+EXPR_RE = re.compile(r"(?<!\$)\$\{([^}]*)\}")
+SUBST_RE = re.compile(r"\$\([^)]*\)")
+
+
+def test_every_corpus_expression_validates(corpus):
+    found, refused = 0, []
+    for path in sorted(corpus.rglob("*.xacro")):
+        text = path.read_text(encoding="utf-8", errors="replace")
+        for m in EXPR_RE.finditer(text):
+            # xacro substitutes $(...) inside an expression before evaluating it
+            expr = SUBST_RE.sub("1", m.group(1))
+            found += 1
+            reason = validate(expr)
+            if reason:
+                refused.append((str(path.relative_to(corpus)), expr, reason))
+        for m in re.finditer(r"\$\(eval ([^)]*)\)", text):
+            found += 1
+            reason = validate(m.group(1))
+            if reason:
+                refused.append((str(path.relative_to(corpus)), m.group(1), reason))
+    assert found > 100
+    assert not refused, refused
+
+
+# ----------------------------------------------------------------------------------------------
+# End to end with real xacro objects
+# ----------------------------------------------------------------------------------------------
+
+def stock(expr, table):
+    return eval(compile(expr.strip(), "<expression>", "eval"), table)
+
+
+def test_with_real_xacro_table(ev):
+    table = xacro.Table(xacro._global_symbols)
+    table["width"] = "0.4"
+    table["n"] = "3"
+    table["doubled"] = "${width * 2}"  # lazy: resolved through Table.__getitem__ -> xacro.safe_eval
+    table["name"] = "'arm'"
+    ns = xacro.NameSpace(table)
+    ns["radius"] = "0.05"
+    table["wheel"] = ns
+    table["cfg"] = xacro.YamlListWrapper.wrap({"joints": {"j1": {"limit": [0.5, 1.5]}}, "scale": 2, "items": 7})
+    cases = [
+        "radians(90)", "pi/2", "math.pi / 2", "math.radians(180)", "width * n", "doubled", "-width/2",
+        "f'{name}_link_{n:02d}'", "f'{width:.3f}'", "name.upper() + '_' + str(n)", "wheel.radius * 2",
+        "cfg.joints.j1.limit[1]", "cfg['joints']['j1']['limit']", "cfg.scale ** 2", "cfg.get('scale')",
+        "cfg.items", "[j for j in cfg.joints]", "xacro.dotify(dict(a=1)).a", "python.sorted(cfg.joints.keys())",
+        "python.len(python.list(python.range(n)))", "xacro.tokenize('a b;c')", "'x' in name or n > 2",
+        "int(width * 10) if n else 0", "[float(v) for v in '1 2.5 3'.split()]", "max(1, n) - min(2, n)",
+        "round(width * 3.3, 2)", "python.abs(-1) + python.sum([1, 2])", "bool(n) and 'yes'",
+        "'{} {}'.format(name, n)", "'%s_%d' % (name, n)", "python.isinstance(width, float)",
+        "python.str(cfg.joints.j1)", "math.copysign(1, -width)", "(2.0).is_integer()",
+        "wheel.depth",  # a Table attribute, not a property: stock xacro's (surprising) answer is kept
+    ]
+    for expr in cases:
+        mine, ref = ev.evaluate(expr, table), stock(expr, table)
+        assert type(mine) is type(ref), expr
+        assert repr(mine) == repr(ref), expr
+    for expr, exc in [("wheel.missing", NameError), ("cfg.missing", AttributeError), ("nothing", NameError),
+                      ("cfg.joints['j9']", AttributeError), ("width / 0", ZeroDivisionError)]:
+        with pytest.raises(exc):
+            ev.evaluate(expr, table)
+        with pytest.raises(exc):
+            stock(expr, table)
+
+
+def test_xacro_functions_are_allowed_and_dangerous_ones_are_not(ev):
+    table = xacro.Table(xacro._global_symbols)
+    for name in ["python.len", "python.sorted", "math.sqrt", "sqrt", "xacro.dotify", "xacro.tokenize",
+                 "xacro.load_yaml", "xacro.abs_filename", "xacro.arg", "xacro.fatal", "xacro.message", "list"]:
+        assert ev.is_allowed(ev.evaluate(name, table)), name
+    for name in ["python.type", "python.vars"]:
+        assert not ev.is_allowed(ev.evaluate(name, table)), name
+
+
+def test_lazy_property_errors_are_not_swallowed(ev):
+    table = xacro.Table(xacro._global_symbols)
+    table["bad"] = "${1/0}"
+    with pytest.raises(xacro.XacroException):
+        ev.evaluate("bad + 1", table)
+
+
+# ----------------------------------------------------------------------------------------------
+# $(eval ...)
+# ----------------------------------------------------------------------------------------------
+
+CTX = {"arg": {"a": "2", "b": "1.5", "name": "robot", "t": "true"}, "filename": "/tmp/pkg/urdf/r.xacro"}
+
+
+@pytest.mark.parametrize("s", [
+    "arg('a') * 2", "a + b", "name + '_link'", "t", "pi/2", "radians(180)", "true and not false",
+    "dirname()", "  1+1", "[x for x in [1,2]]", "len(name)", "name.upper()", "int('3') + abs(-2)",
+    "'x' if a > 1 else 'y'", "[a for x in [1]]", "zz", "arg('zz')", "__import__('os')", "1/0",
+])
+def test_substitution_eval_matches_xacro(s):
+    def run(fn):
+        try:
+            return ("value", fn(s, {"arg": dict(CTX["arg"]), "filename": CTX["filename"]}))
+        except Exception as e:  # noqa: BLE001
+            return ("raised", type(e), str(e))
+    assert run(evaluate_substitution) == run(subst._eval)
+
+
+@pytest.mark.parametrize("s,needle", [
+    ("open('/etc/passwd').read()", None),  # not a name here at all
+    ("(lambda: 1)()", "lambda"),
+    ("env('HOME')", "env()"),
+    ("optenv('HOME')", "optenv()"),
+    ("[].__class__", None),  # caught by xacro's own double-underscore rule
+    ("10**10**9", "exponent"),
+])
+def test_substitution_eval_refusals(s, needle):
+    with pytest.raises((Refused, NameError, subst.SubstitutionException)) as info:
+        evaluate_substitution(s, {"arg": {}})
+    if needle:
+        assert info.type is Refused and needle in info.value.reason
+        assert info.value.expr == s
+
+
+def test_substitution_eval_uses_supplied_functions():
+    seen = []
+
+    def env(name):
+        seen.append(name)
+        return "value"
+
+    assert evaluate_substitution("env('X') + '!'", {"arg": {}}, functions={"env": env}) == "value!"
+    assert seen == ["X"]
+    assert evaluate_substitution("sqrt(4)", {"arg": {}}) == str(math.sqrt(4))
