@@ -70,6 +70,23 @@ def extend(sub):
 
 expressions = st.recursive(leaves, extend, max_leaves=12)
 
+# numbers only: mostly well-typed, so most examples compare values rather than exception classes
+numeric = st.recursive(
+    st.one_of(st.integers(-20, 20).map(str), st.sampled_from(["0.5", "-1.25", "1e-3", "3.0", "True", "x", "y", "z"])),
+    lambda sub: st.one_of(
+        st.builds(lambda a, op, b: f"({a} {op} {b})", sub, st.sampled_from(
+            ["+", "-", "*", "/", "//", "%", "<", "<=", "==", "!=", "and", "or", "&", "|", "^"]), sub),
+        st.builds(lambda a, e: f"({a} ** {e})", sub, st.sampled_from(["2", "3", "-1", "0.5"])),
+        st.builds(lambda a, op: f"({op}{a})", sub, st.sampled_from(["-", "not "])),
+        st.builds(lambda a, b, c: f"({a} if {b} else {c})", sub, sub, sub),
+        st.builds(lambda a, f: f"{f}({a})", sub, st.sampled_from(["abs", "round", "int", "float", "bool"])),
+        st.builds(lambda a, b, f: f"{f}({a}, {b})", sub, sub, st.sampled_from(["min", "max"])),
+        st.builds(lambda a, b: f"[{a}, {b}][{b} > {a}]", sub, sub),
+        st.builds(lambda a: f'f"{{{a}:.3f}}|{{{a}!r}}"', sub),
+    ),
+    max_leaves=10,
+)
+
 
 def outcome(fn):
     try:
@@ -81,16 +98,29 @@ def outcome(fn):
     return ("value", type(value), repr(value))
 
 
-@settings(max_examples=600, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
-                                                                  HealthCheck.too_slow])
-@given(expressions)
-def test_same_value_type_and_exception_as_eval(expr):
+def check_against_eval(expr):
     try:
         mine = outcome(lambda: DIFF.evaluate(expr, fresh_symbols()))
     except Refused:
         assume(False)  # a resource guard fired: eval() could take unbounded time, nothing to compare
     ref = outcome(lambda: eval(compile(expr.strip(), "<expression>", "eval"), {"__builtins__": {}, **fresh_symbols()}))
     assert mine == ref, expr
+
+
+FUZZ = settings(max_examples=600, deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
+                                                                       HealthCheck.too_slow])
+
+
+@FUZZ
+@given(expressions)
+def test_same_value_type_and_exception_as_eval(expr):
+    check_against_eval(expr)
+
+
+@FUZZ
+@given(numeric)
+def test_numeric_expressions_match_eval(expr):
+    check_against_eval(expr)
 
 
 @pytest.mark.parametrize("expr", [

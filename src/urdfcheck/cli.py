@@ -37,7 +37,7 @@ def _kv(sep: str, what: str):
 def _codes(text: str) -> list[str]:
     out = [c.strip().upper() for c in text.split(",") if c.strip()]
     for c in out:
-        if not (c == "ALL" or (c[0].isalpha() and c[1:].isdigit())):
+        if not (c == "ALL" or (c[0].isalpha() and (c[1:] == "" or c[1:].isdigit()))):
             raise argparse.ArgumentTypeError(f"{c!r} is not a rule code or prefix (e.g. S001, J, ALL)")
     return out
 

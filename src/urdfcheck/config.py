@@ -132,7 +132,7 @@ class Config:
     path: str  # the config file
     root: str  # its folder; relative paths start here
     models: tuple[ModelConfig, ...] = ()
-    frames: Mapping[str, str] = DEFAULT_FRAMES
+    frames: Mapping[str, str] = field(default_factory=lambda: DEFAULT_FRAMES)
     tf_owners: Mapping[str, str] = field(default_factory=lambda: _ro({}))
     tf_owner_locs: Mapping[str, Location] = field(default_factory=lambda: _ro({}))
     packages: Mapping[str, str] = field(default_factory=lambda: _ro({}))

@@ -126,6 +126,26 @@ class Resolver:
         real = Path(os.path.realpath(path))
         return any(real == r or r in real.parents for r in self.roots())
 
+    def source_layout(self, path: str | Path) -> Path | None:
+        """The source file behind an install-layout path, when `path` does not exist.
+
+        CMake commonly installs `description/urdf` to `share/PKG/urdf`, so `$(find PKG)/urdf/x.xacro`
+        names `PKG/description/urdf/x.xacro` in a source checkout. Look one or two folders down inside
+        the package; use the match only when it is unique.
+        """
+        p = Path(os.path.abspath(path))
+        for root in list(self.used.values()) + list(self.explicit.values()):
+            root = Path(os.path.abspath(root))
+            if root not in p.parents:
+                continue
+            rel = p.relative_to(root)
+            hits = [c for c in root.glob(f"*/{rel}") if c.is_file()]
+            if not hits:
+                hits = [c for c in root.glob(f"*/*/{rel}") if c.is_file()]
+            if len(hits) == 1:
+                return hits[0]
+        return None
+
     def resolve_uri(self, uri: str, base_dir: Path) -> tuple[Path | None, str | None]:
         """Resolve a package://, file:// or relative URI. Returns (path, problem)."""
         if uri.startswith("package://"):
@@ -134,7 +154,10 @@ class Resolver:
             root = self.find(name)
             if root is None:
                 return None, f"package {name!r} not found"
-            return root / sub, None
+            path = root / sub
+            if not path.exists():
+                path = self.source_layout(path) or path
+            return path, None
         if uri.startswith("file://"):
             return Path(uri[len("file://"):]), None
         if re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*://", uri):

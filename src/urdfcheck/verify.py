@@ -394,11 +394,14 @@ class _Child:
             return True
         return False
 
-    def read_progress(self):
+    def read_progress(self) -> bool:
+        """Read progress lines; False at end of file."""
         try:
             data = os.read(self.prog_r, 65536)
         except OSError:
-            return
+            return False
+        if not data:
+            return False
         lines = data.decode(errors="replace").strip().splitlines()
         if lines:
             try:
@@ -406,6 +409,7 @@ class _Child:
                 self.progress = (int(a), int(b))
             except ValueError:
                 pass
+        return True
 
     def outcome(self):
         """(kind, value, output): kind ok/memory/error/timeout/crashed."""
@@ -442,20 +446,24 @@ class _Child:
 
 def _wait(children, progress):
     pending = list(children)
+    open_fds = {c.prog_r: c for c in children}
     while pending:
-        fds = {c.prog_r: c for c in pending}
         try:
-            ready, _, _ = select.select(list(fds), [], [], 0.05)
+            ready, _, _ = select.select(list(open_fds), [], [], 0.05) if open_fds else ([], [], [])
         except (OSError, ValueError):
             ready = []
+        if not open_fds:
+            time.sleep(0.02)
         for fd in ready:
-            c = fds[fd]
-            c.read_progress()
-            if progress and c.progress[1]:
+            c = open_fds[fd]
+            if not c.read_progress():
+                del open_fds[fd]
+            elif progress and c.progress[1]:
                 progress(c.name, *c.progress)
         for c in list(pending):
             if c.poll():
                 pending.remove(c)
+                open_fds.pop(c.prog_r, None)
                 if progress:
                     progress(c.name, 1, 1)
 

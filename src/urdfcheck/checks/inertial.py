@@ -14,7 +14,10 @@ _UNREADABLE = ("U004", "U005", "U006")
 PSD_RTOL = 1e-5  # a principal moment below -PSD_RTOL * largest moment is negative, not rounding
 
 
-def _fmt(x: float) -> str:
+def _fmt(x: float, scale: float = 0.0) -> str:
+    """A number for messages; rounding noise far below `scale` (the largest moment) is shown as 0."""
+    if scale and abs(x) <= 1e-12 * abs(scale):
+        x = 0.0
     return f"{x:.6g}"
 
 
@@ -124,7 +127,7 @@ def inertia_not_positive_definite(model, ctx):
             continue  # massless written as zeros: I002's finding
         moments = principal_moments(inertial.inertia)
         lo, hi = moments[0], moments[2]
-        shown = ", ".join(_fmt(x) for x in moments)
+        shown = ", ".join(_fmt(x, hi) for x in moments)
         at = inertial.inertia_loc or inertial
         if lo < -rtol * max(abs(hi), abs(lo)):
             yield Problem(
@@ -151,10 +154,10 @@ def inertia_triangle_inequality(model, ctx):
         diag = (inertial.inertia[0], inertial.inertia[3], inertial.inertia[5])
         on_diag = all(v == 0.0 for v in (inertial.inertia[1], inertial.inertia[2], inertial.inertia[4]))
         where = (f"ixx, iyy, izz = {', '.join(_fmt(x) for x in diag)}" if on_diag
-                 else f"principal moments {_fmt(a)}, {_fmt(b)}, {_fmt(c)}")
+                 else f"principal moments {_fmt(a, c)}, {_fmt(b, c)}, {_fmt(c)}")
         yield Problem(
             f"inertia of link {link.name!r} violates the triangle inequality: {where}; the two smaller principal "
-            f"moments add up to {_fmt(a + b)} < {_fmt(c)} (no rigid body can have this tensor; MuJoCo, Drake "
+            f"moments add up to {_fmt(a + b, c)} < {_fmt(c)} (no rigid body can have this tensor; MuJoCo, Drake "
             "and gz-sim reject it)", at=inertial.inertia_loc or inertial)
 
 

@@ -240,19 +240,24 @@ class _Reader:
                     continue
                 ckey = (node.namespace.rstrip("/") + "/" + head) if node.namespace != "/" else "/" + head
                 declared[ckey] = (str(v.value).strip(), v)
+        own: dict[str, tuple[str, Value]] = {}
         for key, node in nodes.items():
             tv = node.params.get("type")
             if tv is None or not _is_type_string(tv.value):
                 continue
             t = str(tv.value).strip()
-            prev_key = key if key in declared else next(
-                (k for k in declared if k.rsplit("/", 1)[-1] == node.basename), None)
+            if key in declared:
+                prev_key = key
+            else:
+                same = [k for k in declared if k.rsplit("/", 1)[-1] == node.basename]
+                prev_key = same[0] if len(same) == 1 else None
             if prev_key is not None:
                 prev = declared.pop(prev_key)
                 if prev[0] != t:
                     self.notes.append((f"controller {node.basename} is declared as {prev[0]} in the controller "
                                        f"manager but as {t} in its own parameters", tv.loc))
-            declared[key] = (t, tv)
+            own[key] = (t, tv)
+        declared.update(own)
         # a wildcard declaration ("/**/ctrl") applies to every concrete node it matches ("/robot1/ctrl")
         instances: dict[str, tuple[str, Value]] = {}
         for ckey, tv in declared.items():

@@ -269,6 +269,8 @@ def _record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
         except ValueError as e:
             info.notes.append((f"static_transform_publisher arguments not understood ({e}); skipped", node.loc))
             return
+        xyz = tuple(float(v) + 0.0 for v in xyz)  # no -0.0
+        rpy = tuple(float(v) + 0.0 for v in rpy)
         info.static_tfs.append(StaticTF(_frame(parent), _frame(child), xyz, rpy, node.loc, info.path,
                                         node.condition, node.name))
     elif pkg == "robot_state_publisher" and exe in ("robot_state_publisher", "state_publisher"):

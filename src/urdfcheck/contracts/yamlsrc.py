@@ -18,6 +18,7 @@ Every failure is a `ConsumerError(message, Location)`, never a traceback.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass, field
 from typing import Any, Iterator
 
@@ -31,6 +32,7 @@ MAX_BYTES = 2 * 1024 * 1024
 MAX_NODES = 100_000
 MAX_DEPTH = 256
 
+_RUNS = re.compile(r"[\[{][\[{\s,]*|(?:-[ \t]+)+")  # maximal runs of flow openers / block dashes
 _MERGE_TAG = "tag:yaml.org,2002:merge"
 _STR_TAG = "tag:yaml.org,2002:str"
 _CORE_SCALARS = {
@@ -281,6 +283,11 @@ def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_
             raise ConsumerError(f"not valid UTF-8 ({e.reason})", Location(file, line)) from None
     if len(text) > max_bytes:
         raise ConsumerError(f"file is larger than {max_bytes} bytes; refused", Location(file))
+    for m in _RUNS.finditer(text):  # linear guard for the usual shapes; anything else deep ends in RecursionError
+        run = m.group()
+        if run.count("[") + run.count("{") + run.count("-") > MAX_DEPTH:
+            line = text.count("\n", 0, m.start()) + 1
+            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", Location(file, line))
     try:
         root = None
         for node in yaml.compose_all(text, Loader=yaml.SafeLoader):

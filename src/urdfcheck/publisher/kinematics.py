@@ -248,7 +248,7 @@ def make_segment(joint) -> Segment:
         kind = "fixed"
     raw = tuple(float(v) for v in (joint.axis or (1.0, 0.0, 0.0)))
     axis = None
-    n = math.sqrt(sum(v * v for v in raw))
+    n = math.hypot(*raw)  # scaled like KDL::Vector::Norm: no underflow for tiny axes; exactly 0 only for 0
     if n != 0.0 and math.isfinite(n):
         axis = (raw[0] / n, raw[1] / n, raw[2] / n)
     return Segment(joint, joint.name, joint.parent, joint.child, jtype, kind, xyz, q0, r0, axis, raw)

@@ -24,7 +24,7 @@ def as_dict(result) -> dict:
     return {
         "schema_version": SCHEMA_VERSION,
         "tool": {"name": "urdfcheck", "version": __version__},
-        "models": [{"path": clean_text(str(t.path), 4096), "variant": t.variant,
+        "models": [{"path": clean_text(str(t.path), 4096), "variant": clean_text(t.variant),
                     "args": {k: clean_text(v) for k, v in sorted(t.args.items())}} for t in result.targets],
         "summary": counts,
         "findings": [
@@ -36,7 +36,7 @@ def as_dict(result) -> dict:
                 "location": location(f.location),
                 "related": [location(r) for r in f.related],
                 "model": clean_text(f.model, 4096),
-                "variant": f.variant,
+                "variant": clean_text(f.variant),
             }
             for f in result.findings
         ],

@@ -74,7 +74,7 @@ def _where(f) -> str:
     return out
 
 
-def _summary(result, fail_on: Severity) -> list[str]:
+def _summary(result, fail_on: Severity, max_rows: int = MAX_ROWS) -> list[str]:
     total = _counts(result.findings)
     failing = sum(1 for f in result.findings if f.severity >= fail_on)
     n_models = len(result.targets)
@@ -89,10 +89,13 @@ def _summary(result, fail_on: Severity) -> list[str]:
         head = f"✅ all checks passed: {models}, no findings"
     lines = ["## urdfcheck", "", head, "", "| model | variant | errors | warnings | info |",
              "| --- | --- | ---: | ---: | ---: |"]
-    for model, variant, findings in by_target(result):
+    groups = by_target(result)
+    for model, variant, findings in groups[:max_rows]:
         c = _counts(findings)
         lines.append(f"| {md(model, 4096)} | {md(variant) if variant else '–'} | {c[Severity.ERROR]} | "
                      f"{c[Severity.WARNING]} | {c[Severity.INFO]} |")
+    if len(groups) > max_rows:
+        lines += ["", f"… and {len(groups) - max_rows} more models."]
     return lines
 
 
@@ -131,18 +134,18 @@ def _trees(result) -> list[str]:
 
 def render(result, fail_on: Severity | None = None, **_) -> str:
     fail_on = fail_on or Severity.WARNING
-    head = _summary(result, fail_on)
     rows = MAX_ROWS
     trees = _trees(result)
     dropped = not trees
     while True:
-        text = "\n".join(head + _findings(result, rows) + trees) + "\n"
+        text = "\n".join(_summary(result, fail_on, rows) + _findings(result, rows) + trees) + "\n"
         if len(text) <= MAX_CHARS:
             return text
         if not dropped:
             trees = ["", "### TF trees", "", "_Diagrams left out: the comment would be too long._"]
             dropped = True
             continue
-        if rows <= 10:
-            return text[:MAX_CHARS] + "\n"
+        if rows <= 1:
+            cut = text[:MAX_CHARS - 80].rsplit("\n", 1)[0]
+            return cut + "\n\n… truncated (see the full report in the job output).\n"
         rows //= 2

@@ -22,7 +22,7 @@ def render(result, colour: bool = False, **_) -> str:
             current = loc.file
         where = clean_text(str(loc))
         tag = f"{f.code}"
-        extra = f" [{f.variant}]" if f.variant else ""
+        extra = f" [{clean_text(f.variant)}]" if f.variant else ""
         lines.append(f"{where}  {c(_COLOURS[f.severity], tag)}  {c(_DIM, str(f.severity))}  "
                      f"{clean_text(f.message)}{extra}")
         for v in loc.via:

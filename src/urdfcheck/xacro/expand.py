@@ -177,6 +177,8 @@ def expand(path: str, opts: Options) -> dict:
         if inp is not None:
             return xml.dom.minidom.parseString(inp) if isinstance(inp, str) else inp
         full = os.path.join(xacro.root_dir, filename)
+        if resolver is not None and not os.path.exists(full):
+            full = str(resolver.source_layout(full) or full)
         if len(state.files) >= MAX_INCLUDES:
             raise Refusal("X012", f"more than {MAX_INCLUDES} files included")
         if not opts.trusted and resolver is not None and not resolver.allowed(full):

@@ -160,11 +160,14 @@ def _static_reason(tree: ast.AST, limits: Limits) -> str | None:
     return None
 
 
-@lru_cache(maxsize=8192)
 def _compile(text: str, filename: str, limits: Limits) -> tuple[ast.Expression | None, str | None]:
-    """Parse + static check, cached (xacro evaluates the same expressions over and over).
+    """Parse + static check. SyntaxError propagates exactly as compile() raises it."""
+    if len(text) <= 2000:  # xacro evaluates the same short expressions over and over
+        return _compile_cached(text, filename, limits)
+    return _compile_uncached(text, filename, limits)
 
-    SyntaxError propagates exactly as compile() raises it; exceptions are never cached."""
+
+def _compile_uncached(text, filename, limits):
     if len(text) > limits.max_chars:
         return None, f"expression text longer than {limits.max_chars} characters"
     try:
@@ -172,6 +175,9 @@ def _compile(text: str, filename: str, limits: Limits) -> tuple[ast.Expression |
     except (RecursionError, MemoryError):  # the C parser's own nesting limits
         return None, "expression nested too deeply"
     return tree, _static_reason(tree, limits)
+
+
+_compile_cached = lru_cache(maxsize=8192)(_compile_uncached)  # exceptions are never cached
 
 
 def validate(expr: str, limits: Limits | None = None) -> str | None:
@@ -781,11 +787,10 @@ _HANDLERS = {
     ast.FormattedValue: _h_formatted, ast.Starred: _h_starred,
 }
 
-# consumers that never iterate or call their arguments: no iteration charge
+# builtins that neither iterate nor call their arguments (at most a C-level __str__/__index__/...
+# of the argument's type): no iteration charge, and str(python.type) or isinstance(x, t) stay legal
 _CHEAP = frozenset(id(f) for f in (len, str, repr, bool, hash, isinstance, issubclass, int, float, complex,
                                   abs, round, ord))
-# these take classes as arguments but never call them
-_TYPE_CHECKS = frozenset({id(isinstance), id(issubclass)})
 
 
 class Evaluator:
@@ -874,16 +879,15 @@ class Evaluator:
                 raise TypeError(f"'{type(fn).__name__}' object is not callable")
             run.refuse(f"call of '{_describe(fn)}' is not allowed")
         key = id(fn)
-        values = list(args) + list(kwargs.values())
-        if key not in _TYPE_CHECKS:
-            for v in values:  # an allowed function must not call a non-allowed one for us
-                if callable(v) and not self.is_allowed(v, run.extra):
-                    run.refuse(f"passing '{_describe(v)}' to '{_describe(fn)}' is not allowed")
         if key not in _CHEAP:
-            for v in values:
+            for v in list(args) + list(kwargs.values()):
+                if callable(v) and not self.is_allowed(v, run.extra):
+                    # map/filter/sorted(key=)/max(key=)...: an allowed function must not call a
+                    # non-allowed one for us
+                    run.refuse(f"passing '{_describe(v)}' to '{_describe(fn)}' is not allowed")
                 if isinstance(v, range):
                     run.tick(_range_len(v))
-                elif isinstance(v, (list, tuple, dict, set, frozenset)):
+                elif isinstance(v, _SIZED):  # e.g. sorted() of a 10M-character string
                     run.tick(len(v))
         guard = self._guards.get(key)
         if guard is not None and guard[0] is fn:

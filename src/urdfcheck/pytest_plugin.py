@@ -1,0 +1,176 @@
+"""pytest plugin: every robot model of a description package becomes a test item.
+
+Registered through the `pytest11` entry point, so installing urdfcheck is enough. It is active when
+
+* pytest runs with `--urdfcheck`, or
+* the pytest rootdir holds a urdfcheck config (`urdfcheck.yaml`, `.urdfcheck.yaml`, or `pyproject.toml`
+  with `[tool.urdfcheck]`).
+
+The models are what the config declares (each variant is its own item), else the entry models found
+below the rootdir. An item fails when the model has findings at or above the fail level
+(`--urdfcheck-fail-on`, else the config's `fail_on`, else `warning`); the failure text lists the located
+findings. Items are marked `urdfcheck`: `pytest -m urdfcheck` runs only them, `-m "not urdfcheck"` skips
+them, `-p no:urdfcheck` turns the plugin off.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+_STATE = "_urdfcheck_state"
+
+
+def pytest_addoption(parser):
+    group = parser.getgroup("urdfcheck", "robot description lint (urdfcheck)")
+    group.addoption("--urdfcheck", action="store_true", default=False,
+                    help="lint the package's URDF/xacro models as test items (automatic when the rootdir "
+                         "has a urdfcheck.yaml)")
+    group.addoption("--urdfcheck-fail-on", default=None, choices=("error", "warning", "info"),
+                    help="fail a model's item on findings at least this severe (default: config fail_on, "
+                         "else warning)")
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "urdfcheck: a urdfcheck lint item (one per robot model and variant)")
+
+
+class _ConfigProblem(Exception):
+    pass
+
+
+def _find_config(rootdir: Path) -> str | None:
+    try:
+        from . import config as cfgmod
+    except ImportError:
+        for name in ("urdfcheck.yaml", ".urdfcheck.yaml"):
+            if (rootdir / name).is_file():
+                return str(rootdir / name)
+        return None
+    return cfgmod.find_config(rootdir)
+
+
+def _setup(config) -> SimpleNamespace | None:
+    """What to lint and how; None when the plugin is not active for this run."""
+    if hasattr(config, _STATE):
+        return getattr(config, _STATE)
+    state = None
+    rootdir = Path(str(config.rootpath)).resolve()
+    explicit = config.getoption("urdfcheck")
+    found = _find_config(rootdir)
+    at_root = found is not None and Path(found).resolve().parent == rootdir
+    if explicit or at_root:
+        state = SimpleNamespace(rootdir=rootdir, config_path=found, error=None, targets=[], cfg=None,
+                                selection=None, fail_on=None, trusted=False, allow_env=())
+        try:
+            _prepare(state, config)
+        except _ConfigProblem as e:
+            state.error = str(e)
+    setattr(config, _STATE, state)
+    return state
+
+
+def _prepare(state, config) -> None:
+    from . import runlint
+    from .findings import Severity
+
+    ns = SimpleNamespace(paths=[] if state.config_path else [str(state.rootdir)], config=state.config_path,
+                         no_config=state.config_path is None, args=[], packages=[], select=[], ignore=[])
+    cfg = runlint._config(ns, _ConfigProblem)
+    state.cfg = cfg
+    state.selection = runlint._selection(ns, cfg)
+    if cfg is None and state.config_path is not None:  # config module unavailable: discover
+        ns.paths = [str(state.rootdir)]
+    state.targets = runlint._targets(ns, cfg)
+    level = config.getoption("urdfcheck_fail_on")
+    state.fail_on = Severity.parse(level) if level else (runlint._cfg_fail_on(cfg) or Severity.WARNING)
+    state.trusted = bool(getattr(cfg, "trusted", False))
+    state.allow_env = tuple(getattr(cfg, "allow_env", ()) or ())
+
+
+def pytest_report_header(config):
+    state = _setup(config)
+    if state is None:
+        return None
+    where = state.config_path or "no config, discovered below the rootdir"
+    return f"urdfcheck: {len(state.targets)} model item(s) ({where})"
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(session, config, items):
+    state = _setup(config)
+    if state is None:
+        return
+    new = []
+    if state.error is not None:
+        parent = UrdfcheckFile.from_parent(session, path=Path(state.config_path or state.rootdir))
+        new.append(UrdfcheckItem.from_parent(parent, name="urdfcheck-config", target=None, state=state))
+    else:
+        parents: dict = {}
+        for t in state.targets:
+            path = Path(os.path.abspath(t.path))
+            if path not in parents:
+                parents[path] = UrdfcheckFile.from_parent(session, path=path)
+            name = f"urdfcheck[{t.variant}]" if t.variant else "urdfcheck"
+            new.append(UrdfcheckItem.from_parent(parents[path], name=name, target=t, state=state))
+    items[:0] = new
+
+
+class UrdfcheckFile(pytest.File):
+    """The model file the items belong to (items are created by the plugin, not by collecting it)."""
+
+    def collect(self):
+        return []
+
+
+class UrdfcheckFailure(Exception):
+    def __init__(self, text: str):
+        super().__init__(text)
+        self.text = text
+
+
+class UrdfcheckItem(pytest.Item):
+    def __init__(self, *, target, state, **kwargs):
+        super().__init__(**kwargs)
+        self.target = target
+        self.state = state
+        self.add_marker("urdfcheck")
+
+    def runtest(self):
+        if self.state.error is not None:
+            raise UrdfcheckFailure(f"invalid urdfcheck config: {self.state.error}")
+        from .lint import _dedupe, lint_target
+
+        findings, _model = lint_target(self.target, self.state.selection, trusted=self.state.trusted,
+                                       allow_env=self.state.allow_env, config=self.state.cfg)
+        findings = _dedupe(findings)
+        failing = [f for f in findings if f.severity >= self.state.fail_on]
+        below = [f for f in findings if f.severity < self.state.fail_on]
+        if below:
+            self.add_report_section("call", "urdfcheck (below the fail level)", "\n".join(_line(f) for f in below))
+        if failing:
+            n = len(failing)
+            head = (f"{n} urdfcheck finding{'s' if n != 1 else ''} at or above {self.state.fail_on} "
+                    f"in {self.target.path}" + (f" [{self.target.variant}]" if self.target.variant else ""))
+            raise UrdfcheckFailure("\n".join([head] + [_line(f) for f in failing]))
+
+    def repr_failure(self, excinfo, style=None):
+        if isinstance(excinfo.value, UrdfcheckFailure):
+            return excinfo.value.text
+        return super().repr_failure(excinfo, style=style)
+
+    def reportinfo(self):
+        return self.path, None, self.nodeid
+
+
+def _line(f) -> str:
+    from .findings import clean_text
+
+    out = f"{clean_text(str(f.location), 4096)}: {f.code} [{f.severity}] {clean_text(f.message)}"
+    for v in f.location.via:
+        out += f"\n    via macro call at {clean_text(str(v), 4096)}"
+    for r in f.related:
+        out += f"\n    see also {clean_text(str(r), 4096)}"
+    return out

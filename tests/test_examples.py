@@ -1,0 +1,100 @@
+"""The example packages through the real CLI: the AGV is clean, each broken package reports exactly its EXPECTED.
+
+`examples/broken/<name>/EXPECTED` holds one finding per line, `CODE path:LINE [via path:LINE]`, paths relative to
+the package folder; `via` is the innermost xacro call site. Any folder under examples/broken with an EXPECTED file
+is picked up, so new defect packages need no change here.
+"""
+from __future__ import annotations
+
+import re
+from collections import Counter
+
+import pytest
+
+from urdfcheck import rulebook
+
+from conftest import REPO, lint_json
+
+BROKEN = REPO / "examples" / "broken"
+PACKAGES = sorted(p.parent.name for p in BROKEN.glob("*/EXPECTED")) if BROKEN.is_dir() else []
+_LINE = re.compile(r"^(?P<code>[A-Z]\d{3})\s+(?P<where>\S+:\d+)(?:\s+via\s+(?P<via>\S+:\d+))?\s*$")
+_SANDBOX = ("X010", "X011")  # the xacro sandbox could not expand the model
+
+
+def read_expected(name: str) -> list[tuple[str, str, str | None]]:
+    out = []
+    for raw in (BROKEN / name / "EXPECTED").read_text(encoding="utf-8").splitlines():
+        line = raw.split("#", 1)[0].strip()
+        if not line:
+            continue
+        m = _LINE.match(line)
+        assert m, f"examples/broken/{name}/EXPECTED: cannot read {raw!r} (want 'CODE path:LINE [via path:LINE]')"
+        out.append((m["code"], m["where"], m["via"]))
+    return out
+
+
+def _rel(path: str, prefix: str) -> str:
+    return path[len(prefix):] if path.startswith(prefix) else path
+
+
+def actual(findings, name: str) -> list[tuple[str, str, str | None]]:
+    prefix = f"examples/broken/{name}/"
+    out = []
+    for f in findings:
+        loc = f["location"]
+        via = None
+        if loc.get("via"):
+            v = loc["via"][0]
+            via = f"{_rel(v['file'], prefix)}:{v['line']}"
+        out.append((f["code"], f"{_rel(loc['file'], prefix)}:{loc['line']}", via))
+    return out
+
+
+def test_there_are_broken_examples():
+    assert len(PACKAGES) >= 12, PACKAGES
+
+
+def test_agv_is_clean():
+    """The reference package lints clean. The only findings are I005 (info): the AGV's root base_link carries the
+    chassis inertial, which KDL ignores; the README keeps it on purpose. Exit code 0 (info is below --fail-on)."""
+    code, report = lint_json(["examples/agv"], cwd=REPO)
+    findings = report["findings"]
+    if any(f["code"] in _SANDBOX for f in findings):
+        pytest.xfail(f"xacro sandbox cannot expand the AGV yet: {[f['message'] for f in findings]}")
+    assert code == 0, findings
+    assert {(f["code"], f["severity"]) for f in findings} == {("I005", "info")}, findings
+    # one per entry model: agv.urdf and agv.urdf.xacro (there it points into the box_inertial macro)
+    models = sorted(f["model"] for f in findings)
+    assert models == ["examples/agv/urdf/agv.urdf", "examples/agv/urdf/agv.urdf.xacro"], models
+
+
+@pytest.mark.parametrize("name", PACKAGES)
+def test_broken_example(name):
+    expected = read_expected(name)
+    assert expected, f"examples/broken/{name}/EXPECTED is empty"
+    exit_code, report = lint_json([f"examples/broken/{name}"], cwd=REPO)
+    findings = report["findings"]
+    codes = {c for c, _, _ in expected}
+
+    unexpected_sandbox = [f for f in findings if f["code"] in _SANDBOX and f["code"] not in codes]
+    if unexpected_sandbox:
+        pytest.xfail(f"xacro sandbox cannot expand it yet: {unexpected_sandbox[0]['message']}")
+    checks = rulebook.load_checks()
+    missing_rules = sorted(c for c in codes if c[0] not in "XR" and c not in checks)
+    if missing_rules:
+        pytest.xfail(f"rules not implemented yet: {', '.join(missing_rules)}")
+
+    got = actual(findings, name)
+    # compare code and file:line always; via only where EXPECTED gives it
+    want_plain = Counter((c, w) for c, w, _ in expected)
+    got_plain = Counter((c, w) for c, w, _ in got)
+    assert got_plain == want_plain, (
+        f"examples/broken/{name}: findings differ from EXPECTED\n"
+        f"  missing:    {sorted((want_plain - got_plain).elements())}\n"
+        f"  unexpected: {sorted((got_plain - want_plain).elements())}\n"
+        f"  messages:   {[(f['code'], f['message'][:120]) for f in findings]}")
+    want_via = Counter(e for e in expected if e[2])
+    got_via = Counter(g for g in got if (g[0], g[1]) in {(c, w) for c, w, v in expected if v})
+    assert want_via == got_via, f"examples/broken/{name}: call sites (via) differ: {want_via} != {got_via}"
+    if any(f["severity"] in ("error", "warning") for f in findings):
+        assert exit_code == 1

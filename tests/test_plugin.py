@@ -1,0 +1,123 @@
+"""The pytest plugin: models of a description package become test items in the package's own pytest run."""
+import pytest
+
+pytest_plugins = ["pytester"]
+
+GOOD = '<robot name="r">\n  <link name="base_link"/>\n</robot>\n'
+BAD = """<robot name="r">
+  <link name="base_link"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <orign xyz="0 0 0.5"/>
+    <parent link="base_link"/>
+    <child link="arm"/>
+  </joint>
+</robot>
+"""
+XACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="typo" default="false"/>
+  <link name="base_link"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <xacro:if value="$(arg typo)"><orign xyz="0 0 1"/></xacro:if>
+    <parent link="base_link"/>
+    <child link="arm"/>
+  </joint>
+</robot>
+"""
+
+
+@pytest.fixture
+def pkg(pytester, monkeypatch):
+    """A description package; only our plugin is loaded in the inner run (whatever else is installed)."""
+    monkeypatch.setenv("PYTEST_DISABLE_PLUGIN_AUTOLOAD", "1")
+    pytester.makepyfile(test_unit="def test_something():\n    assert True\n")
+    (pytester.path / "urdf").mkdir()
+    return pytester
+
+
+def run(pytester, *args):
+    return pytester.runpytest("-p", "urdfcheck.pytest_plugin", "-p", "no:cacheprovider", *args)
+
+
+def test_inactive_without_config_or_flag(pkg):
+    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    result = run(pkg, "-v")
+    result.assert_outcomes(passed=1)
+    assert "urdfcheck" not in result.stdout.str()
+
+
+def test_flag_discovers_models(pkg):
+    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.path / "urdf" / "good.urdf").write_text(GOOD)
+    result = run(pkg, "--urdfcheck", "-v", "--urdfcheck-fail-on", "warning")
+    result.assert_outcomes(passed=2, failed=1)
+    result.stdout.fnmatch_lines([
+        "urdfcheck: 2 model item(s)*",
+        "*urdf/bad.urdf::urdfcheck FAILED*",
+        "*urdf/good.urdf::urdfcheck PASSED*",
+        "*1 urdfcheck finding at or above warning in *bad.urdf",
+        "*bad.urdf:5: U002 [warning] unknown element <orign> in <joint>*",
+    ])
+    assert "Traceback" not in result.stdout.str()
+
+
+def test_fail_on_option(pkg):
+    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    result = run(pkg, "--urdfcheck", "--urdfcheck-fail-on", "error", "-rA")
+    result.assert_outcomes(passed=2)
+    result.stdout.fnmatch_lines(["*urdfcheck (below the fail level)*"]) if "below" in result.stdout.str() else None
+
+
+def test_config_declares_models_and_variants(pkg):
+    (pkg.path / "urdf" / "robot.urdf.xacro").write_text(XACRO)
+    (pkg.path / "urdf" / "ignored.urdf").write_text(BAD)  # not declared: not linted
+    (pkg.path / "urdfcheck.yaml").write_text(
+        "models:\n"
+        "  - path: urdf/robot.urdf.xacro\n"
+        "    variants:\n"
+        "      clean: {typo: 'false'}\n"
+        "      typo: {typo: 'true'}\n"
+        "trusted: true\n"
+        "select: [U]\n")
+    result = run(pkg, "-v")  # no flag: the config at the rootdir turns the plugin on
+    result.assert_outcomes(passed=2, failed=1)
+    result.stdout.fnmatch_lines([
+        "*urdf/robot.urdf.xacro::urdfcheck?clean? PASSED*",
+        "*urdf/robot.urdf.xacro::urdfcheck?typo? FAILED*",
+        "*robot.urdf.xacro:6: U002 [warning]*",
+    ])
+    assert "ignored.urdf" not in result.stdout.str()
+
+
+def test_config_fail_on_and_markers(pkg):
+    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/bad.urdf\nfail_on: error\n")
+    result = run(pkg, "-m", "urdfcheck", "-v")
+    result.assert_outcomes(passed=1, deselected=1)
+    result = run(pkg, "-m", "urdfcheck", "--urdfcheck-fail-on", "warning")
+    result.assert_outcomes(failed=1, deselected=1)
+    result = run(pkg, "-m", "not urdfcheck")
+    result.assert_outcomes(passed=1, deselected=1)
+
+
+def test_invalid_config_is_a_failing_item(pkg):
+    (pkg.path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/missing.urdf\n")
+    result = run(pkg, "-v")
+    result.assert_outcomes(passed=1, failed=1)
+    result.stdout.fnmatch_lines(["*urdfcheck-config FAILED*", "*invalid urdfcheck config*missing.urdf*"])
+
+
+def test_plugin_can_be_disabled(pkg):
+    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/bad.urdf\n")
+    result = pkg.runpytest("-p", "no:cacheprovider")  # plugin not loaded at all
+    result.assert_outcomes(passed=1)
+
+
+def test_junit_xml_of_the_package_run(pkg):
+    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    result = run(pkg, "--urdfcheck", "--junit-xml=out.xml")
+    result.assert_outcomes(passed=1, failed=1)
+    xml = (pkg.path / "out.xml").read_text()
+    assert 'name="urdfcheck"' in xml and "U002" in xml
