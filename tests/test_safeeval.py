@@ -330,7 +330,7 @@ def test_with_real_xacro_table(ev):
         "int(width * 10) if n else 0", "[float(v) for v in '1 2.5 3'.split()]", "max(1, n) - min(2, n)",
         "round(width * 3.3, 2)", "python.abs(-1) + python.sum([1, 2])", "bool(n) and 'yes'",
         "'{} {}'.format(name, n)", "'%s_%d' % (name, n)", "python.isinstance(width, float)",
-        "python.str(cfg.joints.j1)", "math.copysign(1, -width)", "(2.0).is_integer()",
+        "python.str(cfg.joints.j1)", "math.copysign(1, -width)", "(2.0).is_integer()", "str(python.type)",
         "wheel.depth",  # a Table attribute, not a property: stock xacro's (surprising) answer is kept
     ]
     for expr in cases:

@@ -152,8 +152,12 @@ class UrdfcheckItem(pytest.Item):
             self.add_report_section("call", "urdfcheck (below the fail level)", "\n".join(_line(f) for f in below))
         if failing:
             n = len(failing)
+            from .findings import clean_text
+            from .loader import display
+
             head = (f"{n} urdfcheck finding{'s' if n != 1 else ''} at or above {self.state.fail_on} "
-                    f"in {self.target.path}" + (f" [{self.target.variant}]" if self.target.variant else ""))
+                    f"in {clean_text(display(self.target.path), 4096)}"
+                    + (f" [{clean_text(self.target.variant)}]" if self.target.variant else ""))
             raise UrdfcheckFailure("\n".join([head] + [_line(f) for f in failing]))
 
     def repr_failure(self, excinfo, style=None):
@@ -162,7 +166,7 @@ class UrdfcheckItem(pytest.Item):
         return super().repr_failure(excinfo, style=style)
 
     def reportinfo(self):
-        return self.path, None, self.nodeid
+        return self.path, None, self.name
 
 
 def _line(f) -> str:

@@ -87,6 +87,9 @@ def _mesh_verdict(uri: str, resolver, base: Path, ignore: list[str], listing: di
         return None
     if uri.lower().startswith(_REMOTE):
         return None  # fetched over the network by resource_retriever; not checked offline
+    if uri.startswith("package://") and uri[len("package://"):].startswith("/"):
+        return ("the URI has no package name (package:/// with three slashes), which ROS's resource_retriever "
+                "cannot resolve: write package://PACKAGE/path")
     path, problem = resolver.resolve_uri(uri, base)
     if path is None:
         if problem and problem.startswith("package "):

@@ -173,33 +173,40 @@ def non_unit_axis(model, ctx):
 def invalid_mimic(model, ctx):
     for j in model.joint_list:
         mi = j.mimic
-        if mi is None:
+        if mi is None or j.type not in JOINT_TYPES:  # an unknown type is J001
             continue
         target = model.joints.get(mi.joint)
-        if mi.joint == j.name:
+        if j.type == "fixed":
+            # harmless: jsp skips fixed joints before reading <mimic>, RSP publishes them statically, MoveIt
+            # pairs two 0-DOF joints, Pinocchio builds the model (checked with the RSP test mimic_joint.urdf)
+            yield Problem(
+                f"fixed joint {_q(j.name)} has a <mimic>, which every consumer ignores (a fixed joint has no "
+                f"position to set); remove it or make the joint movable",
+                at=mi, severity=Severity.INFO)
+        elif mi.joint == j.name:
             yield Problem(
                 f"joint {_q(j.name)} mimics itself: nothing drives it; joint_state_publisher exits ('Found an "
-                f"infinite recursive mimic chain') and MoveIt ignores every mimic of the model",
+                f"infinite recursive mimic chain') and MoveIt drops every mimic relation of the model",
                 at=mi)
         elif target is None:
             close = difflib.get_close_matches(mi.joint, sorted(model.joints), n=1, cutoff=0.75)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
             yield Problem(
                 f"joint {_q(j.name)} mimics {_q(mi.joint)}, which is not a joint of this model{hint}: "
-                f"joint_state_publisher fails on it (KeyError) and MoveIt ignores the mimic ('cannot mimic unknown "
-                f"joint')",
+                f"joint_state_publisher fails on it (KeyError) and MoveIt ignores the mimic ('cannot mimic "
+                f"unknown joint')",
                 at=mi)
-        elif target.type in JOINT_TYPES and target.type not in MOVABLE_TYPES:
+        elif target.type in JOINT_TYPES and target.type not in MOVABLE_TYPES and j.type in MOVABLE_TYPES:
             yield Problem(
                 f"joint {_q(j.name)} mimics {_q(target.name)}, a {target.type} joint without a single position to "
-                f"follow: joint_state_publisher fails on it (KeyError), MoveIt ignores the mimic ('different "
-                f"number of DOF') and Pinocchio with mimic support refuses the model",
+                f"follow: joint_state_publisher fails on it (KeyError, it skips {target.type} joints) and MoveIt "
+                f"ignores the mimic ('different number of DOF')",
                 at=mi, related=(target,))
-        elif j.type in JOINT_TYPES and j.type not in MOVABLE_TYPES:
+        elif j.type not in MOVABLE_TYPES and target.type in JOINT_TYPES and target.type != j.type:
             yield Problem(
-                f"{j.type} joint {_q(j.name)} has a <mimic>, but only revolute, continuous and prismatic joints "
-                f"can follow another joint: MoveIt ignores it ('different number of DOF') and Pinocchio with mimic "
-                f"support refuses the model",
+                f"{j.type} joint {_q(j.name)} mimics {target.type} joint {_q(target.name)}: only revolute, "
+                f"continuous and prismatic joints can follow another joint's position; MoveIt ignores the mimic "
+                f"('different number of DOF')",
                 at=mi, related=(target,))
 
 
@@ -207,8 +214,9 @@ def invalid_mimic(model, ctx):
 def mimic_cycle(model, ctx):
     follows = {}
     for name, j in model.joints.items():
-        if j.mimic is not None and j.mimic.joint != name and j.mimic.joint in model.joints:
-            follows[name] = j.mimic.joint  # self-mimic is J008
+        if (j.mimic is not None and j.type != "fixed" and j.mimic.joint != name
+                and j.mimic.joint in model.joints):
+            follows[name] = j.mimic.joint  # self-mimic is J008; a fixed joint's mimic is ignored by everyone
     order = {name: i for i, name in enumerate(model.joints)}
     done: set[str] = set()
     for start in model.joints:

@@ -189,7 +189,7 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
         yield Problem(f"nothing publishes joint states for the model's {len(missing)} movable joint(s) ({names}): "
                       f"no joint_state_broadcaster/joint_state_controller, joint_state_publisher or driver; "
                       f"robot_state_publisher cannot place their child links", at=where,
-                      related=tuple(missing[:6]))
+                      related=_dedupe_locs(missing[:6], where))
         return
     for j in missing:
         yield Problem(f"nothing publishes the state of joint {j.name!r} (the joint state broadcaster does not "
@@ -329,7 +329,7 @@ def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
         rep = check_drive(model, drive, base_frame=b, tolerance=tol, angle_tolerance=ang)
         for p in rep.problems():
             if p.code == code:
-                related = tuple({str(r): r for r in p.related if r is not None and str(r) != str(p.at)}.values())
+                related = _dedupe_locs(p.related, p.at)
                 yield Problem(p.message, at=p.at, related=related, severity=p.severity, data=p.data)
 
 
@@ -418,14 +418,24 @@ def _has_consumer_claims(g: TFGraph) -> bool:
     return any(cl.source != "model" for cl in g.claims)
 
 
-def _as_problem(p, prefer_consumer: bool = True) -> Problem:
+def _dedupe_locs(locs, at=None) -> tuple:
+    out: dict[str, Location] = {}
+    for loc in locs:
+        loc = getattr(loc, "loc", loc)
+        if loc is None or (at is not None and str(loc) == str(at)):
+            continue
+        out.setdefault(str(loc), loc)
+    return tuple(out.values())
+
+
+def _as_problem(p, prefer_consumer: bool = True, hint: str = "") -> Problem:
     claims = list(p.claims)
     at = p.loc
     if at is None and claims:
         first = next((cl for cl in claims if cl.source != "model"), claims[0]) if prefer_consumer else claims[0]
         at = first.loc
-    related = tuple(dict.fromkeys(cl.loc for cl in claims if cl.loc != at))
-    return Problem(p.message, at=at, related=related, data={"frames": list(p.frames)})
+    return Problem(p.message + hint, at=at, related=_dedupe_locs((cl.loc for cl in claims), at),
+                   data={"frames": list(p.frames)})
 
 
 @check("T001")
@@ -457,8 +467,17 @@ def tf_multiple_parents(model, ctx):
     if not _has_consumer_claims(g):
         return
     for p in multiple_parents(g):
-        if not _alternatives(p, c):
-            yield _as_problem(p)
+        if _alternatives(p, c):
+            continue
+        hint = ""
+        child = p.frames[0] if p.frames else ""
+        prefix = c.rsp_prefix
+        link = child[len(prefix):] if prefix and child.startswith(prefix) else child
+        if link in model.links and model.root and link != model.root and \
+                any(cl.source in ("controller", "driver", "localization") for cl in p.claims):
+            hint = (f"; {link} is not the model's root: publish odometry to {prefix}{model.root} "
+                    f"(base_frame_id / base_link_frame)")
+        yield _as_problem(p, hint=hint)
 
 
 @check("T004")

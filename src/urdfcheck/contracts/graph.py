@@ -210,18 +210,24 @@ def duplicate_owners(g: TFGraph) -> list[TFProblem]:
 
 
 def static_and_dynamic(g: TFGraph) -> list[TFProblem]:
-    """T002: a frame that is the child of a static and of a dynamic transform."""
+    """T002: the same parent -> child edge published both static (/tf_static) and dynamic (/tf).
+
+    (Claims with different parents are T003; the three analyses T001/T002/T003 do not overlap.)
+    """
     out = []
     for child, claims in g.by_child().items():
-        st = [c for c in claims if c.kind == STATIC]
-        dy = [c for c in claims if c.kind == DYNAMIC]
-        if st and dy:
-            cs = tuple(dy + st)
-            out.append(TFProblem(
-                "T002",
-                f"frame {child} is published both on /tf (by {', '.join(_who(c) for c in dy)}) and on "
-                f"/tf_static (by {', '.join(_who(c) for c in st)}); the static one never expires and masks the other",
-                cs, (child,)))
+        by_parent: dict[str, list[TFClaim]] = {}
+        for c in claims:
+            by_parent.setdefault(c.parent, []).append(c)
+        for parent, cs in by_parent.items():
+            st = [c for c in cs if c.kind == STATIC]
+            dy = [c for c in cs if c.kind == DYNAMIC]
+            if st and dy:
+                out.append(TFProblem(
+                    "T002",
+                    f"{parent} -> {child} is published both on /tf (by {', '.join(_who(c) for c in dy)}) and on "
+                    f"/tf_static (by {', '.join(_who(c) for c in st)}); the static one never expires and masks "
+                    f"the other", tuple(dy + st), (parent, child)))
     return out
 
 
@@ -287,6 +293,8 @@ def not_one_tree(g: TFGraph, frames: Mapping[str, str] | None = None, at: Locati
     roots = g.roots()
     if len(roots) <= 1:
         return []
+    if any(len({c.parent for c in cs}) > 1 for cs in g.by_child().values()):
+        return []  # a frame with two parents joins the trees: that is T003, reported there
     kids = g.children()
 
     def size(r: str) -> int:
@@ -303,17 +311,29 @@ def not_one_tree(g: TFGraph, frames: Mapping[str, str] | None = None, at: Locati
         n = size(r)
         return f"{r} ({n} frame{'s' if n != 1 else ''})"
 
-    hint = ""
+    parent_of = {c.child: c.parent for c in g.claims}
+
+    def root_of(f: str) -> str:
+        seen = set()
+        while f in parent_of and f not in seen:
+            seen.add(f)
+            f = parent_of[f]
+        return f
+
     m, o, b = norm(names["map"]), norm(names["odom"]), norm(names["base"])
-    rs = set(roots)
-    if o in rs and any(r not in (m, o) for r in rs):
-        other = [r for r in roots if r not in (m, o)]
-        hint = (f"; nothing publishes {o} -> {other[0]} (the odometry source: a drive controller with "
+    frames_set = set(g.frames)
+    if b not in frames_set:  # the robot's tree: the biggest one holding neither map nor odom
+        robot_roots = [r for r in roots if r not in (root_of(m) if m in frames_set else None,
+                                                     root_of(o) if o in frames_set else None)]
+        b = max(robot_roots, key=size) if robot_roots else b
+    hint = ""
+    if o in frames_set and b in frames_set and root_of(o) != root_of(b):
+        hint = (f"; nothing publishes {o} -> {root_of(b)} (the odometry source: a drive controller with "
                 f"enable_odom_tf, robot_localization, or a driver)")
-    elif m in rs and o in g.frames and o not in rs:
-        hint = f"; nothing publishes {m} -> {o} (localization: AMCL, SLAM or robot_localization with world_frame={m})"
-    elif m in rs and o in rs:
-        hint = f"; nothing publishes {m} -> {o}"
+    elif m in frames_set and o in frames_set and root_of(m) != root_of(o):
+        hint = f"; nothing publishes {m} -> {root_of(o)} (localization: AMCL, SLAM or robot_localization with world_frame={m})"
+    elif m in frames_set and b in frames_set and root_of(m) != root_of(b) and o not in frames_set:
+        hint = f"; nothing connects {m} to {root_of(b)} (expected {m} -> {o} -> {b})"
     main = max(roots, key=size)
     # point at a claim of a smaller tree: that is usually the odd one
     claims = tuple(next(c for c in g.claims if c.parent == r) for r in roots if r != main)

@@ -244,7 +244,7 @@ def expand(path: str, opts: Options) -> dict:
     subst._eval_find = eval_find
 
     if not opts.trusted:
-        _install_sandbox(xacro, subst, resolver)
+        _install_sandbox(xacro, subst, resolver, {"env": eval_env, "optenv": eval_optenv, "find": eval_find})
 
     sys.stderr = io.StringIO()  # print_location and friends write here; never to the user's terminal
     try:
@@ -292,7 +292,9 @@ def _is_refused(e) -> bool:
     return type(e).__name__ == "Refused" and type(e).__module__.endswith("safeeval")
 
 
-def _install_sandbox(xacro, subst, resolver) -> None:
+def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
+    import functools
+
     from . import safeeval
 
     def confined_load_yaml(filename):
@@ -314,4 +316,6 @@ def _install_sandbox(xacro, subst, resolver) -> None:
         return evaluator.evaluate(expr, globals)
 
     xacro.safe_eval = safe_eval
-    subst._eval = safeeval.evaluate_substitution
+    # $(eval) sees env/optenv/find too (stock binds them at import time): give it the confined ones
+    functions = {**safeeval.default_substitution_functions(), **confined}
+    subst._eval = functools.partial(safeeval.evaluate_substitution, functions=functions, evaluator=evaluator)

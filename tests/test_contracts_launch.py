@@ -1,0 +1,218 @@
+"""Launch files read statically: ROS 1 XML, ROS 2 XML/YAML/Python; static transforms in every argument form."""
+import math
+import sys
+from pathlib import Path
+
+SRC = Path(__file__).resolve().parent.parent / "src"
+if str(SRC) not in sys.path:  # runnable without an editable install
+    sys.path.insert(0, str(SRC))
+
+import pytest  # noqa: E402
+
+from urdfcheck.contracts.common import ConsumerError  # noqa: E402
+from urdfcheck.contracts.launch import parse_launch, parse_static_tf_args, read_launch  # noqa: E402
+
+HALF_PI = math.pi / 2
+
+
+def tf_tuple(t):
+    return (t.parent, t.child, tuple(round(v, 6) for v in t.xyz), tuple(round(v, 4) for v in t.rpy))
+
+
+# --- argument forms --------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("tokens,ros,pkg,expected", [
+    # ROS 1 tf: x y z yaw pitch roll parent child period_ms
+    ("1 2 3 1.5708 0 0 base laser 100", 1, "tf", ("base", "laser", (1, 2, 3), (0, 0, 1.5708))),
+    # ROS 1 tf: quaternion + period
+    ("0 0 0 0 0 0.7071068 0.7071068 base laser 100", 1, "tf", ("base", "laser", (0, 0, 0), (0, 0, 1.5708))),
+    # ROS 1 tf2_ros: no period
+    ("1 0 0 0 0.5 0.25 base cam", 1, "tf2_ros", ("base", "cam", (1, 0, 0), (0.25, 0.5, 0))),
+    ("0 0 0 0 0 0 1 base imu", 1, "tf2_ros", ("base", "imu", (0, 0, 0), (0, 0, 0))),
+    # ROS 2 positional (deprecated) forms
+    ("0.1 0 0 0 0 3.14159 base_link laser", 2, "tf2_ros", ("base_link", "laser", (0.1, 0, 0), (3.1416, 0, 0))),
+    ("0 0 0 0.7071068 0 0 0.7071068 base_link laser", 2, "tf2_ros", ("base_link", "laser", (0, 0, 0), (1.5708, 0, 0))),
+    # ROS 2 flag form; --ros-args tail ignored
+    ("--x 1 --yaw 0.5 --frame-id map --child-frame-id odom --ros-args -r __node:=x", 2, "tf2_ros",
+     ("map", "odom", (1, 0, 0), (0, 0, 0.5))),
+    ("--qz 0.7071068 --qw 0.7071068 --frame-id a --child-frame-id b", 2, "tf2_ros", ("a", "b", (0, 0, 0), (0, 0, 1.5708))),
+])
+def test_static_tf_argument_forms(tokens, ros, pkg, expected):
+    parent, child, xyz, rpy = parse_static_tf_args(tokens.split(), ros, pkg)
+    assert (parent, child) == expected[:2]
+    assert xyz == pytest.approx(expected[2], abs=1e-9)
+    assert rpy == pytest.approx(expected[3], abs=1e-4)
+
+
+@pytest.mark.parametrize("tokens", ["1 2 3", "a b c 0 0 0 p c", "--x 1 --frame-id a", "0 0 0 0 0 0 0 p c"])
+def test_bad_static_tf_arguments(tokens):
+    with pytest.raises(ValueError):
+        parse_static_tf_args(tokens.split(), 2)
+
+
+# --- ROS 1 XML -------------------------------------------------------------------------------------------------
+ROS1 = """<launch>
+  <arg name="laser_x" default="0.2"/>
+  <arg name="sim" default="false"/>
+  <arg name="fixed" value="base_link"/>
+  <node pkg="tf" type="static_transform_publisher" name="laser_tf"
+        args="$(arg laser_x) 0 0.1 1.5708 0 0 $(arg fixed) laser 100"/>
+  <node pkg="tf2_ros" type="static_transform_publisher" name="imu_tf" args="0 0 0 0 0 0 1 base_link imu_link"/>
+  <group if="$(arg sim)">
+    <node pkg="tf2_ros" type="static_transform_publisher" name="sim_only" args="0 0 0 0 0 0 world map"/>
+  </group>
+  <node pkg="tf2_ros" type="static_transform_publisher" name="env" args="0 0 0 0 0 0 map odom" if="$(env USE_MAP)"/>
+  <node pkg="tf" type="static_transform_publisher" name="found" args="$(find pkg)/x 0 0 0 0 0 a b 10"/>
+  <node pkg="robot_state_publisher" type="robot_state_publisher" name="rsp">
+    <param name="tf_prefix" value="r1"/>
+  </node>
+  <node pkg="joint_state_publisher" type="joint_state_publisher" name="jsp"/>
+  <rosparam command="load" file="$(find my_pkg)/config/controllers.yaml"/>
+  <node pkg="controller_manager" type="spawner" name="sp" args="--timeout 5 diff_drive_controller joint_state_controller"/>
+</launch>
+"""
+
+
+def test_ros1_xml():
+    li = parse_launch(ROS1, "bringup.launch", args={"laser_x": "0.3"}, packages={"my_pkg": "/opt/my_pkg"})
+    assert li.format == "ros1-xml"
+    tfs = {t.node_name: t for t in li.static_tfs}
+    assert set(tfs) == {"laser_tf", "imu_tf", "env"}  # sim_only is off, "found" is not literal
+    assert tf_tuple(tfs["laser_tf"]) == ("base_link", "laser", (0.3, 0, 0.1), (0, 0, 1.5708))
+    assert tfs["laser_tf"].loc.line in (5, 6) and tfs["laser_tf"].source_file == "bringup.launch"
+    assert tfs["env"].condition == "if=$(env USE_MAP)"
+    assert [(s.name, s.frame_prefix) for s in li.state_publishers] == [("rsp", "r1")]
+    assert [j.name for j in li.joint_state_publishers] == ["jsp"]
+    assert [p for p, _ in li.param_files] == ["/opt/my_pkg/config/controllers.yaml"]
+    assert [n for n, _ in li.spawned] == ["diff_drive_controller", "joint_state_controller"]
+    assert any("not literal" in m or "not understood" in m for m, _ in li.notes)
+
+
+# --- ROS 2 XML -------------------------------------------------------------------------------------------------
+ROS2_XML = """<launch>
+  <arg name="ns" default="robot1"/>
+  <let name="fp" value="$(var ns)/"/>
+  <group>
+    <push-ros-namespace namespace="$(var ns)"/>
+    <node pkg="tf2_ros" exec="static_transform_publisher"
+          args="--x 1 --y 2 --z 3 --yaw 0.5 --frame-id base_link --child-frame-id cam"/>
+    <node pkg="tf2_ros" exec="static_transform_publisher" args="1 2 3 0 0 0 base_link cam2"/>
+    <node pkg="robot_state_publisher" exec="robot_state_publisher">
+      <param name="frame_prefix" value="$(var fp)"/>
+      <param name="robot_description" value="$(command 'xacro robot.urdf.xacro')"/>
+    </node>
+  </group>
+  <node pkg="tf2_ros" exec="static_transform_publisher" args="0 0 0 0 0 0 a b" unless="true"/>
+</launch>
+"""
+
+
+def test_ros2_xml():
+    li = parse_launch(ROS2_XML, "bringup.launch.xml")
+    assert li.format == "ros2-xml"
+    assert [tf_tuple(t) for t in li.static_tfs] == [
+        ("base_link", "cam", (1, 2, 3), (0, 0, 0.5)), ("base_link", "cam2", (1, 2, 3), (0, 0, 0))]
+    (rsp,) = li.state_publishers
+    assert (rsp.namespace, rsp.frame_prefix) == ("/robot1", "robot1/")
+
+
+def test_ros2_xml_arguments_from_caller():
+    li = parse_launch(ROS2_XML, "bringup.launch.xml", args={"ns": "r7"})
+    assert li.state_publishers[0].frame_prefix == "r7/"
+
+
+# --- ROS 2 YAML ------------------------------------------------------------------------------------------------
+ROS2_YAML = """\
+launch:
+- arg: {name: parent, default: base_link}
+- node:
+    pkg: tf2_ros
+    exec: static_transform_publisher
+    args: "0 0 0.5 0 0 0 $(var parent) lidar"
+- node:
+    pkg: tf2_ros
+    exec: static_transform_publisher
+    args: ["--x", "1", "--qz", "0.7071068", "--qw", "0.7071068", "--frame-id", "map", "--child-frame-id", "odom"]
+- group:
+    children:
+    - node: {pkg: robot_state_publisher, exec: robot_state_publisher, param: [{name: frame_prefix, value: "a/"}]}
+    - node: {pkg: joint_state_publisher_gui, exec: joint_state_publisher_gui}
+"""
+
+
+def test_ros2_yaml():
+    li = parse_launch(ROS2_YAML, "bringup.launch.yaml")
+    assert li.format == "ros2-yaml"
+    assert [tf_tuple(t) for t in li.static_tfs] == [
+        ("base_link", "lidar", (0, 0, 0.5), (0, 0, 0)), ("map", "odom", (1, 0, 0), (0, 0, 1.5708))]
+    assert li.static_tfs[0].loc.line == 3
+    assert li.state_publishers[0].frame_prefix == "a/"
+    assert len(li.joint_state_publishers) == 1
+
+
+# --- ROS 2 Python (ast only) -----------------------------------------------------------------------------------
+PY = """
+import os
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.conditions import IfCondition
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+open(os.path.join(os.path.dirname(__file__), "EXECUTED"), "w").write("pwned")
+
+def generate_launch_description():
+    return LaunchDescription([
+        DeclareLaunchArgument('child', default_value='laser'),
+        Node(package='tf2_ros', executable='static_transform_publisher',
+             arguments=['0.1', '0', '0.2', '0', '0', '0', 'base_link', LaunchConfiguration('child')]),
+        Node(package='tf2_ros', executable='static_transform_publisher',
+             arguments=['--x', '0.5', '--frame-id', 'base_link', '--child-frame-id', 'cam']),
+        Node(package='tf2_ros', executable='static_transform_publisher', arguments=some_list()),
+        Node(package='tf2_ros', executable='static_transform_publisher',
+             arguments=['0', '0', '0', '0', '0', '0', 'a', 'b'], condition=IfCondition('false')),
+        Node(package='robot_state_publisher', executable='robot_state_publisher',
+             parameters=[{'robot_description': desc, 'frame_prefix': 'r2/'}]),
+        Node(package='joint_state_publisher', executable='joint_state_publisher',
+             condition=IfCondition(LaunchConfiguration('gui'))),
+    ])
+"""
+
+
+def test_ros2_python_is_read_not_run(tmp_path):
+    f = tmp_path / "bringup.launch.py"
+    f.write_text(PY)
+    li = read_launch(f)
+    assert not (tmp_path / "EXECUTED").exists()
+    assert li.format == "ros2-py"
+    assert [tf_tuple(t) for t in li.static_tfs] == [
+        ("base_link", "laser", (0.1, 0, 0.2), (0, 0, 0)), ("base_link", "cam", (0.5, 0, 0), (0, 0, 0))]
+    assert li.static_tfs[0].loc.line == 13
+    assert [m for m, _ in li.notes] == ["static_transform_publisher arguments are not literal; skipped"]
+    assert li.state_publishers[0].frame_prefix == "r2/"
+    assert li.joint_state_publishers[0].condition.startswith("condition=")
+
+
+# --- hostile / broken ------------------------------------------------------------------------------------------
+def test_bad_launch_files_are_consumer_errors():
+    with pytest.raises(ConsumerError) as e:
+        parse_launch("<launch>\n  <node pkg='a'\n</launch>", "bad.launch")
+    assert e.value.location.line is not None
+    with pytest.raises(ConsumerError, match="DOCTYPE"):
+        parse_launch('<!DOCTYPE l [<!ENTITY x "y">]><launch>&x;</launch>', "ent.launch.xml")
+    with pytest.raises(ConsumerError, match="syntax"):
+        parse_launch("def f(:\n", "bad.launch.py")
+    with pytest.raises(ConsumerError):
+        parse_launch("x = " + "(" * 5000 + ")" * 5000 + "\n", "deep.launch.py")
+    with pytest.raises(ConsumerError, match="launch:"):
+        parse_launch("nodes: []\n", "x.launch.yaml")
+    with pytest.raises(ConsumerError, match="<launch>"):
+        parse_launch("<robot/>", "x.launch")
+
+
+def test_corpus_launch_files_read(corpus):
+    files = sorted(corpus.rglob("*.launch")) + sorted(corpus.rglob("*.launch.xml"))
+    assert len(files) > 10
+    for f in files:
+        li = read_launch(f)
+        assert li.format in ("ros1-xml", "ros2-xml")
+    li = read_launch(corpus / "ros-controls+ros2_control_demos/example_2/bringup/launch/diffbot.launch.xml")
+    assert [s.name for s in li.state_publishers] == ["robot_state_publisher"]

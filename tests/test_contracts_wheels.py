@@ -1,0 +1,189 @@
+"""Wheel geometry (forward kinematics at zero) against differential-drive parameters."""
+import sys
+from pathlib import Path
+
+SRC = Path(__file__).resolve().parent.parent / "src"
+if str(SRC) not in sys.path:  # runnable without an editable install
+    sys.path.insert(0, str(SRC))
+
+import pytest  # noqa: E402
+
+from urdfcheck.build import model_from_string  # noqa: E402
+from urdfcheck.contracts.controllers import DriveSpec, JointUse, read_controllers  # noqa: E402
+from urdfcheck.contracts.common import Value  # noqa: E402
+from urdfcheck.contracts.params import parse_params  # noqa: E402
+from urdfcheck.contracts.wheels import check_drive  # noqa: E402
+from urdfcheck.findings import Location, Severity  # noqa: E402
+
+
+def wheel(name, xyz, rpy, axis, shape='<cylinder radius="0.1" length="0.05"/>', shape_rpy="0 0 0", kind="continuous"):
+    return f"""
+  <link name="{name}_link">
+    <collision><origin rpy="{shape_rpy}"/><geometry>{shape}</geometry></collision>
+    <visual><geometry><sphere radius="0.5"/></geometry></visual>
+  </link>
+  <joint name="{name}_joint" type="{kind}">
+    <parent link="base_link"/><child link="{name}_link"/>
+    <origin xyz="{xyz}" rpy="{rpy}"/><axis xyz="{axis}"/>
+  </joint>"""
+
+
+def robot(*wheels, root="base_link"):
+    extra = ""
+    if root != "base_link":
+        extra = f'<link name="{root}"/><joint name="fp" type="fixed"><parent link="{root}"/><child link="base_link"/>' \
+                f'<origin xyz="0 0 0.1" rpy="0 0 0.3"/></joint>'
+    return model_from_string(f'<robot name="r"><link name="base_link"/>{extra}{"".join(wheels)}</robot>', "r.urdf")
+
+
+# wheel frames rotated by -/+90 degrees about x, turning about their z: both axes end up along +y in base_link
+LEFT = wheel("left", "0 0.25 0", "-1.5708 0 0", "0 0 1")
+RIGHT = wheel("right", "0.01 -0.25 0.02", "1.5708 0 0", "0 0 -1")
+YAML = "loc.yaml"
+
+
+def drive(left=("left_joint",), right=("right_joint",), sep=0.5, radius=0.1, sep_mult=None, lmult=None, rmult=None,
+          from_urdf=False):
+    def v(x, line):
+        return None if x is None else Value(x, Location(YAML, line))
+    uses = lambda names, side: tuple(JointUse(n, Location(YAML, 20 + i), "ddc", role=f"{side}_wheel")  # noqa: E731
+                                     for i, n in enumerate(names))
+    return DriveSpec("ddc", Location(YAML, 1), uses(left, "left"), uses(right, "right"), Location(YAML, 2),
+                     Location(YAML, 3), v(sep, 4), v(radius, 5), v(sep_mult, 6), v(lmult, 7), v(rmult, 8),
+                     from_urdf=from_urdf)
+
+
+def codes(rep):
+    return sorted(p.code for p in rep.problems())
+
+
+def test_consistent_drive_is_clean():
+    rep = check_drive(robot(LEFT, RIGHT), drive())
+    assert codes(rep) == []
+    assert rep.measured_separation == pytest.approx(0.5, abs=1e-6)
+    assert rep.urdf_distance > 0.5  # the x/z offset is not part of the separation
+    assert rep.sides_swapped is False
+    assert {w.use.joint: w.radius for w in rep.wheels} == {"left_joint": 0.1, "right_joint": 0.1}
+    assert all(w.axis == pytest.approx((0, 1, 0), abs=1e-4) or w.axis == pytest.approx((0, -1, 0), abs=1e-4)
+               for w in rep.wheels)
+
+
+def test_separation_mismatch_and_multiplier():
+    rep = check_drive(robot(LEFT, RIGHT), drive(sep=0.52))
+    (p,) = rep.problems()
+    assert p.code == "C010" and p.at == Location(YAML, 4)
+    assert "0.52" in p.message and "0.5 m apart" in p.message
+    assert p.data["measured"] == pytest.approx(0.5, abs=1e-6)
+    assert codes(check_drive(robot(LEFT, RIGHT), drive(sep=0.5, sep_mult=1.04))) == ["C010"]
+    assert codes(check_drive(robot(LEFT, RIGHT), drive(sep=0.48076923, sep_mult=1.04))) == []
+
+
+def test_tolerance():
+    assert codes(check_drive(robot(LEFT, RIGHT), drive(sep=0.5015))) == ["C010"]
+    assert codes(check_drive(robot(LEFT, RIGHT), drive(sep=0.5015), tolerance=0.002)) == []
+
+
+def test_separation_is_frame_independent():
+    rep = check_drive(robot(LEFT, RIGHT, root="base_footprint"), drive(), base_frame="base_footprint")
+    assert rep.measured_separation == pytest.approx(0.5, abs=1e-6) and codes(rep) == []
+
+
+def test_radius_mismatch_with_side_multipliers():
+    rep = check_drive(robot(LEFT, RIGHT), drive(radius=0.1, lmult=1.05))
+    (p,) = rep.problems()
+    assert p.code == "C011" and "left_link" in p.message and p.at == Location(YAML, 5)
+    assert p.related[0].file == "r.urdf"  # the wheel's collision cylinder
+
+
+def test_sphere_and_visual_fallback_and_mesh():
+    sphere = wheel("right", "0 -0.25 0", "1.5708 0 0", "0 0 -1", shape='<sphere radius="0.1"/>')
+    assert codes(check_drive(robot(LEFT, sphere), drive())) == []
+    mesh = wheel("right", "0 -0.25 0", "1.5708 0 0", "0 0 -1", shape='<mesh filename="w.stl"/>')
+    rep = check_drive(robot(LEFT, mesh), drive())
+    right = [w for w in rep.wheels if w.side == "right"][0]
+    assert right.shape_from == "visual" and right.radius == 0.5  # no usable collision: the visual is used
+    assert codes(rep) == ["C011"]
+    left = [w for w in rep.wheels if w.side == "left"][0]
+    assert left.shape_from == "collision" and left.radius == 0.1  # the collision cylinder wins over the visual
+
+
+def test_cylinder_lying_the_wrong_way():
+    flat = wheel("right", "0 -0.25 0", "1.5708 0 0", "0 0 -1", shape_rpy="1.5708 0 0")
+    rep = check_drive(robot(LEFT, flat), drive())
+    (p,) = rep.problems()
+    assert p.code == "C011" and "cylinder" in p.message and "axis" in p.message
+
+
+def test_axes_not_parallel():
+    tilted = wheel("right", "0 -0.25 0", "0 0 0", "0 0 1")
+    rep = check_drive(robot(LEFT, tilted), drive())
+    assert "C012" in codes(rep)
+    p = [p for p in rep.problems() if p.code == "C012"][0]
+    assert "90 degrees" in p.message and p.at.file == "r.urdf"
+
+
+def test_wheels_one_behind_the_other():
+    front = wheel("left", "0.3 0 0", "-1.5708 0 0", "0 0 1")
+    back = wheel("right", "-0.3 0 0", "1.5708 0 0", "0 0 -1")
+    rep = check_drive(robot(front, back), drive(sep=0.6))
+    assert codes(rep) == ["C010"] and "one behind the other" in rep.problems()[0].message
+
+
+def test_left_on_the_right():
+    left = wheel("left", "0 -0.25 0", "-1.5708 0 0", "0 0 1")
+    right = wheel("right", "0 0.25 0", "1.5708 0 0", "0 0 -1")
+    rep = check_drive(robot(left, right), drive())
+    assert rep.sides_swapped is True and codes(rep) == []
+
+
+def test_unequal_and_empty_sides():
+    rep = check_drive(robot(LEFT, RIGHT), drive(left=("left_joint",), right=("right_joint", "right_joint")))
+    (p,) = rep.problems()
+    assert p.code == "C013" and p.severity is None
+    rep = check_drive(robot(LEFT, RIGHT), drive(left=()))
+    c13 = [p for p in rep.problems() if p.code == "C013"]
+    assert c13 and c13[0].severity == Severity.ERROR and c13[0].at == Location(YAML, 2)
+
+
+def test_unknown_and_fixed_joints_are_left_to_other_rules():
+    fixed = wheel("right", "0 -0.25 0", "1.5708 0 0", "0 0 -1", kind="fixed")
+    assert codes(check_drive(robot(LEFT, fixed), drive())) == []
+    assert codes(check_drive(robot(LEFT, RIGHT), drive(right=("nope",)))) == []
+
+
+def test_ros1_values_from_the_urdf():
+    # no wheel_separation / wheel_radius: the ROS 1 controller computes them; only impossible cases are reported
+    staggered = wheel("right", "0.1 -0.25 0", "1.5708 0 0", "0 0 -1")  # 0.51 m between origins, 0.5 m along the axis
+    assert codes(check_drive(robot(LEFT, staggered), drive(sep=None, radius=None, from_urdf=True))) == ["C010"]
+    aligned = wheel("right", "0 -0.25 0", "1.5708 0 0", "0 0 -1")
+    assert codes(check_drive(robot(LEFT, aligned), drive(sep=None, radius=None, from_urdf=True))) == []
+    box = wheel("right", "0 -0.25 0", "1.5708 0 0", "0 0 -1", shape='<box size="0.1 0.1 0.1"/>')
+    box = box.replace('<visual><geometry><sphere radius="0.5"/></geometry></visual>', "")
+    rep = check_drive(robot(LEFT, box), drive(sep=None, radius=None, from_urdf=True))
+    assert [p.severity for p in rep.problems() if p.code == "C011"] == [Severity.ERROR]
+    # ROS 2 without wheel_separation: it defaults to 0
+    assert "C010" in codes(check_drive(robot(LEFT, RIGHT), drive(sep=None)))
+
+
+def test_with_a_real_controller_file():
+    cs = read_controllers([parse_params(
+        "ddc:\n  ros__parameters:\n    type: diff_drive_controller/DiffDriveController\n"
+        "    left_wheel_names: [left_joint]\n    right_wheel_names: [right_joint]\n"
+        "    wheel_separation: 0.55\n    wheel_radius: 0.1\n", "c.yaml")])
+    (p,) = check_drive(robot(LEFT, RIGHT), cs.by_name("ddc").drive).problems()
+    assert p.code == "C010" and (p.at.file, p.at.line) == ("c.yaml", 6)
+
+
+def test_diffbot_corpus_geometry(corpus):
+    from urdfcheck.loader import load_model
+
+    d = corpus / "ros-controls+ros2_control_demos"
+    pk = {"ros2_control_demo_description": str(d / "ros2_control_demo_description"),
+          "ros2_control_demo_example_2": str(d / "example_2/description")}
+    model = load_model(d / "example_2/description/urdf/diffbot.urdf.xacro", packages=pk)
+    from urdfcheck.contracts.controllers import load_controllers
+
+    cs, _ = load_controllers([d / "example_2/bringup/config/diffbot_controllers.yaml"])
+    rep = check_drive(model, cs.by_name("diffbot_base_controller").drive, base_frame="base_link")
+    assert rep.problems() == []
+    assert rep.measured_separation == pytest.approx(0.10) and rep.sides_swapped is True  # left wheel at y = -0.05

@@ -1,0 +1,138 @@
+"""`.pre-commit-hooks.yaml` with the real `pre-commit` tool against throw-away git repositories.
+
+`pre-commit try-repo PATH` clones PATH at HEAD; for a dirty tree it commits tracked changes (`git add -u`)
+into a shadow clone, so untracked files (new modules, the hooks file itself) would be missing. The tests
+therefore snapshot the working tree (tracked + untracked, minus ignored files) into a temporary git repo.
+pre-commit then builds a virtualenv and pip-installs that snapshot (once per test session, ~40 s).
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+import yaml
+
+from conftest import REPO
+
+pytestmark = pytest.mark.slow
+
+GOOD = '<robot name="r">\n  <link name="base_link"/>\n</robot>\n'
+BAD = """<robot name="r">
+  <link name="base_link"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <orign xyz="0 0 0.5"/>
+    <parent link="base_link"/>
+    <child link="arm"/>
+  </joint>
+</robot>
+"""
+GIT_ENV = {"GIT_AUTHOR_NAME": "t", "GIT_AUTHOR_EMAIL": "t@example.com", "GIT_COMMITTER_NAME": "t",
+           "GIT_COMMITTER_EMAIL": "t@example.com", "GIT_CONFIG_NOSYSTEM": "1"}
+
+
+def test_hooks_file_is_well_formed():
+    hooks = {h["id"]: h for h in yaml.safe_load((REPO / ".pre-commit-hooks.yaml").read_text())}
+    assert set(hooks) == {"urdfcheck", "urdfcheck-package"}
+    one = hooks["urdfcheck"]
+    assert one["entry"] == "urdfcheck lint" and one["language"] == "python"
+    assert one["files"] == r"\.(urdf|xacro)$" and one.get("pass_filenames", True) is True
+    pkg = hooks["urdfcheck-package"]
+    assert pkg["pass_filenames"] is False and pkg["entry"] == "urdfcheck lint"
+    import re
+
+    for name in ("a.urdf", "urdf/b.urdf.xacro"):
+        assert re.search(one["files"], name)
+    assert not re.search(one["files"], "a.urdf.bak")
+    for name in ("urdf/a.xacro", "config/c.yaml", "meshes/m.STL", "launch/x.launch.py", "pyproject.toml"):
+        assert re.search(pkg["files"], name), name
+
+
+def git(*args, cwd, env):
+    return subprocess.run(["git", *args], cwd=cwd, env=env, check=True, capture_output=True, text=True)
+
+
+@pytest.fixture(scope="module")
+def env(tmp_path_factory):
+    if shutil.which("git") is None:
+        pytest.skip("git not installed")
+    try:
+        import pre_commit  # noqa: F401
+    except ImportError:
+        pytest.skip("pre-commit not installed")
+    base = tmp_path_factory.mktemp("precommit")
+    environ = dict(os.environ, PRE_COMMIT_HOME=str(base / "home"), **GIT_ENV)
+    environ.pop("PYTHONPATH", None)  # the hook must run the installed urdfcheck, not this checkout
+    # snapshot of the working tree, committed
+    snap = base / "urdfcheck"
+    snap.mkdir()
+    files = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"], cwd=REPO,
+                           check=True, capture_output=True).stdout.decode().split("\0")
+    for rel in filter(None, files):
+        src = REPO / rel
+        if src.is_file():
+            dst = snap / rel
+            dst.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, dst)
+    git("init", "-q", cwd=snap, env=environ)
+    git("add", "-A", cwd=snap, env=environ)
+    git("commit", "-q", "-m", "snapshot", cwd=snap, env=environ)
+    rev = git("rev-parse", "HEAD", cwd=snap, env=environ).stdout.strip()
+    return {"base": base, "snap": snap, "rev": rev, "environ": environ}
+
+
+def project(env, name):
+    proj = env["base"] / name
+    proj.mkdir()
+    git("init", "-q", cwd=proj, env=env["environ"])
+    (proj / "bad.urdf").write_text(BAD)
+    (proj / "good.urdf").write_text(GOOD)
+    return proj
+
+
+def pre_commit(*args, cwd, env):
+    return subprocess.run([sys.executable, "-m", "pre_commit", *args], cwd=cwd, env=env["environ"],
+                          capture_output=True, text=True, timeout=600)
+
+
+def test_try_repo_bad_file_fails_good_file_passes(env):
+    proj = project(env, "try")
+    bad = pre_commit("try-repo", str(env["snap"]), "urdfcheck", "--files", "bad.urdf", cwd=proj, env=env)
+    assert bad.returncode == 1, bad.stdout + bad.stderr
+    assert "bad.urdf:5  U002" in bad.stdout and "Failed" in bad.stdout
+    good = pre_commit("try-repo", str(env["snap"]), "urdfcheck", "--files", "good.urdf", cwd=proj, env=env)
+    assert good.returncode == 0, good.stdout + good.stderr
+    assert "Passed" in good.stdout
+
+
+def test_installed_hook_blocks_a_bad_commit(env):
+    proj = project(env, "commit")
+    (proj / ".pre-commit-config.yaml").write_text(
+        f"repos:\n  - repo: {env['snap']}\n    rev: {env['rev']}\n    hooks:\n      - id: urdfcheck\n")
+    r = pre_commit("install", cwd=proj, env=env)
+    assert r.returncode == 0, r.stderr
+    git("add", ".pre-commit-config.yaml", "good.urdf", cwd=proj, env=env["environ"])
+    ok = subprocess.run(["git", "commit", "-m", "good"], cwd=proj, env=env["environ"], capture_output=True, text=True)
+    assert ok.returncode == 0, ok.stdout + ok.stderr
+    git("add", "bad.urdf", cwd=proj, env=env["environ"])
+    bad = subprocess.run(["git", "commit", "-m", "bad"], cwd=proj, env=env["environ"], capture_output=True, text=True)
+    assert bad.returncode != 0
+    assert "U002" in bad.stdout + bad.stderr
+    log = git("log", "--format=%s", cwd=proj, env=env["environ"]).stdout.split()
+    assert log == ["good"]
+
+
+def test_package_hook_lints_without_file_names(env):
+    proj = project(env, "package")
+    (proj / "bad.urdf").unlink()
+    r = pre_commit("try-repo", str(env["snap"]), "urdfcheck-package", "--all-files", cwd=proj, env=env)
+    assert r.returncode == 0, r.stdout + r.stderr
+    (proj / "urdf").mkdir()
+    (proj / "urdf" / "arm.urdf").write_text(BAD)
+    (proj / "urdfcheck.yaml").write_text("models:\n  - path: urdf/arm.urdf\n")
+    git("add", "-A", cwd=proj, env=env["environ"])
+    r = pre_commit("try-repo", str(env["snap"]), "urdfcheck-package", "--all-files", cwd=proj, env=env)
+    assert r.returncode == 1, r.stdout + r.stderr
+    assert "urdf/arm.urdf:5  U002" in r.stdout
+    assert "good.urdf" not in r.stdout  # only what the config declares
