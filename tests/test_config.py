@@ -86,7 +86,7 @@ def test_full_config(tmp_path):
     spec = d.spec()
     assert spec.wheel_radius == "wheel_radius" and spec.frames == ("imu_frame_id",)
     assert dict(cfg.frames) == {"map": "map", "odom": "odom", "base": "base_footprint"}
-    assert dict(cfg.tf_owners) == {"map->odom": "amcl"} and cfg.tf_owner_locs["map->odom"].line == 21
+    assert dict(cfg.tf_owners) == {"map->odom": "amcl"} and cfg.tf_owner_locs["map->odom"].line == 20
     assert dict(cfg.packages) == {"agv_description": str(root)}
     assert cfg.select == ("ALL",) and cfg.ignore == ("I005", "G0") and cfg.fail_on == Severity.ERROR
     assert dict(cfg.severity) == {"F002": Severity.WARNING, "J": Severity.INFO}

@@ -80,7 +80,7 @@ def test_ros1_xml():
     assert tf_tuple(tfs["laser_tf"]) == ("base_link", "laser", (0.3, 0, 0.1), (0, 0, 1.5708))
     assert tfs["laser_tf"].loc.line in (5, 6) and tfs["laser_tf"].source_file == "bringup.launch"
     assert tfs["env"].condition == "if=$(env USE_MAP)"
-    assert [(s.name, s.frame_prefix) for s in li.state_publishers] == [("rsp", "r1")]
+    assert [(s.name, s.frame_prefix) for s in li.state_publishers] == [("rsp", "r1/")]
     assert [j.name for j in li.joint_state_publishers] == ["jsp"]
     assert [p for p, _ in li.param_files] == ["/opt/my_pkg/config/controllers.yaml"]
     assert [n for n, _ in li.spawned] == ["diff_drive_controller", "joint_state_controller"]

@@ -13,7 +13,6 @@ from urdfcheck.contracts.common import ConsumerError  # noqa: E402
 from urdfcheck.contracts.params import lookup, node_key_matches, parse_params, read_params  # noqa: E402
 from urdfcheck.contracts.yamlsrc import load_yaml, parse_yaml  # noqa: E402
 
-CORPUS = Path(__file__).resolve().parent.parent.parent / "shared" / "corpus"
 
 
 # --- yamlsrc -------------------------------------------------------------------------------------------------

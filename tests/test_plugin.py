@@ -41,8 +41,15 @@ def pkg(pytester, monkeypatch):
     pytester's in-process module reset) with only our plugin loaded, whatever else is installed."""
     monkeypatch.setenv("PYTEST_DISABLE_PLUGIN_AUTOLOAD", "1")
     monkeypatch.setenv("PYTHONPATH", os.pathsep.join(filter(None, [SRC, os.environ.get("PYTHONPATH")])))
-    pytester.makepyfile(test_unit="def test_something():\n    assert True\n")
-    (pytester.path / "urdf").mkdir()
+    # ws/urdfcheck.yaml (above the rootdir: does not turn the plugin on by itself) keeps these tests to the
+    # U rules; the package ws/pkg is where pytest runs.
+    ws = pytester.path / "ws"
+    root = ws / "pkg"
+    (root / "urdf").mkdir(parents=True)
+    (ws / "urdfcheck.yaml").write_text("select: [U]\n")
+    (root / "test_unit.py").write_text("def test_something():\n    assert True\n")
+    monkeypatch.chdir(root)
+    pytester.root = root
     return pytester
 
 
@@ -52,15 +59,15 @@ def run(pytester, *args, plugin=True):
 
 
 def test_inactive_without_config_or_flag(pkg):
-    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.root / "urdf" / "bad.urdf").write_text(BAD)
     result = run(pkg, "-v")
     result.assert_outcomes(passed=1)
     assert "urdfcheck" not in result.stdout.str()
 
 
 def test_flag_discovers_models(pkg):
-    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
-    (pkg.path / "urdf" / "good.urdf").write_text(GOOD)
+    (pkg.root / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.root / "urdf" / "good.urdf").write_text(GOOD)
     result = run(pkg, "--urdfcheck", "-v", "--urdfcheck-fail-on", "warning")
     result.assert_outcomes(passed=2, failed=1)
     result.stdout.fnmatch_lines([
@@ -74,16 +81,16 @@ def test_flag_discovers_models(pkg):
 
 
 def test_fail_on_option(pkg):
-    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.root / "urdf" / "bad.urdf").write_text(BAD)
     result = run(pkg, "--urdfcheck", "--urdfcheck-fail-on", "error", "-rA")
     result.assert_outcomes(passed=2)
     result.stdout.fnmatch_lines(["*urdfcheck (below the fail level)*", "*bad.urdf:5: U002 ?warning?*"])
 
 
 def test_config_declares_models_and_variants(pkg):
-    (pkg.path / "urdf" / "robot.urdf.xacro").write_text(XACRO)
-    (pkg.path / "urdf" / "ignored.urdf").write_text(BAD)  # not declared: not linted
-    (pkg.path / "urdfcheck.yaml").write_text(
+    (pkg.root / "urdf" / "robot.urdf.xacro").write_text(XACRO)
+    (pkg.root / "urdf" / "ignored.urdf").write_text(BAD)  # not declared: not linted
+    (pkg.root / "urdfcheck.yaml").write_text(
         "models:\n"
         "  - path: urdf/robot.urdf.xacro\n"
         "    variants:\n"
@@ -102,8 +109,8 @@ def test_config_declares_models_and_variants(pkg):
 
 
 def test_config_fail_on_and_markers(pkg):
-    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
-    (pkg.path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/bad.urdf\nfail_on: error\n")
+    (pkg.root / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/bad.urdf\nfail_on: error\nselect: [U]\n")
     result = run(pkg, "-m", "urdfcheck", "-v")
     result.assert_outcomes(passed=1, deselected=1)
     result = run(pkg, "-m", "urdfcheck", "--urdfcheck-fail-on", "warning")
@@ -113,22 +120,22 @@ def test_config_fail_on_and_markers(pkg):
 
 
 def test_invalid_config_is_a_failing_item(pkg):
-    (pkg.path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/missing.urdf\n")
+    (pkg.root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/missing.urdf\n")
     result = run(pkg, "-v")
     result.assert_outcomes(passed=1, failed=1)
     result.stdout.fnmatch_lines(["*urdfcheck-config FAILED*", "*invalid urdfcheck config*missing.urdf*"])
 
 
 def test_plugin_can_be_disabled(pkg):
-    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
-    (pkg.path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/bad.urdf\n")
+    (pkg.root / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/bad.urdf\nselect: [U]\n")
     result = run(pkg, "-p", "no:urdfcheck.pytest_plugin")  # plugin blocked
     result.assert_outcomes(passed=1)
 
 
 def test_junit_xml_of_the_package_run(pkg):
-    (pkg.path / "urdf" / "bad.urdf").write_text(BAD)
+    (pkg.root / "urdf" / "bad.urdf").write_text(BAD)
     result = run(pkg, "--urdfcheck", "--junit-xml=out.xml")
     result.assert_outcomes(passed=1, failed=1)
-    xml = (pkg.path / "out.xml").read_text()
+    xml = (pkg.root / "out.xml").read_text()
     assert 'name="urdfcheck"' in xml and "U002" in xml

@@ -3,7 +3,8 @@
 `pre-commit try-repo PATH` clones PATH at HEAD; for a dirty tree it commits tracked changes (`git add -u`)
 into a shadow clone, so untracked files (new modules, the hooks file itself) would be missing. The tests
 therefore snapshot the working tree (tracked + untracked, minus ignored files) into a temporary git repo.
-pre-commit then builds a virtualenv and pip-installs that snapshot (once per test session, ~40 s).
+pre-commit then builds a virtualenv and pip-installs that snapshot: once for try-repo (which always uses a
+fresh store) and once for the configured project (~20-30 s each, most of it pip).
 """
 import os
 import shutil
@@ -79,7 +80,8 @@ def env(tmp_path_factory):
     git("add", "-A", cwd=snap, env=environ)
     git("commit", "-q", "-m", "snapshot", cwd=snap, env=environ)
     rev = git("rev-parse", "HEAD", cwd=snap, env=environ).stdout.strip()
-    return {"base": base, "snap": snap, "rev": rev, "environ": environ}
+    yield {"base": base, "snap": snap, "rev": rev, "environ": environ}
+    shutil.rmtree(base, ignore_errors=True)  # the hook virtualenvs are large
 
 
 def project(env, name):
@@ -96,43 +98,62 @@ def pre_commit(*args, cwd, env):
                           capture_output=True, text=True, timeout=600)
 
 
-def test_try_repo_bad_file_fails_good_file_passes(env):
+def test_try_repo_bad_file_fails(env):
+    """The documented way to try the hooks. try-repo installs into a fresh store every time (~25 s)."""
     proj = project(env, "try")
     bad = pre_commit("try-repo", str(env["snap"]), "urdfcheck", "--files", "bad.urdf", cwd=proj, env=env)
     assert bad.returncode == 1, bad.stdout + bad.stderr
     assert "bad.urdf:5  U002" in bad.stdout and "Failed" in bad.stdout
-    good = pre_commit("try-repo", str(env["snap"]), "urdfcheck", "--files", "good.urdf", cwd=proj, env=env)
-    assert good.returncode == 0, good.stdout + good.stderr
-    assert "Passed" in good.stdout
 
 
-def test_installed_hook_blocks_a_bad_commit(env):
-    proj = project(env, "commit")
+@pytest.fixture(scope="module")
+def configured(env):
+    """A project using both hooks from the snapshot; the hook environment is built once and reused."""
+    proj = project(env, "configured")
     (proj / ".pre-commit-config.yaml").write_text(
-        f"repos:\n  - repo: {env['snap']}\n    rev: {env['rev']}\n    hooks:\n      - id: urdfcheck\n")
-    r = pre_commit("install", cwd=proj, env=env)
+        f"repos:\n  - repo: {env['snap']}\n    rev: {env['rev']}\n    hooks:\n"
+        "      - id: urdfcheck\n      - id: urdfcheck-package\n        stages: [manual]\n")
+    r = pre_commit("install-hooks", cwd=proj, env=env)
+    assert r.returncode == 0, r.stdout + r.stderr
+    return proj
+
+
+def test_run_good_passes_bad_fails(env, configured):
+    good = pre_commit("run", "urdfcheck", "--files", "good.urdf", cwd=configured, env=env)
+    assert good.returncode == 0 and "Passed" in good.stdout, good.stdout + good.stderr
+    bad = pre_commit("run", "urdfcheck", "--files", "bad.urdf", "good.urdf", cwd=configured, env=env)
+    assert bad.returncode == 1, bad.stdout + bad.stderr
+    assert "bad.urdf:5  U002" in bad.stdout and "good.urdf:" not in bad.stdout
+    skipped = pre_commit("run", "urdfcheck", "--files", ".pre-commit-config.yaml", cwd=configured, env=env)
+    assert skipped.returncode == 0 and "no files to check" in skipped.stdout
+
+
+def test_installed_hook_blocks_a_bad_commit(env, configured):
+    e = env["environ"]
+    r = pre_commit("install", cwd=configured, env=env)
     assert r.returncode == 0, r.stderr
-    git("add", ".pre-commit-config.yaml", "good.urdf", cwd=proj, env=env["environ"])
-    ok = subprocess.run(["git", "commit", "-m", "good"], cwd=proj, env=env["environ"], capture_output=True, text=True)
+    git("add", ".pre-commit-config.yaml", "good.urdf", cwd=configured, env=e)
+    ok = subprocess.run(["git", "commit", "-m", "good"], cwd=configured, env=e, capture_output=True, text=True)
     assert ok.returncode == 0, ok.stdout + ok.stderr
-    git("add", "bad.urdf", cwd=proj, env=env["environ"])
-    bad = subprocess.run(["git", "commit", "-m", "bad"], cwd=proj, env=env["environ"], capture_output=True, text=True)
+    git("add", "bad.urdf", cwd=configured, env=e)
+    bad = subprocess.run(["git", "commit", "-m", "bad"], cwd=configured, env=e, capture_output=True, text=True)
     assert bad.returncode != 0
     assert "U002" in bad.stdout + bad.stderr
-    log = git("log", "--format=%s", cwd=proj, env=env["environ"]).stdout.split()
-    assert log == ["good"]
+    assert git("log", "--format=%s", cwd=configured, env=e).stdout.split() == ["good"]
+    git("reset", "-q", "bad.urdf", cwd=configured, env=e)
 
 
-def test_package_hook_lints_without_file_names(env):
-    proj = project(env, "package")
-    (proj / "bad.urdf").unlink()
-    r = pre_commit("try-repo", str(env["snap"]), "urdfcheck-package", "--all-files", cwd=proj, env=env)
-    assert r.returncode == 0, r.stdout + r.stderr
-    (proj / "urdf").mkdir()
-    (proj / "urdf" / "arm.urdf").write_text(BAD)
-    (proj / "urdfcheck.yaml").write_text("models:\n  - path: urdf/arm.urdf\n")
-    git("add", "-A", cwd=proj, env=env["environ"])
-    r = pre_commit("try-repo", str(env["snap"]), "urdfcheck-package", "--all-files", cwd=proj, env=env)
+def test_package_hook_lints_what_the_config_declares(env, configured):
+    e = env["environ"]
+    (configured / "urdf").mkdir()
+    (configured / "urdf" / "arm.urdf").write_text(BAD)
+    (configured / "urdfcheck.yaml").write_text("models:\n  - path: good.urdf\n")
+    run = ("run", "urdfcheck-package", "--hook-stage", "manual", "--all-files")
+    git("add", "-A", cwd=configured, env=e)
+    r = pre_commit(*run, cwd=configured, env=env)
+    assert r.returncode == 0, r.stdout + r.stderr  # bad.urdf and urdf/arm.urdf are not declared
+    (configured / "urdfcheck.yaml").write_text("models:\n  - path: good.urdf\n  - path: urdf/arm.urdf\n")
+    git("add", "-A", cwd=configured, env=e)
+    r = pre_commit(*run, cwd=configured, env=env)
     assert r.returncode == 1, r.stdout + r.stderr
-    assert "urdf/arm.urdf:5  U002" in r.stdout
-    assert "good.urdf" not in r.stdout  # only what the config declares
+    assert "urdf/arm.urdf:5  U002" in r.stdout and "bad.urdf" not in r.stdout

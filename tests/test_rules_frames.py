@@ -82,5 +82,10 @@ def test_f002_option():
     assert codes(run(chain("base_link", "arm"), options={"F002": {"expected": ["chassis"]}})) == ["F002"]
 
 
+def test_f002_base_frame_from_the_config():
+    cfg = SimpleNamespace(frames={"map": "map", "odom": "odom", "base": "chassis"})
+    assert run(chain("chassis", "arm"), config=cfg) == []
+
+
 def test_f002_not_with_several_roots():
     assert run('<robot name="r"><link name="a"/><link name="b"/></robot>') == []

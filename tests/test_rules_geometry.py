@@ -106,6 +106,12 @@ def test_g001_outside_package_roots_not_checked(pkg):
     assert all("outside the package roots, not checked" in f.message for f in found)
 
 
+def test_g001_package_uri_without_package_name(pkg):
+    p = write_model(pkg, "package:///g001_pkg/meshes/part.stl")
+    found = lint_file(p)
+    assert codes(found) == ["G001"] and "no package name" in found[0].message
+
+
 def test_g001_remote_and_unsupported_schemes(pkg):
     p = write_model(pkg, "https://example.com/part.stl", "model://part/meshes/part.dae")
     found = lint_file(p)
@@ -147,13 +153,12 @@ def test_g002_non_positive_primitive(geometry, what):
 
 
 def test_g002_zero_mesh_scale_is_an_error():
-    found = run(robot(link(visual('<mesh filename="package://p/m.stl" scale="1 0 1"/>'))), select=("G002",))
+    found = run(robot(link(visual('<mesh filename="package://p/m.stl" scale="1 0 -1"/>'))), select=("G002",))
     assert codes(found) == ["G002"] and found[0].severity == Severity.ERROR and "along y" in found[0].message
 
 
-def test_g002_negative_mesh_scale_is_a_warning():
-    found = run(robot(link(visual('<mesh filename="package://p/m.stl" scale="-1 1 1"/>'))), select=("G002",))
-    assert codes(found) == ["G002"] and found[0].severity == Severity.WARNING and "mirrored" in found[0].message
+def test_g002_negative_mesh_scale_mirrors_and_is_fine():
+    assert run(robot(link(visual('<mesh filename="package://p/m.stl" scale="1 -1 1"/>'))), select=("G002",)) == []
 
 
 def test_g002_positive_sizes_are_fine():
@@ -209,9 +214,10 @@ def test_g003_top_level_material_without_colour():
     assert found[0].related
 
 
-def test_g003_nameless_material():
-    found = run(robot(link(visual('<sphere radius="1"/>', '<material><color rgba="1 0 0 1"/></material>'))))
-    assert codes(found) == ["G003"] and "no name" in found[0].message
+def test_g003_empty_name_with_inline_colour_is_fine():
+    # SolidWorks exporter style: urdfdom only looks up non-empty names, the inline colour is used
+    found = run(robot(link(visual('<sphere radius="1"/>', '<material name=""><color rgba="1 0 0 1"/></material>'))))
+    assert found == []
 
 
 # --- G004 --------------------------------------------------------------------------------------------

@@ -192,7 +192,8 @@ class Config:
         for m in chosen:
             consumers = consumers_for_model(m, self, packages=pk)
             for vname, vargs in m.variant_args():
-                out.append(Target(Path(m.path), {**vargs, **cli_args}, vname, consumers, dict(pk)))
+                out.append(Target(path=Path(m.path), args={**vargs, **cli_args}, variant=vname,
+                                  contracts=consumers, packages=dict(pk)))
         if rest:
             for t in targets_for(rest, cli_args, pk):
                 out.append(t)
@@ -302,15 +303,24 @@ def _validate(data, path: str, key_loc, val_loc) -> None:
             loc = key_loc(*where, bad)
             dotted = ".".join(str(p) for p in (*where, bad))
             raise ConfigError(f"unknown key '{dotted}'" + _suggest(bad, err.schema.get("properties", {})), loc)
-    if err.validator == "propertyNames":
+    if "propertyNames" in err.schema_path:
         bad = err.instance
         loc = key_loc(*where, bad)
-        raise ConfigError(f"bad key '{'.'.join(str(p) for p in (*where, bad))}': {err.message}", loc)
+        dotted = ".".join(str(p) for p in (*where, bad))
+        raise ConfigError(f"bad key '{dotted}': {_short_message(err)}", loc)
     loc = val_loc(*where) if where else Location(path)
     raise ConfigError(f"'{key}': {_short_message(err)}", loc)
 
 
+_CODE_PATTERNS = ("^(ALL|[A-Z][0-9]{0,3})$", "^[A-Z][0-9]{3}$")
+
+
 def _short_message(err) -> str:
+    if err.validator == "pattern" and err.validator_value in _CODE_PATTERNS:
+        return f"{err.instance!r} is not a rule code" + (" or prefix (e.g. S001, J, ALL)"
+                                                        if err.validator_value == _CODE_PATTERNS[0] else " (e.g. C010)")
+    if err.validator == "pattern" and "->" in str(err.validator_value):
+        return f"{err.instance!r} is not a TF edge written 'parent->child'"
     msg = err.message
     if err.validator == "oneOf" and err.context:
         msg = min((e.message for e in err.context), key=len)

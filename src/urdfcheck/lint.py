@@ -33,31 +33,11 @@ class Result:
         return any(f.severity >= fail_on for f in self.findings)
 
 
-_SKIP = {".git", "build", "install", "log", "node_modules", "__pycache__", ".venv"}
-
-
 def entry_models(folder: Path) -> list[Path]:
-    """Entry models of a package: URDF files, and xacro files with a <robot> root that no other file includes."""
-    import re
+    """Entry models of a package: URDF files, and xacro robots that no other file includes."""
+    from .contracts.discover import discover
 
-    files = []
-    for dirpath, dirnames, filenames in os.walk(folder):
-        dirnames[:] = sorted(d for d in dirnames if d not in _SKIP and not d.startswith("."))
-        for n in sorted(filenames):
-            if n.endswith((".urdf", ".xacro")):
-                files.append(Path(dirpath) / n)
-    included = set()
-    robots = []
-    for f in files:
-        try:
-            head = f.read_bytes()[:1_000_000].decode("utf-8", "replace")
-        except OSError:
-            continue
-        for m in re.finditer(r"<xacro:include\s[^>]*filename\s*=\s*[\"']([^\"']+)", head):
-            included.add(os.path.basename(m.group(1)))
-        if re.search(r"<robot[\s>]", head):
-            robots.append(f)
-    return [f for f in robots if f.name not in included or f.suffix == ".urdf"]
+    return [Path(m) for m in discover(folder).models]
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
@@ -105,9 +85,22 @@ def targets_for(paths: list[str], args: dict | None = None, packages: dict | Non
     for raw in paths:
         p = Path(raw)
         if p.is_dir():
-            out.extend(Target(e, dict(args or {}), packages=dict(packages or {})) for e in entry_models(p))
+            out.extend(package_targets(p, args or {}, packages or {}))
         else:
             out.append(Target(p, dict(args or {}), packages=dict(packages or {})))
+    return out
+
+
+def package_targets(folder: Path, args: dict, packages: dict) -> list[Target]:
+    """Zero-config: each entry model of a package, and for xacro each combination of its boolean
+    xacro:args that the command line does not fix (bounded; the variant names the values)."""
+    from .config import auto_variants
+
+    out = []
+    for entry in entry_models(folder):
+        variants = auto_variants(str(entry), args) if entry.name.endswith(".xacro") else [("", {})]
+        for name, vargs in variants:
+            out.append(Target(entry, {**vargs, **args}, variant=name, packages=dict(packages)))
     return out
 
 

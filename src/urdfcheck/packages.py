@@ -48,7 +48,8 @@ def workspace_root(path: Path) -> Path:
     return outer.parent if outer.parent != outer else outer
 
 
-def scan(root: Path) -> dict[str, Path]:
+def scan(root: Path, near: Path | None = None) -> dict[str, Path]:
+    """name -> package folder below `root`. When a name occurs twice, the folder nearest `near` wins."""
     found: dict[str, Path] = {}
     visited = 0
     stack = [(root, 0)]
@@ -62,12 +63,22 @@ def scan(root: Path) -> dict[str, Path]:
         for e in entries:
             if e.name == "package.xml" and e.is_file():
                 name = package_name(Path(e.path))
-                if name and name not in found:
+                if name and (name not in found or _closer(Path(d), found[name], near)):
                     found[name] = Path(d)
             elif depth < SCAN_DEPTH and e.is_dir(follow_symlinks=False) and e.name not in _SKIP_DIRS \
                     and not e.name.startswith("."):
                 stack.append((Path(e.path), depth + 1))
     return found
+
+
+def _closer(a: Path, b: Path, near: Path | None) -> bool:
+    if near is None:
+        return False
+
+    def shared(p: Path) -> int:
+        return len(os.path.commonpath([str(p), str(near)]))
+
+    return shared(a) > shared(b)
 
 
 class Resolver:
@@ -78,6 +89,7 @@ class Resolver:
         self._ament = [Path(p) for p in env.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
         self._ros = [Path(p) for p in env.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
         self.workspace = workspace_root(near) if near is not None else None
+        self.near = near.resolve() if near is not None else None
         self._scanned: dict[str, Path] | None = None
         self._ros_scanned: dict[str, Path] | None = None
         self.used: dict[str, Path] = {}
@@ -104,7 +116,7 @@ class Resolver:
                 return self._ros_scanned[name]
         if self.workspace is not None:
             if self._scanned is None:
-                self._scanned = scan(self.workspace)
+                self._scanned = scan(self.workspace, self.near)
             if name in self._scanned:
                 return self._scanned[name]
         return None
@@ -155,7 +167,7 @@ class Resolver:
             if root is None:
                 return None, f"package {name!r} not found"
             path = root / sub
-            if not path.exists():
+            if self.allowed(path) and not path.exists():  # `..` may leave the roots: never stat outside
                 path = self.source_layout(path) or path
             return path, None
         if uri.startswith("file://"):

@@ -68,6 +68,8 @@ def _setup(config) -> SimpleNamespace | None:
             _prepare(state, config)
         except _ConfigProblem as e:
             state.error = str(e)
+        except Exception as e:  # never break the package's own test session: report it as a failing item
+            state.error = f"{type(e).__name__}: {e}"
     setattr(config, _STATE, state)
     return state
 
@@ -103,18 +105,30 @@ def pytest_collection_modifyitems(session, config, items):
     state = _setup(config)
     if state is None:
         return
-    new = []
+    parents: dict = {}
+    children: dict = {}
+
+    def parent_for(path: Path):
+        path = Path(os.path.abspath(path))
+        if path not in parents:
+            rel = os.path.relpath(path, state.rootdir).replace(os.sep, "/")
+            parents[path] = UrdfcheckFile.from_parent(session, path=path, nodeid=rel)
+            children[path] = []
+        return parents[path], children[path]
+
     if state.error is not None:
-        parent = UrdfcheckFile.from_parent(session, path=Path(state.config_path or state.rootdir))
-        new.append(UrdfcheckItem.from_parent(parent, name="urdfcheck-config", target=None, state=state))
+        parent, kids = parent_for(Path(state.config_path or state.rootdir))
+        kids.append(UrdfcheckItem.from_parent(parent, name="urdfcheck-config", target=None, state=state))
     else:
-        parents: dict = {}
         for t in state.targets:
-            path = Path(os.path.abspath(t.path))
-            if path not in parents:
-                parents[path] = UrdfcheckFile.from_parent(session, path=path)
+            parent, kids = parent_for(t.path)
             name = f"urdfcheck[{t.variant}]" if t.variant else "urdfcheck"
-            new.append(UrdfcheckItem.from_parent(parents[path], name=name, target=t, state=state))
+            kids.append(UrdfcheckItem.from_parent(parent, name=name, target=t, state=state))
+    new = []
+    for path, parent in parents.items():
+        # report the collection like pytest does for files it collects (counts, --co, junitxml)
+        config.hook.pytest_collectreport(report=pytest.CollectReport(parent.nodeid, "passed", None, children[path]))
+        new.extend(children[path])
     items[:0] = new
 
 

@@ -214,10 +214,10 @@ def sample_configurations(model, n: int, seed: int = 0):
 # --- deltas ---------------------------------------------------------------------------------------------------
 def _subtree(tree: KinematicTree, seg) -> tuple[str, ...]:
     out = {seg.child}
-    for s in tree.segments:
+    for s in tree.segments:  # parents first
         if s.parent in out:
             out.add(s.child)
-    return tuple(l for l in tree.links if l in out)
+    return tuple(link for link in tree.links if link in out)
 
 
 def semantic_deltas(model, tree: KinematicTree | None = None, peers=("pinocchio", "yourdfpy")) -> list[Delta]:
@@ -549,8 +549,16 @@ def _yourdfpy_job(progress, xml: str, links: list, values: dict, n: int):
     pairs = [pc for pc in pairs if pc in edges]
     mats = np.empty((n, len(pairs), 4, 4))
     step = max(1, n // 50)
+    stale = np.full((4, 4), np.nan)
+    given = [name for name in actuated if name in values]
+    touched = [(j.parent, j.child) for j in u.robot.joints
+               if (j.name in given or j.mimic is not None) and (j.parent, j.child) in edges]
     for i in range(n):
-        u.update_cfg({name: float(values[name][i]) for name in actuated if name in values})
+        # trimesh's scene graph ignores an update within 1e-8 of the stored matrix: invalidate what
+        # update_cfg recomputes, so that what is compared is yourdfpy's kinematics, not that cache
+        for pc in touched:
+            edges[pc]["matrix"] = stale
+        u.update_cfg({name: float(values[name][i]) for name in given})
         mats[i] = [edges[pc]["matrix"] for pc in pairs]
         if i % step == 0:
             progress(i, n)
@@ -590,20 +598,26 @@ def _compare(name, ref: dict, other: dict, configs, excluded: dict, tolerance: f
 
     res = PeerResult(name, "ok", tolerance=tolerance)
     res.excluded = dict(excluded)
-    for link, a in ref.items():
+    names = []
+    for link in ref:
         if link in excluded:
             continue
-        b = other.get(link)
-        if b is None:
+        if other.get(link) is None:
             res.excluded[link] = f"{name} has no frame for this link"
             continue
+        names.append(link)
+    m = len(configs)
+    if names and m:
+        a = np.stack([ref[k] for k in names])  # (L, M, 4, 4)
+        b = np.stack([other[k] for k in names])
         dt, dr = pose_errors(a, b)
-        both_nan = np.isnan(a[:, :3, :]).any(axis=(1, 2)) & np.isnan(b[:, :3, :]).any(axis=(1, 2))
+        both_nan = np.isnan(a[..., :3, :]).any(axis=(-1, -2)) & np.isnan(b[..., :3, :]).any(axis=(-1, -2))
         dt = np.where(both_nan, np.inf, dt)
         dr = np.where(both_nan, np.inf, dr)
-        worst = int(np.argmax(np.maximum(dt, dr))) if len(dt) else 0
-        res.links[link] = LinkError(link, float(dt.max()) if len(dt) else 0.0, float(dr.max()) if len(dr) else 0.0,
-                                    int(configs[worst]) if len(dt) else 0)
+        worst = np.argmax(np.maximum(dt, dr), axis=1)
+        tmax, rmax = dt.max(axis=1), dr.max(axis=1)
+        for i, link in enumerate(names):
+            res.links[link] = LinkError(link, float(tmax[i]), float(rmax[i]), int(configs[int(worst[i])]))
     res.configurations = len(configs)
     if res.failing():
         res.status = "mismatch"
@@ -674,9 +688,9 @@ def publisher_poses(model, names, configs, progress=None):
         trans[idx_s, idx_c] = np.array([t[2] for t in flat])
         rots[idx_s, idx_c] = np.array([t[3] for t in flat])
     edges = {name: (trans[col[name]], rots[col[name]]) for name in mov}
+    fixed_of_child = {pub.frame(s.child): s.name for s in tree.fixed.values()}
     for t in pub.static_transforms():
-        s = next(s for s in tree.fixed.values() if pub.frame(s.child) == t.child)
-        edges[s.name] = (np.array(t.translation), np.array(t.rotation))
+        edges[fixed_of_child[t.child]] = (np.array(t.translation), np.array(t.rotation))
     if progress:
         progress("publisher", n, n)
     return compose_published(tree, edges, n)

@@ -80,6 +80,8 @@ def _matches(name: str, expected) -> bool:
     """An expected name, also behind a multi-robot prefix: 'robot1/base_link', 'left_base_link', and
     '${namespace}base_footprint' in files that a launch script fills in before use."""
     for e in expected:
+        if not e:
+            continue
         if name == e:
             return True
         if name.endswith(e) and name[-len(e) - 1] in "/_}":
@@ -93,6 +95,10 @@ def unexpected_root_name(model, ctx):
     if root is None:
         return
     expected = [str(n) for n in (ctx.options.get("expected", DEFAULT_ROOTS) or ())]
+    frames = getattr(ctx.config, "frames", None)
+    base = _frame_setting(frames, "base") if frames is not None else None
+    if base and base not in expected:
+        expected.append(base)  # the project's own base frame (config `frames: {base: ...}`)
     if _matches(root, expected) or _role(root, localization_frames(ctx)) is not None:
         return  # F001 reports a map/odom root
     link = model.links.get(root)

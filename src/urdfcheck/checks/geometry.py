@@ -5,7 +5,7 @@ import fnmatch
 import os
 from pathlib import Path
 
-from ..findings import Problem, Severity
+from ..findings import Problem
 from ..rulebook import check
 
 _REMOTE = ("http://", "https://", "ftp://")
@@ -43,7 +43,7 @@ def _resolver(model, ctx):
 
 
 def _case_hint(path: Path, listing: dict) -> str:
-    """' (did you mean X? file names are case-sensitive)' when only the case differs."""
+    """A hint when the folder holds the file under another case (Windows and macOS exports: Base.STL)."""
     folder = path.parent
     names = listing.get(folder)
     if names is None:
@@ -115,11 +115,12 @@ def non_positive_size(model, ctx):
         g = shape.geometry
         if g is None:
             continue
-        what = _what(link, shape)
         if g.kind == "box" and g.size is not None:
+            if min(g.size) > 0:
+                continue
             bad = [f"{axis}={v:g}" for axis, v in zip("xyz", g.size) if v <= 0]
             if bad:
-                yield Problem(f"box of the {what} has non-positive size {', '.join(bad)} "
+                yield Problem(f"box of the {_what(link, shape)} has non-positive size {', '.join(bad)} "
                               f"(size=\"{' '.join(f'{v:g}' for v in g.size)}\")", at=g)
         elif g.kind in ("cylinder", "capsule", "sphere"):
             bad = []
@@ -128,19 +129,16 @@ def non_positive_size(model, ctx):
             if g.kind != "sphere" and g.length is not None and g.length <= 0:
                 bad.append(f"length={g.length:g}")
             if bad:
-                yield Problem(f"{g.kind} of the {what} has non-positive {', '.join(bad)}", at=g)
+                yield Problem(f"{g.kind} of the {_what(link, shape)} has non-positive {', '.join(bad)}", at=g)
         elif g.kind == "mesh" and g.scale is not None:
+            # a negative scale mirrors the mesh: a common, deliberate way to reuse left parts on the right
+            # (Ogre flips face culling for negative scales, MuJoCo mirrors meshes the same way), not reported
             zero = [a for a, v in zip("xyz", g.scale) if v == 0]
-            negative = [a for a, v in zip("xyz", g.scale) if v < 0]
-            shown = " ".join(f"{v:g}" for v in g.scale)
             if zero:
-                yield Problem(f"mesh scale=\"{shown}\" of the {what} is zero along {', '.join(zero)}: the mesh "
-                              "collapses to a flat or empty shape (invisible in RViz, no collision volume)", at=g)
-            elif negative:
-                yield Problem(f"mesh scale=\"{shown}\" of the {what} is negative along {', '.join(negative)}: the "
-                              "mesh is mirrored and its triangles turn inside out (dark or see-through faces in "
-                              "RViz and Gazebo, inverted normals for collision checking); prefer a mirrored mesh "
-                              "file", at=g, severity=Severity.WARNING)
+                shown = " ".join(f"{v:g}" for v in g.scale)
+                yield Problem(f"mesh scale=\"{shown}\" of the {_what(link, shape)} is zero along "
+                              f"{', '.join(zero)}: the mesh collapses to a flat or empty shape (invisible in RViz, no "
+                              "collision volume)", at=g)
 
 
 # --- G003 ------------------------------------------------------------------------------------------
@@ -158,23 +156,22 @@ def undefined_material(model, ctx):
     for link in model.link_list:
         for v in link.visuals:
             ref = v.material
-            if ref and ref.name and (ref.rgba is not None or ref.texture):
+            if ref is not None and ref.name and (ref.rgba is not None or ref.texture):
                 inline_defs.setdefault(ref.name, ref)
     for link in model.link_list:
         for v in link.visuals:
             ref = v.material
             if ref is None:
                 continue
-            what = _what(link, v)
             if not ref.name:
-                yield Problem(f"<material> of the {what} has no name: urdfdom rejects the visual and stops reading "
-                              "the link (its remaining visuals and collisions are lost)", at=ref)
+                # name="" (SolidWorks exporter style) keeps its inline colour: urdfdom looks up only non-empty
+                # names. A missing name attribute cannot be told apart here (the builder's concern).
                 continue
             name = ref.name
             if name in top:
                 m = top[name]
                 if m.rgba is None and not m.texture:
-                    yield Problem(f"material {name!r} used by the {what} is defined at the top level without "
+                    yield Problem(f"material {name!r} used by the {_what(link, v)} is defined at the top level without "
                                   "<color> or <texture>: urdfdom logs an error and the visual gets no colour",
                                   at=ref, related=(m,))
                 continue
@@ -182,9 +179,9 @@ def undefined_material(model, ctx):
             if name in registered:
                 if defined_inline and name in empty_first:
                     first = empty_first[name]
-                    yield Problem(f"material {name!r} is defined here, but the {what} comes after a name-only "
-                                  f"reference to it: urdfdom keeps the first, colourless registration and ignores "
-                                  f"this colour", at=ref, related=(first,))
+                    yield Problem(f"material {name!r} is defined here, but the {_what(link, v)} comes after a "
+                                  "name-only reference to it: urdfdom keeps the first, colourless registration and "
+                                  "ignores this colour", at=ref, related=(first,))
                 continue
             registered[name] = ref
             if defined_inline:
@@ -192,14 +189,14 @@ def undefined_material(model, ctx):
             empty_first[name] = ref
             later = inline_defs.get(name)
             if later is not None:
-                yield Problem(f"material {name!r} of the {what} is referenced by name before it is defined (inline, "
-                              "in a later link): urdfdom registers the empty name first, so this visual and the "
+                yield Problem(f"material {name!r} of the {_what(link, v)} is referenced by name before it is "
+                              "defined (inline, in a later link): urdfdom registers the empty name first, so this visual and the "
                               "defining one both lose their colour; define it at the top level", at=ref,
                               related=(later,))
             else:
-                yield Problem(f"material {name!r} of the {what} is never defined: no top-level <material> and no "
-                              "visual defines it with <color> or <texture>, so urdfdom registers a colourless material and "
-                              "RViz draws the visual in its default colour", at=ref)
+                yield Problem(f"material {name!r} of the {_what(link, v)} is never defined: no top-level "
+                              "<material> and no visual defines it with <color> or <texture>, so urdfdom registers a colourless "
+                              "material and RViz draws the visual in its default colour", at=ref)
 
 
 # --- G004 ------------------------------------------------------------------------------------------
@@ -236,11 +233,13 @@ def rgba_out_of_range(model, ctx):
 
 @check("G005")
 def missing_geometry(model, ctx):
+    consequence = ("urdfdom rejects it and stops reading the link, so the link's remaining visuals and "
+                   "collisions are lost")
     for link, shape in _shapes(model):
-        what = _what(link, shape)
         g = shape.geometry
-        consequence = ("urdfdom rejects it and stops reading the link, so the link's remaining visuals and "
-                       "collisions are lost")
+        if g is not None and g.kind in _KNOWN_SHAPES:
+            continue
+        what = _what(link, shape)
         if g is None:
             yield Problem(f"the {what} has no <geometry>: {consequence}", at=shape)
         elif g.kind == "":

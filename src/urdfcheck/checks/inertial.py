@@ -5,13 +5,16 @@ with cyclic Jacobi rotations in plain Python: exact to rounding for 3x3, no nump
 """
 from __future__ import annotations
 
+import functools
 import math
 
-from ..findings import Problem, Severity
+from ..findings import Problem
 from ..rulebook import check
 
 _UNREADABLE = ("U004", "U005", "U006")
 PSD_RTOL = 1e-5  # a principal moment below -PSD_RTOL * largest moment is negative, not rounding
+ATOL = 1e-12  # kg m^2: moments this small are zero (exporters write 1e-35 or 1e-20 for "nothing")
+MIN_MASS = 1e-3  # kg: lighter links are placeholders ("1e-6 kg" frames); their tensors do not matter
 
 
 def _fmt(x: float, scale: float = 0.0) -> str:
@@ -26,8 +29,12 @@ def tensor(inertia) -> list[list[float]]:
     return [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]
 
 
+@functools.lru_cache(maxsize=4096)  # I003 and I004 ask for the same tensors; models repeat them
 def principal_moments(inertia) -> tuple[float, float, float]:
     """Eigenvalues of the inertia tensor, ascending (cyclic Jacobi; converges in a handful of sweeps)."""
+    inertia = tuple(inertia)
+    if inertia[1] == 0.0 and inertia[2] == 0.0 and inertia[4] == 0.0:
+        return tuple(sorted((inertia[0], inertia[3], inertia[5])))  # type: ignore[return-value]
     a = tensor(inertia)
     for _ in range(50):
         off = a[0][1] ** 2 + a[0][2] ** 2 + a[1][2] ** 2
@@ -52,16 +59,31 @@ def principal_moments(inertia) -> tuple[float, float, float]:
     return tuple(sorted((a[0][0], a[1][1], a[2][2])))  # type: ignore[return-value]
 
 
-def _tensor_readable(model, inertial) -> bool:
-    """False when the builder already reported an unreadable <inertia> value (it substituted 0.0)."""
-    loc = inertial.inertia_loc
-    return not any(i.loc == loc and i.code in _UNREADABLE for i in model.issues)
+def _unreadable_locs(model) -> set:
+    """Where the builder reported an unreadable value (for <inertia> it substituted 0.0)."""
+    return {i.loc for i in model.issues if i.code in _UNREADABLE}
 
 
 def _inertials(model):
     for link in model.link_list:
         if link.inertial is not None:
             yield link, link.inertial
+
+
+def _tensors(model, ctx):
+    """(link, inertial, ascending principal moments, atol) for the tensors I003/I004 judge."""
+    atol = float(ctx.options.get("atol", ATOL))
+    min_mass = float(ctx.options.get("min_mass", MIN_MASS))
+    unreadable = _unreadable_locs(model)
+    for link, inertial in _inertials(model):
+        if inertial.inertia is None or inertial.inertia_loc in unreadable:
+            continue
+        m = inertial.mass
+        if m is not None and m <= 0 and not any(inertial.inertia):
+            continue  # massless written as zeros: I002's concern
+        if m is not None and 0 < m < min_mass:
+            continue  # a placeholder mass: its tensor is a placeholder too and cannot affect the dynamics
+        yield link, inertial, principal_moments(inertial.inertia), atol
 
 
 @check("I001")
@@ -102,40 +124,35 @@ def non_positive_mass(model, ctx):
                 f"link {link.name!r} has mass 0 but a non-zero inertia tensor: no body has rotational inertia "
                 "without mass; give it its real mass, or remove <inertial> if the link is a massless frame",
                 at=at)
-        elif parent is not None and parent.type == "fixed":
+        elif parent is not None and parent.type != "fixed":
             yield Problem(
-                f"link {link.name!r} has mass 0: harmless here because fixed joint {parent.name!r} merges it "
-                "into its parent, but a massless frame is written without <inertial> (a zero mass on a moving "
-                "link makes Gazebo drop it)", at=at, severity=Severity.WARNING)
-        else:
-            how = f"joint {parent.name!r} ({parent.type})" if parent is not None else "no parent joint (root)"
-            yield Problem(
-                f"link {link.name!r} has mass 0 on {how}: Gazebo's URDF import drops a zero-mass link together "
-                "with its child links and joints, and the joint-space mass matrix can become singular "
-                "(Pinocchio/KDL dynamics); give it a real mass or remove <inertial> and fix it to a massive link",
-                at=at)
+                f"link {link.name!r} has mass 0 on {parent.type} joint {parent.name!r}: Gazebo's URDF import drops "
+                "a zero-mass link together with its child links and joints, and with nothing massive below it "
+                "the joint has no inertia (singular joint-space mass matrix in Pinocchio and KDL dynamics). Give "
+                "it its real mass", at=at)
+        # zero mass and zero tensor on a fixed joint or on the root: the common "massless frame" idiom (optical
+        # frames, tool points, base_footprint). Gazebo, Pinocchio and MuJoCo merge it into its neighbour, so it
+        # is harmless and not reported.
 
 
 @check("I003")
 def inertia_not_positive_definite(model, ctx):
     rtol = float(ctx.options.get("rtol", PSD_RTOL))
     allow_singular = bool(ctx.options.get("allow_singular", True))
-    for link, inertial in _inertials(model):
-        if inertial.inertia is None or not _tensor_readable(model, inertial):
-            continue
-        if inertial.mass is not None and inertial.mass <= 0 and not any(inertial.inertia):
-            continue  # massless written as zeros: I002's finding
-        moments = principal_moments(inertial.inertia)
+    for link, inertial, moments, atol in _tensors(model, ctx):
         lo, hi = moments[0], moments[2]
-        shown = ", ".join(_fmt(x, hi) for x in moments)
+        scale = max(abs(hi), abs(lo))
+        if scale <= atol:
+            lo = hi = 0.0  # an all-zero tensor written with floating-point noise: a point mass
+        shown = ", ".join(_fmt(x, scale) for x in moments)
         at = inertial.inertia_loc or inertial
-        if lo < -rtol * max(abs(hi), abs(lo)):
+        if lo < -max(rtol * scale, atol):
             yield Problem(
                 f"inertia tensor of link {link.name!r} is not positive definite: principal moments {shown} "
                 "(a negative moment of inertia does not exist; check signs of the products of inertia and the "
                 "units)", at=at)
-        elif not allow_singular and lo <= rtol * abs(hi):
-            kind = "all principal moments are zero (a point mass)" if hi <= 0.0 else \
+        elif not allow_singular and lo <= max(rtol * abs(hi), atol):
+            kind = "all principal moments are zero (a point mass)" if hi <= atol else \
                 f"a principal moment is zero ({shown}: a thin rod or plate)"
             yield Problem(f"inertia tensor of link {link.name!r} is singular: {kind}", at=at)
 
@@ -143,13 +160,10 @@ def inertia_not_positive_definite(model, ctx):
 @check("I004")
 def inertia_triangle_inequality(model, ctx):
     rtol = float(ctx.options.get("rtol", 1e-4))
-    for link, inertial in _inertials(model):
-        if inertial.inertia is None or not _tensor_readable(model, inertial):
-            continue
-        a, b, c = principal_moments(inertial.inertia)
-        if c <= 0.0 or a < -PSD_RTOL * c:
+    for link, inertial, (a, b, c), atol in _tensors(model, ctx):
+        if c <= atol or a < -max(PSD_RTOL * c, atol):
             continue  # zero tensor or not positive semi-definite: I003's finding
-        if a + b >= c - rtol * c:
+        if a + b >= c - max(rtol * c, atol):
             continue
         diag = (inertial.inertia[0], inertial.inertia[3], inertial.inertia[5])
         on_diag = all(v == 0.0 for v in (inertial.inertia[1], inertial.inertia[2], inertial.inertia[4]))

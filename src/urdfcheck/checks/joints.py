@@ -37,6 +37,12 @@ def _axis_text(axis) -> str:
     return " ".join(_num(v) for v in axis)
 
 
+def _unreadable(model) -> set:
+    """Locations of elements with a value the builder could not read (U004/U005): their fields hold defaults,
+    which the J rules must not mistake for values written in the file."""
+    return {i.loc for i in model.issues if i.code in ("U004", "U005")}
+
+
 @check("J001")
 def unknown_joint_type(model, ctx):
     for j in model.joint_list:
@@ -52,6 +58,7 @@ def unknown_joint_type(model, ctx):
 
 @check("J002")
 def missing_limit(model, ctx):
+    unreadable = _unreadable(model)
     for j in model.joint_list:
         if j.type not in POSITION_LIMITED:
             continue
@@ -62,7 +69,7 @@ def missing_limit(model, ctx):
                 at=j)
             continue
         missing = [k for k in ("lower", "upper") if getattr(j.limit, k) is None]
-        if missing:
+        if missing and j.limit.loc not in unreadable:
             what = "neither lower nor upper" if len(missing) == 2 else f"no {missing[0]}"
             yield Problem(
                 f"the <limit> of {j.type} joint {_q(j.name)} gives {what}: urdfdom silently uses 0 "
@@ -73,8 +80,9 @@ def missing_limit(model, ctx):
 
 @check("J003")
 def inverted_limits(model, ctx):
+    unreadable = _unreadable(model)
     for j in model.joint_list:
-        if j.type not in POSITION_LIMITED or j.limit is None:
+        if j.type not in POSITION_LIMITED or j.limit is None or j.limit.loc in unreadable:
             continue
         lo, up = j.limit.lower, j.limit.upper
         eff_lo = 0.0 if lo is None else lo

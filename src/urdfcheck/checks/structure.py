@@ -22,6 +22,7 @@ Behaviour of the tools quoted in the messages was checked against urdfdom 3.0.1 
 from __future__ import annotations
 
 import difflib
+import weakref
 from dataclasses import dataclass
 
 from ..findings import Problem, Severity
@@ -35,8 +36,8 @@ def _first_joints(model) -> list:
     return [j for j in model.joint_list if model.joints.get(j.name) is j]
 
 
-def _suggest(name: str, candidates) -> str | None:
-    close = difflib.get_close_matches(name, sorted(candidates), n=1, cutoff=0.75)
+def _suggest(name: str, candidates: list[str]) -> str | None:
+    close = difflib.get_close_matches(name, candidates, n=1, cutoff=0.75)
     return close[0] if close else None
 
 
@@ -76,7 +77,8 @@ class _Cycle:
 
 
 class _Graph:
-    """Links as nodes, first-definition joints with both ends named as edges parent -> child."""
+    """Links as nodes (plus a phantom node per undefined name), every joint definition with both ends named as an
+    edge parent -> child."""
 
     def __init__(self, model):
         self.model = model
@@ -103,13 +105,12 @@ class _Graph:
         self.roots = [n for n in nodes if not self.parents.get(n)]
         self.defined_roots = [n for n in self.roots if n in self.defined]
         # defined links S003 proposes for a misspelt end: they only look disconnected because of the typo
-        self.suggested: set[str] = set()
-        for j in self.joints:
-            for end in (j.parent, j.child):
-                if end is not None and end not in self.defined:
-                    s = _suggest(end, self.defined)
-                    if s is not None:
-                        self.suggested.add(s)
+        self.suggestion: dict[str, str | None] = {}
+        candidates = sorted(self.defined)
+        for n in nodes:
+            if n not in self.defined:
+                self.suggestion[n] = _suggest(n, candidates)
+        self.suggested = {s for s in self.suggestion.values() if s is not None}
         self._cycles = None
 
     # --- connectivity ------------------------------------------------------------
@@ -223,12 +224,28 @@ class _Graph:
         return found
 
 
+_last: tuple = (None, None)  # (weakref to the model, its _Graph): S001..S006 run one after another on one model
+
+
+def _graph(model) -> _Graph:
+    global _last
+    ref, g = _last
+    if ref is not None and ref() is model:
+        return g
+    g = _Graph(model)
+    try:
+        _last = (weakref.ref(model), g)
+    except TypeError:  # a model type without weak references: just do not cache
+        pass
+    return g
+
+
 # --- S001 .. S006: one tree ----------------------------------------------------------
 
 
 @check("S001")
 def multiple_roots(model, ctx):
-    g = _Graph(model)
+    g = _graph(model)
     if len(model.links) < 2:
         return
     if not (g.touched & g.defined):
@@ -261,7 +278,7 @@ def multiple_roots(model, ctx):
 
 @check("S002")
 def no_root(model, ctx):
-    g = _Graph(model)
+    g = _graph(model)
     if not model.links or g.roots:
         return
     cycles = g.cycles()
@@ -270,7 +287,7 @@ def no_root(model, ctx):
         return
     first = cycles[0]
     others = [j for c in cycles for j in c.joints if j is not first.closing]
-    because = "; ".join(c.describe() for c in cycles)
+    because = "; ".join(c.describe() if c.self_loop else f"of the {c.describe()}" for c in cycles)
     yield Problem(
         f"no root link: every link is the child of a joint, because {because}. urdfdom refuses the model "
         f"('No root link found. The robot xml is not a valid tree')",
@@ -280,11 +297,12 @@ def no_root(model, ctx):
 @check("S003")
 def missing_link(model, ctx):
     links = model.links
+    g = _graph(model)
     for j in model.joint_list:
         for end, name, loc in (("parent", j.parent, j.parent_loc), ("child", j.child, j.child_loc)):
             if name is None or name in links:
                 continue
-            hint = _suggest(name, links)
+            hint = g.suggestion.get(name)
             hint = f" (did you mean {hint!r}?)" if hint else ""
             yield Problem(
                 f"joint {_q(j.name)} names {end} link {_q(name)}, which is not defined{hint}: urdfdom refuses the "
@@ -294,7 +312,7 @@ def missing_link(model, ctx):
 
 @check("S004")
 def multiple_parents(model, ctx):
-    g = _Graph(model)
+    g = _graph(model)
     for child in g.nodes:
         if child not in g.defined:
             continue
@@ -317,7 +335,7 @@ def multiple_parents(model, ctx):
 
 @check("S005")
 def kinematic_cycle(model, ctx):
-    g = _Graph(model)
+    g = _graph(model)
     if not g.roots:  # no root at all: S002 names the cycles
         return
     for c in g.cycles():
@@ -337,9 +355,11 @@ def kinematic_cycle(model, ctx):
 
 @check("S006")
 def disconnected_link(model, ctx):
-    g = _Graph(model)
+    g = _graph(model)
     if len(model.links) < 2 or not (g.touched & g.defined):
         return  # a single link is a valid model; links without any joint at all are S001
+    if not any(r in g.touched for r in g.roots):
+        return  # no rooted tree to be disconnected from (only cycles, reported by S005): this link is the root
     for link in model.links.values():
         if link.name in g.touched or link.name in g.suggested:
             continue

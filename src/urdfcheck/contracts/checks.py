@@ -10,10 +10,10 @@ import difflib
 import re
 from typing import Iterator
 
-from ..findings import Location, Problem, Severity
+from ..findings import Location, Problem
 from ..rulebook import check
 from .consumers import Consumers, discover_consumers
-from .controllers import DIFF_DRIVE, JSB, JSC
+from .controllers import JSB, JSC
 from .graph import (PublisherInfo, TFGraph, claims_from_localization, claims_from_model, claims_from_odom,
                     claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents,
                     not_one_tree, prefix_collisions, static_and_dynamic)
@@ -149,7 +149,8 @@ def _gazebo_state_joints(model) -> tuple[bool, set[str]]:
 def joint_without_state_source(model, ctx) -> Iterator[Problem]:
     """A movable joint nothing publishes a state for, in a deployment we know something about."""
     c = consumers(model, ctx)
-    if not len(c.controllers) and not c.drivers and not c.launch:
+    bringup = any(li.state_publishers for li in c.launch)  # a launch file that brings the robot up
+    if not len(c.controllers) and not c.drivers and not bringup:
         return
     movable = [j for j in model.joint_list if j.movable and j.mimic is None]
     if not movable:

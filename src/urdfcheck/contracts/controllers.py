@@ -381,9 +381,8 @@ def _finish(c: Controller, names_set: set[str]) -> None:
         joints = _str_list(p, "joints", notes)
         ifaces = _str_list(p, "interfaces", notes)
         if joints and joints[0]:
+            # (extra_joints are published with a zero state and need no hardware)
             c.state_joints = _joint_uses(joints[0], joints[1], c.name, names_set, (), ifaces[0] if ifaces else ())
-            extra = _str_list(p, "extra_joints", notes)
-            del extra  # extra joints are published as zero state; they need no hardware
         else:
             c.broadcasts_all = True
     elif c.kind == JSC:

@@ -280,6 +280,8 @@ def _record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
             prefix, ploc = "", None
         elif isinstance(v.value, str) and "$(" not in v.value:
             prefix, ploc = v.value, v.loc
+            if ros == 1 and prefix.strip("/"):  # ROS 1 tf_prefix "r1" makes frames "r1/base_link"
+                prefix = prefix.strip("/") + "/"
         else:
             prefix, ploc = None, v.loc
         info.state_publishers.append(StatePublisher(node.name or "robot_state_publisher", node.namespace, prefix,
@@ -288,7 +290,7 @@ def _record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
         info.joint_state_publishers.append(JointStatePublisher(node.name or pkg, pkg, node.loc, info.path, node.condition))
     elif pkg == "controller_manager" and exe in ("spawner", "spawner.py", "controller_manager"):
         if node.args is None:
-            info.notes.append((f"spawner arguments are not literal; the controllers it starts are unknown", node.loc))
+            info.notes.append(("spawner arguments are not literal; the controllers it starts are unknown", node.loc))
         if node.args:
             toks = list(node.args)
             i = 0

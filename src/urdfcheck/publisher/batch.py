@@ -4,7 +4,7 @@ numpy is imported inside the functions; importing this module costs nothing.
 """
 from __future__ import annotations
 
-from .kinematics import KinematicTree, kinematic_tree
+from .kinematics import KinematicTree, kinematic_tree, rot_from_quat
 
 
 def configuration_joints(model) -> list[str]:
@@ -183,7 +183,7 @@ def compose_published(tree: KinematicTree, edges: dict, n: int) -> dict:
             q = np.asarray(q, dtype=float)
             if t.ndim == 1:
                 local = np.eye(4)
-                local[:3, :3] = rotations_from_quaternions(q[None, :])[0]
+                local[:3, :3] = rot_from_quat(*q.tolist())
                 local[:3, 3] = t
             else:
                 local = np.zeros((n, 4, 4))

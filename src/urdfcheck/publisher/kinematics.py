@@ -289,11 +289,13 @@ class KinematicTree:
 
     def tf_root_of(self, link: str) -> str:
         """The root of `link`'s tree in robot_state_publisher's TF output."""
-        seg = self.by_child.get(link)
-        while seg is not None and seg.kind != "skipped":
-            link = seg.parent
-            seg = self.by_child.get(link)
-        return link
+        roots = self.__dict__.get("_tf_root_map")
+        if roots is None:
+            roots = {r: r for r in self.roots}
+            for s in self.segments:  # parents first
+                roots[s.child] = s.child if s.kind == "skipped" else roots.get(s.parent, s.parent)
+            self.__dict__["_tf_root_map"] = roots
+        return roots.get(link, link)
 
     def chain(self, link: str) -> list[Segment]:
         """Segments from the model root down to `link` (across floating joints)."""

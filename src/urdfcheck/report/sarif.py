@@ -70,8 +70,8 @@ def _rule(r) -> dict:
     return {
         "id": r.code,
         "name": r.name,
-        "shortDescription": {"text": clean_text(r.summary, 1000)},
-        "fullDescription": {"text": " ".join(r.rationale.split()) or clean_text(r.summary, 1000)},
+        "shortDescription": {"text": " ".join(r.summary.split())},
+        "fullDescription": {"text": " ".join(r.rationale.split()) or " ".join(r.summary.split())},
         "help": {"text": ruledocs.help_text(r), "markdown": ruledocs.help_markdown(r)},
         "defaultConfiguration": {"level": LEVELS[r.severity]},
         "properties": {"tags": [r.family], "problem.severity": str(r.severity)},

@@ -25,7 +25,13 @@ BUILTINS = {"include", "property", "macro", "arg", "element", "attribute", "if",
             "insert_block", "call"}
 MAX_INCLUDES = 5000
 MAX_FILE_BYTES = 16 * 1024 * 1024
-MAX_EVALS = 400_000  # elements evaluated; a macro bomb hits this long before memory runs out
+# Elements evaluated. The largest corpus model (PR2) evaluates ~2 800; a 1.2 KB macro bomb reaches 10 000 in
+# about a second, where 400 000 took minutes (xacro's cost per element grows with the document). Trusted
+# (own) files keep a larger budget.
+MAX_EVALS = 10_000
+MAX_EVALS_TRUSTED = 400_000
+MAX_EXPR_ITER = 500_000  # items iterated by all ${...} of one expansion (~0.5 s; corpus models: < 1 000)
+MAX_TEXT = xmlfront.MAX_BYTES  # characters of evaluated attribute/text values per expansion (macro-cloned bulk)
 
 
 class Refusal(Exception):
@@ -38,12 +44,12 @@ class Refusal(Exception):
 
 
 class Options:
-    def __init__(self, mappings=None, trusted=False, allow_env=(), resolver=None, max_evals=MAX_EVALS):
+    def __init__(self, mappings=None, trusted=False, allow_env=(), resolver=None, max_evals=None):
         self.mappings = dict(mappings or {})
         self.trusted = trusted
         self.allow_env = set(allow_env)
         self.resolver = resolver
-        self.max_evals = max_evals
+        self.max_evals = max_evals or (MAX_EVALS_TRUSTED if trusted else MAX_EVALS)
 
 
 class _State:
@@ -53,6 +59,7 @@ class _State:
         self.calls: list[str] = []  # active macro call sites (markers), outermost first
         self.frames: list[list] = []  # [element marker, builtin marker] per eval_all level
         self.evals = 0
+        self.text = 0
         self.suppressions: list[tuple] = []
         self.warnings: list[tuple[str, str | None]] = []
         self.declared_args: dict[str, str] = {}
@@ -106,6 +113,7 @@ def expand(path: str, opts: Options) -> dict:
     orig_handle_macro_call = xacro.handle_macro_call
     orig_check_attrs = xacro.check_attrs
     orig_eval_extension = xacro.eval_extension
+    orig_eval_text = xacro.eval_text
 
     def marker_of(node):
         if node.nodeType == node.ELEMENT_NODE and node.hasAttribute(SRC_ATTR):
@@ -177,7 +185,8 @@ def expand(path: str, opts: Options) -> dict:
         if inp is not None:
             return xml.dom.minidom.parseString(inp) if isinstance(inp, str) else inp
         full = os.path.join(xacro.root_dir, filename)
-        if resolver is not None and not os.path.exists(full):
+        # never stat a path outside the package roots (source_layout only maps paths inside them anyway)
+        if resolver is not None and resolver.allowed(full) and not os.path.exists(full):
             full = str(resolver.source_layout(full) or full)
         if len(state.files) >= MAX_INCLUDES:
             raise Refusal("X012", f"more than {MAX_INCLUDES} files included")
@@ -201,6 +210,15 @@ def expand(path: str, opts: Options) -> dict:
         _collect_suppressions(state, idx, root)
         builder = _line_builder(state, idx)
         return builder.parseString(data)
+
+    def eval_text(text, symbols):
+        result = orig_eval_text(text, symbols)
+        if isinstance(result, str):
+            state.text += len(result)
+            if state.text > MAX_TEXT:
+                raise Refusal("X012", f"expansion produced more than {MAX_TEXT} characters of values "
+                                      "(a large value multiplied by macros?)")
+        return result
 
     def eval_extension(s):
         if s == "$(cwd)" and not opts.trusted:
@@ -236,6 +254,7 @@ def expand(path: str, opts: Options) -> dict:
     xacro.check_attrs = check_attrs
     xacro.parse = parse
     xacro.eval_extension = eval_extension
+    xacro.eval_text = eval_text
     xacro.warning = collect("warning")
     xacro.message = collect("message")
     xacro.error = collect("error")
@@ -310,7 +329,8 @@ def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
     symbols["load_yaml"] = confined_load_yaml
     if "xacro" in symbols:
         dict.__setitem__(symbols["xacro"], "load_yaml", confined_load_yaml)
-    evaluator = safeeval.default_evaluator(symbols)
+    # one budget for all expressions of the expansion: a cheap-looking loop repeated by macros adds up
+    evaluator = safeeval.default_evaluator(symbols, safeeval.Limits(max_total_iter=MAX_EXPR_ITER))
 
     def safe_eval(expr, globals, locals=None):
         return evaluator.evaluate(expr, globals)

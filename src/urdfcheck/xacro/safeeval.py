@@ -52,6 +52,7 @@ class Limits:
     max_chars: int = 100_000  # expression text
     max_depth: int = 100  # AST nesting
     max_alloc: int = 50_000_000  # items created by repetition/concatenation per evaluation
+    max_total_iter: int | None = None  # items iterated by all evaluations of one Evaluator (xacro: one expansion)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -500,6 +501,9 @@ class _Run:
         self.iters += n
         if self.iters > self.limits.max_iter:
             self.refuse(f"iteration over more than {self.limits.max_iter} items")
+        total = self.limits.max_total_iter
+        if total is not None and self.iters + self.evaluator.spent > total:  # many cheap-looking expressions
+            self.refuse(f"expressions iterated over more than {self.limits.max_total_iter} items in total")
 
     def alloc(self, n):
         self.allocated += n
@@ -801,6 +805,7 @@ class Evaluator:
 
     def __init__(self, allowed=(), *, mapping_types=(), limits: Limits | None = None):
         self.limits = limits or Limits()
+        self.spent = 0  # items iterated by finished evaluations (Limits.max_total_iter)
         self._allowed: dict[int, object] = {}
         self._guards: dict[int, tuple[object, object]] = {}
         self._mapping_types: tuple[type, ...] = ()
@@ -857,7 +862,10 @@ class Evaluator:
         run = _Run(self, text, top, glob, extra)
         if reason:
             run.refuse(reason)
-        return run.check(run.ev(tree.body, None))
+        try:
+            return run.check(run.ev(tree.body, None))
+        finally:
+            self.spent += run.iters
 
     def _getattr(self, run, obj, name):
         if name.startswith("_"):
@@ -1022,6 +1030,8 @@ def evaluate_substitution(s: str, context: dict, *, functions: dict | None = Non
         try:
             return _SUBST_BUILTINS[name]
         except KeyError:
+            if hasattr(builtins, name):  # stock $(eval) has every builtin (exec, open, ...): a refusal, not a typo
+                raise Refused(s, f"builtin '{name}' is not available in $(eval) in the sandbox") from None
             raise NameError(f"name '{name}' is not defined", name=name) from None
 
     def top(name):  # eval(s, {}, _DictWrapper(args, functions)): locals mapping, then builtins
