@@ -243,9 +243,9 @@ class _Builder:
                 axis_loc = self.locate(c)
             elif tag == "limit":
                 self.check(c, "limit")
-                needs = jtype == "revolute" or jtype == "prismatic"
+                # urdfdom refuses any <limit> without effort and velocity, whatever the joint type
                 limit = Limit(self.locate(c), self.number(c, "lower"), self.number(c, "upper"),
-                              self.number(c, "effort", required=needs), self.number(c, "velocity", required=needs))
+                              self.number(c, "effort", required=True), self.number(c, "velocity", required=True))
             elif tag == "mimic":
                 self.check(c, "mimic")
                 target = c.get("joint")

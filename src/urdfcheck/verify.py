@@ -252,6 +252,16 @@ def semantic_deltas(model, tree: KinematicTree | None = None, peers=("pinocchio"
         elif s.type not in ("revolute", "continuous", "prismatic", "fixed"):
             out.append(Delta("unknown-type", s.name, f"joint {s.name!r} has unknown type {s.type!r}: urdfdom "
                              "refuses the model; urdfcheck treats it as fixed", ("pinocchio", "yourdfpy"), j.loc))
+    # <axis> without xyz: urdfdom (robot_state_publisher, Pinocchio) leaves the axis at zero, while the model
+    # (and yourdfpy) use the default 1 0 0 -- a parser difference, not excluded: the comparison shows it
+    for s in tree.segments:
+        j = s.joint
+        if s.kind == "movable" and j.axis_loc is not None and any(
+                i.code == "U006" and i.loc == j.axis_loc and "xyz" in i.message for i in model.issues):
+            out.append(Delta("axis-without-xyz", s.name, f"joint {s.name!r}: <axis> has no xyz; urdfdom (used by "
+                             "robot_state_publisher and Pinocchio) reads a zero axis, so robot_state_publisher "
+                             "publishes NaN for it, while urdfcheck and yourdfpy use the default 1 0 0",
+                             ("pinocchio",), j.axis_loc))
     # mimic joints robot_state_publisher does not publish from a message naming the independent joints
     for n in tree.notes:
         if n.code in ("mimic-order", "mimic-source"):

@@ -148,7 +148,9 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES) -> D
     for p, t in texts.items():
         for m in _INCLUDE.finditer(t):
             included |= _included_files(m.group(2), p, xacros) - {p}
-    models, libs = list(urdfs), []
+    models, libs = [], []
+    for p in urdfs:  # a .urdf without any <link> is a fragment (materials, properties) for others to include
+        (models if re.search(r"<\s*link\b", _read_head(p)) else libs).append(p)
     for p in xacros:
         if p in included:
             libs.append(p)
