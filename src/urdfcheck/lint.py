@@ -87,8 +87,30 @@ def targets_for(paths: list[str], args: dict | None = None, packages: dict | Non
         if p.is_dir():
             out.extend(package_targets(p, args or {}, packages or {}))
         else:
-            out.append(Target(p, dict(args or {}), packages=dict(packages or {})))
-    return out
+            out.extend(file_targets(p, args or {}, packages or {}))
+    seen, uniq = set(), []
+    for t in out:  # several library files of one package lead to the same entry models
+        key = (str(t.path.resolve()), tuple(sorted(t.args.items())))
+        if key not in seen:
+            seen.add(key)
+            uniq.append(t)
+    return uniq
+
+
+def file_targets(path: Path, args: dict, packages: dict) -> list[Target]:
+    """An explicitly named file. A xacro library (macros only, or included by another file of its
+    package) is no robot by itself: lint the package's entry models instead, which expand it
+    (this is what a per-file pre-commit hook needs)."""
+    from .contracts.discover import discover
+    from .packages import enclosing_package
+
+    if path.name.endswith(".xacro"):
+        pkg = enclosing_package(path.resolve())
+        if pkg is not None:
+            found = discover(pkg)
+            if str(path.resolve()) in {str(Path(x).resolve()) for x in found.libraries} and found.models:
+                return [Target(Path(m), dict(args), packages=dict(packages)) for m in found.models]
+    return [Target(path, dict(args), packages=dict(packages))]
 
 
 def package_targets(folder: Path, args: dict, packages: dict) -> list[Target]:

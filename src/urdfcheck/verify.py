@@ -338,6 +338,11 @@ class _Child:
                 out_fd = self.output_file.fileno()
                 os.dup2(out_fd, 1)
                 os.dup2(out_fd, 2)
+                sys.stdout = sys.stderr = open(2, "w", closefd=False)  # Python-level writes too
+                import faulthandler
+
+                if faulthandler.is_enabled():  # it would write to an inherited descriptor, not ours
+                    faulthandler.disable()
                 import resource
 
                 resource.setrlimit(resource.RLIMIT_CORE, (0, 0))

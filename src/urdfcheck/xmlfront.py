@@ -18,6 +18,10 @@ _LIMIT_ERRORS = ("Excessive depth", "too long", "Huge input lookup", "huge text 
 
 _DECL = re.compile(rb"^(\xef\xbb\xbf)?\s*<\?xml(\s[^?]*)?\?>")
 _DECL_ATTR = re.compile(rb"([A-Za-z_:][-\w.:]*)\s*=\s*[\"']([^\"']*)[\"']")
+# a DOCTYPE in the prolog (after BOM, declaration, comments, PIs): single-character alternatives, no backtracking
+_PROLOG_DOCTYPE = re.compile(rb"(?:\xef\xbb\xbf)?(?:\s|<\?.*?\?>|<!--.*?-->)*<!DOCTYPE", re.S)
+_DOCTYPE_MSG = ("DOCTYPE declarations are not allowed in robot descriptions "
+                "(entities expand differently in each ROS parser)")
 
 
 @dataclass(frozen=True)
@@ -94,6 +98,10 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
     except UnicodeDecodeError as e:
         raise XmlRefused(XmlIssue("X001", f"invalid UTF-8 ({e.reason})", _line_of(data, e.start))) from None
     warnings, data = check_declaration(data)
+    if b"<!DOCTYPE" in data:  # refuse before libxml2 reads entity declarations (amplification, external ones)
+        m = _PROLOG_DOCTYPE.match(data)
+        if m:
+            raise XmlRefused(XmlIssue("X002", _DOCTYPE_MSG, _line_of(data, m.end())))
     try:
         root = etree.fromstring(data, _parser())
     except etree.XMLSyntaxError as e:
@@ -111,8 +119,7 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
     tree = root.getroottree()
     info = tree.docinfo
     if info.doctype or info.internalDTD is not None:
-        raise XmlRefused(XmlIssue("X002", "DOCTYPE declarations are not allowed in robot descriptions "
-                                          "(entities expand differently in each ROS parser)", 1))
+        raise XmlRefused(XmlIssue("X002", _DOCTYPE_MSG, 1))
     for sib in root.itersiblings(preceding=True):
         if isinstance(sib, etree._ProcessingInstruction):
             raise XmlRefused(XmlIssue("X002", f"processing instruction <?{sib.target}?> before the root element",

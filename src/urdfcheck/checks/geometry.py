@@ -190,13 +190,13 @@ def undefined_material(model, ctx):
             later = inline_defs.get(name)
             if later is not None:
                 yield Problem(f"material {name!r} of the {_what(link, v)} is referenced by name before it is "
-                              "defined (inline, in a later link): urdfdom registers the empty name first, so this visual and the "
-                              "defining one both lose their colour; define it at the top level", at=ref,
-                              related=(later,))
+                              "defined (inline, in a later link): urdfdom registers the empty name first, so this "
+                              "visual and the defining one both lose their colour; define it at the top level",
+                              at=ref, related=(later,))
             else:
                 yield Problem(f"material {name!r} of the {_what(link, v)} is never defined: no top-level "
-                              "<material> and no visual defines it with <color> or <texture>, so urdfdom registers a colourless "
-                              "material and RViz draws the visual in its default colour", at=ref)
+                              "<material> and no visual defines it with <color> or <texture>, so urdfdom registers "
+                              "a colourless material and RViz draws the visual in its default colour", at=ref)
 
 
 # --- G004 ------------------------------------------------------------------------------------------

@@ -29,7 +29,7 @@ def tensor(inertia) -> list[list[float]]:
     return [[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]
 
 
-@functools.lru_cache(maxsize=4096)  # I003 and I004 ask for the same tensors; models repeat them
+@functools.lru_cache(maxsize=32768)  # I003 and I004 ask for the same tensors; models repeat them
 def principal_moments(inertia) -> tuple[float, float, float]:
     """Eigenvalues of the inertia tensor, ascending (cyclic Jacobi; converges in a handful of sweeps)."""
     inertia = tuple(inertia)
