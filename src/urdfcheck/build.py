@@ -115,10 +115,8 @@ class _Builder:
             self.issue("U002", f"<geometry> holds {len(shapes)} shapes; URDF parsers use only the first", shapes[1])
         s = shapes[0]
         tag = s.tag
-        if tag in _SHAPES:
+        if tag in _SHAPES:  # an unknown shape is G005's (urdfdom rejects the visual)
             self.check(s, tag)
-        else:
-            self.unknown("geometry", s)
         loc = self.locate(s)
         if tag == "box":
             return Geometry("box", loc, size=self.vector(s, "size", 3, None, required=True))
@@ -168,7 +166,10 @@ class _Builder:
             elif tag == "material" and kind == "visual":
                 self.check(c, "material")
                 rgba, texture = self._colour_texture(c)
-                mat = MaterialRef(c.get("name") or "", self.locate(c), rgba, texture)
+                name = c.get("name")
+                if name is None:  # urdfdom then rejects the visual and stops reading the link
+                    self.issue("U006", "<material> in a <visual> has no 'name' attribute", c)
+                mat = MaterialRef(name or "", self.locate(c), rgba, texture)
             else:
                 self.unknown(kind, c)
         return Shape(kind, self.locate(el), el.get("name") or "", origin, geometry, mat)

@@ -73,9 +73,14 @@ class TFGraph:
     claims: list[TFClaim] = field(default_factory=list)
     notes: list = field(default_factory=list)  # (message, Location): claims left out (conditional launch nodes)
 
+    _seen: set = field(default_factory=set, repr=False, compare=False)
+
     def add(self, claim: TFClaim) -> None:
         c = TFClaim(norm(claim.parent), norm(claim.child), claim.owner, claim.kind, claim.loc, claim.source)
-        if c not in self.claims:
+        if not self._seen:
+            self._seen.update(self.claims)
+        if c not in self._seen:  # a set: a 10,000-link model makes 10,000 claims
+            self._seen.add(c)
             self.claims.append(c)
 
     def extend(self, claims: Iterable[TFClaim]) -> "TFGraph":

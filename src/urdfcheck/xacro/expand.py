@@ -253,6 +253,25 @@ def expand(path: str, opts: Options) -> dict:
             state.warnings.append((kind, text, frame[1] or frame[0]))
         return note
 
+    units = getattr(xacro, "ConstructUnits", None)
+    orig_unit_constructor = getattr(units, "constructor", None)
+
+    def unit_constructor(unit, loader, node):
+        # a YAML tag such as !degrees evaluates its scalar: locate a failure at that YAML line
+        try:
+            return orig_unit_constructor(unit, loader, node)
+        except Exception as e:
+            if getattr(e, "_uc_marker", None) is None and getattr(node.start_mark, "name", None):
+                frame = state.frames[-1] if state.frames else [None, None]
+                where = f"{state.index(os.path.normpath(node.start_mark.name))}:{node.start_mark.line + 1}"
+                try:
+                    e._uc_marker = ";".join(m for m in (where, frame[1] or frame[0]) if m)
+                except AttributeError:
+                    pass
+            raise
+
+    if orig_unit_constructor is not None:
+        units.constructor = unit_constructor
     xacro.eval_all = eval_all
     xacro.handle_macro_call = handle_macro_call
     xacro.check_attrs = check_attrs
@@ -299,7 +318,8 @@ def _describe(e: BaseException, xacro) -> dict:
         if _is_refused(inner):
             expr = getattr(inner, "expr", "")
             reason = getattr(inner, "reason", str(inner))
-            return {"code": "X011", "message": f"refused expression {expr!r}: {reason}", "marker": marker}
+            return {"code": "X011", "message": f"refused expression {expr!r}: {reason}",
+                    "marker": getattr(inner, "_uc_marker", None) or marker}  # e.g. the YAML line of a !degrees
         nxt = getattr(inner, "exc", None) or inner.__cause__ or inner.__context__
         inner = nxt if nxt is not inner else None
     msg = str(e) or repr(e)
@@ -324,8 +344,11 @@ def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
         full = xacro.abs_filename_spec(filename)
         if resolver is not None and not resolver.allowed(full):
             raise Refusal("X014", f"refusing to load YAML {filename!r}: it is outside the package roots")
-        from .yamlguard import check_yaml_file
-        check_yaml_file(full)
+        from .yamlguard import YamlRefused, check_yaml_file
+        try:
+            check_yaml_file(full)
+        except YamlRefused as e:  # an alias bomb is an expansion limit (X012), not a xacro error
+            raise Refusal(e.code, e.message.replace(full, repr(filename))) from None
         return orig_load_yaml(filename)
 
     orig_load_yaml = xacro.load_yaml
