@@ -64,3 +64,11 @@ def test_passing_example_does_not_report_the_code(code, tmp_path):
     assert not hits, hits
     errors = [f for f in report["findings"] if f["severity"] == "error"]
     assert not errors, f"the passing example of {code} has errors: {errors}"
+
+
+def test_index_is_up_to_date():
+    import json
+
+    index = json.loads((rulebook.catalogue_dir() / rulebook.INDEX).read_text(encoding="utf-8"))
+    assert index == json.loads(json.dumps(rulebook.read_entries())), \
+        "rules/index.json is stale: regenerate it with `PYTHONPATH=src python -m urdfcheck.rulebook`"

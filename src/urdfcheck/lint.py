@@ -90,7 +90,7 @@ def targets_for(paths: list[str], args: dict | None = None, packages: dict | Non
             out.extend(file_targets(p, args or {}, packages or {}))
     seen, uniq = set(), []
     for t in out:  # several library files of one package lead to the same entry models
-        key = (str(t.path.resolve()), tuple(sorted(t.args.items())))
+        key = (os.path.realpath(t.path), tuple(sorted(t.args.items())))  # realpath: no stat of a link's target
         if key not in seen:
             seen.add(key)
             uniq.append(t)
@@ -105,10 +105,10 @@ def file_targets(path: Path, args: dict, packages: dict) -> list[Target]:
     from .packages import enclosing_package
 
     if path.name.endswith(".xacro"):
-        pkg = enclosing_package(path.resolve())
+        pkg = enclosing_package(Path(os.path.abspath(path)).parent)  # the package the file appears in
         if pkg is not None:
             found = discover(pkg)
-            if str(path.resolve()) in {str(Path(x).resolve()) for x in found.libraries} and found.models:
+            if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and found.models:
                 return [Target(Path(m), dict(args), packages=dict(packages)) for m in found.models]
     return [Target(path, dict(args), packages=dict(packages))]
 

@@ -114,8 +114,13 @@ def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict 
     """Read and (for xacro) expand one entry model. Problems are findings on the result."""
     p = Path(path)
     shown = display(p)
-    resolver = Resolver(packages, near=p.resolve(), environ=environ)
+    escapes = not trusted and _links_outside(p, packages)
+    resolver = None if escapes else Resolver(packages, near=p.resolve(), environ=environ)
     out = Expanded(entry=shown, xacro=False, files=[shown], args=dict(args or {}), resolver=resolver)
+    if escapes:  # a symlink committed in a pull request must not read the runner's files
+        out.findings.append(_finding("X014", "the model file is a symbolic link to a file outside the package "
+                                             "roots; not read", shown))
+        return out
     try:
         with open(p, "rb") as f:
             data = f.read(MAX_BYTES + 1)
@@ -142,6 +147,22 @@ def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict 
     out.suppressions = [Suppression(shown, a, b, c, d) for a, b, c, d in scan_comments(root)]
     out.root = root
     return out
+
+
+def _links_outside(p: Path, packages: dict | None) -> bool:
+    """The entry file is a symlink whose target lies outside the workspace around the link itself."""
+    from .packages import workspace_root
+
+    lexical = Path(os.path.abspath(p))
+    if not os.path.islink(lexical):
+        return False
+    real = os.path.realpath(lexical)
+    roots = [workspace_root(lexical.parent)] + [Path(v) for v in (packages or {}).values()]
+    for r in roots:
+        base = os.path.realpath(r)
+        if real == base or real.startswith(base.rstrip(os.sep) + os.sep):
+            return False
+    return True
 
 
 def _expand_xacro(out: Expanded, p: Path, data: bytes, trusted, allow_env, timeout, memory) -> None:

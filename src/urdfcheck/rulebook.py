@@ -62,29 +62,61 @@ def catalogue_dir() -> Path:
 _REQUIRED = ("code", "name", "severity", "family", "summary", "rationale", "fix", "examples")
 
 
-@functools.lru_cache(maxsize=None)
-def catalogue() -> dict[str, RuleInfo]:
+INDEX = "index.json"
+
+
+def read_entries(folder: Path | None = None) -> dict[str, dict]:
+    """Parse every rules/*.yaml (the source of truth)."""
     import yaml
 
     loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-    out: dict[str, RuleInfo] = {}
-    folder = catalogue_dir()
+    folder = folder or catalogue_dir()
+    out: dict[str, dict] = {}
     for path in sorted(folder.glob("*.yaml")):
         with open(path, encoding="utf-8") as f:
             data = yaml.load(f, Loader=loader)
         missing = [k for k in _REQUIRED if k not in (data or {})]
         if missing:
             raise CatalogueError(f"{path.name}: missing {', '.join(missing)}")
-        code = str(data["code"])
-        if path.stem != code:
-            raise CatalogueError(f"{path.name}: file name must be the code {code}")
-        out[code] = RuleInfo(
-            code=code, name=str(data["name"]), severity=Severity.parse(data["severity"]),
-            family=str(data["family"]), summary=str(data["summary"]).strip(),
-            rationale=str(data["rationale"]).strip(), fix=str(data["fix"]).strip(),
-            examples=dict(data["examples"] or {}), options=dict(data.get("options") or {}), path=str(path),
-        )
+        if path.stem != str(data["code"]):
+            raise CatalogueError(f"{path.name}: file name must be the code {data['code']}")
+        out[str(data["code"])] = data
     return out
+
+
+def write_index(folder: Path | None = None) -> Path:
+    """rules/index.json: the parsed catalogue, so a lint run reads one JSON file instead of ~70 YAML
+    files. Generated; tests/test_catalogue.py fails when it is stale."""
+    import json
+
+    folder = folder or catalogue_dir()
+    path = folder / INDEX
+    path.write_text(json.dumps(read_entries(folder), indent=1, sort_keys=True, ensure_ascii=False) + "\n",
+                    encoding="utf-8")
+    return path
+
+
+@functools.lru_cache(maxsize=None)
+def catalogue() -> dict[str, RuleInfo]:
+    import json
+
+    folder = catalogue_dir()
+    index = folder / INDEX
+    if index.is_file():
+        with open(index, encoding="utf-8") as f:
+            entries = json.load(f)
+    else:
+        entries = read_entries(folder)
+    return {code: _info(data, str(folder / f"{code}.yaml")) for code, data in sorted(entries.items())}
+
+
+def _info(data: dict, path: str) -> RuleInfo:
+    return RuleInfo(
+        code=str(data["code"]), name=str(data["name"]), severity=Severity.parse(data["severity"]),
+        family=str(data["family"]), summary=str(data["summary"]).strip(),
+        rationale=str(data["rationale"]).strip(), fix=str(data["fix"]).strip(),
+        examples=dict(data["examples"] or {}), options=dict(data.get("options") or {}), path=path,
+    )
 
 
 @functools.lru_cache(maxsize=None)
@@ -109,3 +141,7 @@ def info(code: str) -> RuleInfo | None:
 def matches(code: str, patterns) -> bool:
     """ruff-style selection: a pattern is a full code or a prefix ('S', 'J00', 'ALL')."""
     return any(p == "ALL" or code.startswith(p) for p in patterns)
+
+
+if __name__ == "__main__":  # python -m urdfcheck.rulebook: regenerate rules/index.json
+    print(write_index())

@@ -26,3 +26,30 @@ def test_symlink_inside_the_package_pointing_outside_is_refused(arena):
                         '  <link name="a"/>\n  <xacro:include filename="innocent.xacro"/>\n</robot>\n')
     r = arena.lint(entry)
     r.find("X014", entry.name, 3)
+
+
+def test_entry_model_that_is_a_symlink_out_of_the_workspace_is_not_read(arena):
+    """A pull request can commit `urdf/robot.urdf -> /some/runner/file`: linting the named file (or the
+    package) must not read the target and copy its names into the report."""
+    (arena.outside / "secret.urdf").write_text(
+        f'<robot name="{CANARY_FILE}">\n  <link name="{CANARY_FILE}"/>\n  <link name="{CANARY_FILE}_2"/>\n</robot>\n')
+    for name in ("robot.urdf", "robot.urdf.xacro"):
+        link = arena.pkg / "urdf" / name
+        os.symlink(arena.outside / "secret.urdf", link)
+        r = arena.lint(link)
+        f = r.find("X014", name)
+        assert "symbolic link" in f["message"]
+        assert r.codes() == ["X014"]
+        r = arena.lint(arena.pkg)
+        assert r.codes() == ["X014"], r.findings
+        link.unlink()
+
+
+def test_symlink_to_a_sibling_package_is_still_linted(arena):
+    other = arena.ws / "other_description"
+    (other / "urdf").mkdir(parents=True)
+    (other / "package.xml").write_text("<package format='3'><name>other_description</name></package>\n")
+    (other / "urdf" / "arm.urdf").write_text('<robot name="arm">\n  <link name="a"/>\n  <link name="b"/>\n</robot>\n')
+    os.symlink(other / "urdf" / "arm.urdf", arena.pkg / "urdf" / "arm.urdf")
+    r = arena.lint(arena.pkg / "urdf" / "arm.urdf")
+    assert "X014" not in r.codes() and "S001" in r.codes(), r.findings

@@ -9,11 +9,10 @@ def test_degrees_tag_payload_is_refused(arena):
     assert_stock_executes(arena, entry)
     r = arena.lint(entry)
     assert r.codes() == ["X011"], r.findings
-    f = r.findings[0]
-    loc = f["location"]
-    # the payload's own line in the YAML file, or (at least) the model line that loads it
-    assert (loc["file"].endswith(yaml_file.name) and loc["line"] == line_of(yaml_file, "!degrees")) or \
-        (loc["file"].endswith(entry.name) and loc["line"] == line_of(entry, "limits.joint_limit")), f
+    # at the payload's own line in the YAML file, via the model line that loads it
+    f = r.find("X011", yaml_file.name, line_of(yaml_file, "joint_limit: !degrees"))
+    assert [v["line"] for v in f["location"]["via"]] == [line_of(entry, "limits.joint_limit")]
+    assert f["location"]["via"][0]["file"].endswith(entry.name)
     assert "not allowed" in f["message"]
 
 

@@ -11,7 +11,16 @@
   a wheel rolling on its radius; a ROS 1 controller with no `wheel_radius` needs such a shape;
 * axes: every wheel axis parallel or anti-parallel to the first left one;
 * counts: as many wheels left as right (none on a side and the controller refuses to start);
-* sides: the left wheels should be on the +y side of the base (REP-103: x forward, y left).
+* sides (C014): the wheels named left must be on the left of the direction in which positive wheel rotation
+  drives the robot. A wheel turning positively about its axis `a` (in the base frame, z up) rolls its centre
+  along `a x z`, whose forward (+x) component is `a_y`. diff_drive_controller (ROS 1 and ROS 2) commands
+  `w_left = (v - w*s/2)/r`, `w_right = (v + w*s/2)/r` and never looks at the geometry; the robot's actual yaw
+  rate is `r*w*(a_y,left + a_y,right) / (y_left - y_right)` per unit commanded `w`. It turns the wrong way
+  exactly when `(a_y,left + a_y,right) * (y_left - y_right) < 0`: the left wheels at -y with axes along +y
+  (the usual swap), or at +y with both axes along -y (positive rotation drives backward). The left wheels at
+  -y with both axes along -y is the correct robot turned 180 degrees about z: it turns the right way (its
+  odometry x is reversed, which is not this rule's business). Mixed axis signs (one wheel drives backward)
+  leave the turning sense undefined and are not reported here.
 
 Results are structured (`DriveReport`); `DriveReport.problems()` lists them as `WheelProblem`s with the
 rule code they belong to. Unknown or non-movable wheel joints are left to the generic joint checks.
@@ -27,6 +36,7 @@ from .controllers import DriveSpec, JointUse
 
 DEFAULT_TOLERANCE = 1e-3  # m
 DEFAULT_ANGLE_TOLERANCE = 1e-3  # rad
+MIN_FORWARD_SIGN = 0.5  # |mean left a_y + mean right a_y| below this: mixed axis signs, turning sense undefined
 
 
 @dataclass(frozen=True)
@@ -62,7 +72,9 @@ class DriveReport:
     measured_separation: float | None = None
     urdf_distance: float | None = None  # |left - right| (what a ROS 1 controller computes)
     expected_separation: float | None = None
-    sides_swapped: bool | None = None
+    sides_swapped: bool | None = None  # the left wheels' mean y is below the right wheels' (REP-103 y points left)
+    forward_sign: float | None = None  # sum of the mean wheel-axis y per side: > 0 positive rotation drives +x
+    turn_reversed: bool | None = None  # commanded yaw and physical yaw have opposite signs (C014)
     problems_: list[WheelProblem] = field(default_factory=list)
     notes: list = field(default_factory=list)
 
@@ -192,6 +204,12 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
         lateral = d[1]
         if abs(lateral) > tolerance:
             rep.sides_swapped = lateral < 0
+        fwd = _mean([w.axis for w in lefts])[1] + _mean([w.axis for w in rights])[1]
+        rep.forward_sign = fwd
+        if abs(lateral) > tolerance and abs(fwd) >= MIN_FORWARD_SIGN:
+            rep.turn_reversed = lateral * fwd < 0
+            if rep.turn_reversed:
+                rep.problems_.append(_sides_problem(drive, base, lefts, rights, pl, pr, fwd))
         expected = drive.separation
         rep.expected_separation = expected
         names = f"{', '.join(w.use.joint for w in lefts)} / {', '.join(w.use.joint for w in rights)}"
@@ -277,6 +295,24 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                 rad_v.loc, (w.shape_loc or w.joint_loc,), None,
                 {"measured": w.radius, "expected": expected, "link": w.link, "tolerance": tolerance}))
     return rep
+
+
+def _sides_problem(drive: DriveSpec, base: str, lefts, rights, pl, pr, fwd: float) -> WheelProblem:
+    ln = ", ".join(w.use.joint for w in lefts)
+    rn = ", ".join(w.use.joint for w in rights)
+    where = (f"{drive.owner} names {ln} as left wheel(s) and {rn} as right; in {base} they sit at "
+             f"y = {pl[1]:+.6g} m and y = {pr[1]:+.6g} m")
+    if fwd > 0:
+        why = ("positive rotation of these joints drives the robot forward (+x), so the left wheels are on the "
+               "right side (REP-103: y points left)")
+    else:
+        why = ("their axes point to -y, so positive rotation drives the robot backward (-x) and, seen in the "
+               "direction they drive, the left wheels are on the right side")
+    msg = (f"{where}: {why}. The controller turns the robot clockwise when asked to turn counter-clockwise "
+           f"(and vice versa) and its odometry heading runs the other way; swap the left/right wheel names or "
+           f"fix the wheel joint origins/axes")
+    return WheelProblem("C014", msg, lefts[0].use.loc, (lefts[0].joint_loc, rights[0].joint_loc, rights[0].use.loc),
+                        None, {"left_y": pl[1], "right_y": pr[1], "forward_sign": fwd})
 
 
 def _vec(v) -> str:

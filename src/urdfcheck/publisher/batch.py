@@ -66,38 +66,51 @@ def _values(tree: KinematicTree, configurations, joint_names):
     return values, n
 
 
-def _local(seg, q, np, n):
-    """(4,4) constant or (N,4,4) local transform of a segment."""
-    r0 = np.array(seg.origin_r, dtype=float)
-    t0 = np.array(seg.origin_t, dtype=float)
+def _consts(seg, np):
+    """Per-segment numpy constants, cached on the segment."""
+    c = seg.__dict__.get("_np")
+    if c is None:
+        r0 = np.array(seg.origin_r, dtype=float)
+        t0 = np.array(seg.origin_t, dtype=float)
+        c = {"r0": r0, "t0": t0}
+        if seg.kind == "movable" and seg.axis is not None:
+            a = np.array(seg.axis, dtype=float)
+            if seg.type == "prismatic":
+                c["d"] = r0 @ a
+            else:
+                k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
+                # R0 * Rot(a, q) = c * R0 + s * (R0 K) + (1 - c) * (R0 a) a^T
+                c["abc"] = np.concatenate([r0, r0 @ k, np.outer(r0 @ a, a)], axis=1)  # (3, 9)
+        seg.__dict__["_np"] = c
+    return c
+
+
+def _mul_const(r, m):
+    """(N,3,3) @ (3,k) as one BLAS call: (N,3,k)."""
+    n = r.shape[0]
+    return (r.reshape(n * 3, 3) @ m).reshape(n, 3, m.shape[1])
+
+
+def _child_pose(seg, rp, pp, q, np, n):
+    """(R, p) of the child from the parent's (R (N,3,3), p (N,3)) and joint values q (N,) or None."""
+    c = _consts(seg, np)
     if seg.kind != "movable":
-        m = np.eye(4)
-        m[:3, :3] = r0
-        m[:3, 3] = t0
-        return m
-    out = np.zeros((n, 4, 4))
-    out[:, 3, 3] = 1.0
+        return _mul_const(rp, c["r0"]), pp + _mul_const(rp, c["t0"][:, None])[..., 0]
     if q is None:  # unresolvable mimic joint: robot_state_publisher never publishes it
         q = np.full(n, np.nan)
     if seg.type == "prismatic":
-        out[:, :3, :3] = r0
+        r = _mul_const(rp, c["r0"])
         if seg.axis is None:
-            out[:, :3, 3] = np.nan
-        else:
-            d = r0 @ np.array(seg.axis)
-            out[:, :3, 3] = t0 + q[:, None] * d
-        return out
+            return r, np.full((n, 3), np.nan)
+        tp = _mul_const(rp, np.stack([c["t0"], c["d"]], axis=1))  # (N,3,2)
+        return r, pp + tp[..., 0] + q[:, None] * tp[..., 1]
     if seg.axis is None:
-        out[:, :3, :] = np.nan
-        return out
-    a = np.array(seg.axis)
-    k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-    b = r0 @ k
-    c_ = np.outer(r0 @ a, a)
-    c, s = np.cos(q)[:, None, None], np.sin(q)[:, None, None]
-    out[:, :3, :3] = r0 + s * b + (1.0 - c) * (c_ - r0)
-    out[:, :3, 3] = t0
-    return out
+        return np.full((n, 3, 3), np.nan), np.full((n, 3), np.nan)
+    x = _mul_const(rp, c["abc"])  # (N,3,9)
+    cq, sq = np.cos(q)[:, None, None], np.sin(q)[:, None, None]
+    a, b, cc = x[..., 0:3], x[..., 3:6], x[..., 6:9]
+    r = a + sq * b + (1.0 - cq) * (cc - a)
+    return r, pp + _mul_const(rp, c["t0"][:, None])[..., 0]
 
 
 def link_poses(model, configurations, root_frame: str | None = None, *, joint_names=None,
@@ -117,29 +130,29 @@ def link_poses(model, configurations, root_frame: str | None = None, *, joint_na
 
     tree = kinematic_tree(model)
     values, n = _values(tree, configurations, joint_names)
-    poses: dict = {r: np.eye(4) for r in tree.roots}
+    index = {link: i for i, link in enumerate(tree.links)}
+    rot = np.empty((len(index), n, 3, 3))
+    pos = np.empty((len(index), n, 3))
+    for r in tree.roots:
+        rot[index[r]] = np.eye(3)
+        pos[index[r]] = 0.0
     for seg in tree.segments:
-        parent = poses.get(seg.parent)
-        if parent is None:  # pragma: no cover - segments are ordered parents first
-            parent = np.eye(4)
-        local = _local(seg, values.get(seg.name), np, n)
-        poses[seg.child] = parent @ local
+        i, c = index[seg.parent], index[seg.child]
+        rot[c], pos[c] = _child_pose(seg, rot[i], pos[i], values.get(seg.name), np, n)
     if root_frame is not None:
-        if root_frame not in poses:
+        if root_frame not in index:
             raise KeyError(f"frame {root_frame!r} is not a link of the model's tree")
-        ref = poses[root_frame]
-        inv = np.zeros(ref.shape)
-        rt = np.swapaxes(ref[..., :3, :3], -1, -2)
-        inv[..., :3, :3] = rt
-        inv[..., :3, 3] = -(rt @ ref[..., :3, 3:4])[..., 0]
-        inv[..., 3, 3] = 1.0
-        poses = {k: inv @ v for k, v in poses.items()}
+        rr, pr = rot[index[root_frame]], pos[index[root_frame]]
+        rt = np.swapaxes(rr, 1, 2)
+        rot = (rt[None, :, :, :, None] * rot[:, :, None, :, :]).sum(axis=3)
+        pos = (rt[None] * (pos - pr[None])[:, :, None, :]).sum(axis=3)
+    big = np.empty((len(index), n, 4, 4))
+    big[..., :3, :3] = rot
+    big[..., :3, 3] = pos
+    big[..., 3, :3] = 0.0
+    big[..., 3, 3] = 1.0
     wanted = tree.links if links is None else list(links)
-    out = {}
-    for k in wanted:
-        v = poses[k]
-        out[k] = np.broadcast_to(v, (n, 4, 4)).copy() if v.ndim == 2 else v
-    return out
+    return {k: big[index[k]] for k in wanted}
 
 
 def rotations_from_quaternions(q):

@@ -1,0 +1,499 @@
+"""Contract (C) and TF-ownership (T) checks (implementations; registered in checks.py).
+
+The consumers come from `ctx.contracts` (a `contracts.consumers.Consumers`, read by `config.Config.targets`);
+when the engine gives none, they are discovered next to the model (`discover_consumers`: the enclosing
+ROS package's config/ and launch/ files) and stored back on the context for the other checks.
+"""
+from __future__ import annotations
+
+import difflib
+import re
+from typing import Iterator
+
+from ..findings import Location, Problem
+from .consumers import Consumers, discover_consumers
+from .controllers import JSB, JSC
+from .graph import (PublisherInfo, TFGraph, claims_from_localization, claims_from_model, claims_from_odom,
+                    claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents,
+                    not_one_tree, prefix_collisions, static_and_dynamic)
+from .wheels import DEFAULT_ANGLE_TOLERANCE, DEFAULT_TOLERANCE, check_drive
+
+_UNRESOLVED = re.compile(r"\$\(|\$\{")
+
+
+# --- context helpers ---------------------------------------------------------------------------------------
+def consumers(model, ctx) -> Consumers:
+    c = getattr(ctx, "contracts", None)
+    if isinstance(c, Consumers):
+        return c
+    exp = getattr(ctx, "expanded", None)
+    entry = getattr(exp, "entry", None) or model.source
+    packages = {}
+    resolver = getattr(exp, "resolver", None)
+    if resolver is not None:
+        packages = {k: str(v) for k, v in getattr(resolver, "explicit", {}).items()}
+    found = None
+    try:
+        found = discover_consumers(entry, model, packages=packages)
+    except Exception:  # noqa: BLE001 - discovery is best effort; never break the other checks
+        found = None
+    c = found or Consumers(origin="none")
+    cfg = getattr(ctx, "config", None)
+    if cfg is not None:  # a config without an entry for this model still names frames and TF owners
+        c.frames = {**c.frames, **dict(getattr(cfg, "frames", {}) or {})}
+        owners = dict(getattr(cfg, "tf_owners", {}) or {})
+        if owners and not c.tf_owners:
+            c.tf_owners = claims_from_owners(owners, dict(getattr(cfg, "tf_owner_locs", {}) or {}),
+                                             Location(getattr(cfg, "path", "<config>")))
+    try:
+        ctx.contracts = c
+    except AttributeError:
+        pass
+    return c
+
+
+def _opt(ctx, name: str, default):
+    opts = getattr(ctx, "options", None) or {}
+    v = opts.get(name, default)
+    try:
+        return type(default)(v)
+    except (TypeError, ValueError):
+        return default
+
+
+def _suggest(name: str, options) -> str:
+    close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.6)
+    return f" (did you mean '{close[0]}'?)" if close else ""
+
+
+def _unresolved(name: str) -> bool:
+    return bool(_UNRESOLVED.search(name))
+
+
+def _owner_desc(owner_kind: str, owner) -> str:
+    if owner_kind == "controller":
+        return f"controller {owner.name}"
+    return f"driver {owner.name}"
+
+
+# --- C001 / C002: joint names ----------------------------------------------------------------------------
+def unknown_joint(model, ctx) -> Iterator[Problem]:
+    """A controller or driver names a joint the model does not have."""
+    c = consumers(model, ctx)
+    seen = set()
+    for u, kind, owner in c.joint_uses():
+        if _unresolved(u.joint) or u.joint in model.joints:
+            continue
+        key = (u.joint, u.loc, owner.name)
+        if key in seen:
+            continue
+        seen.add(key)
+        via = f" (through chained controller {u.via}: '{u.written}')" if u.via else ""
+        hint = ""
+        if u.joint in model.links:
+            hint = f"; {u.joint!r} is a link, not a joint"
+        else:
+            hint = _suggest(u.joint, model.joints)
+        yield Problem(f"{_owner_desc(kind, owner)} names joint {u.joint!r}{via}, which the model does not "
+                      f"have{hint}", at=u.loc, data={"joint": u.joint})
+
+
+def joint_not_movable(model, ctx) -> Iterator[Problem]:
+    """A controller or driver commands a fixed (or floating/planar) joint."""
+    c = consumers(model, ctx)
+    seen = set()
+    for ctrl in c.controllers:
+        if ctrl.kind in (JSB, JSC):
+            continue
+        for u in ctrl.joints:
+            yield from _not_movable(model, u, f"controller {ctrl.name}", seen)
+    for d in c.drivers:
+        for u in d.joints:
+            yield from _not_movable(model, u, f"driver {d.name}", seen)
+
+
+def _not_movable(model, u, who: str, seen: set):
+    j = model.joints.get(u.joint)
+    if j is None or j.movable or (u.joint, u.loc) in seen:
+        return
+    seen.add((u.joint, u.loc))
+    role = {"left_wheel": "drives wheel", "right_wheel": "drives wheel"}.get(u.role, "commands")
+    yield Problem(f"{who} {role} {u.joint!r}, but it is a {j.type} joint: robot_state_publisher never moves "
+                  f"it and the command has no effect", at=u.loc, related=(j,), data={"joint": u.joint})
+
+
+# --- C003: joint state sources ---------------------------------------------------------------------------
+def _gazebo_state_joints(model) -> tuple[bool, set[str]]:
+    """(all joints covered, named joints) from Gazebo joint-state / diff-drive plugins."""
+    all_cov, named = False, set()
+    for b in model.blocks:
+        if b.tag != "gazebo" or "plugin" not in b.xml:
+            continue
+        for m in re.finditer(r"<plugin\b[^>]*filename\s*=\s*[\"']([^\"']+)[\"'][^>]*>(.*?)</plugin>", b.xml, re.S):
+            fname, body = m.group(1).lower(), m.group(2)
+            if "joint_state" in fname:
+                joints = re.findall(r"<joint_?[Nn]ame>\s*([^<\s]+)\s*</joint_?[Nn]ame>", body)
+                if joints:
+                    named.update(joints)
+                else:
+                    all_cov = True
+            elif "diff_drive" in fname and re.search(r"<publish_?[Ww]heel_?[Jj]oint_?[Ss]tate>\s*(true|1)\s*<", body):
+                named.update(re.findall(r"<(?:left|right)_?[Jj]oint>\s*([^<\s]+)\s*<", body))
+    return all_cov, named
+
+
+def joint_without_state_source(model, ctx) -> Iterator[Problem]:
+    """A movable joint nothing publishes a state for, in a deployment we know something about."""
+    c = consumers(model, ctx)
+    bringup = any(li.state_publishers for li in c.launch)  # a launch file that brings the robot up
+    if not len(c.controllers) and not c.drivers and not bringup:
+        return
+    movable = [j for j in model.joint_list if j.movable and j.mimic is None]
+    if not movable:
+        return
+    if any(li.joint_state_publishers for li in c.launch):
+        return
+    gz_all, covered = _gazebo_state_joints(model)
+    if gz_all:
+        return
+    hw_joints = {h.name for r in model.ros2_control if not r.in_gazebo for h in r.joints}
+    trans_joints = {i.name for t in model.transmissions for i in t.joints}
+    sources = []
+    for ctrl in c.controllers:
+        if ctrl.broadcasts_all:
+            sources.append(ctrl)
+            if ctrl.ros == 2:
+                if not hw_joints:
+                    return  # hardware described elsewhere: assume it covers the model
+                covered |= hw_joints
+            else:
+                if not trans_joints:
+                    return
+                covered |= trans_joints
+        for u in ctrl.state_joints:
+            covered.add(u.joint)
+            sources.append(ctrl)
+    for d in c.drivers:
+        for u in d.joints:
+            covered.add(u.joint)
+            sources.append(d)
+    missing = [j for j in movable if j.name not in covered]
+    if not missing:
+        return
+    if not sources:
+        names = ", ".join(j.name for j in missing[:6]) + (", ..." if len(missing) > 6 else "")
+        where = _consumer_anchor(c) or model.loc
+        yield Problem(f"nothing publishes joint states for the model's {len(missing)} movable joint(s) ({names}): "
+                      f"no joint_state_broadcaster/joint_state_controller, joint_state_publisher or driver; "
+                      f"robot_state_publisher cannot place their child links", at=where,
+                      related=_dedupe_locs(missing[:6], where))
+        return
+    for j in missing:
+        yield Problem(f"nothing publishes the state of joint {j.name!r} (the joint state broadcaster does not "
+                      f"cover it and no driver names it); robot_state_publisher will not publish "
+                      f"{j.child!r}", at=j, data={"joint": j.name})
+
+
+def _consumer_anchor(c: Consumers) -> Location | None:
+    for ctrl in c.controllers:
+        return ctrl.loc
+    for li in c.launch:
+        return Location(li.path, 1)
+    for d in c.drivers:
+        return d.loc
+    return None
+
+
+# --- C004..C006: <ros2_control> ----------------------------------------------------------------------------
+def ros2_control_joint_invalid(model, ctx) -> Iterator[Problem]:
+    """A <ros2_control> <joint> that is not a movable joint of the model, or declared twice."""
+    seen: dict[tuple, tuple] = {}
+    for r in model.ros2_control:
+        if r.in_gazebo:
+            continue
+        for h in r.joints:
+            j = model.joints.get(h.name)
+            if _unresolved(h.name):
+                continue
+            if j is None:
+                hint = f"; {h.name!r} is a link, not a joint" if h.name in model.links else _suggest(h.name, model.joints)
+                yield Problem(f"<ros2_control name={r.name!r}> declares joint {h.name!r}, which the model does not "
+                              f"have{hint}", at=h)
+            elif not j.movable:
+                yield Problem(f"<ros2_control name={r.name!r}> declares joint {h.name!r}, but it is a {j.type} "
+                              f"joint: its state is ignored by robot_state_publisher and commands do nothing",
+                              at=h, related=(j,))
+            if not h.command and not h.state:
+                yield Problem(f"<ros2_control name={r.name!r}> joint {h.name!r} has no command or state "
+                              f"interface", at=h)
+            # one joint may appear in several components (an actuator and a position sensor), but each
+            # interface may be exported once
+            for kind, ifaces in (("command", h.command), ("state", h.state)):
+                for i in ifaces:
+                    key = (h.name, kind, i.name)
+                    prev = seen.get(key)
+                    if prev is not None:
+                        yield Problem(f"{kind} interface {h.name}/{i.name} is declared twice in <ros2_control> "
+                                      f"(components {prev[0]!r} and {r.name!r}); the resource manager refuses "
+                                      f"the second", at=i, related=(prev[1],))
+                    else:
+                        seen[key] = (r.name, i)
+
+
+def missing_interface(model, ctx) -> Iterator[Problem]:
+    """A ROS 2 controller needs a command/state interface the <ros2_control> block does not offer."""
+    blocks = [r for r in model.ros2_control if not r.in_gazebo]
+    if not blocks:
+        return
+    hw: dict[str, tuple[set, set, object]] = {}  # joint -> (command names, state names, first item)
+    for r in blocks:
+        for h in r.joints:
+            cmd, st, first = hw.setdefault(h.name, (set(), set(), h))
+            cmd.update(i.name for i in h.command)
+            st.update(i.name for i in h.state)
+    c = consumers(model, ctx)
+    for ctrl in c.controllers:
+        if ctrl.ros != 2:
+            continue
+        for u in ctrl.joints + ctrl.state_joints:
+            if u.via or _unresolved(u.joint) or u.joint not in model.joints:
+                continue
+            if not u.command and not u.state:
+                continue
+            entry = hw.get(u.joint)
+            if entry is None:
+                need = ", ".join(f"command {i}" for i in u.command) or ", ".join(f"state {i}" for i in u.state)
+                yield Problem(f"controller {ctrl.name} needs {need} on joint {u.joint!r}, which no <ros2_control> "
+                              f"block declares", at=u.loc, related=tuple(blocks[:1]))
+                continue
+            cmd, st, h = entry
+            for i in u.command:
+                if i not in cmd:
+                    yield Problem(f"controller {ctrl.name} commands {u.joint!r} through the {i!r} interface, but "
+                                  f"<ros2_control> offers {_list(cmd)} as command interfaces", at=u.loc, related=(h,))
+            for i in u.state:
+                if i not in st:
+                    yield Problem(f"controller {ctrl.name} reads the {i!r} state of {u.joint!r}, but "
+                                  f"<ros2_control> offers {_list(st)} as state interfaces", at=u.loc, related=(h,))
+
+
+def _list(names) -> str:
+    return ", ".join(sorted(names)) if names else "none"
+
+
+def ros2_control_in_gazebo(model, ctx) -> Iterator[Problem]:
+    for r in model.ros2_control:
+        if r.in_gazebo:
+            yield Problem(f"<ros2_control name={r.name!r}> is written inside <gazebo>, where neither the "
+                          f"controller manager nor the Gazebo plugin reads it; its hardware has no joints",
+                          at=r)
+
+
+# --- C007: unreadable consumers --------------------------------------------------------------------------
+def unreadable_consumer(model, ctx) -> Iterator[Problem]:
+    c = consumers(model, ctx)
+    for e in c.errors:
+        yield Problem(e.message, at=e.location)
+    for d in c.drivers:
+        for key, loc in d.missing:
+            yield Problem(f"driver {d.name}: key {key!r} is not in {d.file}", at=loc)
+
+
+# --- C010..C014: wheels ------------------------------------------------------------------------------------
+def _drives(c: Consumers):
+    for ctrl in c.controllers:
+        if ctrl.drive is not None:
+            base = ctrl.odom_tf.child if ctrl.odom_tf is not None else None
+            yield ctrl.drive, base
+    for d in c.drivers:
+        if d.drive is not None:
+            yield d.drive, None
+
+
+def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
+    c = consumers(model, ctx)
+    tol = _opt(ctx, "tolerance", DEFAULT_TOLERANCE)
+    ang = _opt(ctx, "angle_tolerance", DEFAULT_ANGLE_TOLERANCE)
+    prefix = c.rsp_prefix
+    for drive, base in _drives(c):
+        b = base[len(prefix):] if base and prefix and base.startswith(prefix) else base
+        if b not in model.links:
+            b = c.frames.get("base") if c.frames.get("base") in model.links else None
+        rep = check_drive(model, drive, base_frame=b, tolerance=tol, angle_tolerance=ang)
+        for p in rep.problems():
+            if p.code == code:
+                related = _dedupe_locs(p.related, p.at)
+                yield Problem(p.message, at=p.at, related=related, severity=p.severity, data=p.data)
+
+
+def wheel_separation_mismatch(model, ctx):
+    yield from _wheel_problems(model, ctx, "C010")
+
+
+def wheel_radius_mismatch(model, ctx):
+    yield from _wheel_problems(model, ctx, "C011")
+
+
+def wheel_axes_not_parallel(model, ctx):
+    yield from _wheel_problems(model, ctx, "C012")
+
+
+def unequal_wheel_count(model, ctx):
+    yield from _wheel_problems(model, ctx, "C013")
+
+
+def wheel_sides_swapped(model, ctx):
+    yield from _wheel_problems(model, ctx, "C014")
+
+
+# --- C020: frame ids -----------------------------------------------------------------------------------
+def unknown_frame(model, ctx) -> Iterator[Problem]:
+    """A driver, controller or localization node uses a frame id that is not in the TF tree."""
+    c = consumers(model, ctx)
+    if not (len(c.controllers) or c.drivers or c.localization):
+        return
+    g = _graph(model, c)
+    prefix = c.rsp_prefix
+    links = {prefix + n for n in model.links}
+    items = []
+    for ctrl in c.controllers:
+        items.extend((v, f"controller {ctrl.name}", ctrl.name) for v in ctrl.frames)
+    for d in c.drivers:
+        items.extend((v, f"driver {d.name}", d.name) for v in d.frames)
+    for n in c.localization:
+        items.append((n.base_frame, f"{n.kind} {n.node}", f" {n.node}"))
+    seen = set()
+    for v, who, owner in items:
+        name = str(v.value).strip().lstrip("/")
+        if not name or _unresolved(name) or name in links or (name, v.loc) in seen:
+            continue
+        # a frame somebody else publishes is in the tree; the user's own odometry claim does not count
+        others = {f for cl in g.claims if cl.owner != owner and not cl.owner.endswith(owner)
+                  for f in (cl.parent, cl.child)}
+        if name in others:
+            continue
+        seen.add((name, v.loc))
+        yield Problem(f"{who} uses frame {name!r}, which is neither a link of the model nor published by "
+                      f"anything else{_suggest(name, sorted(links | others))}", at=v.loc, data={"frame": name})
+
+
+# --- T001..T006: TF ownership ------------------------------------------------------------------------------
+def _graph(model, c: Consumers) -> TFGraph:
+    cache = getattr(c, "_graph_cache", None)
+    key = id(model)
+    if cache is not None and cache[0] == key:
+        return cache[1]
+    g = TFGraph()
+    g.extend(claims_from_model(model, c.rsp_prefix))
+    for li in c.launch:
+        g.extend(claims_from_static_tfs(li.static_tfs, g.notes))
+    base = c.frames.get("base", "base_link")
+    g.extend(claims_from_odom((ctrl.odom_tf for ctrl in c.controllers), base, "controller"))
+    g.extend(claims_from_odom((d.odom_tf for d in c.drivers), base, "driver"))
+    g.extend(claims_from_localization(c.localization))
+    g.extend(c.tf_owners)
+    c._graph_cache = (key, g)
+    return g
+
+
+def _alternatives(p, c: Consumers) -> bool:
+    """Discovered launch files of a package are often alternatives (sim/real): a conflict only between
+    claims of different launch files is not reported unless the config says they run together."""
+    if c.origin == "config" or not p.claims:
+        return False
+    if any(cl.source != "launch" for cl in p.claims):
+        return False
+    return len({cl.loc.file for cl in p.claims}) > 1
+
+
+def _has_consumer_claims(g: TFGraph) -> bool:
+    return any(cl.source != "model" for cl in g.claims)
+
+
+def _dedupe_locs(locs, at=None) -> tuple:
+    out: dict[str, Location] = {}
+    for loc in locs:
+        loc = getattr(loc, "loc", loc)
+        if loc is None or (at is not None and str(loc) == str(at)):
+            continue
+        out.setdefault(str(loc), loc)
+    return tuple(out.values())
+
+
+def _as_problem(p, prefer_consumer: bool = True, hint: str = "") -> Problem:
+    claims = list(p.claims)
+    at = p.loc
+    if at is None and claims:
+        first = next((cl for cl in claims if cl.source != "model"), claims[0]) if prefer_consumer else claims[0]
+        at = first.loc
+    return Problem(p.message + hint, at=at, related=_dedupe_locs((cl.loc for cl in claims), at),
+                   data={"frames": list(p.frames)})
+
+
+def duplicate_tf_owner(model, ctx):
+    c = consumers(model, ctx)
+    g = _graph(model, c)
+    if not _has_consumer_claims(g):
+        return
+    for p in duplicate_owners(g):
+        if not _alternatives(p, c):
+            yield _as_problem(p)
+
+
+def static_and_dynamic_tf(model, ctx):
+    c = consumers(model, ctx)
+    g = _graph(model, c)
+    if not _has_consumer_claims(g):
+        return
+    for p in static_and_dynamic(g):
+        if not _alternatives(p, c):
+            yield _as_problem(p)
+
+
+def tf_multiple_parents(model, ctx):
+    c = consumers(model, ctx)
+    g = _graph(model, c)
+    if not _has_consumer_claims(g):
+        return
+    for p in multiple_parents(g):
+        if _alternatives(p, c):
+            continue
+        hint = ""
+        child = p.frames[0] if p.frames else ""
+        prefix = c.rsp_prefix
+        link = child[len(prefix):] if prefix and child.startswith(prefix) else child
+        if link in model.links and model.root and link != model.root and \
+                any(cl.source in ("controller", "driver", "localization") for cl in p.claims):
+            hint = (f"; {link} is not the model's root: publish odometry to {prefix}{model.root} "
+                    f"(base_frame_id / base_link_frame)")
+        yield _as_problem(p, hint=hint)
+
+
+def tf_cycle(model, ctx):
+    c = consumers(model, ctx)
+    g = _graph(model, c)
+    if not _has_consumer_claims(g):
+        return
+    for p in cycles(g):
+        if all(cl.source == "model" for cl in p.claims) or _alternatives(p, c):
+            continue  # the model's own cycle is S005
+        yield _as_problem(p)
+
+
+def tf_not_one_tree(model, ctx):
+    c = consumers(model, ctx)
+    g = _graph(model, c)
+    if not _has_consumer_claims(g) or len(model.roots) > 1:
+        return  # several roots in the model itself: S001
+    for p in not_one_tree(g, c.frames):
+        yield _as_problem(p)
+
+
+def frame_prefix_collision(model, ctx):
+    c = consumers(model, ctx)
+    groups = [c.launch] if c.origin == "config" else [[li] for li in c.launch]  # discovered: per file
+    for group in groups:
+        pubs = [PublisherInfo(s.name, s.frame_prefix, s.loc, s.namespace)
+                for li in group for s in li.state_publishers if not s.condition]
+        for p in prefix_collisions(pubs):
+            yield _as_problem(p, prefer_consumer=False)
