@@ -9,7 +9,10 @@ Claims (`TFClaim(parent, child, owner, kind, loc)`) come from
 * static_transform_publisher nodes in launch files (static);
 * controllers and drivers that broadcast odometry (dynamic odom -> base);
 * localization (robot_localization, AMCL) (dynamic);
-* owners declared in the config (`tf_owners: {"map->odom": amcl}`) (dynamic).
+* owners declared in the config (`tf_owners: {"map->odom": amcl}`) (dynamic). A declaration that names the
+  publisher already read for that edge (`add_declared`: the same owner, its node name, or its kind, e.g.
+  `map_to_odom`, `static_transform_publisher`, `diff_drive_controller`) documents that publisher and adds no
+  second claim; one naming somebody else is a second publisher (T001/T002).
 
 Frame names are compared without a leading "/". Analyses return `TFProblem`s (never findings): the check
 layer turns them into T001..T006.
@@ -190,6 +193,28 @@ def claims_from_owners(owners: Mapping[str, str], locs: Mapping[str, Location] |
         loc = (locs or {}).get(edge_text) or default_loc or Location("<config>")
         out.append(TFClaim(e[0], e[1], str(owner), DYNAMIC, loc, "config"))
     return out
+
+
+def declared_matches(owner: str, claim: TFClaim) -> bool:
+    """Does the owner written in the config's `tf_owners` name the publisher of `claim`?
+
+    "static_transform_publisher map_to_odom" is named by itself, by "map_to_odom" and by
+    "static_transform_publisher"; a controller claim by the controller name.
+    """
+    d = str(owner).strip()
+    o = claim.owner
+    return bool(d) and (d == o or o.endswith(" " + d) or o.split(" ", 1)[0] == d)
+
+
+def add_declared(g: TFGraph, declared: Iterable[TFClaim]) -> TFGraph:
+    """Add the config's `tf_owners` claims after everything read from files: a declaration naming a publisher
+    already seen on the same edge is that publisher, not a second one."""
+    for c in declared:
+        edge = (norm(c.parent), norm(c.child))
+        if any(x.edge == edge and x.source != "config" and declared_matches(c.owner, x) for x in g.claims):
+            continue
+        g.add(c)
+    return g
 
 
 # --- analyses ----------------------------------------------------------------------------------------

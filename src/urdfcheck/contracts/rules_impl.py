@@ -13,8 +13,8 @@ from typing import Iterator
 from ..findings import Location, Problem
 from .consumers import Consumers, discover_consumers
 from .controllers import JSB, JSC
-from .graph import (PublisherInfo, TFGraph, claims_from_localization, claims_from_model, claims_from_odom,
-                    claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents,
+from .graph import (PublisherInfo, TFGraph, add_declared, claims_from_localization, claims_from_model,
+                    claims_from_odom, claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents,
                     not_one_tree, prefix_collisions, static_and_dynamic)
 from .wheels import DEFAULT_ANGLE_TOLERANCE, DEFAULT_TOLERANCE, check_drive
 
@@ -391,7 +391,7 @@ def _graph(model, c: Consumers) -> TFGraph:
     g.extend(claims_from_odom((ctrl.odom_tf for ctrl in c.controllers), base, "controller"))
     g.extend(claims_from_odom((d.odom_tf for d in c.drivers), base, "driver"))
     g.extend(claims_from_localization(c.localization))
-    g.extend(c.tf_owners)
+    add_declared(g, c.tf_owners)  # after the claims read from files: a declaration may name one of them
     c._graph_cache = (key, g)
     return g
 

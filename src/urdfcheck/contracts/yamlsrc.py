@@ -32,6 +32,8 @@ MAX_BYTES = 2 * 1024 * 1024
 MAX_NODES = 100_000
 MAX_DEPTH = 256
 
+_BRACKETS = re.compile(r"[\[\]{}]")
+_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 _RUNS = re.compile(r"[\[{][\[{\s,]*|(?:-[ \t]+)+")  # maximal runs of flow openers / block dashes
 _MERGE_TAG = "tag:yaml.org,2002:merge"
 _STR_TAG = "tag:yaml.org,2002:str"
@@ -288,9 +290,17 @@ def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_
         if run.count("[") + run.count("{") + run.count("-") > MAX_DEPTH:
             line = text.count("\n", 0, m.start()) + 1
             raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", Location(file, line))
+    depth = 0
+    for m in _BRACKETS.finditer(text):  # flow nesting with text between the brackets ([a, [b, [c ...)
+        depth += 1 if m.group() in "[{" else -1
+        if depth > MAX_DEPTH:
+            line = text.count("\n", 0, m.start()) + 1
+            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", Location(file, line))
+    # With flow nesting bounded above and block nesting bounded by the file size (indentation grows with
+    # depth), libyaml's recursive C composer is safe, and ~10x faster than the pure-Python one.
     try:
         root = None
-        for node in yaml.compose_all(text, Loader=yaml.SafeLoader):
+        for node in yaml.compose_all(text, Loader=_LOADER):
             if node is not None:
                 root = node
                 break
