@@ -5,6 +5,7 @@ from urdfcheck import baseline
 from urdfcheck.findings import Finding, Location, Severity
 
 from conftest import run_cli
+from samples import MACROS
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>
@@ -20,21 +21,6 @@ ROBOT = """<robot name="r">
     <parent link="arm"/>
     <child link="hand"/>
   </joint>
-</robot>
-"""
-
-MACROS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="leg" params="prefix">
-    <link name="${prefix}_leg"/>
-    <joint name="${prefix}_j" type="fixed">
-      <orign xyz="0 0 0"/>
-      <parent link="base_link"/>
-      <child link="${prefix}_leg"/>
-    </joint>
-  </xacro:macro>
-  <link name="base_link"/>
-  <xacro:leg prefix="l"/>
-  <xacro:leg prefix="r"/>
 </robot>
 """
 

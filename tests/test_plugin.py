@@ -5,20 +5,10 @@ from pathlib import Path
 import pytest
 
 import urdfcheck
+from samples import BAD, GOOD
 
 pytest_plugins = ["pytester"]
 
-GOOD = '<robot name="r">\n  <link name="base_link"/>\n</robot>\n'
-BAD = """<robot name="r">
-  <link name="base_link"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <orign xyz="0 0 0.5"/>
-    <parent link="base_link"/>
-    <child link="arm"/>
-  </joint>
-</robot>
-"""
 XACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:arg name="typo" default="false"/>
   <link name="base_link"/>

@@ -15,20 +15,10 @@ import pytest
 import yaml
 
 from conftest import REPO
+from samples import BAD, GOOD
 
 pytestmark = pytest.mark.slow
 
-GOOD = '<robot name="r">\n  <link name="base_link"/>\n</robot>\n'
-BAD = """<robot name="r">
-  <link name="base_link"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <orign xyz="0 0 0.5"/>
-    <parent link="base_link"/>
-    <child link="arm"/>
-  </joint>
-</robot>
-"""
 GIT_ENV = {"GIT_AUTHOR_NAME": "t", "GIT_AUTHOR_EMAIL": "t@example.com", "GIT_COMMITTER_NAME": "t",
            "GIT_COMMITTER_EMAIL": "t@example.com", "GIT_CONFIG_NOSYSTEM": "1"}
 

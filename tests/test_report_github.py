@@ -8,17 +8,8 @@ from urdfcheck.report import render
 from urdfcheck.report.github import escape_data, escape_property
 
 from conftest import run_cli
+from samples import BAD
 
-BAD = """<robot name="r">
-  <link name="base_link"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <orign xyz="0 0 0.5"/>
-    <parent link="base_link"/>
-    <child link="arm"/>
-  </joint>
-</robot>
-"""
 COMMAND = re.compile(r"^::(error|warning|notice) ((file|line|col|title)=[^,:]*)(,(file|line|col|title)=[^,:]*)*::.*$")
 
 

@@ -8,18 +8,8 @@ from urdfcheck.lint import Result, Target
 from urdfcheck.report import render
 
 from conftest import run_cli
+from samples import BAD, GOOD
 
-BAD = """<robot name="r">
-  <link name="base_link"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <orign xyz="0 0 0.5"/>
-    <parent link="base_link"/>
-    <child link="arm"/>
-  </joint>
-</robot>
-"""
-GOOD = '<robot name="r">\n  <link name="base_link"/>\n</robot>\n'
 FAMILIES = sorted({r.family for r in rulebook.catalogue().values()})
 
 

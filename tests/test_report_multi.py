@@ -3,17 +3,7 @@ import json
 import xml.etree.ElementTree as ET
 
 from conftest import run_cli
-
-BAD = """<robot name="r">
-  <link name="base_link"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <orign xyz="0 0 0.5"/>
-    <parent link="base_link"/>
-    <child link="arm"/>
-  </joint>
-</robot>
-"""
+from samples import BAD
 
 
 def test_all_formats_in_one_run(tmp_path):

@@ -11,34 +11,9 @@ from urdfcheck.lint import Result, Target
 from urdfcheck.report import render
 
 from conftest import run_cli
+from samples import BAD, MACROS
 
 SCHEMA = json.loads((Path(__file__).parent / "data" / "sarif-schema-2.1.0.json").read_text(encoding="utf-8"))
-
-BAD = """<robot name="r">
-  <link name="base_link"/>
-  <link name="arm"/>
-  <joint name="j" type="fixed">
-    <orign xyz="0 0 0.5"/>
-    <parent link="base_link"/>
-    <child link="arm"/>
-  </joint>
-</robot>
-"""
-
-MACROS = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
-  <xacro:macro name="leg" params="prefix">
-    <link name="${prefix}_leg"/>
-    <joint name="${prefix}_j" type="fixed">
-      <orign xyz="0 0 0"/>
-      <parent link="base_link"/>
-      <child link="${prefix}_leg"/>
-    </joint>
-  </xacro:macro>
-  <link name="base_link"/>
-  <xacro:leg prefix="l"/>
-  <xacro:leg prefix="r"/>
-</robot>
-"""
 
 
 def validate(doc):
