@@ -84,8 +84,22 @@ def bench_batch(path: Path, n: int) -> dict:
             upd(pm, data)
 
     t_pin = best_of(pin_loop)
+
+    fids = [pm.getFrameId(link, pin.FrameType.BODY) for link in model.links
+            if pm.existFrame(link, pin.FrameType.BODY)]
+
+    def pin_loop_copy():  # the same, plus every link's pose copied out (what link_poses returns)
+        fk, upd = pin.forwardKinematics, pin.updateFramePlacements
+        out = np.empty((n, len(fids), 4, 4))
+        for i in range(n):
+            fk(pm, data, qs[i])
+            upd(pm, data)
+            omf = data.oMf
+            out[i] = [omf[f].homogeneous for f in fids]
+
+    t_copy = best_of(pin_loop_copy)
     return {"model": path.name, "links": len(model.links), "dof": len(names), "n": n,
-            "ours": n / t_ours, "pinocchio": n / t_pin}
+            "ours": n / t_ours, "pinocchio": n / t_pin, "pinocchio_copy": n / t_copy}
 
 
 def bench_messages(path: Path, count: int) -> dict:
@@ -137,11 +151,15 @@ def main() -> int:
         return 2
 
     print(f"batch FK, {a.n} configurations (configurations/s; best of 3)")
-    print(f"  {'model':<22}{'links':>6}{'dof':>5}{'urdfcheck':>14}{'pinocchio':>14}{'ratio':>8}")
+    print("  pinocchio: forwardKinematics + updateFramePlacements per configuration in a Python loop;")
+    print("  +copy: the same plus every link's pose copied into a numpy array (what link_poses returns)")
+    print(f"  {'model':<22}{'links':>6}{'dof':>5}{'urdfcheck':>12}{'pinocchio':>12}{'ratio':>8}"
+          f"{'pin+copy':>12}{'ratio':>8}")
     for p in (a.ur5, a.pr2):
         r = bench_batch(p, a.n)
-        print(f"  {r['model']:<22}{r['links']:>6}{r['dof']:>5}{r['ours']:>14,.0f}{r['pinocchio']:>14,.0f}"
-              f"{r['ours'] / r['pinocchio']:>7.2f}x")
+        print(f"  {r['model']:<22}{r['links']:>6}{r['dof']:>5}{r['ours']:>12,.0f}{r['pinocchio']:>12,.0f}"
+              f"{r['ours'] / r['pinocchio']:>7.2f}x{r['pinocchio_copy']:>12,.0f}"
+              f"{r['ours'] / r['pinocchio_copy']:>7.2f}x")
 
     r = bench_messages(a.ur5, a.messages)
     print(f"\nsingle JointState -> transforms, {r['model']} ({r['joints']} joints, {r['transforms_per_message']} "

@@ -1,8 +1,10 @@
 """The example packages through the real CLI: the AGV is clean, each broken package reports exactly its EXPECTED.
 
-`examples/broken/<name>/EXPECTED` holds one finding per line, `CODE path:LINE [via path:LINE]`, paths relative to
-the package folder; `via` is the innermost xacro call site. Any folder under examples/broken with an EXPECTED file
-is picked up, so new defect packages need no change here.
+`examples/broken/<name>/EXPECTED` holds one finding per line, `CODE path:LINE [via path:LINE] [variant NAME]`,
+paths relative to the package folder; `via` is the innermost xacro call site, `variant` the xacro argument set(s)
+the finding was seen in (comma-separated, as the report prints it). Any folder under examples/broken with an
+EXPECTED file is picked up, so new defect packages need no change here. A package with its own `urdfcheck.yaml`
+(declared drivers, variants) is linted with that config; the others with `--no-config` (zero-config discovery).
 """
 from __future__ import annotations
 
@@ -14,28 +16,50 @@ import pytest
 
 from urdfcheck import rulebook
 
-from conftest import REPO, lint_json
+from conftest import REPO, lint_json, run_cli
 
 BROKEN = REPO / "examples" / "broken"
 PACKAGES = sorted(p.parent.name for p in BROKEN.glob("*/EXPECTED")) if BROKEN.is_dir() else []
-_LINE = re.compile(r"^(?P<code>[A-Z]\d{3})\s+(?P<where>\S+:\d+)(?:\s+via\s+(?P<via>\S+:\d+))?\s*$")
+_LINE = re.compile(r"^(?P<code>[A-Z]\d{3})\s+(?P<where>\S+:\d+)(?:\s+via\s+(?P<via>\S+:\d+))?"
+                   r"(?:\s+variant\s+(?P<variant>\S+))?\s*$")
 _SANDBOX = ("X010", "X011")  # the xacro sandbox could not expand the model
 
 
 def read_expected(name: str) -> list[tuple[str, str, str | None]]:
+    return [e[:3] for e in read_expected_full(name)]
+
+
+def read_expected_full(name: str) -> list[tuple[str, str, str | None, str | None]]:
+    """(code, where, via, variant) per EXPECTED line; via/variant None when the line does not give them."""
     out = []
     for raw in (BROKEN / name / "EXPECTED").read_text(encoding="utf-8").splitlines():
         line = raw.split("#", 1)[0].strip()
         if not line:
             continue
         m = _LINE.match(line)
-        assert m, f"examples/broken/{name}/EXPECTED: cannot read {raw!r} (want 'CODE path:LINE [via path:LINE]')"
-        out.append((m["code"], m["where"], m["via"]))
+        assert m, (f"examples/broken/{name}/EXPECTED: cannot read {raw!r} "
+                   f"(want 'CODE path:LINE [via path:LINE] [variant NAME]')")
+        out.append((m["code"], m["where"], m["via"], m["variant"]))
     return out
 
 
+def lint_package(name: str):
+    """Lint examples/broken/<name> through the CLI: with its urdfcheck.yaml if it has one, else --no-config."""
+    if (BROKEN / name / "urdfcheck.yaml").is_file():
+        import json
+
+        code, out, err = run_cli(["lint", "--format", "json", f"examples/broken/{name}"], cwd=REPO)
+        assert code in (0, 1), (code, err)
+        return code, json.loads(out)
+    return lint_json([f"examples/broken/{name}"], cwd=REPO)
+
+
 def _rel(path: str, prefix: str) -> str:
-    return path[len(prefix):] if path.startswith(prefix) else path
+    """Relative to the package folder; consumer files (YAML, launch) are reported with absolute paths."""
+    for pre in (prefix, str(REPO / prefix) + "/"):
+        if path.startswith(pre):
+            return path[len(pre):]
+    return path
 
 
 def actual(findings, name: str) -> list[tuple[str, str, str | None]]:
@@ -72,7 +96,7 @@ def test_agv_is_clean():
 def test_broken_example(name):
     expected = read_expected(name)
     assert expected, f"examples/broken/{name}/EXPECTED is empty"
-    exit_code, report = lint_json([f"examples/broken/{name}"], cwd=REPO)
+    exit_code, report = lint_package(name)
     findings = report["findings"]
     codes = {c for c, _, _ in expected}
 
@@ -96,5 +120,11 @@ def test_broken_example(name):
     want_via = Counter(e for e in expected if e[2])
     got_via = Counter(g for g in got if (g[0], g[1]) in {(c, w) for c, w, v in expected if v})
     assert want_via == got_via, f"examples/broken/{name}: call sites (via) differ: {want_via} != {got_via}"
+    # the variant, where EXPECTED gives it
+    full = read_expected_full(name)
+    want_var = Counter((c, w, v) for c, w, _, v in full if v)
+    with_var = {(c, w) for c, w, _, v in full if v}
+    got_var = Counter((c, w, f.get("variant") or "") for (c, w, _), f in zip(got, findings) if (c, w) in with_var)
+    assert want_var == got_var, f"examples/broken/{name}: variants differ: {want_var} != {got_var}"
     if any(f["severity"] in ("error", "warning") for f in findings):
         assert exit_code == 1

@@ -11,7 +11,8 @@ ROBOT = """<robot name="r">
   <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 1"/>
     <axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>
   <joint name="tool_joint" type="fixed"><parent link="arm"/><child link="tool"/><origin xyz="1 0 0"/></joint>
-  <joint name="cam_joint" type="fixed"><parent link="base"/><child link="cam"/><origin xyz="0 0 2" rpy="0 0.5 0"/></joint>
+  <joint name="cam_joint" type="fixed"><parent link="base"/><child link="cam"/>
+    <origin xyz="0 0 2" rpy="0 0.5 0"/></joint>
   <joint name="wheel_joint" type="continuous"><parent link="base"/><child link="wheel"/><axis xyz="0 1 0"/>
     <mimic joint="shoulder" multiplier="2"/></joint>
 </robot>"""
@@ -110,8 +111,10 @@ def test_publish_replays_messages(robot, tmp_path):
 
 def test_publish_options_ros1_json(robot, tmp_path):
     js = tmp_path / "js.json"
-    js.write_text(json.dumps([{"name": ["shoulder"], "position": [0.1], "header": {"stamp": {"sec": 5, "nanosec": 0}}},
-                              {"name": ["shoulder"], "position": [0.2], "header": {"stamp": {"sec": 5, "nanosec": 1}}}]))
+    js.write_text(json.dumps([
+        {"name": ["shoulder"], "position": [0.1], "header": {"stamp": {"sec": 5, "nanosec": 0}}},
+        {"name": ["shoulder"], "position": [0.2], "header": {"stamp": {"sec": 5, "nanosec": 1}}},
+    ]))
     code, out, err = run_cli(["publish", robot, "--joint-states", js, "--profile", "ros1", "--no-tf-static",
                               "--frame-prefix", "/bot", "--ignore-timestamp"])
     assert code == 0, err

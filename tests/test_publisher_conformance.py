@@ -129,8 +129,10 @@ ROBOT = """<robot name="conformance">
     <origin xyz="0.1 0 0" rpy="0 1.5707963267948966 0"/><axis xyz="0 2 0"/></joint>
   <joint name="j3" type="prismatic"><parent link="l2"/><child link="l3"/><axis xyz="1 1 0"/>
     <limit lower="0" upper="1" effort="1" velocity="1"/></joint>
-  <joint name="tool_joint" type="fixed"><parent link="l3"/><child link="tool"/><origin xyz="0 0 0.2" rpy="3.14159 0 0"/></joint>
-  <joint name="planar_j" type="planar"><parent link="base"/><child link="p"/><origin xyz="1 2 3"/><axis xyz="0 0 1"/></joint>
+  <joint name="tool_joint" type="fixed"><parent link="l3"/><child link="tool"/>
+    <origin xyz="0 0 0.2" rpy="3.14159 0 0"/></joint>
+  <joint name="planar_j" type="planar"><parent link="base"/><child link="p"/>
+    <origin xyz="1 2 3"/><axis xyz="0 0 1"/></joint>
   <joint name="float_j" type="floating"><parent link="base"/><child link="f"/><origin xyz="0 0 1"/></joint>
   <joint name="under_float" type="fixed"><parent link="f"/><child link="f2"/><origin xyz="0 0 1"/></joint>
   <joint name="zero_rev" type="revolute"><parent link="base"/><child link="z"/><axis xyz="0 0 0"/>

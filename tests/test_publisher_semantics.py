@@ -18,7 +18,8 @@ ARM = """<robot name="arm">
   <joint name="j3" type="prismatic"><parent link="l2"/><child link="l3"/><axis xyz="1 0 0"/>
     <limit lower="0" upper="1" effort="1" velocity="1"/></joint>
   <joint name="tool_joint" type="fixed"><parent link="l3"/><child link="tool"/><origin xyz="0 0 0.2"/></joint>
-  <joint name="cam_joint" type="fixed"><parent link="base"/><child link="cam"/><origin xyz="1 0 1" rpy="0 0 3.0"/></joint>
+  <joint name="cam_joint" type="fixed"><parent link="base"/><child link="cam"/>
+    <origin xyz="1 0 1" rpy="0 0 3.0"/></joint>
   <joint name="b_mimic" type="revolute"><parent link="base"/><child link="m1"/><axis xyz="0 0 1"/>
     <limit lower="-3" upper="3" effort="1" velocity="1"/><mimic joint="j1" multiplier="2" offset="0.1"/></joint>
   <joint name="a_mimic" type="revolute"><parent link="base"/><child link="m2"/><axis xyz="0 0 1"/>

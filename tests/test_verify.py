@@ -117,8 +117,9 @@ def test_axis_without_xyz_is_a_parser_delta():
       <child link="b"/><axis/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>"""
     r = V.verify(model_from_string(xml), n=20, xml=xml, peers=("pinocchio",))
     assert any(d.code == "axis-without-xyz" for d in r.deltas)
-    # urdfdom reads a zero axis where urdfcheck uses 1 0 0: shown, not hidden
-    assert r.peer("pinocchio").status == "mismatch"
+    assert any(d.code == "zero-axis" for d in r.deltas)
+    # urdfcheck reads the zero axis urdfdom reads: the zero-axis subtree is excluded and stated, not a mismatch
+    assert r.peer("pinocchio").status != "mismatch"
 
 
 # --- peers that fail --------------------------------------------------------------------------------------------
@@ -203,7 +204,21 @@ def test_cli_verify_exit_codes(tmp_path):
       <parent link="a"/><child link="b"/><axis/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
       </robot>""")
     code, out, err = run_cli(["verify", bad, "-n", "20"])
-    assert code == 1 and "mismatch" in out and "axis-without-xyz" not in out and "has no xyz" in out
+    # urdfcheck reads <axis/> as urdfdom does (zero): the subtree is excluded and the delta stated
+    assert code == 0 and "has no xyz" in out and "zero axis" in out
+
+
+def test_cli_verify_exits_1_on_a_disagreement(tmp_path, monkeypatch):
+    import urdfcheck.verify as verify_mod
+
+    good = tmp_path / "arm.urdf"
+    good.write_text(ARM)
+    real = verify_mod.verify
+    shifted = ARM.replace('origin xyz="0.1 0 0" rpy="0 1.2 0"', 'origin xyz="0.101 0 0" rpy="0 1.2 0"')
+    # the peers read a document whose joint sits 1 mm off: what a parser disagreement looks like
+    monkeypatch.setattr(verify_mod, "verify", lambda model, *a, xml=None, **k: real(model, *a, xml=shifted, **k))
+    code, out, err = run_cli(["verify", good, "-n", "20", "--no-yourdfpy"])
+    assert code == 1 and "mismatch" in out, (out, err)
     code, out, err = run_cli(["verify", tmp_path / "missing.urdf"])
     assert code == 2
     broken = tmp_path / "broken.urdf"

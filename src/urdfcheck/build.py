@@ -240,7 +240,9 @@ class _Builder:
                 origin = self.pose(c)
             elif tag == "axis":
                 self.check(c, "axis")
-                axis = self.vector(c, "xyz", 3, _X, required=True)
+                # urdfdom reads <axis/> without xyz as a zero vector (robot_state_publisher then
+                # publishes NaN), not as the default x axis: model what the robot will do
+                axis = self.vector(c, "xyz", 3, _ZERO, required=True)
                 axis_loc = self.locate(c)
             elif tag == "limit":
                 self.check(c, "limit")

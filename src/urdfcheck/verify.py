@@ -17,7 +17,13 @@ comparison and the disagreement is reported as a :class:`Delta` (finding V002) i
 Pinocchio and yourdfpy run in forked children with an address-space limit and a timeout, so a crash, an
 out-of-memory or a hang is reported as that peer's result ("crashed", "out of memory", "timed out") and never
 as a pass. Their C-level stdout/stderr is captured and returned. Models above the size caps (DoF, chain
-depth) are refused for Pinocchio, whose URDF parser recurses per link and whose ``createData`` grows fast.
+depth) are refused for Pinocchio, whose URDF parser recurses per link (it overflows the C stack on chains of a
+few thousand links) and whose ``createData`` grows with the cube of the DoF. ``prestart`` forks the children
+before the model is loaded, so that their imports overlap with the caller's work.
+
+yourdfpy's trimesh scene graph ignores a transform update within 1e-8 (per element) of the stored one; the
+yourdfpy job invalidates the joints' edges before each update so that the comparison sees yourdfpy's
+kinematics, not that cache.
 """
 from __future__ import annotations
 
@@ -252,16 +258,16 @@ def semantic_deltas(model, tree: KinematicTree | None = None, peers=("pinocchio"
         elif s.type not in ("revolute", "continuous", "prismatic", "fixed"):
             out.append(Delta("unknown-type", s.name, f"joint {s.name!r} has unknown type {s.type!r}: urdfdom "
                              "refuses the model; urdfcheck treats it as fixed", ("pinocchio", "yourdfpy"), j.loc))
-    # <axis> without xyz: urdfdom (robot_state_publisher, Pinocchio) leaves the axis at zero, while the model
-    # (and yourdfpy) use the default 1 0 0 -- a parser difference, not excluded: the comparison shows it
+    # <axis> without xyz: the model reads it as urdfdom does (a zero axis), so the zero-axis delta above
+    # covers it; yourdfpy alone uses the default 1 0 0
     for s in tree.segments:
         j = s.joint
         if s.kind == "movable" and j.axis_loc is not None and any(
                 i.code == "U006" and i.loc == j.axis_loc and "xyz" in i.message for i in model.issues):
             out.append(Delta("axis-without-xyz", s.name, f"joint {s.name!r}: <axis> has no xyz; urdfdom (used by "
-                             "robot_state_publisher and Pinocchio) reads a zero axis, so robot_state_publisher "
-                             "publishes NaN for it, while urdfcheck and yourdfpy use the default 1 0 0",
-                             ("pinocchio",), j.axis_loc))
+                             "robot_state_publisher and Pinocchio) and urdfcheck read a zero axis, so "
+                             "robot_state_publisher publishes NaN for it, while yourdfpy uses the default 1 0 0",
+                             ("yourdfpy",), j.axis_loc))
     # mimic joints robot_state_publisher does not publish from a message naming the independent joints
     for n in tree.notes:
         if n.code in ("mimic-order", "mimic-source"):
@@ -319,15 +325,22 @@ def _vm_size() -> int:
 
 
 class _Child:
-    """A forked child running fn(progress, *args); result and output go to temp files, progress to a pipe."""
+    """A forked child that preloads modules, waits for its job, then runs fn(progress, *args).
 
-    def __init__(self, name: str, fn, args: tuple, timeout: float, memory: int | None):
+    The job travels through a temp file (the parent never blocks on a child that is still importing);
+    result and output (C-level stdout/stderr, dup2'ed) go to temp files; progress comes through a pipe.
+    """
+
+    def __init__(self, name: str, fn, timeout: float, memory: int | None, preload=()):
         self.name = name
         self.timeout = timeout
         self.started = time.monotonic()
+        self.sent = False
+        self.job_file = tempfile.TemporaryFile()
         self.result_file = tempfile.TemporaryFile()
         self.output_file = tempfile.TemporaryFile()
         self.prog_r, prog_w = os.pipe()
+        go_r, self.go_w = os.pipe()
         sys.stdout.flush()
         sys.stderr.flush()
         pid = os.fork()
@@ -335,6 +348,7 @@ class _Child:
             code = 0
             try:
                 os.close(self.prog_r)
+                os.close(self.go_w)
                 out_fd = self.output_file.fileno()
                 os.dup2(out_fd, 1)
                 os.dup2(out_fd, 2)
@@ -349,6 +363,15 @@ class _Child:
                 if memory:
                     limit = _vm_size() + int(memory)
                     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+                for module in preload:  # while the parent loads the model
+                    try:
+                        __import__(module)
+                    except BaseException:
+                        pass
+                if not os.read(go_r, 1):  # cancelled
+                    os._exit(0)
+                self.job_file.seek(0)
+                args = pickle.load(self.job_file)
                 last = [0.0]
 
                 def progress(done, total):
@@ -385,10 +408,41 @@ class _Child:
             finally:
                 os._exit(code)
         os.close(prog_w)
+        os.close(go_r)
         self.pid = pid
         self.status = None
         self.killed = False
         self.progress = (0, 0)
+
+    def send(self, *args) -> None:
+        pickle.dump(args, self.job_file, protocol=pickle.HIGHEST_PROTOCOL)
+        self.job_file.flush()
+        os.write(self.go_w, b"1")
+        os.close(self.go_w)
+        self.sent = True
+        self.started = time.monotonic()
+
+    def cancel(self) -> None:
+        """Stop a child that was never given its job."""
+        if not self.sent:
+            try:
+                os.close(self.go_w)
+            except OSError:
+                pass
+        try:
+            os.kill(self.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        try:
+            os.waitpid(self.pid, 0)
+        except ChildProcessError:
+            pass
+        for f in (self.job_file, self.result_file, self.output_file):
+            f.close()
+        try:
+            os.close(self.prog_r)
+        except OSError:
+            pass
 
     def poll(self) -> bool:
         if self.status is not None:
@@ -427,7 +481,8 @@ class _Child:
         return True
 
     def outcome(self):
-        """(kind, value, output): kind ok/memory/error/timeout/crashed."""
+        """(kind, value, output, seconds): kind ok/memory/error/timeout/crashed."""
+        self.job_file.close()
         self.output_file.seek(0)
         output = self.output_file.read(256 * 1024).decode("utf-8", "replace")
         self.output_file.close()
@@ -481,6 +536,29 @@ def _wait(children, progress):
                 open_fds.pop(c.prog_r, None)
                 if progress:
                     progress(c.name, 1, 1)
+
+
+PRELOAD = {"pinocchio": ("numpy", "pinocchio"), "yourdfpy": ("numpy", "yourdfpy")}
+
+
+def prestart(peers=("pinocchio", "yourdfpy"), *, timeout: float = DEFAULT_TIMEOUT,
+             memory: int | None = DEFAULT_MEMORY) -> dict:
+    """Fork the peer processes early so that they import their libraries while the caller loads the model.
+
+    Pass the result to ``verify(..., workers=...)``; call ``cancel(workers)`` if verify is not reached."""
+    jobs = {"pinocchio": _pinocchio_job, "yourdfpy": _yourdfpy_job}
+    out = {}
+    for name in ("yourdfpy", "pinocchio"):  # the slowest first
+        if name in peers and _available(name):
+            out[name] = _Child(name, jobs[name], timeout, memory, PRELOAD[name])
+    return out
+
+
+def cancel(workers: dict | None) -> None:
+    for c in (workers or {}).values():
+        c.cancel()
+    if workers:
+        workers.clear()
 
 
 def _status_of(kind: str) -> str:
@@ -574,7 +652,8 @@ def _yourdfpy_job(progress, xml: str, links: list, values: dict, n: int):
         for pc in touched:
             edges[pc]["matrix"] = stale
         u.update_cfg({name: float(values[name][i]) for name in given})
-        mats[i] = [edges[pc]["matrix"] for pc in pairs]
+        if pairs:
+            mats[i] = [edges[pc]["matrix"] for pc in pairs]
         if i % step == 0:
             progress(i, n)
     world = {u.base_link: np.broadcast_to(np.eye(4), (n, 4, 4))}
@@ -714,9 +793,20 @@ def publisher_poses(model, names, configs, progress=None):
 def verify(model, n: int = 1000, seed: int = 0, tolerance: float = 1e-9, *, xml: str | None = None,
            peers=("pinocchio", "yourdfpy"), yourdfpy_samples: int | None = YOURDFPY_SAMPLES,
            timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFAULT_MEMORY, max_dof: int = MAX_DOF,
-           max_depth: int = MAX_DEPTH, progress=None) -> VerifyReport:
+           max_depth: int = MAX_DEPTH, progress=None, workers: dict | None = None) -> VerifyReport:
     """Verify `model` (see module docstring). `xml`: the URDF text the peers should parse (default: the
-    model written back by ``model_to_urdf``). `progress(stage, done, total)` is called as work advances."""
+    model written back by ``model_to_urdf``). `progress(stage, done, total)` is called as work advances.
+    `workers`: peer processes from ``prestart`` (consumed; those not needed are cancelled)."""
+    workers = workers if workers is not None else {}
+    try:
+        return _verify(model, n, seed, tolerance, xml, peers, yourdfpy_samples, timeout, memory, max_dof,
+                       max_depth, progress, workers)
+    finally:
+        cancel(workers)
+
+
+def _verify(model, n, seed, tolerance, xml, peers, yourdfpy_samples, timeout, memory, max_dof, max_depth,
+            progress, workers) -> VerifyReport:
     import numpy as np
 
     from .publisher.batch import link_poses, relative_to_tf_roots
@@ -752,8 +842,9 @@ def verify(model, n: int = 1000, seed: int = 0, tolerance: float = 1e-9, *, xml:
             m = n if not yourdfpy_samples or yourdfpy_samples >= n else int(yourdfpy_samples)
             ysel = np.linspace(0, n - 1, m).astype(int) if m < n else np.arange(n)
             yvalues = {k: v[ysel] for k, v in values.items()}
-            children.append(_Child("yourdfpy", _yourdfpy_job, (peer_xml, links, yvalues, len(ysel)), timeout,
-                                   memory))
+            c = workers.pop("yourdfpy", None) or _Child("yourdfpy", _yourdfpy_job, timeout, memory)
+            c.send(peer_xml, links, yvalues, len(ysel))
+            children.append(c)
 
     if "pinocchio" in peers:
         dof, depth = pinocchio_dof(tree), chain_depth(tree)
@@ -764,18 +855,24 @@ def verify(model, n: int = 1000, seed: int = 0, tolerance: float = 1e-9, *, xml:
             pre.append(PeerResult("pinocchio", "refused", f"model too large for a safe run: {dof} DoF "
                                   f"(cap {max_dof}), chain depth {depth} (cap {max_depth})", tolerance=tolerance))
         else:
-            children.append(_Child("pinocchio", _pinocchio_job, (peer_xml, links, values, n), timeout, memory))
-    # publisher: message path, and the batch FK as a consistency check
-    ref = publisher_poses(model, names, configs, progress)
-    t_batch = time.monotonic()
-    world = link_poses(model, configs)
-    batch = relative_to_tf_roots(tree, world)
-    res = _compare("batch", ref, batch, np.arange(n), excluded_for("batch"), tolerance)
-    res.detail = res.detail or "publisher message path vs batch FK (numpy)"
-    res.seconds = time.monotonic() - t_batch
-    report.peers.append(res)
-
-    _wait(children, progress)
+            c = workers.pop("pinocchio", None) or _Child("pinocchio", _pinocchio_job, timeout, memory)
+            c.send(peer_xml, links, values, n)
+            children.append(c)
+    try:
+        # publisher: message path, and the batch FK as a consistency check
+        ref = publisher_poses(model, names, configs, progress)
+        t_batch = time.monotonic()
+        world = link_poses(model, configs)
+        batch = relative_to_tf_roots(tree, world)
+        res = _compare("batch", ref, batch, np.arange(n), excluded_for("batch"), tolerance)
+        res.detail = res.detail or "publisher message path vs batch FK (numpy)"
+        res.seconds = time.monotonic() - t_batch
+        report.peers.append(res)
+        _wait(children, progress)
+    except BaseException:  # never leave a peer running behind us
+        for c in children:
+            c.cancel()
+        raise
     for c in children:
         kind, value, output, elapsed = c.outcome()
         if kind != "ok":

@@ -18,8 +18,7 @@ _LIMIT_ERRORS = ("Excessive depth", "too long", "Huge input lookup", "huge text 
 
 _DECL = re.compile(rb"^(\xef\xbb\xbf)?\s*<\?xml(\s[^?]*)?\?>")
 _DECL_ATTR = re.compile(rb"([A-Za-z_:][-\w.:]*)\s*=\s*[\"']([^\"']*)[\"']")
-# a DOCTYPE in the prolog (after BOM, declaration, comments, PIs): single-character alternatives, no backtracking
-_PROLOG_DOCTYPE = re.compile(rb"(?:\xef\xbb\xbf)?(?:\s|<\?.*?\?>|<!--.*?-->)*<!DOCTYPE", re.S)
+_SPACE = re.compile(rb"\s*")
 _DOCTYPE_MSG = ("DOCTYPE declarations are not allowed in robot descriptions "
                 "(entities expand differently in each ROS parser)")
 
@@ -89,6 +88,23 @@ def check_declaration(data: bytes) -> tuple[list[XmlIssue], bytes]:
     return out, data[:start] + blank + data[m.end(0):]
 
 
+def _prolog_doctype(data: bytes, max_items: int = 1000) -> int | None:
+    """Offset of a <!DOCTYPE in the prolog (after BOM, spaces, comments, PIs). A linear scan, not a regular
+    expression (a lazy `<!--.*?-->` backtracks exponentially); None also when the prolog is too long to scan
+    (libxml2 and the docinfo check below still refuse the DOCTYPE)."""
+    i = 3 if data.startswith(b"\xef\xbb\xbf") else 0
+    for _ in range(max_items):
+        i = _SPACE.match(data, i).end()
+        if data.startswith(b"<!DOCTYPE", i):
+            return i
+        end = b"?>" if data.startswith(b"<?", i) else b"-->" if data.startswith(b"<!--", i) else None
+        j = data.find(end, i + 2) if end is not None else -1
+        if j < 0:
+            return None
+        i = j + len(end)
+    return None
+
+
 def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
     """Parse untrusted bytes. Returns (root, warnings); raises XmlRefused for unusable documents."""
     if len(data) > MAX_BYTES:
@@ -98,10 +114,9 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
     except UnicodeDecodeError as e:
         raise XmlRefused(XmlIssue("X001", f"invalid UTF-8 ({e.reason})", _line_of(data, e.start))) from None
     warnings, data = check_declaration(data)
-    if b"<!DOCTYPE" in data:  # refuse before libxml2 reads entity declarations (amplification, external ones)
-        m = _PROLOG_DOCTYPE.match(data)
-        if m:
-            raise XmlRefused(XmlIssue("X002", _DOCTYPE_MSG, _line_of(data, m.end())))
+    at = _prolog_doctype(data) if b"<!DOCTYPE" in data else None
+    if at is not None:  # refuse before libxml2 reads entity declarations (amplification, external ones)
+        raise XmlRefused(XmlIssue("X002", _DOCTYPE_MSG, _line_of(data, at)))
     try:
         root = etree.fromstring(data, _parser())
     except etree.XMLSyntaxError as e:

@@ -243,6 +243,9 @@ class Arena:
         self._log.unlink(missing_ok=True)
         report = json.loads(out) if fmt == "json" and command == "lint" and out.strip() else None
         outcome = Outcome(code, out, err, seconds, fmt, report, audit)
+        if os.environ.get("URDFCHECK_HOSTILE_TIMES"):  # `-s` shows the wall time of every call
+            print(f"\n[hostile] {seconds:6.3f} s  {fmt:8} {' '.join(args[6:] if command == 'lint' else args)}",
+                  file=sys.__stderr__)
 
         where = f"{' '.join(map(str, args))}\nstdout: {out[:3000]}\nstderr: {err[:3000]}"
         assert code == expect_code, f"exit code {code}, wanted {expect_code}: {where}"

@@ -86,7 +86,7 @@ class _Reader:
         return got
 
 
-def _read_launch(paths, out: Consumers, args=None, packages=None) -> None:
+def _read_launch(paths, out: Consumers, args=None, packages=None, reader: _Reader | None = None) -> None:
     for p in paths:
         try:
             out.launch.append(read_launch(p, args=args, packages=packages))
@@ -94,6 +94,11 @@ def _read_launch(paths, out: Consumers, args=None, packages=None) -> None:
             out.errors.append(e)
     for li in out.launch:
         out.notes.extend(li.notes)
+    if len(out.controllers) and any(li.param_sets for li in out.launch):
+        from .launchparams import apply_launch_params
+
+        r = reader or _Reader()
+        out.notes.extend(apply_launch_params(out.controllers, out.launch, lambda f: r.params(f, []), packages or {}))
 
 
 def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None = None,
@@ -119,7 +124,7 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     loc_pfs = [pf for pf in (r.params(p, out.errors) for p in mc.localization) if pf is not None]
     out.localization = localization_from_params(loc_pfs)
     pk = dict(packages or (config.packages if config is not None else {}))
-    _read_launch(mc.launch, out, dict(mc.launch_args), pk)
+    _read_launch(mc.launch, out, dict(mc.launch_args), pk, r)
     out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
                  "launch": list(mc.launch), "localization": list(mc.localization)}
     return out
@@ -166,7 +171,7 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
         if single or _mentions(p, base):
             launches.append(p)
     pk = dict(packages or {})
-    _read_launch(launches, out, None, pk)
+    _read_launch(launches, out, None, pk, r)
     out.files = {"params": [pf.path for pf in pfs], "launch": launches}
     return out
 

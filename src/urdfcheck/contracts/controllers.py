@@ -404,6 +404,11 @@ def _finish(c: Controller, names_set: set[str]) -> None:
             c.frames += (Value(_norm_frame(v.value), v.loc),)
 
 
+def finish_controller(c: Controller, controller_names: set[str]) -> None:
+    """Derive joints, drive, odometry and frames of a controller from its `params` (after they changed)."""
+    _finish(c, controller_names)
+
+
 def _finish_diff_drive(c: Controller, names_set: set[str]) -> None:
     p = c.params
     notes = c.notes

@@ -15,6 +15,10 @@ What is reported (`LaunchInfo`):
 * `nodes`: every node found, `spawned` controllers (controller_manager spawner arguments), `param_files`,
   `includes` (recorded, not followed) and `notes` for what was skipped (non-literal values, unknown
   substitutions, conditions that could not be decided).
+* ROS 1 XML only, outside `<node>`: `param_sets`, the parameter server writes in document order, each either a
+  literal `ParamSet` (`<param name=... value=...>`, inline `<rosparam>` YAML, names resolved against the
+  enclosing `<group ns>`) or a `RosparamLoad` (`<rosparam command="load" file=... ns=...>`, read later by
+  `launchparams`). They are applied to the controllers' parameters (see `launchparams.apply_launch_params`).
 
 Substitutions resolved: `$(arg x)` / `$(var x)` from `<arg default|value>` / `<let>` and the caller's `args`,
 `$(find pkg)` / `$(find-pkg-share pkg)` from the caller's `packages` map, `$(dirname)`, `$(anon n)`.
@@ -90,6 +94,25 @@ class LaunchNode:
     condition: str | None = None
 
 
+@dataclass(frozen=True)
+class ParamSet:
+    """A literal parameter written by a ROS 1 launch file: `name` is global ("/ns/ctrl/wheel_separation")."""
+
+    name: str
+    value: Value
+    order: int
+
+
+@dataclass(frozen=True)
+class RosparamLoad:
+    """`<rosparam command="load" file=... ns=...>` in a ROS 1 launch file; `ns` is global ("/" at the top)."""
+
+    file: str
+    ns: str
+    loc: Location
+    order: int
+
+
 @dataclass
 class LaunchInfo:
     path: str
@@ -102,6 +125,7 @@ class LaunchInfo:
     param_files: list[tuple[str, Location]] = field(default_factory=list)
     includes: list[tuple[str, Location]] = field(default_factory=list)
     notes: list[tuple[str, Location]] = field(default_factory=list)
+    param_sets: list = field(default_factory=list)  # ROS 1: ParamSet / RosparamLoad, in document order
 
 
 # --- substitutions -----------------------------------------------------------------------------------
@@ -407,10 +431,92 @@ class _XmlReader:
                     f, ok = self.attr(el, "file")
                     if ok:
                         self.info.param_files.append((f, self.loc(el)))
+                        if self.ros == 1 and not c:
+                            rns = self._param_ns(el, ns)
+                            if rns is not None:
+                                self._set(RosparamLoad(f, rns, self.loc(el), len(self.info.param_sets)))
                     else:
                         self.info.notes.append((f"rosparam file {el.get('file')!r} not resolved", self.loc(el)))
+                elif self.ros == 1 and not c and (el.get("command") or "load") == "load" and (el.text or "").strip():
+                    self._inline_rosparam(el, ns)
+            elif tag == "param" and self.ros == 1 and not c:
+                self._param(el, ns)
             elif tag == "node":
                 self.node(el, ns, c)
+
+    # ROS 1 parameter server writes (outside nodes) ------------------------------------------------
+    def _set(self, item) -> None:
+        self.info.param_sets.append(item)
+
+    def _param_ns(self, el, ns: str) -> str | None:
+        """The global namespace a <rosparam>/<param> writes into (None: not literal, noted)."""
+        raw = el.get("ns")
+        if raw is None:
+            return _join_ns(ns, "")
+        v, ok = self.subst(raw)
+        if not ok:
+            self.info.notes.append((f"<{_tag(el)}> ns {raw!r} is not literal; its parameters are not applied",
+                                    self.loc(el)))
+            return None
+        return _join_ns(ns, v)
+
+    def _param(self, el, ns: str) -> None:
+        raw_name = el.get("name")
+        if not raw_name:
+            return
+        name, ok = self.subst(raw_name)
+        if not ok or not name or name.startswith("~"):
+            return
+        if el.get("value") is None:  # command= / textfile= / binfile=: produced at launch time
+            self.info.notes.append((f"parameter {name!r} is not a literal value (command/textfile); not applied",
+                                    self.loc(el)))
+            return
+        text, ok = self.attr(el, "value")
+        if not ok:
+            self.info.notes.append((f"parameter {name!r} has a non-literal value; not applied", self.loc(el)))
+            return
+        value = _typed_param(text, (el.get("type") or "").strip(), self.path, self.loc(el))
+        if value is _NOT_A_VALUE:
+            self.info.notes.append((f"parameter {name!r}: type={el.get('type')!r} value not understood; not applied",
+                                    self.loc(el)))
+            return
+        full = _join_ns(ns, name) if not name.startswith("/") else "/" + name.strip("/")
+        self._set(ParamSet(full, Value(value, self.loc(el)), len(self.info.param_sets)))
+
+    def _inline_rosparam(self, el, ns: str) -> None:
+        """<rosparam ns=... param=...>YAML</rosparam>: the YAML body, located in the launch file."""
+        base = self._param_ns(el, ns)
+        if base is None:
+            return
+        param = el.get("param")
+        if param is not None:
+            p, ok = self.subst(param)
+            if not ok or not p or p.startswith("~"):
+                return
+            base = "/" + p.strip("/") if p.startswith("/") else _join_ns(base, p)
+        try:
+            doc = parse_yaml(el.text, self.path)
+        except ConsumerError as e:
+            self.info.notes.append((f"inline <rosparam> YAML not readable ({e.message}); not applied", self.loc(el)))
+            return
+        first = el.sourceline or 1
+
+        def shift(loc: Location) -> Location:  # lines of the element's text -> lines of the launch file
+            return Location(self.path, first + (loc.line or 1) - 1) if loc.line else Location(self.path, first)
+
+        def emit(value, path: tuple, name: str) -> None:
+            if isinstance(value, dict) and value:
+                for k, v in value.items():
+                    emit(v, path + (k,), f"{name}/{k}")
+                return
+            if name:
+                self._set(ParamSet(name, Value(value, shift(doc.loc(*path))), len(self.info.param_sets)))
+
+        data = doc.data
+        if isinstance(data, dict):
+            emit(data, (), base.rstrip("/"))
+        elif param is not None and data is not None:
+            self._set(ParamSet(base, Value(data, shift(doc.loc())), len(self.info.param_sets)))
 
     def node(self, el, ns: str, cond: str | None) -> None:
         pkg, _ = self.attr(el, "pkg")
@@ -452,6 +558,44 @@ class _XmlReader:
         node = LaunchNode(pkg or "", exe or "", name or "", ns or "/", tuple(args) if args is not None else None,
                           self.loc(el), params, tuple(pfiles), cond)
         _record_node(self.info, node, self.ros)
+
+
+_NOT_A_VALUE = object()
+
+
+def _typed_param(text: str, type_: str, path: str, loc: Location):
+    """A roslaunch <param value=...> as the parameter server gets it (type= or roslaunch's guess)."""
+    t = text.strip()
+    if type_ == "str" or type_ == "string":
+        return text
+    if type_ in ("int", "double", "bool", "boolean"):
+        try:
+            if type_ == "int":
+                return int(t)
+            if type_ == "double":
+                f = float(t)
+                return f if math.isfinite(f) else _NOT_A_VALUE
+        except ValueError:
+            return _NOT_A_VALUE
+        b = as_bool(t)
+        return _NOT_A_VALUE if b is None or t.lower() not in ("true", "false") else b
+    if type_ == "yaml":
+        try:
+            return parse_yaml(text, path).data
+        except ConsumerError:
+            return _NOT_A_VALUE
+    if type_:
+        return _NOT_A_VALUE
+    # no type: roslaunch tries int, then float, then true/false, else keeps the string
+    for conv in (int, float):
+        try:
+            v = conv(t)
+        except ValueError:
+            continue
+        return v if not isinstance(v, float) or math.isfinite(v) else text
+    if t.lower() in ("true", "false"):
+        return t.lower() == "true"
+    return text
 
 
 def _join_ns(ns: str, sub: str | None) -> str:

@@ -14,8 +14,8 @@ from ..findings import Location, Problem
 from .consumers import Consumers, discover_consumers
 from .controllers import JSB, JSC
 from .graph import (PublisherInfo, TFGraph, add_declared, claims_from_localization, claims_from_model,
-                    claims_from_odom, claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents,
-                    not_one_tree, prefix_collisions, static_and_dynamic)
+                    claims_from_odom, claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners,
+                    multiple_parents, not_one_tree, prefix_collisions, static_and_dynamic)
 from .wheels import DEFAULT_ANGLE_TOLERANCE, DEFAULT_TOLERANCE, check_drive
 
 _UNRESOLVED = re.compile(r"\$\(|\$\{")
@@ -64,6 +64,22 @@ def _opt(ctx, name: str, default):
 def _suggest(name: str, options) -> str:
     close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.6)
     return f" (did you mean '{close[0]}'?)" if close else ""
+
+
+_FRAME_SUFFIX = re.compile(r"(_link|_frame)$")
+
+
+def _suggest_frame(name: str, options) -> str:
+    """Like _suggest, comparing frame names without their _link/_frame suffix: 'imu' -> 'imu_link', while
+    'camera_link' is not 'laser_link' just because both end in _link."""
+    stem = _FRAME_SUFFIX.sub("", name)
+    stems: dict[str, str] = {}
+    for o in options:
+        stems.setdefault(_FRAME_SUFFIX.sub("", o), o)
+    if stem in stems and stems[stem] != name:
+        return f" (did you mean '{stems[stem]}'?)"
+    close = difflib.get_close_matches(stem, list(stems), n=1, cutoff=0.6)
+    return f" (did you mean '{stems[close[0]]}'?)" if close else ""
 
 
 def _unresolved(name: str) -> bool:
@@ -374,7 +390,8 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
             continue
         seen.add((name, v.loc))
         yield Problem(f"{who} uses frame {name!r}, which is neither a link of the model nor published by "
-                      f"anything else{_suggest(name, sorted(links | others))}", at=v.loc, data={"frame": name})
+                      f"anything else{_suggest_frame(name, sorted(links | others))}", at=v.loc,
+                      data={"frame": name})
 
 
 # --- T001..T006: TF ownership ------------------------------------------------------------------------------

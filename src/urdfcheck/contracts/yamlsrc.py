@@ -273,6 +273,21 @@ def _refuse_bombs(root, file: str, max_nodes: int) -> None:
     )
 
 
+def _refuse_deep_events(text: str, file: str) -> None:
+    depth = 0
+    try:
+        for ev in yaml.parse(text, Loader=_LOADER):
+            if isinstance(ev, (yaml.SequenceStartEvent, yaml.MappingStartEvent)):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused",
+                                        _mark_loc(file, ev.start_mark))
+            elif isinstance(ev, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
+                depth -= 1
+    except yaml.YAMLError:
+        pass  # the composer below reports it, located
+
+
 def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES) -> YamlDoc:
     """Parse one YAML document (the first non-empty one of a stream). Raises ConsumerError."""
     if isinstance(text, bytes):
@@ -298,6 +313,9 @@ def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_
             raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", Location(file, line))
     # With flow nesting bounded above and block nesting bounded by the file size (indentation grows with
     # depth), libyaml's recursive C composer is safe, and ~10x faster than the pure-Python one.
+    # Compact block nesting (`? ? ? x`, 2 bytes a level) gets past the guards above and overflows the C stack:
+    # count the depth on libyaml's event stream first (its parser is not recursive).
+    _refuse_deep_events(text, file)
     try:
         root = None
         for node in yaml.compose_all(text, Loader=_LOADER):

@@ -80,7 +80,8 @@ def _consts(seg, np):
             else:
                 k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
                 # R0 * Rot(a, q) = c * R0 + s * (R0 K) + (1 - c) * (R0 a) a^T
-                c["abc"] = np.concatenate([r0, r0 @ k, np.outer(r0 @ a, a)], axis=1)  # (3, 9)
+                c["k"] = r0 @ k
+                c["aa"] = np.outer(r0 @ a, a)
         seg.__dict__["_np"] = c
     return c
 
@@ -106,11 +107,16 @@ def _child_pose(seg, rp, pp, q, np, n):
         return r, pp + tp[..., 0] + q[:, None] * tp[..., 1]
     if seg.axis is None:
         return np.full((n, 3, 3), np.nan), np.full((n, 3), np.nan)
-    x = _mul_const(rp, c["abc"])  # (N,3,9)
-    cq, sq = np.cos(q)[:, None, None], np.sin(q)[:, None, None]
-    a, b, cc = x[..., 0:3], x[..., 3:6], x[..., 6:9]
-    r = a + sq * b + (1.0 - cq) * (cc - a)
-    return r, pp + _mul_const(rp, c["t0"][:, None])[..., 0]
+    # three contiguous BLAS products, then c * A + s * B + (1 - c) * C in place
+    a = _mul_const(rp, c["r0"])
+    b = _mul_const(rp, c["k"])
+    cc = _mul_const(rp, c["aa"])
+    a -= cc
+    a *= np.cos(q)[:, None, None]
+    b *= np.sin(q)[:, None, None]
+    a += b
+    a += cc
+    return a, pp + _mul_const(rp, c["t0"][:, None])[..., 0]
 
 
 def link_poses(model, configurations, root_frame: str | None = None, *, joint_names=None,

@@ -103,7 +103,8 @@ def render_mermaid(data: dict) -> str:
         arrow = "-.->" if e["publication"] != "dynamic" else "-->"
         if e["publication"] == "none":
             arrow = "--x"
-        lines.append(f'    {_mermaid_id(e["parent"], ids)} {arrow}|"{_mermaid_text(_label(e))}"| {_mermaid_id(e["child"], ids)}')
+        a, b = _mermaid_id(e["parent"], ids), _mermaid_id(e["child"], ids)
+        lines.append(f'    {a} {arrow}|"{_mermaid_text(_label(e))}"| {b}')
     return "\n".join(lines)
 
 

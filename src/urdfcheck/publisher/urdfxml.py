@@ -36,8 +36,9 @@ def model_to_urdf(model) -> str:
                     attrs.append(f"{k}={quoteattr(repr(float(v)))}")
             out.append(f"    <limit {' '.join(attrs)}/>")
         if j.mimic is not None:
-            out.append(f"    <mimic joint={quoteattr(j.mimic.joint)} multiplier={quoteattr(repr(float(j.mimic.multiplier)))}"
-                       f" offset={quoteattr(repr(float(j.mimic.offset)))}/>")
+            mult, off = repr(float(j.mimic.multiplier)), repr(float(j.mimic.offset))
+            out.append(f"    <mimic joint={quoteattr(j.mimic.joint)} multiplier={quoteattr(mult)} "
+                       f"offset={quoteattr(off)}/>")
         out.append("  </joint>")
     out.append("</robot>")
     return "\n".join(out) + "\n"

@@ -248,6 +248,24 @@ def _range_len(r: range) -> int:
         return 1 << 64
 
 
+def _weight(v) -> int:
+    """Work units of one C-level pass over `v` (Limits.max_total_iter): 1 per 64 items/characters or 1024 bits.
+    Zero for every value a real model uses; what makes a loop over big operands add up."""
+    if type(v) is int:
+        return v.bit_length() >> 10
+    if isinstance(v, (str, bytes, list, tuple, dict, set, frozenset)):
+        return len(v) >> 6
+    return 0
+
+
+def _int_work(values) -> int:
+    """Big-integer multiplication/division is quadratic in the operands' sizes."""
+    w = sorted((_weight(v) for v in values if type(v) is int), reverse=True)
+    if len(w) < 2 or not w[0]:
+        return 0
+    return 4 * (w[0] + 1) * (w[1] + 1)
+
+
 # --------------------------------------------------------------------------------------------------
 # Guards: run before the real operation; may refuse, may return replaced (materialised) arguments
 # --------------------------------------------------------------------------------------------------
@@ -445,6 +463,8 @@ _BINOPS = {
     ast.BitXor: operator.xor, ast.BitAnd: operator.and_,
 }
 _GUARDED_BINOPS = frozenset({ast.Pow, ast.LShift, ast.Mult, ast.Add, ast.Mod})
+_QUADRATIC = frozenset({ast.Pow, ast.Mult, ast.FloorDiv, ast.Mod, ast.Div})
+_DIVISIONS = frozenset({ast.FloorDiv, ast.Mod, ast.Div})
 _UNARY = {ast.UAdd: operator.pos, ast.USub: operator.neg, ast.Not: operator.not_, ast.Invert: operator.invert}
 _CMPOPS = {
     ast.Eq: operator.eq, ast.NotEq: operator.ne, ast.Lt: operator.lt, ast.LtE: operator.le,
@@ -504,6 +524,11 @@ class _Run:
         total = self.limits.max_total_iter
         if total is not None and self.iters + self.evaluator.spent > total:  # many cheap-looking expressions
             self.refuse(f"expressions iterated over more than {self.limits.max_total_iter} items in total")
+
+    def spend(self, units):
+        """Charge work that is not iteration (big operands) to the evaluator-wide budget, when there is one."""
+        if units and self.limits.max_total_iter is not None:
+            self.tick(units)
 
     def alloc(self, n):
         self.allocated += n
@@ -622,7 +647,9 @@ def _h_attribute(run, node, scope):
 
 def _h_subscript(run, node, scope):
     value = run.ev(node.value, scope)
-    return run.check(operator.getitem(value, run.ev(node.slice, scope)))
+    result = run.check(operator.getitem(value, run.ev(node.slice, scope)))
+    run.spend(_weight(result))  # a slice copies
+    return result
 
 
 def _h_slice(run, node, scope):
@@ -635,7 +662,11 @@ def _h_binop(run, node, scope):
     op = node.op.__class__
     if op in _GUARDED_BINOPS:
         _guard_binop(run, op, a, b)
-    return run.check(_BINOPS[op](a, b))
+    run.spend(_weight(a) + _weight(b))
+    result = run.check(_BINOPS[op](a, b))
+    if op in _QUADRATIC:  # charged after the fact: at most one such operation overshoots the budget
+        run.spend(_int_work((a, b, result) if op in _DIVISIONS else (result, result)))
+    return result
 
 
 def _h_unaryop(run, node, scope):
@@ -658,6 +689,7 @@ def _h_compare(run, node, scope):
         right = run.ev(comp, scope)
         if isinstance(op, (ast.In, ast.NotIn)) and isinstance(right, range) and type(left) not in (int, bool):
             run.tick(_range_len(right))  # non-int membership in a range is a linear scan
+        run.spend(_weight(left) + _weight(right))
         result = _CMPOPS[op.__class__](left, right)
         if i < last and not result:
             return result
@@ -897,6 +929,9 @@ class Evaluator:
                     run.tick(_range_len(v))
                 elif isinstance(v, _SIZED):  # e.g. sorted() of a 10M-character string
                     run.tick(len(v))
+        values = list(args) + list(kwargs.values())  # str.find on a 1 MB string in a loop, divmod of big ints
+        owner = getattr(fn, "__self__", None) if type(fn) is BuiltinFunctionType else None
+        run.spend(sum(_weight(v) for v in values) + _weight(owner) + _int_work(values))
         guard = self._guards.get(key)
         if guard is not None and guard[0] is fn:
             args = guard[1](run, args, kwargs)
@@ -907,7 +942,9 @@ class Evaluator:
                 if mguard is not None:
                     args = mguard(run, owner, args, kwargs)
                     break
-        return run.check(fn(*args, **kwargs))
+        result = run.check(fn(*args, **kwargs))
+        run.spend(_weight(result) + (_int_work((result, result)) if type(result) is int else 0))
+        return result
 
 
 # --------------------------------------------------------------------------------------------------

@@ -5,6 +5,7 @@ import yaml
 
 MAX_BYTES = 8 * 1024 * 1024
 MAX_NODES = 1_000_000
+MAX_DEPTH = 256
 
 
 class YamlRefused(Exception):
@@ -34,9 +35,22 @@ def expanded_size(node, memo=None) -> int:
 def check_yaml_text(text: str, name: str = "YAML") -> None:
     if len(text) > MAX_BYTES:
         raise YamlRefused(f"{name} is larger than {MAX_BYTES} bytes")
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    # nesting first, on the event stream (libyaml's parser is iterative; its composer recurses in C and a
+    # 120 KB `? ? ? ... x` overflows the stack; PyYAML's own scanner is quadratic in the depth)
+    depth = 0
+    try:
+        for ev in yaml.parse(text, Loader=loader):
+            if isinstance(ev, (yaml.SequenceStartEvent, yaml.MappingStartEvent)):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    raise YamlRefused(f"{name} nests deeper than {MAX_DEPTH} levels")
+            elif isinstance(ev, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
+                depth -= 1
+    except yaml.YAMLError:
+        return  # a syntax error: xacro's loader reports it
     if "&" not in text:
         return
-    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
     node = yaml.compose(text, Loader=loader)
     if node is not None and expanded_size(node) > MAX_NODES:
         raise YamlRefused(f"{name} expands to more than {MAX_NODES} nodes through aliases (a YAML bomb)")
