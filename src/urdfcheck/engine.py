@@ -5,6 +5,7 @@ that raises becomes an R001 finding, never a traceback.
 """
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 
 from . import rulebook
@@ -107,6 +108,7 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
     cat = rulebook.catalogue()
     kept = []
     used = set()
+    here = os.getcwd().rstrip(os.sep) + os.sep  # messages name files too: show them relative, like locations
     for f in findings:
         if not selection.enabled(f.code):
             continue
@@ -118,8 +120,8 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
             continue
         if is_yaml(f.location.file) and _suppressed(f, yaml_suppressions(f.location.file)) is not None:
             continue  # `# urdfcheck: ignore[...]` in the YAML file the finding points into
-        kept.append(Finding(f.code, sev, f.message, f.location, f.name or (info.name if info else ""),
-                            f.related, model or f.model, variant or f.variant))
+        kept.append(Finding(f.code, sev, f.message.replace(here, ""), _shown(f.location), f.name or (info.name if info else ""),
+                            tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant))
     if selection.enabled("R002"):
         for i, s in enumerate(suppressions):
             if i in used:
@@ -132,6 +134,17 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
                                 f"unused suppression of {', '.join(live)}", Location(s.file, s.comment_line),
                                 "unused-suppression", (), model, variant))
     return kept
+
+
+def _shown(loc: Location) -> Location:
+    """Every location the way reports show files: relative to the working directory when below it
+    (readers of YAML and launch files record absolute paths)."""
+    if not os.path.isabs(loc.file) and not loc.via:
+        return loc
+    from .loader import display
+
+    file = display(loc.file) if os.path.isabs(loc.file) else loc.file
+    return Location(file, loc.line, loc.column, tuple(_shown(v) for v in loc.via))
 
 
 def _suppressed(f: Finding, suppressions) -> int | None:
