@@ -21,4 +21,4 @@ def test_large_but_allowed_values_stay_bounded(arena):
                         + "".join(f'  <xacro:m k="{k}"/>\n' for k in range(8)) + "</robot>\n")
         r = arena.lint(p)
         assert r.findings, e
-        assert r.codes()[0].startswith("X"), (e, r.findings)
+        assert r.codes()[0] in ("X011", "X012"), (e, r.findings)  # refused, or stopped by a budget

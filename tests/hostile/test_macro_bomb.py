@@ -12,7 +12,7 @@ def test_macro_bomb_hits_the_expansion_limit_fast(arena):
     r = arena.lint(entry)  # the harness bounds the wall time of the whole CLI call
     assert r.codes() == ["X012"], r.findings
     f = r.findings[0]
-    assert "elements" in f["message"] or "timed out" not in f["message"]
+    assert "evaluated more than" in f["message"] and "elements" in f["message"], f  # the count, not the clock
     # located inside the bomb: the macro body that was expanding, via the chain of call sites
     loc = f["location"]
     assert loc["file"].endswith(entry.name) and loc["line"] is not None
