@@ -42,12 +42,9 @@ def lint_json(args, cwd=None):
 
 def write_example(example: dict, folder: Path) -> Path:
     """Materialise a catalogue example; returns the path to lint."""
-    files = dict(example.get("files") or {})
-    if "urdf" in example:
-        files["robot.urdf"] = example["urdf"]
-    if "xacro" in example:
-        files["robot.urdf.xacro"] = example["xacro"]
-    for name, content in files.items():
+    from urdfcheck.rulebook import example_files
+
+    for name, content in example_files(example).items():
         p = folder / name
         p.parent.mkdir(parents=True, exist_ok=True)
         p.write_text(content, encoding="utf-8")

@@ -83,8 +83,7 @@ def test_full_config(tmp_path):
     (d,) = m.drivers
     assert d.file == str(root / "config" / "drv.yaml") and d.left_wheels == ("left_wheel_joint",)
     assert d.loc.file == str(root / "urdfcheck.yaml") and d.loc.line == 7
-    spec = d.spec()
-    assert spec.wheel_radius == "wheel_radius" and spec.frames == ("imu_frame_id",)
+    assert d.wheel_radius == "wheel_radius" and d.frames == ("imu_frame_id",)
     assert dict(cfg.frames) == {"map": "map", "odom": "odom", "base": "base_footprint"}
     assert dict(cfg.tf_owners) == {"map->odom": "amcl"} and cfg.tf_owner_locs["map->odom"].line == 20
     assert dict(cfg.packages) == {"agv_description": str(root)}

@@ -20,16 +20,6 @@ class _Usage(Exception):
 
 
 # --- shared ---------------------------------------------------------------------------------------------------
-def _kv(sep: str, what: str):
-    def parse(text: str):
-        if sep not in text:
-            raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
-        k, v = text.split(sep, 1)
-        if not k:
-            raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
-        return k, v
-
-    return parse
 
 
 def _joint_value(text: str):
@@ -47,29 +37,14 @@ def _joint_value(text: str):
 
 
 def _add_load_options(p: argparse.ArgumentParser) -> None:
-    try:
-        from .cli import add_load_options
-    except ImportError:  # pragma: no cover - cli.py not there: minimal options
-        add_load_options = None
-    if add_load_options is not None:
-        add_load_options(p)
-        return
-    p.add_argument("--arg", dest="args", action="append", default=[], type=_kv(":=", "NAME:=VALUE"),
-                   metavar="NAME:=VALUE", help="xacro argument (repeatable)")
-    p.add_argument("--package", dest="packages", action="append", default=[], type=_kv("=", "NAME=PATH"),
-                   metavar="NAME=PATH", help="where a ROS package lives (repeatable)")
-    p.add_argument("--trusted", action="store_true", help="stock xacro evaluation: only for your own files")
-    p.add_argument("--allow-env", action="append", default=[], metavar="VAR",
-                   help="environment variable $(env)/$(optenv) may read (repeatable)")
-    p.add_argument("--timeout", type=float, default=20.0, metavar="SECONDS",
-                   help="wall-clock limit for one xacro expansion (default 20)")
+    from .cli import add_load_options
+
+    add_load_options(p)
 
 
 def _loader():
-    try:
-        from . import loader
-    except ImportError:  # the module was called load.py in early versions
-        from . import load as loader  # type: ignore[no-redef]
+    from . import loader
+
     return loader
 
 

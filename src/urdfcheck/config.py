@@ -79,39 +79,13 @@ def _ro(d: Mapping | None) -> Mapping:
 
 
 @dataclass(frozen=True)
-class DriverConfig:
-    file: str  # absolute
-    loc: Location
-    name: str = ""
-    node: str = ""
-    joints: tuple[str, ...] = ()
-    left_wheels: tuple[str, ...] = ()
-    right_wheels: tuple[str, ...] = ()
-    wheel_separation: str | None = None
-    wheel_radius: str | None = None
-    frames: tuple[str, ...] = ()
-    odom_tf: str | None = None
-    odom_frame: str | None = None
-    base_frame: str | None = None
-
-    def spec(self):
-        from .contracts.controllers import DriverSpec
-
-        return DriverSpec(file=self.file, node=self.node, name=self.name, joints=self.joints,
-                          left_wheels=self.left_wheels, right_wheels=self.right_wheels,
-                          wheel_separation=self.wheel_separation, wheel_radius=self.wheel_radius,
-                          frames=self.frames, odom_tf=self.odom_tf, odom_frame=self.odom_frame,
-                          base_frame=self.base_frame, loc=self.loc)
-
-
-@dataclass(frozen=True)
 class ModelConfig:
     path: str  # absolute
     loc: Location
     args: Mapping[str, str] = field(default_factory=lambda: _ro({}))
     variants: Mapping[str, Mapping[str, str]] | str | None = None  # "auto", a mapping, or None
     controllers: tuple[str, ...] = ()
-    drivers: tuple[DriverConfig, ...] = ()
+    drivers: tuple = ()  # contracts.controllers.DriverSpec, one per declared custom driver
     launch: tuple[str, ...] = ()
     launch_args: Mapping[str, str] = field(default_factory=lambda: _ro({}))
     localization: tuple[str, ...] = ()
@@ -380,9 +354,11 @@ def load_config(path: str | os.PathLike) -> Config:
             variants = _ro({str(k): _ro(_str_args(v)) for k, v in variants.items()})
             if not variants:
                 variants = None
+        from .contracts.controllers import DriverSpec
+
         drivers = []
         for j, d in enumerate(m.get("drivers") or []):
-            drivers.append(DriverConfig(
+            drivers.append(DriverSpec(
                 file=resolve(d["file"], "models", i, "drivers", j, "file"),
                 loc=key_loc("models", i, "drivers", j, "file"),
                 name=str(d.get("name") or ""), node=str(d.get("node") or ""),

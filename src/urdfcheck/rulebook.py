@@ -138,6 +138,16 @@ def info(code: str) -> RuleInfo | None:
     return catalogue().get(code)
 
 
+def example_files(ex: dict) -> dict[str, str]:
+    """The files of a catalogue example: `files:` plus the `urdf:`/`xacro:` shorthands."""
+    files = dict(ex.get("files") or {})
+    if "urdf" in ex:
+        files["robot.urdf"] = ex["urdf"]
+    if "xacro" in ex:
+        files["robot.urdf.xacro"] = ex["xacro"]
+    return files
+
+
 def matches(code: str, patterns) -> bool:
     """ruff-style selection: a pattern is a full code or a prefix ('S', 'J00', 'ALL')."""
     return any(p == "ALL" or code.startswith(p) for p in patterns)

@@ -19,11 +19,7 @@ def md(text: str) -> str:
 def _example(ex: dict) -> str:
     if not ex:
         return ""
-    files = dict(ex.get("files") or {})
-    if "urdf" in ex:
-        files["robot.urdf"] = ex["urdf"]
-    if "xacro" in ex:
-        files["robot.urdf.xacro"] = ex["xacro"]
+    files = rulebook.example_files(ex)
     out = []
     for name, content in files.items():
         lang = "yaml" if name.endswith((".yaml", ".yml")) else ("python" if name.endswith(".py") else "xml")
@@ -37,11 +33,7 @@ def _example_text(ex: dict) -> str:
     """An example for a terminal: file name, then the content indented (no Markdown fences)."""
     if not ex:
         return ""
-    files = dict(ex.get("files") or {})
-    if "urdf" in ex:
-        files["robot.urdf"] = ex["urdf"]
-    if "xacro" in ex:
-        files["robot.urdf.xacro"] = ex["xacro"]
+    files = rulebook.example_files(ex)
     out = []
     for name, content in files.items():
         out.append(f"  {name}:")

@@ -119,7 +119,7 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
         pf = r.params(d.file, out.errors)
         if pf is None:
             continue
-        drv = read_driver(d.spec(), [pf])
+        drv = read_driver(d, [pf])
         out.drivers.append(drv)
     loc_pfs = [pf for pf in (r.params(p, out.errors) for p in mc.localization) if pf is not None]
     out.localization = localization_from_params(loc_pfs)
