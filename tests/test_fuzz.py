@@ -40,7 +40,7 @@ SCHEMA = json.loads((REPO / "src" / "urdfcheck" / "schemas" / "report.schema.jso
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA)
 PER_CALL = float(os.environ.get("URDFCHECK_FUZZ_CALL_BOUND", "15"))  # s; generous: CI boxes are slow
 XACRO_TIMEOUT = "5"  # the CLI's --timeout for one expansion during fuzzing
-FUZZ = settings(max_examples=int(os.environ.get("URDFCHECK_FUZZ_EXAMPLES", "50")), deadline=None,
+FUZZ = settings(max_examples=int(os.environ.get("URDFCHECK_FUZZ_EXAMPLES", "60")), deadline=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large], print_blob=True)
 
 HOSTILE = [

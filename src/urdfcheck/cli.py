@@ -62,6 +62,9 @@ def add_load_options(p: argparse.ArgumentParser) -> None:
                    help="environment variable that $(env)/$(optenv) may read in the sandbox (repeatable)")
     p.add_argument("--timeout", type=float, default=20.0, metavar="SECONDS",
                    help="wall-clock limit for one xacro expansion (default 20)")
+    p.add_argument("--max-elements", type=int, default=None, metavar="N",
+                   help="xacro elements one expansion may evaluate (default 20000; 400000 with --trusted); "
+                        "a macro bomb stops here")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -116,7 +119,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _load_kwargs(ns) -> dict:
-    return dict(packages=dict(ns.packages), trusted=ns.trusted, allow_env=tuple(ns.allow_env), timeout=ns.timeout)
+    return dict(packages=dict(ns.packages), trusted=ns.trusted, allow_env=tuple(ns.allow_env), timeout=ns.timeout,
+                max_elements=ns.max_elements)
 
 
 def cmd_expand(ns) -> int:

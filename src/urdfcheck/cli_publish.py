@@ -49,17 +49,9 @@ def _loader():
 
 
 def _load_options(ns) -> dict:
-    opts = {}
-    if getattr(ns, "packages", None):
-        opts["packages"] = dict(ns.packages)
-    if getattr(ns, "trusted", False):
-        opts["trusted"] = True
-    if getattr(ns, "allow_env", None):
-        opts["allow_env"] = tuple(ns.allow_env)
-    t = getattr(ns, "timeout", None)
-    if isinstance(t, (int, float)):
-        opts["timeout"] = t
-    return opts
+    from .cli import _load_kwargs
+
+    return _load_kwargs(ns)
 
 
 def _print_findings(findings) -> None:

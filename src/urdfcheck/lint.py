@@ -41,8 +41,9 @@ def entry_models(folder: Path) -> list[Path]:
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
-                config=None, keep_model=False) -> tuple[list[Finding], object]:
-    exp = load.expand(t.path, t.args, packages=t.packages, trusted=trusted, allow_env=allow_env, timeout=timeout)
+                config=None, max_elements=None) -> tuple[list[Finding], object]:
+    exp = load.expand(t.path, t.args, packages=t.packages, trusted=trusted, allow_env=allow_env, timeout=timeout,
+                      max_elements=max_elements)
     findings = list(exp.findings)
     model = load.build_model(exp)
     if model is not None:

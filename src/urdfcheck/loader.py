@@ -110,7 +110,7 @@ def _finding(code: str, message: str, file: str, line: int | None = None, column
 
 def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict | None = None,
            trusted: bool = False, allow_env=(), timeout: float = XACRO_TIMEOUT,
-           memory: int = XACRO_MEMORY, environ: dict | None = None) -> Expanded:
+           memory: int = XACRO_MEMORY, environ: dict | None = None, max_elements: int | None = None) -> Expanded:
     """Read and (for xacro) expand one entry model. Problems are findings on the result."""
     p = Path(path)
     shown = display(p)
@@ -129,7 +129,7 @@ def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict 
         return out
     if is_xacro(p):
         out.xacro = True
-        _expand_xacro(out, p, data, trusted, allow_env, timeout, memory)
+        _expand_xacro(out, p, data, trusted, allow_env, timeout, memory, max_elements)
         return out
     try:
         root, warnings = xmlfront.parse(data)
@@ -138,7 +138,7 @@ def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict 
         return out
     if is_xacro(p, root):
         out.xacro = True
-        _expand_xacro(out, p, data, trusted, allow_env, timeout, memory)
+        _expand_xacro(out, p, data, trusted, allow_env, timeout, memory, max_elements)
         return out
     for w in warnings:
         out.findings.append(_finding(w.code, w.message, shown, w.line))
@@ -165,11 +165,13 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
     return True
 
 
-def _expand_xacro(out: Expanded, p: Path, data: bytes, trusted, allow_env, timeout, memory) -> None:
+def _expand_xacro(out: Expanded, p: Path, data: bytes, trusted, allow_env, timeout, memory,
+                  max_elements=None) -> None:
     from . import worker
     from .xacro import expand as xexpand
 
-    opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver)
+    opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
+                           max_evals=max_elements)
     res = worker.run(xexpand.expand, str(p), opts, timeout=timeout, memory=memory)
     if isinstance(res, worker.Failure):
         what = {"timeout": "xacro expansion timed out", "memory": "xacro expansion ran out of memory",

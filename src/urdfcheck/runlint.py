@@ -62,7 +62,7 @@ def run(ns, usage_error) -> int:
     trusted = ns.trusted or bool(getattr(cfg, "trusted", False))
     allow_env = tuple(ns.allow_env) + tuple(getattr(cfg, "allow_env", ()) or ())
     result = lint_targets(targets, selection, trusted=trusted, allow_env=allow_env, timeout=ns.timeout,
-                          config=cfg)
+                          config=cfg, max_elements=ns.max_elements)
     fail_on = ns.fail_on or _cfg_fail_on(cfg) or Severity.WARNING
 
     if ns.write_baseline or ns.baseline:
