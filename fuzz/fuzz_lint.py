@@ -46,19 +46,7 @@ KINDS = ("urdf", "xacro", "yaml", "launch")
 SUFFIX = {"urdf": ".urdf", "xacro": ".urdf.xacro", "yaml": ".controllers.yaml", "launch": ".launch.xml"}
 FORMATS = ("text", "json", "sarif", "junit", "github", "markdown")
 MARKER = "URDFCHECK_FUZZ_PWNED"
-BASE_URDF = b"""<?xml version="1.0"?>
-<robot name="fuzz">
-  <link name="base_link"/>
-  <link name="left_wheel"/>
-  <link name="right_wheel"/>
-  <joint name="left_wheel_joint" type="continuous">
-    <parent link="base_link"/><child link="left_wheel"/><origin xyz="0 0.25 0"/><axis xyz="0 1 0"/>
-  </joint>
-  <joint name="right_wheel_joint" type="continuous">
-    <parent link="base_link"/><child link="right_wheel"/><origin xyz="0 -0.25 0"/><axis xyz="0 1 0"/>
-  </joint>
-</robot>
-"""
+BASE_URDF = (Path(__file__).resolve().parent / "base.urdf").read_bytes()  # also seeds tests/regressions
 OUR_ANNOTATION = re.compile(r"^::(error|warning|notice) [^\n]*::[^\n]*$")
 
 

@@ -22,19 +22,7 @@ from conftest import REPO, run_cli
 HERE = Path(__file__).resolve().parent
 SUFFIXES = (".urdf.xacro", ".urdf", ".controllers.yaml", ".launch.xml")
 BOUND = float(os.environ.get("URDFCHECK_REGRESSION_BOUND", "20"))
-BASE_URDF = """<?xml version="1.0"?>
-<robot name="fuzz">
-  <link name="base_link"/>
-  <link name="left_wheel"/>
-  <link name="right_wheel"/>
-  <joint name="left_wheel_joint" type="continuous">
-    <parent link="base_link"/><child link="left_wheel"/><origin xyz="0 0.25 0"/><axis xyz="0 1 0"/>
-  </joint>
-  <joint name="right_wheel_joint" type="continuous">
-    <parent link="base_link"/><child link="right_wheel"/><origin xyz="0 -0.25 0"/><axis xyz="0 1 0"/>
-  </joint>
-</robot>
-"""
+BASE_URDF = (REPO / "fuzz" / "base.urdf").read_text(encoding="utf-8")  # the harness's package model
 
 
 def cases():

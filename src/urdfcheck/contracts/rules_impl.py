@@ -447,34 +447,30 @@ def _as_problem(p, prefer_consumer: bool = True, hint: str = "") -> Problem:
                    data={"frames": list(p.frames)})
 
 
-def duplicate_tf_owner(model, ctx):
+def _tf_problems(model, ctx, analysis):
+    """(problem, consumers) of one TF-graph analysis, skipping conflicts between launch-file alternatives."""
     c = consumers(model, ctx)
     g = _graph(model, c)
     if not _has_consumer_claims(g):
         return
-    for p in duplicate_owners(g):
+    for p in analysis(g):
         if not _alternatives(p, c):
-            yield _as_problem(p)
+            yield p
+
+
+def duplicate_tf_owner(model, ctx):
+    for p in _tf_problems(model, ctx, duplicate_owners):
+        yield _as_problem(p)
 
 
 def static_and_dynamic_tf(model, ctx):
-    c = consumers(model, ctx)
-    g = _graph(model, c)
-    if not _has_consumer_claims(g):
-        return
-    for p in static_and_dynamic(g):
-        if not _alternatives(p, c):
-            yield _as_problem(p)
+    for p in _tf_problems(model, ctx, static_and_dynamic):
+        yield _as_problem(p)
 
 
 def tf_multiple_parents(model, ctx):
     c = consumers(model, ctx)
-    g = _graph(model, c)
-    if not _has_consumer_claims(g):
-        return
-    for p in multiple_parents(g):
-        if _alternatives(p, c):
-            continue
+    for p in _tf_problems(model, ctx, multiple_parents):
         hint = ""
         child = p.frames[0] if p.frames else ""
         prefix = c.rsp_prefix
@@ -487,14 +483,9 @@ def tf_multiple_parents(model, ctx):
 
 
 def tf_cycle(model, ctx):
-    c = consumers(model, ctx)
-    g = _graph(model, c)
-    if not _has_consumer_claims(g):
-        return
-    for p in cycles(g):
-        if all(cl.source == "model" for cl in p.claims) or _alternatives(p, c):
-            continue  # the model's own cycle is S005
-        yield _as_problem(p)
+    for p in _tf_problems(model, ctx, cycles):
+        if not all(cl.source == "model" for cl in p.claims):  # the model's own cycle is S005
+            yield _as_problem(p)
 
 
 def tf_not_one_tree(model, ctx):
