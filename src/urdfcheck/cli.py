@@ -125,7 +125,6 @@ def _load_kwargs(ns) -> dict:
 
 def cmd_expand(ns) -> int:
     from . import loader as load
-    from .report.text import render as _unused  # noqa: F401  (keeps import cost honest in benchmarks)
 
     if not os.path.isfile(ns.path):
         raise UsageError(f"no such file: {ns.path}")

@@ -42,6 +42,21 @@ class Value:
         return str(self.value)
 
 
+def read_capped(path, max_bytes: int, what: str = "file") -> bytes:
+    """The bytes of a consumer file, refusing one over `max_bytes`. Raises ConsumerError."""
+    import os
+
+    file = str(path)
+    try:
+        size = os.path.getsize(file)
+        if size > max_bytes:
+            raise ConsumerError(f"{what} is larger than {max_bytes} bytes ({size}); refused", Location(file))
+        with open(file, "rb") as f:
+            return f.read(max_bytes + 1)
+    except OSError as e:
+        raise ConsumerError(f"cannot read file: {e.strerror or e}", Location(file)) from None
+
+
 def as_str_list(value: Any) -> list[str] | None:
     """A YAML value that should be a list of strings (a single string is accepted). None: not that shape."""
     if isinstance(value, str):

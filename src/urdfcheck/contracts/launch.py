@@ -884,13 +884,7 @@ def parse_launch(data: bytes | str, path: str, *, args: Mapping[str, str] | None
 def read_launch(path: str | os.PathLike, *, args: Mapping[str, str] | None = None,
                 packages: Mapping[str, str] | None = None) -> LaunchInfo:
     """Read a launch file. Raises ConsumerError (unreadable, too large, bad syntax)."""
+    from .common import read_capped
+
     file = str(path)
-    try:
-        size = os.path.getsize(file)
-        if size > MAX_BYTES:
-            raise ConsumerError(f"launch file is larger than {MAX_BYTES} bytes ({size}); refused", Location(file))
-        with open(file, "rb") as f:
-            raw = f.read(MAX_BYTES + 1)
-    except OSError as e:
-        raise ConsumerError(f"cannot read file: {e.strerror or e}", Location(file)) from None
-    return parse_launch(raw, file, args=args, packages=packages)
+    return parse_launch(read_capped(file, MAX_BYTES, "launch file"), file, args=args, packages=packages)

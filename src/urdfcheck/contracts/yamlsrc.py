@@ -343,13 +343,7 @@ def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_
 
 def load_yaml(path: str | os.PathLike, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES) -> YamlDoc:
     """Read and parse a YAML file. Raises ConsumerError (unreadable, too large, bad YAML, bomb)."""
+    from .common import read_capped
+
     file = str(path)
-    try:
-        size = os.path.getsize(file)
-        if size > max_bytes:
-            raise ConsumerError(f"file is larger than {max_bytes} bytes ({size}); refused", Location(file))
-        with open(file, "rb") as f:
-            raw = f.read(max_bytes + 1)
-    except OSError as e:
-        raise ConsumerError(f"cannot read file: {e.strerror or e}", Location(file)) from None
-    return parse_yaml(raw, file, max_bytes=max_bytes, max_nodes=max_nodes)
+    return parse_yaml(read_capped(file, max_bytes), file, max_bytes=max_bytes, max_nodes=max_nodes)
