@@ -216,7 +216,10 @@ def apply_yaml(text: str, ops) -> str:
             del parent[last]
         elif op[0] == "key" and isinstance(parent, dict):
             parent[op[2]] = parent.pop(last)
-    return yaml.safe_dump(doc, sort_keys=False, allow_unicode=True, width=10**6)
+    try:
+        return yaml.safe_dump(doc, sort_keys=False, allow_unicode=True, width=10**6)
+    except RecursionError:  # PyYAML's dumper needs 3 frames a level; JSON is YAML and needs one
+        return json.dumps(doc)
 
 
 def text_tricks():
