@@ -67,7 +67,10 @@ def add_load_options(p: argparse.ArgumentParser) -> None:
                         "a macro bomb stops here")
 
 
-def build_parser() -> argparse.ArgumentParser:
+PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify")
+
+
+def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     from . import __version__
 
     parser = argparse.ArgumentParser(
@@ -109,11 +112,9 @@ def build_parser() -> argparse.ArgumentParser:
     rules.add_argument("--format", choices=["text", "json", "markdown"], default="text")
     rules.set_defaults(func=cmd_rules)
 
-    try:
+    if with_publish:  # skipped for lint/expand/rules: its import is a measurable part of a lint run
         from . import cli_publish
-    except ImportError:
-        cli_publish = None
-    if cli_publish is not None and hasattr(cli_publish, "add_parsers"):
+
         cli_publish.add_parsers(sub)
     return parser
 
@@ -158,11 +159,11 @@ def cmd_lint(ns) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
-    if argv and not argv[0].startswith("-") and argv[0] not in ("lint", "expand", "rules", "tree", "tf",
-                                                                  "publish", "verify", "help"):
+    if argv and not argv[0].startswith("-") and argv[0] not in ("lint", "expand", "rules", "help") \
+            and argv[0] not in PUBLISH_COMMANDS:
         argv = ["lint"] + argv  # `urdfcheck model.urdf` is `urdfcheck lint model.urdf`
+    parser = build_parser(with_publish=not argv or argv[0] not in ("lint", "expand", "rules"))
     ns = parser.parse_args(argv)
     if ns.command is None:
         parser.print_help()

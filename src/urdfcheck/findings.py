@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import enum
 import re
-from dataclasses import dataclass, field
 from typing import NamedTuple
 
 
@@ -40,8 +39,7 @@ class Location(NamedTuple):
         return out
 
 
-@dataclass(frozen=True)
-class Finding:
+class Finding(NamedTuple):
     code: str
     severity: Severity
     message: str
@@ -74,16 +72,23 @@ def clean_text(text: object, limit: int = MAX_TEXT) -> str:
     return s
 
 
-@dataclass
 class Problem:
     """What a check yields. The engine turns it into a Finding; a check never computes file/line.
 
     `at` is a model part (anything with a `.loc` Location) or a Location; `related` likewise.
+    `severity` None means the catalogue default; `code` is for checks that serve several codes.
     """
 
-    message: str
-    at: object = None
-    related: tuple = ()
-    severity: Severity | None = None  # None: the catalogue default
-    code: str | None = None  # for checks that serve several codes
-    data: dict = field(default_factory=dict)
+    __slots__ = ("message", "at", "related", "severity", "code", "data")
+
+    def __init__(self, message: str, at: object = None, related: tuple = (), severity: Severity | None = None,
+                 code: str | None = None, data: dict | None = None):
+        self.message = message
+        self.at = at
+        self.related = related
+        self.severity = severity
+        self.code = code
+        self.data = {} if data is None else data
+
+    def __repr__(self) -> str:
+        return f"Problem({self.code or ''} {self.message!r})"

@@ -102,10 +102,10 @@ def file_targets(path: Path, args: dict, packages: dict) -> list[Target]:
     """An explicitly named file. A xacro library (macros only, or included by another file of its
     package) is no robot by itself: lint the package's entry models instead, which expand it
     (this is what a per-file pre-commit hook needs)."""
-    from .contracts.discover import discover
-    from .packages import enclosing_package
-
     if path.name.endswith(".xacro"):
+        from .contracts.discover import discover
+        from .packages import enclosing_package
+
         pkg = enclosing_package(Path(os.path.abspath(path)).parent)  # the package the file appears in
         if pkg is not None:
             found = discover(pkg)
