@@ -8,9 +8,8 @@ from __future__ import annotations
 import functools
 import importlib
 import pkgutil
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
+from typing import Callable, NamedTuple
 
 from .findings import Severity
 
@@ -32,8 +31,7 @@ def check(*codes: str):
     return deco
 
 
-@dataclass(frozen=True)
-class RuleInfo:
+class RuleInfo(NamedTuple):
     code: str
     name: str
     severity: Severity
@@ -41,8 +39,8 @@ class RuleInfo:
     summary: str
     rationale: str = ""
     fix: str = ""
-    examples: dict = field(default_factory=dict)
-    options: dict = field(default_factory=dict)
+    examples: dict = {}  # always given by _info(); NamedTuple: cheap to define, immutable
+    options: dict = {}
     path: str = ""
 
 

@@ -6,13 +6,12 @@
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from typing import NamedTuple
 
 _RE = re.compile(r"urdfcheck:\s*(ignore|ignore-file)\[([A-Za-z0-9_,\s]*)\]")
 
 
-@dataclass(frozen=True)
-class Suppression:
+class Suppression(NamedTuple):
     file: str
     first: int  # first line of the element it covers (0 for the whole file)
     last: int  # last line it covers

@@ -7,7 +7,7 @@ entity declarations, processing instructions, trailing content) are refused as f
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from lxml import etree
 
@@ -23,8 +23,7 @@ _DOCTYPE_MSG = ("DOCTYPE declarations are not allowed in robot descriptions "
                 "(entities expand differently in each ROS parser)")
 
 
-@dataclass(frozen=True)
-class XmlIssue:
+class XmlIssue(NamedTuple):
     code: str
     message: str
     line: int | None = None
