@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, field
-from typing import Iterable, Mapping, Sequence
+from typing import Iterable, Mapping, Sequence, NamedTuple
 
 from ..findings import Location
 from .common import ConsumerError, Value, as_bool, as_float, as_str_list
@@ -74,8 +74,7 @@ def kind_of(type_name: str, ros: int) -> str:
     return OTHER
 
 
-@dataclass(frozen=True)
-class JointUse:
+class JointUse(NamedTuple):
     """A joint a controller or driver commands, and the hardware interfaces it needs on it."""
 
     joint: str
@@ -88,8 +87,7 @@ class JointUse:
     written: str = ""  # the name as written, when it differs (chained)
 
 
-@dataclass(frozen=True)
-class DriveSpec:
+class DriveSpec(NamedTuple):
     """What a differential drive (controller or driver) believes about the wheels."""
 
     owner: str
@@ -127,8 +125,7 @@ class DriveSpec:
         return None if r is None else r * self._num(m)
 
 
-@dataclass(frozen=True)
-class OdomTF:
+class OdomTF(NamedTuple):
     """An odom -> base transform a controller or driver broadcasts."""
 
     parent: str
@@ -479,8 +476,7 @@ def read_controllers(files: Iterable[ParamFile | str | os.PathLike]) -> Controll
 
 
 # --- custom drivers ----------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class DriverSpec:
+class DriverSpec(NamedTuple):
     """How to read a custom driver's parameter file: key paths (dotted) into the node's parameters."""
 
     file: str

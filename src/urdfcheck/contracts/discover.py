@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass
+from typing import NamedTuple
 
 from lxml import etree
 
@@ -33,8 +33,7 @@ _DEFINITION_TAGS = {"macro", "property", "arg", "include"}
 _XACRO_NS = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro", "http://wiki.ros.org/xacro")
 
 
-@dataclass(frozen=True)
-class Discovered:
+class Discovered(NamedTuple):
     root: str
     models: tuple[str, ...]
     params: tuple[str, ...]

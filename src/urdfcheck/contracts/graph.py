@@ -20,7 +20,7 @@ layer turns them into T001..T006.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Iterable, Mapping, Sequence
+from typing import Iterable, Mapping, Sequence, NamedTuple
 
 from ..findings import Location
 
@@ -29,8 +29,7 @@ DYNAMIC = "dynamic"
 RSP = "robot_state_publisher"
 
 
-@dataclass(frozen=True)
-class TFClaim:
+class TFClaim(NamedTuple):
     parent: str
     child: str
     owner: str  # "robot_state_publisher", "static_transform_publisher <name>", a controller name, "amcl", ...
@@ -43,8 +42,7 @@ class TFClaim:
         return (self.parent, self.child)
 
 
-@dataclass(frozen=True)
-class TFProblem:
+class TFProblem(NamedTuple):
     code: str  # T001..T006
     message: str
     claims: tuple[TFClaim, ...] = ()
@@ -372,8 +370,7 @@ def not_one_tree(g: TFGraph, frames: Mapping[str, str] | None = None, at: Locati
                       claims, tuple(roots), at)]
 
 
-@dataclass(frozen=True)
-class PublisherInfo:
+class PublisherInfo(NamedTuple):
     """A robot_state_publisher instance (from a launch file or the config)."""
 
     name: str

@@ -33,7 +33,7 @@ import os
 import re
 import shlex
 from dataclasses import dataclass, field
-from typing import Any, Mapping
+from typing import Any, Mapping, NamedTuple
 
 from lxml import etree
 
@@ -47,8 +47,7 @@ MAX_ELEMENTS = 100_000
 
 
 # --- results -----------------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class StaticTF:
+class StaticTF(NamedTuple):
     parent: str
     child: str
     xyz: tuple[float, float, float]
@@ -59,8 +58,7 @@ class StaticTF:
     node_name: str = ""
 
 
-@dataclass(frozen=True)
-class StatePublisher:
+class StatePublisher(NamedTuple):
     """A robot_state_publisher node."""
 
     name: str
@@ -72,8 +70,7 @@ class StatePublisher:
     condition: str | None = None
 
 
-@dataclass(frozen=True)
-class JointStatePublisher:
+class JointStatePublisher(NamedTuple):
     name: str
     package: str
     loc: Location
@@ -94,8 +91,7 @@ class LaunchNode:
     condition: str | None = None
 
 
-@dataclass(frozen=True)
-class ParamSet:
+class ParamSet(NamedTuple):
     """A literal parameter written by a ROS 1 launch file: `name` is global ("/ns/ctrl/wheel_separation")."""
 
     name: str
@@ -103,8 +99,7 @@ class ParamSet:
     order: int
 
 
-@dataclass(frozen=True)
-class RosparamLoad:
+class RosparamLoad(NamedTuple):
     """`<rosparam command="load" file=... ns=...>` in a ROS 1 launch file; `ns` is global ("/" at the top)."""
 
     file: str

@@ -13,8 +13,7 @@ input such as `odom0`/`imu0`; AMCL: `global_frame_id` with `odom_frame_id`, or a
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
-from typing import Iterable
+from typing import Iterable, NamedTuple
 
 from ..findings import Location
 from .common import Value, as_bool
@@ -23,8 +22,7 @@ from .params import NodeParams, ParamFile
 _RL_INPUT = re.compile(r"^(odom|imu|pose|twist)\d+$")
 
 
-@dataclass(frozen=True)
-class LocalizationNode:
+class LocalizationNode(NamedTuple):
     node: str
     kind: str  # "ekf", "ukf", "amcl"
     file: str

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 from .. import geometry as G
 from ..findings import Location, Severity
@@ -39,8 +40,7 @@ DEFAULT_ANGLE_TOLERANCE = 1e-3  # rad
 MIN_FORWARD_SIGN = 0.5  # |mean left a_y + mean right a_y| below this: mixed axis signs, turning sense undefined
 
 
-@dataclass(frozen=True)
-class Wheel:
+class Wheel(NamedTuple):
     use: JointUse
     side: str  # "left" / "right"
     link: str
