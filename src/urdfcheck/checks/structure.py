@@ -372,26 +372,24 @@ def disconnected_link(model, ctx):
 # --- S007 .. S011: names ------------------------------------------------------------
 
 
+def _redefined(parts, by_name, kind: str):
+    for part in parts:
+        first = by_name[part.name]
+        if first is not part:
+            yield Problem(
+                f"{kind} {_q(part.name)} is defined again: urdfdom refuses the model ('{kind} '{part.name}' is not "
+                f"unique'); parsers that accept it keep one definition and silently drop the other",
+                at=part, related=(first,))
+
+
 @check("S007")
 def duplicate_link(model, ctx):
-    for link in model.link_list:
-        first = model.links[link.name]
-        if first is not link:
-            yield Problem(
-                f"link {_q(link.name)} is defined again: urdfdom refuses the model ('link '{link.name}' is not "
-                f"unique'); parsers that accept it keep one definition and silently drop the other",
-                at=link, related=(first,))
+    return _redefined(model.link_list, model.links, "link")
 
 
 @check("S008")
 def duplicate_joint(model, ctx):
-    for j in model.joint_list:
-        first = model.joints[j.name]
-        if first is not j:
-            yield Problem(
-                f"joint {_q(j.name)} is defined again: urdfdom refuses the model ('joint '{j.name}' is not "
-                f"unique'); parsers that accept it keep one definition and silently drop the other",
-                at=j, related=(first,))
+    return _redefined(model.joint_list, model.joints, "joint")
 
 
 def _same_look(a_rgba, a_tex, b_rgba, b_tex) -> bool:
