@@ -55,7 +55,13 @@ def main() -> int:
     n = ns.runs
     env = dict(os.environ)
     env["PYTHONPATH"] = str(REPO / "src") + os.pathsep + env.get("PYTHONPATH", "")
-    print(f"python: {PY}; runs: best of {n} after a warm-up")
+    # An installed tool runs from compiled bytecode (pip compiles at install). With
+    # PYTHONDONTWRITEBYTECODE set, every run would recompile our sources but not the peers'
+    # (theirs ship .pyc), so bytecode goes to a private cache for both sides, never into the repo.
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    pycache = tempfile.TemporaryDirectory(prefix="urdfcheck-bench-pyc-")
+    env["PYTHONPYCACHEPREFIX"] = pycache.name
+    print(f"python: {PY}; runs: best of {n} after a warm-up; bytecode cache {pycache.name}")
 
     agv = REPO / "examples" / "agv" / "urdf" / "agv.urdf.xacro"
     ours = best_of(LINT + [str(agv)], n, env=env)

@@ -50,12 +50,12 @@ import itertools
 import json
 import os
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Mapping
 
 from .findings import Location, Severity
+from .records import FrozenRecord
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")
 PYPROJECT = "pyproject.toml"
@@ -78,18 +78,33 @@ def _ro(d: Mapping | None) -> Mapping:
     return MappingProxyType(dict(d or {}))
 
 
-@dataclass(frozen=True)
-class ModelConfig:
-    path: str  # absolute
-    loc: Location
-    args: Mapping[str, str] = field(default_factory=lambda: _ro({}))
-    variants: Mapping[str, Mapping[str, str]] | str | None = None  # "auto", a mapping, or None
-    controllers: tuple[str, ...] = ()
-    drivers: tuple = ()  # contracts.controllers.DriverSpec, one per declared custom driver
-    launch: tuple[str, ...] = ()
-    launch_args: Mapping[str, str] = field(default_factory=lambda: _ro({}))
-    localization: tuple[str, ...] = ()
-    frame_prefix: str = ""
+class ModelConfig(FrozenRecord):
+    # path: absolute
+    # variants: "auto", a mapping, or None
+    # drivers: contracts.controllers.DriverSpec, one per declared custom driver
+    _fields = ('path', 'loc', 'args', 'variants', 'controllers', 'drivers', 'launch', 'launch_args', 'localization', 'frame_prefix')
+
+    def __init__(self, path: str,
+                 loc: Location,
+                 args: Mapping[str, str] | None = None,
+                 variants: Mapping[str, Mapping[str, str]] | str | None = None,
+                 controllers: tuple[str, ...] = (),
+                 drivers: tuple = (),
+                 launch: tuple[str, ...] = (),
+                 launch_args: Mapping[str, str] | None = None,
+                 localization: tuple[str, ...] = (),
+                 frame_prefix: str = ""):
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["path"] = path
+        d["loc"] = loc
+        d["args"] = _ro({}) if args is None else args
+        d["variants"] = variants
+        d["controllers"] = controllers
+        d["drivers"] = drivers
+        d["launch"] = launch
+        d["launch_args"] = _ro({}) if launch_args is None else launch_args
+        d["localization"] = localization
+        d["frame_prefix"] = frame_prefix
 
     def variant_args(self) -> list[tuple[str, dict]]:
         """(variant name, xacro args) pairs: one ("", args) when there are no variants."""
@@ -101,23 +116,43 @@ class ModelConfig:
         return [("", base)]
 
 
-@dataclass(frozen=True)
-class Config:
-    path: str  # the config file
-    root: str  # its folder; relative paths start here
-    models: tuple[ModelConfig, ...] = ()
-    frames: Mapping[str, str] = field(default_factory=lambda: DEFAULT_FRAMES)
-    tf_owners: Mapping[str, str] = field(default_factory=lambda: _ro({}))
-    tf_owner_locs: Mapping[str, Location] = field(default_factory=lambda: _ro({}))
-    packages: Mapping[str, str] = field(default_factory=lambda: _ro({}))
-    select: tuple[str, ...] | None = None
-    ignore: tuple[str, ...] = ()
-    fail_on: Severity | None = None
-    severity: Mapping[str, Severity] = field(default_factory=lambda: _ro({}))
-    rules: Mapping[str, Mapping[str, Any]] = field(default_factory=lambda: _ro({}))
-    trusted: bool = False
-    allow_env: tuple[str, ...] = ()
-    locs: Mapping[tuple, Location] = field(default_factory=lambda: _ro({}), repr=False)
+class Config(FrozenRecord):
+    # path: the config file
+    # root: its folder; relative paths start here
+    _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore', 'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'locs')
+
+    def __init__(self, path: str,
+                 root: str,
+                 models: tuple[ModelConfig, ...] = (),
+                 frames: Mapping[str, str] | None = None,
+                 tf_owners: Mapping[str, str] | None = None,
+                 tf_owner_locs: Mapping[str, Location] | None = None,
+                 packages: Mapping[str, str] | None = None,
+                 select: tuple[str, ...] | None = None,
+                 ignore: tuple[str, ...] = (),
+                 fail_on: Severity | None = None,
+                 severity: Mapping[str, Severity] | None = None,
+                 rules: Mapping[str, Mapping[str, Any]] | None = None,
+                 trusted: bool = False,
+                 allow_env: tuple[str, ...] = (),
+                 locs: Mapping[tuple, Location] | None = None):
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["path"] = path
+        d["root"] = root
+        d["models"] = models
+        d["frames"] = DEFAULT_FRAMES if frames is None else frames
+        d["tf_owners"] = _ro({}) if tf_owners is None else tf_owners
+        d["tf_owner_locs"] = _ro({}) if tf_owner_locs is None else tf_owner_locs
+        d["packages"] = _ro({}) if packages is None else packages
+        d["select"] = select
+        d["ignore"] = ignore
+        d["fail_on"] = fail_on
+        d["severity"] = _ro({}) if severity is None else severity
+        d["rules"] = _ro({}) if rules is None else rules
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["trusted"] = trusted
+        d["allow_env"] = allow_env
+        d["locs"] = _ro({}) if locs is None else locs
 
     def loc(self, *path) -> Location:
         """Where a key was written (the file when unknown)."""

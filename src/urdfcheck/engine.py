@@ -6,19 +6,26 @@ that raises becomes an R001 finding, never a traceback.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 
 from . import rulebook
 from .findings import Finding, Location, Problem, Severity, clean_text
+from .records import Record
 from .suppress import is_yaml, yaml_suppressions
 
 
-@dataclass
-class Selection:
-    select: tuple[str, ...] = ("ALL",)
-    ignore: tuple[str, ...] = ()
-    severity: dict = field(default_factory=dict)  # code or prefix -> Severity
-    options: dict = field(default_factory=dict)  # code -> {option: value}
+class Selection(Record):
+    # severity: code or prefix -> Severity
+    # options: code -> {option: value}
+    _fields = ('select', 'ignore', 'severity', 'options')
+
+    def __init__(self, select: tuple[str, ...] = ("ALL",),
+                 ignore: tuple[str, ...] = (),
+                 severity: dict | None = None,
+                 options: dict | None = None):
+        self.select = select
+        self.ignore = ignore
+        self.severity = {} if severity is None else severity
+        self.options = {} if options is None else options
 
     def enabled(self, code: str) -> bool:
         return rulebook.matches(code, self.select) and not rulebook.matches(code, self.ignore)
@@ -31,16 +38,27 @@ class Selection:
         return best[1] if best else default
 
 
-@dataclass
-class Context:
+class Context(Record):
     """What a check may look at besides the model."""
 
-    selection: Selection = field(default_factory=Selection)
-    expanded: object = None  # load.Expanded (entry, files, resolver)
-    config: object = None  # config.Config or None
-    contracts: object = None  # the consumers read for this model (controllers, launch files...)
-    variant: str = ""
-    options: dict = field(default_factory=dict)  # the running rule's options (catalogue defaults + config)
+    # expanded: load.Expanded (entry, files, resolver)
+    # config: config.Config or None
+    # contracts: the consumers read for this model (controllers, launch files...)
+    # options: the running rule's options (catalogue defaults + config)
+    _fields = ('selection', 'expanded', 'config', 'contracts', 'variant', 'options')
+
+    def __init__(self, selection: Selection | None = None,
+                 expanded: object = None,
+                 config: object = None,
+                 contracts: object = None,
+                 variant: str = "",
+                 options: dict | None = None):
+        self.selection = Selection() if selection is None else selection
+        self.expanded = expanded
+        self.config = config
+        self.contracts = contracts
+        self.variant = variant
+        self.options = {} if options is None else options
 
     @property
     def resolver(self):

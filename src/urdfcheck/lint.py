@@ -2,29 +2,39 @@
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import engine, loader as load
 from .findings import Finding, Location, Severity
+from .records import Record
 
 
-@dataclass
-class Target:
+class Target(Record):
     """One model to lint: an entry file with one xacro argument set."""
 
-    path: Path
-    args: dict = field(default_factory=dict)
-    variant: str = ""
-    contracts: object = None  # consumers declared or discovered for this model
-    packages: dict = field(default_factory=dict)
+    # contracts: consumers declared or discovered for this model
+    _fields = ('path', 'args', 'variant', 'contracts', 'packages')
+
+    def __init__(self, path: Path,
+                 args: dict | None = None,
+                 variant: str = "",
+                 contracts: object = None,
+                 packages: dict | None = None):
+        self.path = path
+        self.args = {} if args is None else args
+        self.variant = variant
+        self.contracts = contracts
+        self.packages = {} if packages is None else packages
 
 
-@dataclass
-class Result:
-    findings: list[Finding]
-    targets: list[Target]
-    models: dict = field(default_factory=dict)  # (entry, variant) -> Model (None when it failed to load)
+class Result(Record):
+    # models: (entry, variant) -> Model (None when it failed to load)
+    _fields = ('findings', 'targets', 'models')
+
+    def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None):
+        self.findings = findings
+        self.targets = targets
+        self.models = {} if models is None else models
 
     def worst(self) -> Severity | None:
         return max((f.severity for f in self.findings), default=None)

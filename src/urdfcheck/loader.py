@@ -6,12 +6,12 @@ LoadError (carrying the findings) for callers that need a model or nothing.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import xmlfront
 from .findings import Finding, Location, Severity
 from .packages import Resolver
+from .records import Record
 from .suppress import Suppression
 
 MAX_BYTES = xmlfront.MAX_BYTES
@@ -44,19 +44,35 @@ def is_xacro(path: Path, root=None) -> bool:
     return any(isinstance(el.tag, str) and el.tag.startswith("{" + XACRO_NS + "}") for el in root.iter())
 
 
-@dataclass
-class Expanded:
-    entry: str  # display path of the entry file
-    xacro: bool
-    root: object | None = None  # lxml root element of the (expanded) document
-    files: list[str] = field(default_factory=list)  # display paths, index = marker file index
-    findings: list[Finding] = field(default_factory=list)
-    suppressions: list[Suppression] = field(default_factory=list)
-    declared_args: dict = field(default_factory=dict)
-    args: dict = field(default_factory=dict)
-    text: str | None = None  # expanded XML with markers (xacro only)
-    resolver: Resolver | None = None
-    _cache: dict = field(default_factory=dict)
+class Expanded(Record):
+    # entry: display path of the entry file
+    # root: lxml root element of the (expanded) document
+    # files: display paths, index = marker file index
+    # text: expanded XML with markers (xacro only)
+    _fields = ('entry', 'xacro', 'root', 'files', 'findings', 'suppressions', 'declared_args', 'args', 'text', 'resolver', '_cache')
+
+    def __init__(self, entry: str,
+                 xacro: bool,
+                 root: object | None = None,
+                 files: list[str] | None = None,
+                 findings: list[Finding] | None = None,
+                 suppressions: list[Suppression] | None = None,
+                 declared_args: dict | None = None,
+                 args: dict | None = None,
+                 text: str | None = None,
+                 resolver: Resolver | None = None,
+                 _cache: dict | None = None):
+        self.entry = entry
+        self.xacro = xacro
+        self.root = root
+        self.files = [] if files is None else files
+        self.findings = [] if findings is None else findings
+        self.suppressions = [] if suppressions is None else suppressions
+        self.declared_args = {} if declared_args is None else declared_args
+        self.args = {} if args is None else args
+        self.text = text
+        self.resolver = resolver
+        self._cache = {} if _cache is None else _cache
 
     def clean_text(self) -> str:
         """The expanded document exactly as stock xacro prints it (no source markers)."""
@@ -172,6 +188,7 @@ def _expand_xacro(out: Expanded, p: Path, data: bytes, trusted, allow_env, timeo
 
     opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
                            max_evals=max_elements)
+    xexpand.preload()
     res = worker.run(xexpand.expand, str(p), opts, timeout=timeout, memory=memory)
     if isinstance(res, worker.Failure):
         what = {"timeout": "xacro expansion timed out", "memory": "xacro expansion ran out of memory",

@@ -12,18 +12,23 @@ import select
 import signal
 import sys
 import time
-from dataclasses import dataclass
+
+from .records import FrozenRecord
 
 DEFAULT_MEMORY = 2 * 1024**3
 DEFAULT_TIMEOUT = 20.0
 MAX_RESULT = 256 * 1024 * 1024
 
 
-@dataclass(frozen=True)
-class Failure:
-    kind: str  # "timeout", "memory", "crashed", "output", "error"
-    message: str
-    stderr: str = ""
+class Failure(FrozenRecord):
+    # kind: "timeout", "memory", "crashed", "output", "error"
+    _fields = ('kind', 'message', 'stderr')
+
+    def __init__(self, kind: str, message: str, stderr: str = ""):
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["kind"] = kind
+        d["message"] = message
+        d["stderr"] = stderr
 
 
 def _limit(memory: int | None, cpu: float | None) -> None:

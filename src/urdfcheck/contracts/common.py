@@ -1,10 +1,10 @@
 """Shared small types for the consumer readers: a located value and the reader error."""
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 from ..findings import Location
+from ..records import FrozenRecord
 
 
 class ConsumerError(Exception):
@@ -22,18 +22,22 @@ class ConsumerError(Exception):
         return f"{self.location}: {self.message}"
 
 
-@dataclass(frozen=True)
-class Value:
+class Value(FrozenRecord):
     """A value read from a consumer file, with where it was written.
 
     `default` is True when the reader supplied the value because the file did not set it
     (then `loc` points at the owning node or controller).
     """
 
-    value: Any
-    loc: Location
-    default: bool = False
-    items: tuple = ()  # for a list: the Location of each element
+    # items: for a list: the Location of each element
+    _fields = ('value', 'loc', 'default', 'items')
+
+    def __init__(self, value: Any, loc: Location, default: bool = False, items: tuple = ()):
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["value"] = value
+        d["loc"] = loc
+        d["default"] = default
+        d["items"] = items
 
     def item_loc(self, i: int) -> Location:
         return self.items[i] if 0 <= i < len(self.items) else self.loc

@@ -10,7 +10,6 @@ Reading never raises: unreadable files become `errors` (`ConsumerError`, reporte
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Mapping
 
@@ -21,23 +20,42 @@ from .graph import TFClaim, claims_from_owners
 from .launch import LaunchInfo, read_launch
 from .localization import LocalizationNode, localization_from_params
 from .params import ParamFile, read_params
+from ..records import Record
 
 DEFAULT_FRAMES = {"map": "map", "odom": "odom", "base": "base_link"}
 
 
-@dataclass
-class Consumers:
-    controllers: ControllerSet = field(default_factory=lambda: ControllerSet({}, ()))
-    drivers: list[Driver] = field(default_factory=list)
-    launch: list[LaunchInfo] = field(default_factory=list)
-    localization: list[LocalizationNode] = field(default_factory=list)
-    tf_owners: list[TFClaim] = field(default_factory=list)  # declared in the config
-    frames: dict = field(default_factory=lambda: dict(DEFAULT_FRAMES))  # REP-105 names: map, odom, base
-    frame_prefix: str = ""  # the config's robot_state_publisher frame_prefix for this model
-    errors: list[ConsumerError] = field(default_factory=list)
-    notes: list = field(default_factory=list)  # (message, Location)
-    origin: str = "config"  # "config" or "discovered"
-    files: dict = field(default_factory=dict)  # kind -> [paths read]
+class Consumers(Record):
+    # tf_owners: declared in the config
+    # frames: REP-105 names: map, odom, base
+    # frame_prefix: the config's robot_state_publisher frame_prefix for this model
+    # notes: (message, Location)
+    # origin: "config" or "discovered"
+    # files: kind -> [paths read]
+    _fields = ('controllers', 'drivers', 'launch', 'localization', 'tf_owners', 'frames', 'frame_prefix', 'errors', 'notes', 'origin', 'files')
+
+    def __init__(self, controllers: ControllerSet | None = None,
+                 drivers: list[Driver] | None = None,
+                 launch: list[LaunchInfo] | None = None,
+                 localization: list[LocalizationNode] | None = None,
+                 tf_owners: list[TFClaim] | None = None,
+                 frames: dict | None = None,
+                 frame_prefix: str = "",
+                 errors: list[ConsumerError] | None = None,
+                 notes: list | None = None,
+                 origin: str = "config",
+                 files: dict | None = None):
+        self.controllers = ControllerSet({}, ()) if controllers is None else controllers
+        self.drivers = [] if drivers is None else drivers
+        self.launch = [] if launch is None else launch
+        self.localization = [] if localization is None else localization
+        self.tf_owners = [] if tf_owners is None else tf_owners
+        self.frames = dict(DEFAULT_FRAMES) if frames is None else frames
+        self.frame_prefix = frame_prefix
+        self.errors = [] if errors is None else errors
+        self.notes = [] if notes is None else notes
+        self.origin = origin
+        self.files = {} if files is None else files
 
     @property
     def empty(self) -> bool:

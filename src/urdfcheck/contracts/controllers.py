@@ -29,12 +29,12 @@ the config (`DriverSpec`) and read with `read_driver`.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from typing import Iterable, Mapping, Sequence, NamedTuple
 
 from ..findings import Location
 from .common import ConsumerError, Value, as_bool, as_float, as_str_list
 from .params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
+from ..records import Record
 
 # --- controller kinds --------------------------------------------------------------------------------
 DIFF_DRIVE = "diff_drive"
@@ -135,24 +135,48 @@ class OdomTF(NamedTuple):
     enabled: bool = True
 
 
-@dataclass
-class Controller:
-    name: str  # controller name (node basename)
-    node: str  # fully qualified node key ("/ns/name"), "/name" when not namespaced
-    type: str
-    type_loc: Location
-    loc: Location
-    kind: str
-    ros: int
-    file: str
-    params: dict[str, Value] = field(default_factory=dict)
-    joints: tuple[JointUse, ...] = ()  # commanded joints (and, for JSB with a list, the broadcast joints)
-    broadcasts_all: bool = False  # a state broadcaster for every hardware joint
-    state_joints: tuple[JointUse, ...] = ()  # explicit state-source joints (JSB `joints`)
-    drive: DriveSpec | None = None
-    odom_tf: OdomTF | None = None
-    frames: tuple[Value, ...] = ()  # frame ids the controller stamps data with / expects in the tree
-    notes: list = field(default_factory=list)  # (message, Location)
+class Controller(Record):
+    # name: controller name (node basename)
+    # node: fully qualified node key ("/ns/name"), "/name" when not namespaced
+    # joints: commanded joints (and, for JSB with a list, the broadcast joints)
+    # broadcasts_all: a state broadcaster for every hardware joint
+    # state_joints: explicit state-source joints (JSB `joints`)
+    # frames: frame ids the controller stamps data with / expects in the tree
+    # notes: (message, Location)
+    _fields = ('name', 'node', 'type', 'type_loc', 'loc', 'kind', 'ros', 'file', 'params', 'joints', 'broadcasts_all', 'state_joints', 'drive', 'odom_tf', 'frames', 'notes')
+
+    def __init__(self, name: str,
+                 node: str,
+                 type: str,
+                 type_loc: Location,
+                 loc: Location,
+                 kind: str,
+                 ros: int,
+                 file: str,
+                 params: dict[str, Value] | None = None,
+                 joints: tuple[JointUse, ...] = (),
+                 broadcasts_all: bool = False,
+                 state_joints: tuple[JointUse, ...] = (),
+                 drive: DriveSpec | None = None,
+                 odom_tf: OdomTF | None = None,
+                 frames: tuple[Value, ...] = (),
+                 notes: list | None = None):
+        self.name = name
+        self.node = node
+        self.type = type
+        self.type_loc = type_loc
+        self.loc = loc
+        self.kind = kind
+        self.ros = ros
+        self.file = file
+        self.params = {} if params is None else params
+        self.joints = joints
+        self.broadcasts_all = broadcasts_all
+        self.state_joints = state_joints
+        self.drive = drive
+        self.odom_tf = odom_tf
+        self.frames = frames
+        self.notes = [] if notes is None else notes
 
     @property
     def namespace(self) -> str:
@@ -160,11 +184,14 @@ class Controller:
         return ns or "/"
 
 
-@dataclass
-class ControllerSet:
-    controllers: dict[str, Controller]  # by node key
-    files: tuple[str, ...]
-    notes: list = field(default_factory=list)
+class ControllerSet(Record):
+    # controllers: by node key
+    _fields = ('controllers', 'files', 'notes')
+
+    def __init__(self, controllers: dict[str, Controller], files: tuple[str, ...], notes: list | None = None):
+        self.controllers = controllers
+        self.files = files
+        self.notes = [] if notes is None else notes
 
     def by_name(self, name: str) -> Controller | None:
         for c in self.controllers.values():
@@ -494,17 +521,28 @@ class DriverSpec(NamedTuple):
     loc: Location | None = None  # where the spec was written (the config)
 
 
-@dataclass
-class Driver:
-    name: str
-    file: str
-    loc: Location
-    joints: tuple[JointUse, ...] = ()
-    drive: DriveSpec | None = None
-    frames: tuple[Value, ...] = ()
-    odom_tf: OdomTF | None = None
-    missing: list = field(default_factory=list)  # (key path, Location of the spec): described but not in the file
-    notes: list = field(default_factory=list)
+class Driver(Record):
+    # missing: (key path, Location of the spec): described but not in the file
+    _fields = ('name', 'file', 'loc', 'joints', 'drive', 'frames', 'odom_tf', 'missing', 'notes')
+
+    def __init__(self, name: str,
+                 file: str,
+                 loc: Location,
+                 joints: tuple[JointUse, ...] = (),
+                 drive: DriveSpec | None = None,
+                 frames: tuple[Value, ...] = (),
+                 odom_tf: OdomTF | None = None,
+                 missing: list | None = None,
+                 notes: list | None = None):
+        self.name = name
+        self.file = file
+        self.loc = loc
+        self.joints = joints
+        self.drive = drive
+        self.frames = frames
+        self.odom_tf = odom_tf
+        self.missing = [] if missing is None else missing
+        self.notes = [] if notes is None else notes
 
 
 def read_driver(spec: DriverSpec, files: Sequence[ParamFile] | None = None) -> Driver:

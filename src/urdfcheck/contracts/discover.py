@@ -128,10 +128,13 @@ def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
 def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES) -> Discovered:
     root = os.path.abspath(str(package_dir))
     urdfs, xacros, params, launches = [], [], [], []
+    parts_of: dict[str, list[str]] = {}  # dirpath -> its folders below root (relpath per file was slow)
     for dirpath, f in _walk(root, max_files):
         path = os.path.join(dirpath, f)
-        rel = os.path.relpath(path, root)
-        parts = rel.replace("\\", "/").split("/")[:-1]
+        parts = parts_of.get(dirpath)
+        if parts is None:
+            rel = os.path.relpath(dirpath, root)
+            parts = parts_of[dirpath] = [] if rel == os.curdir else rel.replace("\\", "/").split("/")
         low = f.lower()
         if low.endswith(".urdf"):
             urdfs.append(path)

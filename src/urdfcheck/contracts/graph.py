@@ -19,10 +19,10 @@ layer turns them into T001..T006.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Iterable, Mapping, Sequence, NamedTuple
 
 from ..findings import Location
+from ..records import Record
 
 STATIC = "static"
 DYNAMIC = "dynamic"
@@ -69,12 +69,14 @@ def norm(frame: str) -> str:
     return str(frame).strip().lstrip("/")
 
 
-@dataclass
-class TFGraph:
-    claims: list[TFClaim] = field(default_factory=list)
-    notes: list = field(default_factory=list)  # (message, Location): claims left out (conditional launch nodes)
+class TFGraph(Record):
+    # notes: (message, Location): claims left out (conditional launch nodes)
+    _fields = ('claims', 'notes')
 
-    _seen: set = field(default_factory=set, repr=False, compare=False)
+    def __init__(self, claims: list[TFClaim] | None = None, notes: list | None = None, _seen: set | None = None):
+        self.claims = [] if claims is None else claims
+        self.notes = [] if notes is None else notes
+        self._seen = set() if _seen is None else _seen
 
     def add(self, claim: TFClaim) -> None:
         c = TFClaim(norm(claim.parent), norm(claim.child), claim.owner, claim.kind, claim.loc, claim.source)

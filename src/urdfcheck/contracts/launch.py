@@ -32,7 +32,6 @@ import math
 import os
 import re
 import shlex
-from dataclasses import dataclass, field
 from typing import Any, Mapping, NamedTuple
 
 from lxml import etree
@@ -40,6 +39,7 @@ from lxml import etree
 from .. import geometry
 from ..findings import Location
 from .common import ConsumerError, Value, as_bool
+from ..records import FrozenRecord, Record
 from .yamlsrc import YamlDoc, parse_yaml
 
 MAX_BYTES = 2 * 1024 * 1024
@@ -78,17 +78,30 @@ class JointStatePublisher(NamedTuple):
     condition: str | None = None
 
 
-@dataclass(frozen=True)
-class LaunchNode:
-    package: str
-    executable: str
-    name: str
-    namespace: str
-    args: tuple[str, ...] | None  # None: not literal
-    loc: Location
-    params: Mapping[str, Value] = field(default_factory=dict)  # literal inline parameters
-    param_files: tuple[str, ...] = ()
-    condition: str | None = None
+class LaunchNode(FrozenRecord):
+    # args: None: not literal
+    # params: literal inline parameters
+    _fields = ('package', 'executable', 'name', 'namespace', 'args', 'loc', 'params', 'param_files', 'condition')
+
+    def __init__(self, package: str,
+                 executable: str,
+                 name: str,
+                 namespace: str,
+                 args: tuple[str, ...] | None,
+                 loc: Location,
+                 params: Mapping[str, Value] | None = None,
+                 param_files: tuple[str, ...] = (),
+                 condition: str | None = None):
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["package"] = package
+        d["executable"] = executable
+        d["name"] = name
+        d["namespace"] = namespace
+        d["args"] = args
+        d["loc"] = loc
+        d["params"] = {} if params is None else params
+        d["param_files"] = param_files
+        d["condition"] = condition
 
 
 class ParamSet(NamedTuple):
@@ -108,19 +121,34 @@ class RosparamLoad(NamedTuple):
     order: int
 
 
-@dataclass
-class LaunchInfo:
-    path: str
-    format: str  # "ros1-xml", "ros2-xml", "ros2-yaml", "ros2-py"
-    nodes: list[LaunchNode] = field(default_factory=list)
-    static_tfs: list[StaticTF] = field(default_factory=list)
-    state_publishers: list[StatePublisher] = field(default_factory=list)
-    joint_state_publishers: list[JointStatePublisher] = field(default_factory=list)
-    spawned: list[tuple[str, Location]] = field(default_factory=list)  # controller names given to spawners
-    param_files: list[tuple[str, Location]] = field(default_factory=list)
-    includes: list[tuple[str, Location]] = field(default_factory=list)
-    notes: list[tuple[str, Location]] = field(default_factory=list)
-    param_sets: list = field(default_factory=list)  # ROS 1: ParamSet / RosparamLoad, in document order
+class LaunchInfo(Record):
+    # format: "ros1-xml", "ros2-xml", "ros2-yaml", "ros2-py"
+    # spawned: controller names given to spawners
+    # param_sets: ROS 1: ParamSet / RosparamLoad, in document order
+    _fields = ('path', 'format', 'nodes', 'static_tfs', 'state_publishers', 'joint_state_publishers', 'spawned', 'param_files', 'includes', 'notes', 'param_sets')
+
+    def __init__(self, path: str,
+                 format: str,
+                 nodes: list[LaunchNode] | None = None,
+                 static_tfs: list[StaticTF] | None = None,
+                 state_publishers: list[StatePublisher] | None = None,
+                 joint_state_publishers: list[JointStatePublisher] | None = None,
+                 spawned: list[tuple[str, Location]] | None = None,
+                 param_files: list[tuple[str, Location]] | None = None,
+                 includes: list[tuple[str, Location]] | None = None,
+                 notes: list[tuple[str, Location]] | None = None,
+                 param_sets: list | None = None):
+        self.path = path
+        self.format = format
+        self.nodes = [] if nodes is None else nodes
+        self.static_tfs = [] if static_tfs is None else static_tfs
+        self.state_publishers = [] if state_publishers is None else state_publishers
+        self.joint_state_publishers = [] if joint_state_publishers is None else joint_state_publishers
+        self.spawned = [] if spawned is None else spawned
+        self.param_files = [] if param_files is None else param_files
+        self.includes = [] if includes is None else includes
+        self.notes = [] if notes is None else notes
+        self.param_sets = [] if param_sets is None else param_sets
 
 
 # --- substitutions -----------------------------------------------------------------------------------

@@ -20,22 +20,26 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
 from typing import Iterable
 
 from ..findings import Location
 from .common import ConsumerError, Value
+from ..records import Record
 from .yamlsrc import MAX_BYTES, YamlDoc, load_yaml, parse_yaml
 
 ROS2_KEY = "ros__parameters"
 
 
-@dataclass
-class NodeParams:
-    name: str  # normalised: "/ns/node", "/**", "/" (ROS 1 globals)
-    loc: Location  # the node key
-    params: dict[str, Value] = field(default_factory=dict)
-    file: str = ""
+class NodeParams(Record):
+    # name: normalised: "/ns/node", "/**", "/" (ROS 1 globals)
+    # loc: the node key
+    _fields = ('name', 'loc', 'params', 'file')
+
+    def __init__(self, name: str, loc: Location, params: dict[str, Value] | None = None, file: str = ""):
+        self.name = name
+        self.loc = loc
+        self.params = {} if params is None else params
+        self.file = file
 
     @property
     def namespace(self) -> str:
@@ -59,13 +63,21 @@ class NodeParams:
         return {k[len(p):]: v for k, v in self.params.items() if k.startswith(p)}
 
 
-@dataclass
-class ParamFile:
-    path: str
-    dialect: str  # "ros2" or "ros1" ("empty" for an empty document)
-    nodes: dict[str, NodeParams]
-    doc: YamlDoc | None = None
-    notes: list = field(default_factory=list)  # (message, Location)
+class ParamFile(Record):
+    # dialect: "ros2" or "ros1" ("empty" for an empty document)
+    # notes: (message, Location)
+    _fields = ('path', 'dialect', 'nodes', 'doc', 'notes')
+
+    def __init__(self, path: str,
+                 dialect: str,
+                 nodes: dict[str, NodeParams],
+                 doc: YamlDoc | None = None,
+                 notes: list | None = None):
+        self.path = path
+        self.dialect = dialect
+        self.nodes = nodes
+        self.doc = doc
+        self.notes = [] if notes is None else notes
 
     def find_nodes(self, name: str) -> list[NodeParams]:
         """Nodes whose key applies to a node called `name` (basename or fully qualified; wildcards honoured)."""

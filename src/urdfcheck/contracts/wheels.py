@@ -28,12 +28,12 @@ rule code they belong to. Unknown or non-movable wheel joints are left to the ge
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from typing import NamedTuple
 
 from .. import geometry as G
 from ..findings import Location, Severity
 from .controllers import DriveSpec, JointUse
+from ..records import FrozenRecord, Record
 
 DEFAULT_TOLERANCE = 1e-3  # m
 DEFAULT_ANGLE_TOLERANCE = 1e-3  # rad
@@ -54,29 +54,53 @@ class Wheel(NamedTuple):
     cylinder_misaligned: float | None = None  # angle (rad) between the cylinder axis and the joint axis
 
 
-@dataclass(frozen=True)
-class WheelProblem:
-    code: str
-    message: str
-    at: Location
-    related: tuple[Location, ...] = ()
-    severity: Severity | None = None
-    data: dict = field(default_factory=dict)
+class WheelProblem(FrozenRecord):
+    _fields = ('code', 'message', 'at', 'related', 'severity', 'data')
+
+    def __init__(self, code: str,
+                 message: str,
+                 at: Location,
+                 related: tuple[Location, ...] = (),
+                 severity: Severity | None = None,
+                 data: dict | None = None):
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["code"] = code
+        d["message"] = message
+        d["at"] = at
+        d["related"] = related
+        d["severity"] = severity
+        d["data"] = {} if data is None else data
 
 
-@dataclass
-class DriveReport:
-    drive: DriveSpec
-    base_frame: str
-    wheels: list[Wheel] = field(default_factory=list)
-    measured_separation: float | None = None
-    urdf_distance: float | None = None  # |left - right| (what a ROS 1 controller computes)
-    expected_separation: float | None = None
-    sides_swapped: bool | None = None  # the left wheels' mean y is below the right wheels' (REP-103 y points left)
-    forward_sign: float | None = None  # sum of the mean wheel-axis y per side: > 0 positive rotation drives +x
-    turn_reversed: bool | None = None  # commanded yaw and physical yaw have opposite signs (C014)
-    problems_: list[WheelProblem] = field(default_factory=list)
-    notes: list = field(default_factory=list)
+class DriveReport(Record):
+    # urdf_distance: |left - right| (what a ROS 1 controller computes)
+    # sides_swapped: the left wheels' mean y is below the right wheels' (REP-103 y points left)
+    # forward_sign: sum of the mean wheel-axis y per side: > 0 positive rotation drives +x
+    # turn_reversed: commanded yaw and physical yaw have opposite signs (C014)
+    _fields = ('drive', 'base_frame', 'wheels', 'measured_separation', 'urdf_distance', 'expected_separation', 'sides_swapped', 'forward_sign', 'turn_reversed', 'problems_', 'notes')
+
+    def __init__(self, drive: DriveSpec,
+                 base_frame: str,
+                 wheels: list[Wheel] | None = None,
+                 measured_separation: float | None = None,
+                 urdf_distance: float | None = None,
+                 expected_separation: float | None = None,
+                 sides_swapped: bool | None = None,
+                 forward_sign: float | None = None,
+                 turn_reversed: bool | None = None,
+                 problems_: list[WheelProblem] | None = None,
+                 notes: list | None = None):
+        self.drive = drive
+        self.base_frame = base_frame
+        self.wheels = [] if wheels is None else wheels
+        self.measured_separation = measured_separation
+        self.urdf_distance = urdf_distance
+        self.expected_separation = expected_separation
+        self.sides_swapped = sides_swapped
+        self.forward_sign = forward_sign
+        self.turn_reversed = turn_reversed
+        self.problems_ = [] if problems_ is None else problems_
+        self.notes = [] if notes is None else notes
 
     def problems(self) -> list[WheelProblem]:
         return list(self.problems_)

@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass, field
 from typing import Any, Iterator
 
 import yaml
@@ -27,6 +26,7 @@ from yaml.constructor import SafeConstructor
 
 from ..findings import Location
 from .common import ConsumerError
+from ..records import Record
 
 MAX_BYTES = 2 * 1024 * 1024
 MAX_NODES = 100_000
@@ -53,18 +53,25 @@ def _mark_loc(file: str, mark) -> Location:
     return Location(file, mark.line + 1, mark.column + 1)
 
 
-@dataclass
-class YamlDoc:
+class YamlDoc(Record):
     """A parsed YAML document: plain values plus the location of every key path.
 
     A key path is a tuple of mapping keys and sequence indices from the document root.
     """
 
-    file: str
-    data: Any
-    _value_locs: dict = field(default_factory=dict, repr=False)
-    _key_locs: dict = field(default_factory=dict, repr=False)
-    notes: list = field(default_factory=list)  # (message, Location): duplicate keys and the like
+    # notes: (message, Location): duplicate keys and the like
+    _fields = ('file', 'data', '_value_locs', '_key_locs', 'notes')
+
+    def __init__(self, file: str,
+                 data: Any,
+                 _value_locs: dict | None = None,
+                 _key_locs: dict | None = None,
+                 notes: list | None = None):
+        self.file = file
+        self.data = data
+        self._value_locs = {} if _value_locs is None else _value_locs
+        self._key_locs = {} if _key_locs is None else _key_locs
+        self.notes = [] if notes is None else notes
 
     def loc(self, *path) -> Location:
         """Where the value at `path` was written; the nearest located ancestor otherwise (file-only at worst)."""

@@ -92,6 +92,19 @@ def _collect_suppressions(state: _State, idx: int, root) -> None:
     state.suppressions.extend((idx,) + s for s in scan_comments(root))
 
 
+def preload() -> None:
+    """Import what `expand` needs, in the calling process.
+
+    Called before forking the worker: each child then inherits the modules instead of importing them
+    again (a package with argument variants forks once per variant), and PyYAML, which xacro imports,
+    is already there for the contract readers. Importing runs no user input.
+    """
+    import xacro  # noqa: F401
+    from xacro import substitution_args  # noqa: F401
+
+    from . import safeeval, yamlguard  # noqa: F401
+
+
 def expand(path: str, opts: Options) -> dict:
     """Expand `path`. Returns a dict (picklable): xml (marked), files, suppressions, warnings, args.
 

@@ -24,9 +24,10 @@ import operator
 import os
 import re
 import string
-from dataclasses import dataclass
 from functools import lru_cache
 from types import BuiltinFunctionType, FunctionType, MethodType, ModuleType
+
+from ..records import FrozenRecord
 
 __all__ = ["Refused", "Limits", "Evaluator", "default_evaluator", "evaluate_substitution", "validate"]
 
@@ -44,15 +45,31 @@ class Refused(Exception):
         return f"{self.reason} (in expression {shown!r})"
 
 
-@dataclass(frozen=True)
-class Limits:
-    max_bits: int = 100_000  # integer results (**, <<, *, factorial, ...)
-    max_len: int = 10_000_000  # items/characters of one sequence or string
-    max_iter: int = 1_000_000  # items iterated per evaluation (comprehensions, *args, consumers)
-    max_chars: int = 100_000  # expression text
-    max_depth: int = 100  # AST nesting
-    max_alloc: int = 50_000_000  # items created by repetition/concatenation per evaluation
-    max_total_iter: int | None = None  # items iterated by all evaluations of one Evaluator (xacro: one expansion)
+class Limits(FrozenRecord):
+    # max_bits: integer results (**, <<, *, factorial, ...)
+    # max_len: items/characters of one sequence or string
+    # max_iter: items iterated per evaluation (comprehensions, *args, consumers)
+    # max_chars: expression text
+    # max_depth: AST nesting
+    # max_alloc: items created by repetition/concatenation per evaluation
+    # max_total_iter: items iterated by all evaluations of one Evaluator (xacro: one expansion)
+    _fields = ('max_bits', 'max_len', 'max_iter', 'max_chars', 'max_depth', 'max_alloc', 'max_total_iter')
+
+    def __init__(self, max_bits: int = 100_000,
+                 max_len: int = 10_000_000,
+                 max_iter: int = 1_000_000,
+                 max_chars: int = 100_000,
+                 max_depth: int = 100,
+                 max_alloc: int = 50_000_000,
+                 max_total_iter: int | None = None):
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["max_bits"] = max_bits
+        d["max_len"] = max_len
+        d["max_iter"] = max_iter
+        d["max_chars"] = max_chars
+        d["max_depth"] = max_depth
+        d["max_alloc"] = max_alloc
+        d["max_total_iter"] = max_total_iter
 
 
 # --------------------------------------------------------------------------------------------------
