@@ -17,6 +17,7 @@ def _values(tree: KinematicTree, configurations, joint_names):
     import numpy as np
 
     movable = tree.movable
+    active = tree.active_joints()
     if isinstance(configurations, dict):
         configurations = [configurations]
     if isinstance(configurations, (list, tuple)) and configurations and isinstance(configurations[0], dict):
@@ -44,7 +45,6 @@ def _values(tree: KinematicTree, configurations, joint_names):
             raise ValueError(f"configurations must be N x dof, got shape {arr.shape}")
         n, k = arr.shape
         if joint_names is None:
-            active = tree.active_joints()
             if k == len(active):
                 joint_names = active
             elif k == len(tree.movable_joints()):
@@ -59,64 +59,88 @@ def _values(tree: KinematicTree, configurations, joint_names):
             raise ValueError(f"not joints of the model: {', '.join(map(repr, unknown[:5]))}")
         given = {name: arr[:, i] for i, name in enumerate(joint_names) if name in movable}
     # independent joints not given are at 0; mimic joints follow their source transitively (explicit wins)
-    for name in tree.active_joints():
+    for name in active:
         if name not in given:
             given[name] = np.zeros(n)
     values = tree.resolve_mimic(given, transitive=True)
     return values, n
 
 
-def _consts(seg, np):
-    """Per-segment numpy constants, cached on the segment."""
-    c = seg.__dict__.get("_np")
-    if c is None:
-        r0 = np.array(seg.origin_r, dtype=float)
-        t0 = np.array(seg.origin_t, dtype=float)
-        c = {"r0": r0, "t0": t0}
-        if seg.kind == "movable" and seg.axis is not None:
-            a = np.array(seg.axis, dtype=float)
-            if seg.type == "prismatic":
-                c["d"] = r0 @ a
+# Every link's pose is written straight into the (links, N, 4, 4) output by one BLAS product with its parent's
+# (4N x 4 @ 4 x 4; stacked 4x4 matmul or per-entry arithmetic is several times slower for tiny matrices), or by a
+# copy plus a shift when the joint origin does not rotate. A revolute joint about a coordinate axis then only
+# mixes two adjacent columns of each rotation row: a complex multiplication by exp(-iq) on a strided complex
+# view. y axes become x axes by a constant quarter turn about z, undone afterwards (times i on columns 0, 1);
+# other axes are turned onto z by a constant rotation, undone by a second product.
+_QUARTER = ((0.0, -1.0, 0.0), (1.0, 0.0, 0.0), (0.0, 0.0, 1.0))  # Rz(pi/2): Ry(q) = Rz(pi/2) Rx(q) Rz(-pi/2)
+_HUGE = 1e300  # joint values and offsets below this cannot overflow when summed down any real chain
+
+
+class _Step:
+    """What link_poses does for one segment; constants precomputed once per tree."""
+
+    __slots__ = ("name", "parent", "child", "kind", "j", "shift", "offset", "pair", "post", "axis", "sign", "repair",
+                 "taints")
+
+
+def _plan(tree: KinematicTree, np):
+    """(link index, steps, [(revolute joint, sign)], {mimic joint: source it equals}), cached on the tree."""
+    plan = tree.__dict__.get("_batch_plan")
+    if plan is not None:
+        return plan
+    index = {link: i for i, link in enumerate(tree.links)}
+    steps, revolute = [], []
+    for seg in tree.segments:
+        st = _Step()
+        st.name, st.parent, st.child = seg.name, index[seg.parent], index[seg.child]
+        st.pair = st.post = st.axis = st.sign = None
+        j = np.eye(4)
+        j[:3, :3] = seg.origin_r
+        j[:3, 3] = seg.origin_t
+        # a non-finite constant would turn the exact 0 0 0 1 bottom row into NaN (0 * NaN); a non-finite or
+        # huge offset must not reach the children's rotations through the 0 * t terms of their products
+        st.repair = not np.isfinite(j).all()
+        st.taints = st.repair or not (np.abs(j[:3, 3]) <= _HUGE).all()
+        st.kind = seg.type if seg.kind == "movable" else "fixed"
+        if st.kind == "prismatic":
+            st.axis = None if seg.axis is None else np.array(seg.axis, dtype=float)
+        elif st.kind != "fixed":
+            st.kind = "revolute"
+            a = seg.axis
+            if a is None:
+                st.kind = "nan"
             else:
-                k = np.array([[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-a[1], a[0], 0.0]])
-                # R0 * Rot(a, q) = c * R0 + s * (R0 K) + (1 - c) * (R0 a) a^T
-                c["k"] = r0 @ k
-                c["aa"] = np.outer(r0 @ a, a)
-        seg.__dict__["_np"] = c
-    return c
+                # Rot(a, q) = pre @ G(q) @ pre^T, G rotating the column pair (0, 1) (about z) or (1, 2) (about x)
+                k = [i for i in range(3) if a[i] != 0.0]
+                sign, pre = 1.0, None
+                if len(k) == 1:
+                    sign = a[k[0]]
+                    st.pair = 0 if k[0] == 2 else 1
+                    if k[0] == 1:
+                        pre, st.post = np.array(_QUARTER), "turn"  # undone: times i on columns (0, 1)
+                else:
+                    pre = _frame_with_z(np.array(a, dtype=float), np)
+                    st.pair, st.post = 0, pre.T.copy()
+                if pre is not None:
+                    j[:3, :3] = j[:3, :3] @ pre
+                st.sign = sign
+                revolute.append((seg.name, sign))
+        st.j = j
+        st.shift = j[:3, 3] if (j[:3, :3] == np.eye(3)).all() else None
+        st.offset = bool(j[:3, 3].any())
+        steps.append(st)
+    aliases = {name: src for name, src, mult, off in tree.mimics if mult == 1.0 and off == 0.0}
+    plan = (index, steps, revolute, aliases)
+    tree.__dict__["_batch_plan"] = plan
+    return plan
 
 
-def _mul_const(r, m):
-    """(N,3,3) @ (3,k) as one BLAS call: (N,3,k)."""
-    n = r.shape[0]
-    return (r.reshape(n * 3, 3) @ m).reshape(n, 3, m.shape[1])
-
-
-def _child_pose(seg, rp, pp, q, np, n):
-    """(R, p) of the child from the parent's (R (N,3,3), p (N,3)) and joint values q (N,) or None."""
-    c = _consts(seg, np)
-    if seg.kind != "movable":
-        return _mul_const(rp, c["r0"]), pp + _mul_const(rp, c["t0"][:, None])[..., 0]
-    if q is None:  # unresolvable mimic joint: robot_state_publisher never publishes it
-        q = np.full(n, np.nan)
-    if seg.type == "prismatic":
-        r = _mul_const(rp, c["r0"])
-        if seg.axis is None:
-            return r, np.full((n, 3), np.nan)
-        tp = _mul_const(rp, np.stack([c["t0"], c["d"]], axis=1))  # (N,3,2)
-        return r, pp + tp[..., 0] + q[:, None] * tp[..., 1]
-    if seg.axis is None:
-        return np.full((n, 3, 3), np.nan), np.full((n, 3), np.nan)
-    # three contiguous BLAS products, then c * A + s * B + (1 - c) * C in place
-    a = _mul_const(rp, c["r0"])
-    b = _mul_const(rp, c["k"])
-    cc = _mul_const(rp, c["aa"])
-    a -= cc
-    a *= np.cos(q)[:, None, None]
-    b *= np.sin(q)[:, None, None]
-    a += b
-    a += cc
-    return a, pp + _mul_const(rp, c["t0"][:, None])[..., 0]
+def _frame_with_z(a, np):
+    """A rotation matrix whose third column is the unit vector a."""
+    e = np.array([1.0, 0.0, 0.0]) if abs(a[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    u = np.cross(e, a)
+    u /= np.linalg.norm(u)
+    return np.stack([u, np.cross(a, u), a], axis=1)
 
 
 def link_poses(model, configurations, root_frame: str | None = None, *, joint_names=None,
@@ -136,27 +160,87 @@ def link_poses(model, configurations, root_frame: str | None = None, *, joint_na
 
     tree = kinematic_tree(model)
     values, n = _values(tree, configurations, joint_names)
-    index = {link: i for i, link in enumerate(tree.links)}
-    rot = np.empty((len(index), n, 3, 3))
-    pos = np.empty((len(index), n, 3))
+    index, steps, revolute, aliases = _plan(tree, np)
+    big = np.empty((len(index), n, 4, 4))
     for r in tree.roots:
-        rot[index[r]] = np.eye(3)
-        pos[index[r]] = 0.0
-    for seg in tree.segments:
-        i, c = index[seg.parent], index[seg.child]
-        rot[c], pos[c] = _child_pose(seg, rot[i], pos[i], values.get(seg.name), np, n)
+        big[index[r]] = np.eye(4)
+    flat = big.reshape(len(index), 4 * n, 4)
+    # columns (0, 1) and (1, 2) of the rotation rows of every link, as (links, 3, N) complex views
+    pairs = [big[:, :, :3, k:k + 2].view(complex)[..., 0].transpose(0, 2, 1) for k in (0, 1)]
+    # exp(-iq) of every revolute joint: sin and cos cost more than anything else per joint, so they are taken
+    # in one go, once per distinct joint value (a mimic joint with multiplier 1 and offset 0 equals its source)
+    nan = np.full(n, np.nan)  # unresolvable mimic joint
+    rows, unique = {}, []
+    for name, _ in revolute:
+        v, base, seen = values.get(name, nan), name, set()
+        while base not in seen and aliases.get(base) in values and np.array_equal(values[aliases[base]], v):
+            seen.add(base)
+            base = aliases[base]
+        if base not in rows:
+            rows[base] = len(unique)
+            unique.append(v)
+        rows[name] = rows[base]
+    angles = np.array(unique).reshape(len(unique), n)
+    np.negative(angles, out=angles)
+    spin = np.empty((len(unique), n), dtype=complex)
+    np.cos(angles, out=spin.real)
+    np.sin(angles, out=spin.imag)
+    finite = np.isfinite(angles).all(axis=1) if not np.isfinite(angles.sum()) else np.ones(len(unique), bool)
+    turn = np.full(n, 1j)
+    # KDL's Frame product keeps NaN where it would arise: a translation that is not finite under a finite rotation
+    # (tainted) must not reach the rotation columns through 0 * t, and a NaN rotation (shaky) must reach the
+    # translation even through R * 0
+    tainted, shaky = [False] * len(index), [False] * len(index)
+    for st in steps:
+        a, o = flat[st.parent], flat[st.child]
+        if st.shift is not None:
+            np.copyto(o, a)
+            if st.offset or shaky[st.parent]:
+                o[:, 3] += a[:, :3] @ st.shift
+        elif tainted[st.parent]:
+            np.matmul(a[:, :3], st.j[:3, :3], out=o[:, :3])
+            np.matmul(a, st.j[:, 3], out=o[:, 3])
+        else:
+            np.matmul(a, st.j, out=o)
+        if st.repair:
+            o[3::4] = (0.0, 0.0, 0.0, 1.0)
+        taint, shake = tainted[st.parent] or st.taints, shaky[st.parent] or st.repair
+        if st.kind == "revolute":
+            k = rows[st.name]
+            pair = pairs[st.pair][st.child]
+            np.multiply(pair, spin[k] if st.sign > 0 else spin[k].conj(), out=pair, order="C")  # C: 3 long loops
+            if st.post is None:
+                pass
+            elif isinstance(st.post, str):
+                pair = pairs[0][st.child]
+                np.multiply(pair, turn, out=pair, order="C")
+            else:
+                np.matmul(o[:, :3], st.post, out=o[:, :3])
+            if not finite[k]:  # a non-finite angle makes the whole rotation NaN, as in the Rodrigues form
+                big[st.child][~np.isfinite(angles[k]), :3, :3] = np.nan
+                shake = True
+        elif st.kind == "prismatic":
+            q = values.get(st.name)
+            if st.axis is None or q is None:
+                big[st.child][:, :3, 3] = np.nan
+                taint = True
+            else:
+                along = np.matmul(o[:, :3], st.axis).reshape(n, 4)[:, :3]  # the axis in the root frame
+                along *= q[:, None]
+                big[st.child][:, :3, 3] += along
+                taint = taint or not (np.abs(q) <= _HUGE).all()
+        elif st.kind == "nan":
+            big[st.child][:, :3, :] = np.nan
+        tainted[st.child], shaky[st.child] = taint, shake
     if root_frame is not None:
         if root_frame not in index:
             raise KeyError(f"frame {root_frame!r} is not a link of the model's tree")
-        rr, pr = rot[index[root_frame]], pos[index[root_frame]]
+        rot, pos = big[..., :3, :3], big[..., :3, 3]
+        rr, pr = rot[index[root_frame]].copy(), pos[index[root_frame]].copy()
         rt = np.swapaxes(rr, 1, 2)
-        rot = (rt[None, :, :, :, None] * rot[:, :, None, :, :]).sum(axis=3)
-        pos = (rt[None] * (pos - pr[None])[:, :, None, :]).sum(axis=3)
-    big = np.empty((len(index), n, 4, 4))
-    big[..., :3, :3] = rot
-    big[..., :3, 3] = pos
-    big[..., 3, :3] = 0.0
-    big[..., 3, 3] = 1.0
+        new_rot = (rt[None, :, :, :, None] * rot[:, :, None, :, :]).sum(axis=3)
+        pos[...] = (rt[None] * (pos - pr[None])[:, :, None, :]).sum(axis=3)
+        rot[...] = new_rot
     wanted = tree.links if links is None else list(links)
     return {k: big[index[k]] for k in wanted}
 
