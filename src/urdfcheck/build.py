@@ -1,7 +1,8 @@
 """Build the Model from a parsed (and expanded) URDF document.
 
 Values that cannot be read do not stop the build: they become `Issue`s (reported by the U rules) and
-the part gets the value URDF parsers default to, so later rules see a usable model.
+the part gets the value URDF parsers default to, so later rules see a usable model. Links and joints
+written the ordinary way are read by fastbuild.py instead; this builder takes over whatever it refuses.
 """
 from __future__ import annotations
 
@@ -13,11 +14,11 @@ from typing import Callable
 
 from lxml import etree
 
+from . import nogc
+from .fastbuild import INERTIA, NO_DYNAMICS, ONE, POSE0, SRC_ATTR, TOLERATED, X_AXIS, ZERO, FastParts, Irregular
 from .findings import Location
 from .model import (Block, Geometry, HardwareItem, Inertial, Interface, Issue, Joint, Limit, Link, Material,
                     MaterialRef, Mimic, Model, Pose, Ros2Control, Shape, Transmission)
-
-SRC_ATTR = "__ucsrc"
 
 # element -> (attributes, child elements) of the URDF core; extension blocks are not checked
 SCHEMA = {
@@ -51,8 +52,6 @@ SCHEMA = {
 }
 for _attrs, _ in SCHEMA.values():
     _attrs.add(SRC_ATTR)  # the xacro source marker is ours, never "unknown"
-# children that real-world packages carry and URDF parsers ignore without harm
-_TOLERATED = {"robot": {"sensor"}, "collision": {"verbose"}, "link": {"self_collision_checking"}}
 
 
 class _Builder:
@@ -104,7 +103,7 @@ class _Builder:
     # Each element's children are walked once with a dispatch on the tag (lxml proxies are costly).
     def pose(self, el) -> Pose:
         self.check(el, "origin")
-        return Pose(self.vector(el, "xyz", 3, _ZERO), self.vector(el, "rpy", 3, _ZERO), self.locate(el))
+        return Pose(self.vector(el, "xyz", 3, ZERO), self.vector(el, "rpy", 3, ZERO), self.locate(el))
 
     def geometry(self, g) -> Geometry:
         self.check(g, "geometry")
@@ -129,7 +128,7 @@ class _Builder:
             fn = s.get("filename")
             if not fn:
                 self.issue("U006", "<mesh> has no 'filename' attribute", s)
-            return Geometry("mesh", loc, filename=fn or None, scale=self.vector(s, "scale", 3, _ONE))
+            return Geometry("mesh", loc, filename=fn or None, scale=self.vector(s, "scale", 3, ONE))
         return Geometry(tag, loc)
 
     def _colour_texture(self, mat):
@@ -156,7 +155,7 @@ class _Builder:
 
     def shape(self, el, kind: str) -> Shape:
         self.check(el, kind)
-        origin, geometry, mat = _POSE0, None, None
+        origin, geometry, mat = POSE0, None, None
         for c in el:
             tag = c.tag
             if tag == "origin":
@@ -176,7 +175,7 @@ class _Builder:
 
     def inertial(self, el) -> Inertial:
         self.check(el, "inertial")
-        origin, mass, mass_loc, inertia, inertia_loc = _POSE0, None, None, None, None
+        origin, mass, mass_loc, inertia, inertia_loc = POSE0, None, None, None, None
         for c in el:
             tag = c.tag
             if tag == "mass":
@@ -186,7 +185,7 @@ class _Builder:
             elif tag == "inertia":
                 self.check(c, "inertia")
                 number = self.number
-                inertia = tuple(number(c, k, 0.0, required=True) for k in _INERTIA)
+                inertia = tuple(number(c, k, 0.0, required=True) for k in INERTIA)
                 inertia_loc = self.locate(c)
             elif tag == "origin":
                 origin = self.pose(c)
@@ -227,7 +226,7 @@ class _Builder:
             self.issue("U006", f"joint {name!r} has no 'type' attribute", el)
             jtype = ""
         ends = {}
-        origin, axis, axis_loc, limit, mimic, dyn = _POSE0, _X, None, None, None, {}
+        origin, axis, axis_loc, limit, mimic, dyn = POSE0, X_AXIS, None, None, None, {}
         for c in el:
             tag = c.tag
             if tag == "parent" or tag == "child":
@@ -242,7 +241,7 @@ class _Builder:
                 self.check(c, "axis")
                 # urdfdom reads <axis/> without xyz as a zero vector (robot_state_publisher then
                 # publishes NaN), not as the default x axis: model what the robot will do
-                axis = self.vector(c, "xyz", 3, _ZERO, required=True)
+                axis = self.vector(c, "xyz", 3, ZERO, required=True)
                 axis_loc = self.locate(c)
             elif tag == "limit":
                 self.check(c, "limit")
@@ -275,7 +274,7 @@ class _Builder:
                 self.issue("U006", f"joint {name!r} has no <{end}> element", el)
                 ends[end] = (None, None)
         return Joint(name, jtype, self.locate(el), ends["parent"][0], ends["child"][0], origin, axis,
-                     axis_loc, limit, mimic, MappingProxyType(dyn) if dyn else _NODYN,
+                     axis_loc, limit, mimic, MappingProxyType(dyn) if dyn else NO_DYNAMICS,
                      ends["parent"][1], ends["child"][1])
 
     def ros2_control(self, el, in_gazebo: bool) -> Ros2Control:
@@ -313,19 +312,13 @@ class _Builder:
 
     def unknown(self, parent_tag: str, c) -> None:
         tag = c.tag
-        if not isinstance(tag, str) or tag.startswith("{") or tag in _TOLERATED.get(parent_tag, ()):
+        if not isinstance(tag, str) or tag.startswith("{") or tag in TOLERATED.get(parent_tag, ()):
             return
         allowed = SCHEMA[parent_tag][1]
         self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{_hint(tag, allowed)}; "
                            "URDF parsers ignore it", c)
 
 
-_ZERO = (0.0, 0.0, 0.0)
-_ONE = (1.0, 1.0, 1.0)
-_X = (1.0, 0.0, 0.0)
-_POSE0 = Pose()
-_NODYN = MappingProxyType({})
-_INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _SHAPES = ("box", "cylinder", "capsule", "sphere", "mesh")
 
 
@@ -340,7 +333,12 @@ def _raw_xml(el) -> str:
 
 
 def build(root, locate: Callable[[object], Location], source: str) -> Model:
+    return nogc.call(_build, root, locate, source, long_lived=True)
+
+
+def _build(root, locate: Callable[[object], Location], source: str) -> Model:
     b = _Builder(locate, source)
+    fast = FastParts(locate)
     if root.tag != "robot":
         b.issue("U001", f"the root element is <{root.tag}>, not <robot>", root)
     if root.tag == "robot":
@@ -350,13 +348,19 @@ def build(root, locate: Callable[[object], Location], source: str) -> Model:
         if not isinstance(el.tag, str):
             continue
         if el.tag == "link":
-            part = b.link(el)
-            if part:
-                links.append(part)
+            try:
+                links.append(fast.link(el))
+            except Irregular:  # something to report or to read with care: the careful builder's
+                part = b.link(el)
+                if part:
+                    links.append(part)
         elif el.tag == "joint":
-            part = b.joint(el)
-            if part:
-                joints.append(part)
+            try:
+                joints.append(fast.joint(el))
+            except Irregular:
+                part = b.joint(el)
+                if part:
+                    joints.append(part)
         elif el.tag == "material":
             part = b.material(el)
             if part:

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import os
 
-from . import rulebook
+from . import nogc, rulebook
 from .findings import Finding, Location, Problem, Severity, clean_text
 from .records import Record
 from .suppress import is_yaml, yaml_suppressions
@@ -75,6 +75,11 @@ def _loc(at, default: Location) -> Location:
 
 
 def run_checks(model, ctx: Context) -> list[Finding]:
+    # on a large model the rules build large indexes in turn (link graph, name maps, tensors)
+    return nogc.call(_run_checks, model, ctx)
+
+
+def _run_checks(model, ctx: Context) -> list[Finding]:
     cat = rulebook.catalogue()
     checks = rulebook.load_checks()
     out: list[Finding] = []

@@ -15,9 +15,7 @@ _KNOWN_SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")
 def _shapes(model):
     """(link, shape) for every visual and collision, in document order."""
     for link in model.link_list:
-        for s in link.visuals:
-            yield link, s
-        for s in link.collisions:
+        for s in link.visuals + link.collisions:
             yield link, s
 
 
@@ -116,7 +114,8 @@ def non_positive_size(model, ctx):
         if g is None:
             continue
         if g.kind == "box" and g.size is not None:
-            if min(g.size) > 0:
+            x, y, z = g.size
+            if x > 0 and y > 0 and z > 0:
                 continue
             bad = [f"{axis}={v:g}" for axis, v in zip("xyz", g.size) if v <= 0]
             if bad:

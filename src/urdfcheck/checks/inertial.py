@@ -75,8 +75,9 @@ def _tensors(model, ctx):
     atol = float(ctx.options.get("atol", ATOL))
     min_mass = float(ctx.options.get("min_mass", MIN_MASS))
     unreadable = _unreadable_locs(model)
-    for link, inertial in _inertials(model):
-        if inertial.inertia is None or inertial.inertia_loc in unreadable:
+    for link in model.link_list:
+        inertial = link.inertial
+        if inertial is None or inertial.inertia is None or (unreadable and inertial.inertia_loc in unreadable):
             continue
         m = inertial.mass
         if m is not None and m <= 0 and not any(inertial.inertia):
@@ -144,14 +145,15 @@ def inertia_not_positive_definite(model, ctx):
         scale = max(abs(hi), abs(lo))
         if scale <= atol:
             lo = hi = 0.0  # an all-zero tensor written with floating-point noise: a point mass
-        shown = ", ".join(_fmt(x, scale) for x in moments)
         at = inertial.inertia_loc or inertial
         if lo < -max(rtol * scale, atol):
+            shown = ", ".join(_fmt(x, scale) for x in moments)
             yield Problem(
                 f"inertia tensor of link {link.name!r} is not positive definite: principal moments {shown} "
                 "(a negative moment of inertia does not exist; check signs of the products of inertia and the "
                 "units)", at=at)
         elif not allow_singular and lo <= max(rtol * abs(hi), atol):
+            shown = ", ".join(_fmt(x, scale) for x in moments)
             kind = "all principal moments are zero (a point mass)" if hi <= atol else \
                 f"a principal moment is zero ({shown}: a thin rod or plate)"
             yield Problem(f"inertia tensor of link {link.name!r} is singular: {kind}", at=at)

@@ -33,6 +33,11 @@ def _num(v: float) -> str:
     return f"{v:g}"
 
 
+def _norm(axis) -> float:
+    x, y, z = axis
+    return math.sqrt(x * x + y * y + z * z)
+
+
 def _axis_text(axis) -> str:
     return " ".join(_num(v) for v in axis)
 
@@ -142,7 +147,7 @@ def zero_axis(model, ctx):
     for j in model.joint_list:
         if j.type not in AXIS_TYPES or j.axis_loc is None:
             continue
-        if math.sqrt(sum(v * v for v in j.axis)) > ZERO_AXIS:
+        if _norm(j.axis) > ZERO_AXIS:
             continue
         effect = ("KDL divides by its length, so robot_state_publisher publishes NaN transforms for "
                   f"{_q(j.child)} and everything below it; yourdfpy computes NaN, Pinocchio a joint that "
@@ -162,7 +167,7 @@ def non_unit_axis(model, ctx):
     for j in model.joint_list:
         if j.type not in AXIS_TYPES or j.axis_loc is None:
             continue
-        norm = math.sqrt(sum(v * v for v in j.axis))
+        norm = _norm(j.axis)
         if norm <= ZERO_AXIS or abs(norm - 1.0) <= tol:
             continue  # zero is J006
         unit = " ".join(f"{v / norm:.9g}" for v in j.axis)

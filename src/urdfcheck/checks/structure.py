@@ -81,21 +81,20 @@ class _Graph:
     edge parent -> child."""
 
     def __init__(self, model):
-        self.model = model
         self.defined = set(model.links)
         self.joints = list(model.joint_list)
         self.order = {id(j): i for i, j in enumerate(model.joint_list)}
         self.edges = [j for j in self.joints if j.parent is not None and j.child is not None]
         nodes = list(model.links)
-        seen = set(nodes)
         self.parents: dict[str, list] = {}
         self.children: dict[str, list] = {}
-        self.touched: set[str] = set()
-        for j in self.joints:
-            for end in (j.parent, j.child):
-                if end is not None:
-                    self.touched.add(end)
-                    if end not in seen:  # phantom node for an undefined link (S003)
+        self.touched: set[str] = {j.parent for j in self.joints} | {j.child for j in self.joints}
+        self.touched.discard(None)
+        if not self.touched <= self.defined:
+            seen = set(nodes)
+            for j in self.joints:
+                for end in (j.parent, j.child):
+                    if end is not None and end not in seen:  # phantom node for an undefined link (S003)
                         seen.add(end)
                         nodes.append(end)
         for j in self.edges:
@@ -106,10 +105,10 @@ class _Graph:
         self.defined_roots = [n for n in self.roots if n in self.defined]
         # defined links S003 proposes for a misspelt end: they only look disconnected because of the typo
         self.suggestion: dict[str, str | None] = {}
-        candidates = sorted(self.defined)
-        for n in nodes:
-            if n not in self.defined:
-                self.suggestion[n] = _suggest(n, candidates)
+        phantoms = nodes[len(model.links):]
+        candidates = sorted(self.defined) if phantoms else []
+        for n in phantoms:
+            self.suggestion[n] = _suggest(n, candidates)
         self.suggested = {s for s in self.suggestion.values() if s is not None}
         self._cycles = None
 
@@ -136,12 +135,14 @@ class _Graph:
 
     def reachable_from_roots(self) -> set[str]:
         out, stack = set(), list(self.roots)
+        children = self.children
         while stack:
             n = stack.pop()
             if n in out:
                 continue
             out.add(n)
-            stack.extend(j.child for j in self.children.get(n, ()))
+            for j in children.get(n, ()):
+                stack.append(j.child)
         return out
 
     # --- cycles ------------------------------------------------------------------
@@ -197,8 +198,13 @@ class _Graph:
         """One cycle per strongly connected set of two or more links, plus every self-loop joint."""
         if self._cycles is not None:
             return self._cycles
-        position = {n: i for i, n in enumerate(self.nodes)}
         reach = self.reachable_from_roots()
+        if len(reach) == len(self.nodes) and all(len(ups) == 1 for ups in self.parents.values()):
+            # the common case, a tree: a link on a loop has its one parent on the loop too, so walking
+            # back along the path from a root that reaches it would never arrive at that root
+            self._cycles = []
+            return self._cycles
+        position = {n: i for i, n in enumerate(self.nodes)}
         found: list[_Cycle] = []
         for comp in self._sccs():
             members = set(comp)
@@ -227,6 +233,14 @@ class _Graph:
 _last: tuple = (None, None)  # (weakref to the model, its _Graph): S001..S006 run one after another on one model
 
 
+def _forget(ref) -> None:
+    """The model is gone: so goes its graph, which holds its joints. Kept until the interpreter exits, a
+    large model would be traced by each of the collections that run at exit (half a second at 10,000 links)."""
+    global _last
+    if _last[0] is ref:
+        _last = (None, None)
+
+
 def _graph(model) -> _Graph:
     global _last
     ref, g = _last
@@ -234,7 +248,7 @@ def _graph(model) -> _Graph:
         return g
     g = _Graph(model)
     try:
-        _last = (weakref.ref(model), g)
+        _last = (weakref.ref(model, _forget), g)
     except TypeError:  # a model type without weak references: just do not cache
         pass
     return g
@@ -257,11 +271,13 @@ def multiple_roots(model, ctx):
                 f"one tree with a single root (urdfdom: 'Two root links found')",
                 at=model.links[roots[1]], related=tuple(model.links[r] for r in roots if r != roots[1]))
         return
+    candidates = [r for r in g.defined_roots if r in g.touched and r not in g.suggested]
+    if len(candidates) < 2:
+        return
     comp = g.components()
     firsts: dict[int, str] = {}
-    for r in g.defined_roots:
-        if r in g.touched and r not in g.suggested:
-            firsts.setdefault(comp[r], r)
+    for r in candidates:
+        firsts.setdefault(comp[r], r)
     roots = list(firsts.values())
     if len(roots) < 2:
         return
