@@ -6,7 +6,6 @@ written the ordinary way are read by fastbuild.py instead; this builder takes ov
 """
 from __future__ import annotations
 
-import difflib
 import math
 import re
 from types import MappingProxyType
@@ -16,7 +15,7 @@ from lxml import etree
 
 from . import nogc
 from .fastbuild import INERTIA, NO_DYNAMICS, ONE, POSE0, SRC_ATTR, TOLERATED, X_AXIS, ZERO, FastParts, Irregular
-from .findings import Location
+from .findings import Location, closest
 from .model import (Block, Geometry, HardwareItem, Inertial, Interface, Issue, Joint, Limit, Link, Material,
                     MaterialRef, Mimic, Model, Pose, Ros2Control, Shape, Transmission)
 
@@ -323,8 +322,8 @@ _SHAPES = ("box", "cylinder", "capsule", "sphere", "mesh")
 
 
 def _hint(word: str, options) -> str:
-    close = difflib.get_close_matches(word, sorted(options), n=1, cutoff=0.75)
-    return f" (did you mean {close[0]!r}?)" if close else ""
+    close = closest(word, sorted(options))
+    return f" (did you mean {close!r}?)" if close else ""
 
 
 def _raw_xml(el) -> str:

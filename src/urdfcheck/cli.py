@@ -185,5 +185,23 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_USAGE
 
 
+def run() -> None:
+    """The console entry point: `main`, then exit without tearing the interpreter down.
+
+    Teardown frees a big model object by object (0.1 s for 10,000 links) and nothing needs it: every file
+    we write is closed by then, and the standard streams are flushed here.
+    """
+    code = main()
+    try:
+        sys.stdout.flush()
+    except BrokenPipeError:
+        pass
+    try:
+        sys.stderr.flush()
+    except BrokenPipeError:
+        pass
+    os._exit(code)
+
+
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    run()

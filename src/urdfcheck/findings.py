@@ -92,3 +92,11 @@ class Problem:
 
     def __repr__(self) -> str:
         return f"Problem({self.code or ''} {self.message!r})"
+
+
+def closest(word: str, options, cutoff: float = 0.75) -> str | None:
+    """The option most like `word` (for "did you mean"), or None."""
+    import difflib  # only when something is misspelt: its import costs more than most lint runs spend here
+
+    close = difflib.get_close_matches(word, list(options), n=1, cutoff=cutoff)
+    return close[0] if close else None

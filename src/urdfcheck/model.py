@@ -6,11 +6,11 @@ Only plain Python here (no numpy) so that `lint` stays fast; poses are composed 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from types import MappingProxyType
 from typing import Mapping, NamedTuple
 
 from .findings import Location
+from .records import FrozenRecord
 
 Vec3 = tuple[float, float, float]
 
@@ -162,21 +162,39 @@ class Issue(NamedTuple):
     loc: Location
 
 
-@dataclass(frozen=True)
-class Model:
-    name: str
-    loc: Location
-    links: Mapping[str, Link]  # first definition wins on duplicates
-    joints: Mapping[str, Joint]
-    materials: Mapping[str, Material]
-    link_list: tuple[Link, ...]  # in document order, duplicates included
-    joint_list: tuple[Joint, ...]
-    material_list: tuple[Material, ...]
-    blocks: tuple[Block, ...]
-    issues: tuple[Issue, ...]
-    source: str  # the entry file
-    ros2_control: tuple[Ros2Control, ...] = ()
-    transmissions: tuple[Transmission, ...] = ()
+class Model(FrozenRecord):
+    # links: first definition wins on duplicates
+    # link_list: in document order, duplicates included
+    # source: the entry file
+    _fields = ('name', 'loc', 'links', 'joints', 'materials', 'link_list', 'joint_list', 'material_list', 'blocks', 'issues', 'source', 'ros2_control', 'transmissions')
+
+    def __init__(self, name: str,
+                 loc: Location,
+                 links: Mapping[str, Link],
+                 joints: Mapping[str, Joint],
+                 materials: Mapping[str, Material],
+                 link_list: tuple[Link, ...],
+                 joint_list: tuple[Joint, ...],
+                 material_list: tuple[Material, ...],
+                 blocks: tuple[Block, ...],
+                 issues: tuple[Issue, ...],
+                 source: str,
+                 ros2_control: tuple[Ros2Control, ...] = (),
+                 transmissions: tuple[Transmission, ...] = ()):
+        d = self.__dict__  # FrozenRecord forbids setattr
+        d["name"] = name
+        d["loc"] = loc
+        d["links"] = links
+        d["joints"] = joints
+        d["materials"] = materials
+        d["link_list"] = link_list
+        d["joint_list"] = joint_list
+        d["material_list"] = material_list
+        d["blocks"] = blocks
+        d["issues"] = issues
+        d["source"] = source
+        d["ros2_control"] = ros2_control
+        d["transmissions"] = transmissions
 
     # --- derived structure -------------------------------------------------
     @property

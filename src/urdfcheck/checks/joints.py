@@ -10,10 +10,9 @@ MoveIt (see each rule's catalogue entry).
 """
 from __future__ import annotations
 
-import difflib
 import math
 
-from ..findings import Problem, Severity
+from ..findings import Problem, Severity, closest
 from ..model import JOINT_TYPES, MOVABLE_TYPES
 from ..rulebook import check
 
@@ -53,8 +52,8 @@ def unknown_joint_type(model, ctx):
     for j in model.joint_list:
         if not j.type or j.type in JOINT_TYPES:  # a missing type is U006
             continue
-        close = difflib.get_close_matches(j.type.lower(), JOINT_TYPES, n=1, cutoff=0.6)
-        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        close = closest(j.type.lower(), JOINT_TYPES, cutoff=0.6)
+        hint = f" (did you mean {close!r}?)" if close else ""
         yield Problem(
             f"joint {_q(j.name)} has unknown type {j.type!r}{hint}; URDF knows {', '.join(JOINT_TYPES)}. urdfdom "
             f"refuses the model ('Joint [{j.name}] has no known type [{j.type}]')",
@@ -202,8 +201,8 @@ def invalid_mimic(model, ctx):
                 f"infinite recursive mimic chain') and MoveIt drops every mimic relation of the model",
                 at=mi)
         elif target is None:
-            close = difflib.get_close_matches(mi.joint, sorted(model.joints), n=1, cutoff=0.75)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            close = closest(mi.joint, sorted(model.joints))
+            hint = f" (did you mean {close!r}?)" if close else ""
             yield Problem(
                 f"joint {_q(j.name)} mimics {_q(mi.joint)}, which is not a joint of this model{hint}: "
                 f"joint_state_publisher fails on it (KeyError) and MoveIt ignores the mimic ('cannot mimic "

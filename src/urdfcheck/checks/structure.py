@@ -21,11 +21,10 @@ Behaviour of the tools quoted in the messages was checked against urdfdom 3.0.1 
 """
 from __future__ import annotations
 
-import difflib
 import weakref
-from dataclasses import dataclass
 
-from ..findings import Problem, Severity
+from ..findings import Problem, Severity, closest
+from ..records import Record
 from ..rulebook import check
 
 _RGBA_TOL = 1e-6
@@ -37,19 +36,23 @@ def _first_joints(model) -> list:
 
 
 def _suggest(name: str, candidates: list[str]) -> str | None:
-    close = difflib.get_close_matches(name, candidates, n=1, cutoff=0.75)
-    return close[0] if close else None
+    return closest(name, candidates)
 
 
 def _q(name) -> str:
     return repr(name)
 
 
-@dataclass
-class _Cycle:
-    joints: list  # in parent -> child order; the last one closes the loop in document order
-    scc_size: int  # links in the strongly connected set the cycle was taken from
-    reachable: bool  # a root leads into it (tree walkers recurse forever)
+class _Cycle(Record):
+    # joints: in parent -> child order; the last one closes the loop in document order
+    # scc_size: links in the strongly connected set the cycle was taken from
+    # reachable: a root leads into it (tree walkers recurse forever)
+    _fields = ('joints', 'scc_size', 'reachable')
+
+    def __init__(self, joints: list, scc_size: int, reachable: bool):
+        self.joints = joints
+        self.scc_size = scc_size
+        self.reachable = reachable
 
     @property
     def closing(self):

@@ -6,11 +6,10 @@ ROS package's config/ and launch/ files) and stored back on the context for the 
 """
 from __future__ import annotations
 
-import difflib
 import re
 from typing import Iterator
 
-from ..findings import Location, Problem
+from ..findings import Location, Problem, closest
 from .consumers import Consumers, discover_consumers
 from .controllers import JSB, JSC
 from .graph import (PublisherInfo, TFGraph, add_declared, claims_from_localization, claims_from_model,
@@ -62,8 +61,8 @@ def _opt(ctx, name: str, default):
 
 
 def _suggest(name: str, options) -> str:
-    close = difflib.get_close_matches(name, list(options), n=1, cutoff=0.6)
-    return f" (did you mean '{close[0]}'?)" if close else ""
+    close = closest(name, options, cutoff=0.6)
+    return f" (did you mean '{close}'?)" if close else ""
 
 
 _FRAME_SUFFIX = re.compile(r"(_link|_frame)$")
@@ -78,8 +77,8 @@ def _suggest_frame(name: str, options) -> str:
         stems.setdefault(_FRAME_SUFFIX.sub("", o), o)
     if stem in stems and stems[stem] != name:
         return f" (did you mean '{stems[stem]}'?)"
-    close = difflib.get_close_matches(stem, list(stems), n=1, cutoff=0.6)
-    return f" (did you mean '{stems[close[0]]}'?)" if close else ""
+    close = closest(stem, stems, cutoff=0.6)
+    return f" (did you mean '{stems[close]}'?)" if close else ""
 
 
 def _unresolved(name: str) -> bool:
