@@ -76,6 +76,14 @@ class FastParts:
         if len(el):  # child elements are reported; comments would be fine, but are rare
             raise Irregular
 
+    def _sole(self, el, name: str) -> str:
+        """The value of an element's one required attribute, when it has no other and no children."""
+        raw = el.get(name)
+        if raw is None:
+            raise Irregular
+        self._leaf(el, 1)
+        return raw
+
     def _vector(self, raw: str, n: int = 3) -> tuple:
         out = self.vectors.get(raw)
         if out is None:
@@ -114,10 +122,7 @@ class FastParts:
         tag = s.tag
         get = s.get
         if tag == "box":
-            size = get("size")
-            if size is None:
-                raise Irregular
-            self._leaf(s, 1)
+            size = self._sole(s, "size")
             return _new(Geometry, ("box", self.locate(s), self._vector(size), None, None, None, None))
         if tag == "cylinder" or tag == "capsule":
             radius, length = get("radius"), get("length")
@@ -126,10 +131,7 @@ class FastParts:
             self._leaf(s, 2)
             return _new(Geometry, (tag, self.locate(s), None, _number(radius), _number(length), None, None))
         if tag == "sphere":
-            radius = get("radius")
-            if radius is None:
-                raise Irregular
-            self._leaf(s, 1)
+            radius = self._sole(s, "radius")
             return Geometry("sphere", self.locate(s), radius=_number(radius))
         if tag == "mesh":
             fn, scale = get("filename"), get("scale")
@@ -150,11 +152,7 @@ class FastParts:
             for c in el:
                 tag = c.tag
                 if tag == "color":
-                    raw = c.get("rgba")
-                    if raw is None:
-                        raise Irregular
-                    self._leaf(c, 1)
-                    rgba = self._vector(raw, 4)
+                    rgba = self._vector(self._sole(c, "rgba"), 4)
                 elif tag == "texture":
                     texture = c.get("filename")
                     self._leaf(c, texture is not None)
@@ -184,11 +182,7 @@ class FastParts:
         for c in el:
             tag = c.tag
             if tag == "mass":
-                raw = c.get("value")
-                if raw is None:
-                    raise Irregular
-                self._leaf(c, 1)
-                mass, mass_loc = _number(raw), self.locate(c)
+                mass, mass_loc = _number(self._sole(c, "value")), self.locate(c)
             elif tag == "inertia":
                 raw = tuple(map(c.get, INERTIA))
                 if None in raw:
@@ -229,10 +223,9 @@ class FastParts:
         for c in el:
             tag = c.tag
             if tag == "parent" or tag == "child":
-                link = c.get("link")
+                link = self._sole(c, "link")
                 if not link:
                     raise Irregular
-                self._leaf(c, 1)
                 if tag == "parent":
                     parent, parent_loc = link, self.locate(c)
                 else:
@@ -240,11 +233,7 @@ class FastParts:
             elif tag == "origin":
                 origin = self.pose(c)
             elif tag == "axis":
-                raw = c.get("xyz")
-                if raw is None:
-                    raise Irregular
-                self._leaf(c, 1)
-                axis, axis_loc = self._vector(raw), self.locate(c)
+                axis, axis_loc = self._vector(self._sole(c, "xyz")), self.locate(c)
             elif tag == "limit":
                 lower, upper, effort, velocity = map(c.get, _LIMIT)
                 if effort is None or velocity is None:
