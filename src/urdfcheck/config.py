@@ -292,12 +292,16 @@ def _read_pyproject(path: str):
 
 
 def _validate(data, path: str, key_loc, val_loc) -> None:
+    from .schemagate import verdict
+
+    with open(SCHEMA_PATH, encoding="utf-8") as f:
+        schema = json.load(f)
+    if verdict(data, schema) is True:  # the usual case: skip importing jsonschema (~60 ms)
+        return
     try:
         import jsonschema
     except ImportError:  # pragma: no cover - jsonschema is a dependency
         return
-    with open(SCHEMA_PATH, encoding="utf-8") as f:
-        schema = json.load(f)
     validator = jsonschema.Draft202012Validator(schema)
     errors = sorted(validator.iter_errors(data), key=lambda e: (list(e.absolute_path), e.message))
     if not errors:
