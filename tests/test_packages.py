@@ -56,3 +56,24 @@ def test_install_layout_path_falls_back_to_the_source_layout(tmp_path):
     assert r.source_layout(base / "urdf" / "parts.xacro") == root / "description" / "urdf" / "parts.xacro"
     path, problem = r.resolve_uri("package://demo/urdf/parts.xacro", root)
     assert problem is None and path.exists()
+
+
+def test_the_enclosing_package_is_found_without_a_workspace_scan(tmp_path, monkeypatch):
+    import urdfcheck.packages as packages
+
+    mine = pkg(tmp_path / "ws" / "mine", "mine")
+    sibling = pkg(tmp_path / "ws" / "sibling", "sibling")
+    scans = []
+    real_scan = packages.scan
+    monkeypatch.setattr(packages, "scan", lambda *a, **kw: scans.append(a) or real_scan(*a, **kw))
+    r = Resolver(near=mine / "urdf" / "robot.urdf.xacro")
+    assert r.find("mine") == mine.resolve() and scans == []
+    assert r.find("sibling") == sibling.resolve() and len(scans) == 1  # anything else still scans, once
+    assert r.find("mine") == mine.resolve() and len(scans) == 1
+
+
+def test_the_environment_still_wins_over_the_enclosing_package(tmp_path):
+    mine = pkg(tmp_path / "ws" / "mine", "mine")
+    ros = pkg(tmp_path / "ros1" / "mine", "mine")
+    r = Resolver(near=mine / "r.urdf", environ={"ROS_PACKAGE_PATH": str(tmp_path / "ros1")})
+    assert r.find("mine") == ros

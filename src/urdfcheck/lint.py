@@ -52,8 +52,15 @@ def entry_models(folder: Path) -> list[Path]:
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
                 config=None, max_elements=None) -> tuple[list[Finding], object]:
-    exp = load.expand(t.path, t.args, packages=t.packages, trusted=trusted, allow_env=allow_env, timeout=timeout,
-                      max_elements=max_elements)
+    pending = _begin(t, trusted=trusted, allow_env=allow_env, timeout=timeout, max_elements=max_elements)
+    return _check(t, pending.result(), selection, config)
+
+
+def _begin(t: Target, **kw) -> load.Pending:
+    return load.begin(t.path, t.args, packages=t.packages, **kw)
+
+
+def _check(t: Target, exp, selection: engine.Selection, config) -> tuple[list[Finding], object]:
     findings = list(exp.findings)
     model = load.build_model(exp)
     if model is not None:
@@ -64,15 +71,46 @@ def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_
     return engine.finish(findings, selection, exp.suppressions, model=shown, variant=t.variant), model
 
 
-def lint_targets(targets: list[Target], selection: engine.Selection | None = None, **kw) -> Result:
+def lint_targets(targets: list[Target], selection: engine.Selection | None = None, *, config=None, **kw) -> Result:
+    """Lint every target. Xacro expansions run ahead in their workers (a few at a time), so this process
+    imports the rules and builds the previous model while the next ones expand."""
     selection = selection or engine.Selection()
     all_findings: list[Finding] = []
     models = {}
-    for t in targets:
-        found, model = lint_target(t, selection, **kw)
-        models[(str(t.path), t.variant)] = model
-        all_findings.extend(found)
+    ahead = max(1, min(4, os.cpu_count() or 1))
+    pending: dict[int, load.Pending] = {}
+    try:
+        for i in range(min(ahead, len(targets))):
+            pending[i] = _begin(targets[i], **kw)
+        _warm_up(targets, config)
+        for i, t in enumerate(targets):
+            if i + ahead < len(targets):
+                pending[i + ahead] = _begin(targets[i + ahead], **kw)
+            found, model = _check(t, pending.pop(i).result(), selection, config)
+            models[(str(t.path), t.variant)] = model
+            all_findings.extend(found)
+    finally:
+        for p in pending.values():
+            p.cancel()
     return Result(_dedupe(all_findings), targets, models)
+
+
+def _warm_up(targets: list[Target], config) -> None:
+    """What the run needs after loading (model builders, rule modules, the catalogue, the contract readers
+    when there can be consumers), done while the first expansions run in their workers, not after them."""
+    from . import build, rulebook  # noqa: F401
+
+    rulebook.load_checks()
+    rulebook.catalogue()
+    if config is not None or any(t.contracts is not None for t in targets) or _in_package(targets[0].path):
+        from .contracts import rules_impl  # noqa: F401
+
+
+def _in_package(path) -> bool:
+    from .packages import enclosing_package
+
+    # the folder the path names, not where a symlink points: nothing outside the tree is looked at
+    return enclosing_package(Path(os.path.abspath(path)).parent) is not None
 
 
 def _dedupe(findings: list[Finding]) -> list[Finding]:

@@ -127,10 +127,15 @@ def _finding(code: str, message: str, file: str, line: int | None = None, column
                    location=Location(file, line, column, tuple(via)))
 
 
-def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict | None = None,
-           trusted: bool = False, allow_env=(), timeout: float = XACRO_TIMEOUT,
-           memory: int = XACRO_MEMORY, environ: dict | None = None, max_elements: int | None = None) -> Expanded:
+def expand(path: str | os.PathLike, args: dict | None = None, **kwargs) -> Expanded:
     """Read and (for xacro) expand one entry model. Problems are findings on the result."""
+    return begin(path, args, **kwargs).result()
+
+
+def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict | None = None,
+          trusted: bool = False, allow_env=(), timeout: float = XACRO_TIMEOUT,
+          memory: int = XACRO_MEMORY, environ: dict | None = None, max_elements: int | None = None) -> Pending:
+    """Start `expand`: a xacro file starts expanding in its worker now, and the caller works on meanwhile."""
     p = Path(path)
     shown = display(p)
     escapes = not trusted and _links_outside(p, packages)
@@ -139,26 +144,54 @@ def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict 
     if escapes:  # a symlink committed in a pull request must not read the runner's files
         out.findings.append(_finding("X014", "the model file is a symbolic link to a file outside the package "
                                              "roots; not read", shown))
-        return out
+        return Pending(out)
     try:
         with open(p, "rb") as f:
             data = f.read(MAX_BYTES + 1)
     except OSError as e:
         out.findings.append(_finding("X001", f"cannot read file: {e.strerror}", shown))
-        return out
+        return Pending(out)
+    opts = (trusted, allow_env, timeout, memory, max_elements)
     if is_xacro(p):
         out.xacro = True
-        _expand_xacro(out, p, data, trusted, allow_env, timeout, memory, max_elements)
-        return out
+        return Pending(out, job=_start_xacro(out, p, *opts))
+    return Pending(out, later=lambda: _read_plain(out, p, data, opts))
+
+
+class Pending:
+    """An expansion under way: `result()` gives the Expanded (waiting for the worker); `cancel()` drops it."""
+
+    __slots__ = ("_out", "_job", "_later")
+
+    def __init__(self, out: Expanded, job=None, later=None):
+        self._out, self._job, self._later = out, job, later
+
+    def result(self) -> Expanded:
+        job, later = self._job, self._later
+        self._job = self._later = None
+        if job is not None:
+            _finish_xacro(self._out, job.result())
+        elif later is not None:
+            later()
+        return self._out
+
+    def cancel(self) -> None:
+        if self._job is not None:
+            self._job.cancel()
+        self._job = self._later = None
+
+
+def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple) -> None:
+    shown = out.entry
     try:
         root, warnings = xmlfront.parse(data)
     except xmlfront.XmlRefused as r:
         out.findings.append(_finding(r.issue.code, r.issue.message, shown, r.issue.line, r.issue.column))
-        return out
+        return
     if is_xacro(p, root):
         out.xacro = True
-        _expand_xacro(out, p, data, trusted, allow_env, timeout, memory, max_elements)
-        return out
+        _finish_xacro(out, _start_xacro(out, p, *opts).result())
+        return
     for w in warnings:
         out.findings.append(_finding(w.code, w.message, shown, w.line))
     from .suppress import scan_comments
@@ -166,7 +199,6 @@ def expand(path: str | os.PathLike, args: dict | None = None, *, packages: dict 
     if b"urdfcheck" in data:  # comments keep their bytes: no such word, no suppression (skips a tree walk)
         out.suppressions = [Suppression(shown, a, b, c, d) for a, b, c, d in scan_comments(root)]
     out.root = root
-    return out
 
 
 def _links_outside(p: Path, packages: dict | None) -> bool:
@@ -185,15 +217,19 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
     return True
 
 
-def _expand_xacro(out: Expanded, p: Path, data: bytes, trusted, allow_env, timeout, memory,
-                  max_elements=None) -> None:
+def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None):
     from . import worker
     from .xacro import expand as xexpand
 
     opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
                            max_evals=max_elements)
     xexpand.preload()
-    res = worker.run(xexpand.expand, str(p), opts, timeout=timeout, memory=memory)
+    return worker.start(xexpand.expand, str(p), opts, timeout=timeout, memory=memory)
+
+
+def _finish_xacro(out: Expanded, res) -> None:
+    from . import worker
+
     if isinstance(res, worker.Failure):
         what = {"timeout": "xacro expansion timed out", "memory": "xacro expansion ran out of memory",
                 "output": "xacro expansion produced too much output"}.get(res.kind, "xacro expansion failed")

@@ -1,8 +1,8 @@
 """Resolve ROS package names to directories without ROS installed.
 
 One chain, first hit wins: explicit mappings (`--package NAME=PATH`, config), the ament index under
-AMENT_PREFIX_PATH, ROS_PACKAGE_PATH, then a scan for package.xml files around the input (the enclosing
-workspace). The resolver also knows the roots that files may be read from (the sandbox confines includes,
+AMENT_PREFIX_PATH, ROS_PACKAGE_PATH, the package that encloses the input, then a scan for package.xml
+files around the input (the enclosing workspace). The resolver also knows the roots that files may be read from (the sandbox confines includes,
 YAML and meshes to them).
 """
 from __future__ import annotations
@@ -92,6 +92,7 @@ class Resolver:
         self.near = near.resolve() if near is not None else None
         self._scanned: dict[str, Path] | None = None
         self._ros_scanned: dict[str, Path] | None = None
+        self._own_pkg: tuple | None = None
         self.used: dict[str, Path] = {}
 
     def find(self, name: str) -> Path | None:
@@ -114,12 +115,21 @@ class Resolver:
                         self._ros_scanned.setdefault(k, v)
             if name in self._ros_scanned:
                 return self._ros_scanned[name]
+        if self.near is not None and name == self._own()[0]:
+            return self._own()[1]  # `$(find own_package)`, the usual case, needs no workspace scan
         if self.workspace is not None:
             if self._scanned is None:
                 self._scanned = scan(self.workspace, self.near)
             if name in self._scanned:
                 return self._scanned[name]
         return None
+
+    def _own(self) -> tuple[str | None, Path | None]:
+        """Name and folder of the package that encloses the input."""
+        if self._own_pkg is None:
+            d = enclosing_package(self.near)
+            self._own_pkg = (package_name(d / "package.xml"), d) if d is not None else (None, None)
+        return self._own_pkg
 
     def roots(self) -> list[Path]:
         """Folders that files may be read from."""

@@ -45,8 +45,14 @@ def _limit(memory: int | None, cpu: float | None) -> None:
 def run(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFAULT_MEMORY,
         capture_fd2: bool = False, **kwargs):
     """fn(*args, **kwargs) in a child. Returns its (picklable) result or a Failure."""
+    return start(fn, *args, timeout=timeout, memory=memory, capture_fd2=capture_fd2, **kwargs).result()
+
+
+def start(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFAULT_MEMORY,
+          capture_fd2: bool = False, **kwargs) -> "Job":
+    """Fork the child now and return at once: the caller works on while it runs. The clock starts here."""
     if not hasattr(os, "fork"):  # pragma: no cover - non-POSIX: no isolation available
-        return fn(*args, **kwargs)
+        return Job(None, None, None, None, value=fn(*args, **kwargs))
     rfd, wfd = os.pipe()
     efd_r = efd_w = None
     if capture_fd2:
@@ -87,44 +93,75 @@ def run(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFAUL
     os.close(wfd)
     if efd_w is not None:
         os.close(efd_w)
-    chunks, size, errs = [], 0, []
-    deadline = time.monotonic() + timeout
-    failure = None
-    fds = [rfd] + ([efd_r] if efd_r is not None else [])
-    open_fds = set(fds)
-    try:
-        while rfd in open_fds:
-            left = deadline - time.monotonic()
-            if left <= 0:
-                failure = Failure("timeout", f"did not finish within {timeout:g} s")
-                break
-            ready, _, _ = select.select(list(open_fds), [], [], left)
-            for fd in ready:
-                block = os.read(fd, 1 << 20)
-                if not block:
-                    open_fds.discard(fd)
-                elif fd == rfd:
-                    chunks.append(block)
-                    size += len(block)
-                    if size > MAX_RESULT:
-                        failure = Failure("output", f"output larger than {MAX_RESULT} bytes")
-                        open_fds.discard(rfd)
-                else:
-                    if sum(len(e) for e in errs) < 65536:
-                        errs.append(block)
-    finally:
-        if failure is not None:
-            try:
-                os.kill(pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+    return Job(pid, rfd, efd_r, time.monotonic() + timeout, timeout=timeout)
+
+
+class Job:
+    """A running child. `result()` waits for it (once); `cancel()` kills it. Either reaps the child."""
+
+    def __init__(self, pid, rfd, efd, deadline, timeout: float = DEFAULT_TIMEOUT, value=None):
+        self.pid, self.rfd, self.efd, self.deadline, self.timeout = pid, rfd, efd, deadline, timeout
+        self.value = value
+
+    def cancel(self) -> None:
+        if self.pid is None:
+            return
+        try:
+            os.kill(self.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        self._reap()
+
+    def _reap(self) -> int:
+        pid, self.pid = self.pid, None
         _, status = os.waitpid(pid, 0)
-        for fd in fds:
-            try:
-                os.close(fd)
-            except OSError:
-                pass
-    stderr = b"".join(errs).decode("utf-8", "replace")
+        for fd in (self.rfd, self.efd):
+            if fd is not None:
+                try:
+                    os.close(fd)
+                except OSError:
+                    pass
+        return status
+
+    def result(self):
+        if self.pid is None:
+            return self.value
+        rfd, efd_r, timeout = self.rfd, self.efd, self.timeout
+        chunks, size, errs = [], 0, []
+        failure = None
+        open_fds = {rfd} | ({efd_r} if efd_r is not None else set())
+        try:
+            while rfd in open_fds:
+                left = self.deadline - time.monotonic()
+                if left <= 0:
+                    failure = Failure("timeout", f"did not finish within {timeout:g} s")
+                    break
+                ready, _, _ = select.select(list(open_fds), [], [], left)
+                for fd in ready:
+                    block = os.read(fd, 1 << 20)
+                    if not block:
+                        open_fds.discard(fd)
+                    elif fd == rfd:
+                        chunks.append(block)
+                        size += len(block)
+                        if size > MAX_RESULT:
+                            failure = Failure("output", f"output larger than {MAX_RESULT} bytes")
+                            open_fds.discard(rfd)
+                    else:
+                        if sum(len(e) for e in errs) < 65536:
+                            errs.append(block)
+        finally:
+            if failure is not None:
+                try:
+                    os.kill(self.pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+            status = self._reap()
+        self.value = _outcome(status, failure, chunks, b"".join(errs).decode("utf-8", "replace"), timeout)
+        return self.value
+
+
+def _outcome(status: int, failure, chunks, stderr: str, timeout: float):
     if failure is not None:
         return Failure(failure.kind, failure.message, stderr)
     if os.WIFSIGNALED(status):

@@ -1,0 +1,121 @@
+"""worker.start/Job: the child runs while the parent works on; every outcome comes back as a value, and
+every child is reaped (also when lint stops half-way)."""
+import os
+import signal
+import sys
+import time
+from pathlib import Path
+
+SRC = Path(__file__).resolve().parent.parent / "src"
+if str(SRC) not in sys.path:  # runnable without an editable install
+    sys.path.insert(0, str(SRC))
+
+import importlib  # noqa: E402
+
+import pytest  # noqa: E402
+
+from urdfcheck import loader, worker  # noqa: E402
+
+lint = importlib.import_module("urdfcheck.lint")  # the package's `lint` attribute is the API function
+
+pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the worker forks")
+
+
+def _wait_for(path: str, limit: float = 10.0) -> str:
+    end = time.monotonic() + limit
+    while not os.path.exists(path):
+        if time.monotonic() > end:
+            return "never saw it"
+        time.sleep(0.01)
+    return "saw it"
+
+
+def _gone(pid: int) -> bool:
+    try:
+        os.waitpid(pid, os.WNOHANG)
+    except ChildProcessError:
+        return True  # already reaped: no zombie left behind
+    return False
+
+
+def test_start_returns_while_the_child_still_runs(tmp_path):
+    flag = str(tmp_path / "go")
+    job = worker.start(_wait_for, flag, timeout=30)
+    # the child waits for a file only this process writes after start() returned: a blocking start
+    # would make the child give up first
+    Path(flag).write_text("")
+    assert job.result() == "saw it"
+    assert job.result() == "saw it"  # a second call gives the same value, it does not wait again
+
+
+def test_outcomes_are_values():
+    assert worker.run(sum, [1, 2, 3]) == 6
+    failed = worker.run(int, "x")
+    assert isinstance(failed, worker.Failure) and failed.kind == "error" and "ValueError" in failed.message
+    timed_out = worker.run(time.sleep, 30, timeout=0.5)
+    assert isinstance(timed_out, worker.Failure) and timed_out.kind == "timeout"
+    crashed = worker.run(lambda: os.kill(os.getpid(), signal.SIGTERM))
+    assert isinstance(crashed, worker.Failure) and crashed.kind == "crashed" and "SIGTERM" in crashed.message
+
+
+def test_cancel_kills_and_reaps():
+    job = worker.start(time.sleep, 60, timeout=120)
+    pid = job.pid
+    job.cancel()
+    assert _gone(pid)
+    job.cancel()  # twice is harmless
+
+
+XACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="n" default="a"/>
+  <link name="base_link"/>
+  <link name="$(arg n)_link"/>
+  <joint name="j" type="{jtype}"><parent link="base_link"/><child link="$(arg n)_link"/></joint>
+</robot>
+"""
+
+
+def _targets(tmp_path, n=5):
+    out = []
+    for i in range(n):
+        p = tmp_path / f"r{i}.urdf.xacro"
+        p.write_text(XACRO.format(jtype="revolute" if i % 2 else "fixed"))  # revolute without <limit>
+        out.append(lint.Target(p, {"n": f"m{i}"}))
+    return out
+
+
+def test_running_ahead_changes_no_finding(tmp_path):
+    targets = _targets(tmp_path)
+    together = lint.lint_targets(targets).findings
+    one_by_one = lint._dedupe([f for t in targets for f in lint.lint_target(t, lint.engine.Selection())[0]])
+    assert together == one_by_one
+    assert {f.code for f in together} == {"J002"}  # the revolute ones, in target order
+    assert [f.location.file for f in together] == sorted(f.location.file for f in together)
+
+
+def test_a_failure_half_way_leaves_no_child_behind(tmp_path, monkeypatch):
+    jobs = []
+    real_start = worker.start
+
+    def recording_start(*a, **kw):
+        job = real_start(*a, **kw)
+        jobs.append((job, job.pid))
+        return job
+
+    def broken_check(*a, **kw):
+        raise RuntimeError("stop here")
+
+    monkeypatch.setattr(worker, "start", recording_start)
+    monkeypatch.setattr(lint, "_check", broken_check)
+    with pytest.raises(RuntimeError):
+        lint.lint_targets(_targets(tmp_path))
+    assert len(jobs) >= 2  # more than one expansion was under way when the first target failed
+    assert all(job.pid is None and _gone(pid) for job, pid in jobs)
+
+
+def test_expand_is_begin_then_result(tmp_path):
+    p = _targets(tmp_path, 1)[0].path
+    pending = loader.begin(p, {"n": "x"})
+    exp = pending.result()
+    assert exp.root is not None and exp.root.find("link[@name='x_link']") is not None
+    assert loader.expand(p, {"n": "x"}).clean_text() == exp.clean_text()
