@@ -177,8 +177,7 @@ class Config(FrozenRecord):
         paths no model covers are linted like without a config (zero-config consumer discovery).
         CLI `args` override the config's xacro args, CLI `packages` the config's package map.
         """
-        from .contracts.consumers import consumers_for_model
-        from .lint import Target, targets_for
+        from .lint import Later, Target, targets_for
 
         pk = {**dict(self.packages), **dict(packages or {})}
         cli_args = {str(k): str(v) for k, v in (args or {}).items()}
@@ -199,7 +198,7 @@ class Config(FrozenRecord):
                 rest = [self.root]
         out = []
         for m in chosen:
-            consumers = consumers_for_model(m, self, packages=pk)
+            consumers = Later(lambda m=m: _consumers(m, self, pk))  # read in lint's warm-up
             for vname, vargs in m.variant_args():
                 out.append(Target(path=Path(m.path), args={**vargs, **cli_args}, variant=vname,
                                   contracts=consumers, packages=dict(pk)))
@@ -207,6 +206,12 @@ class Config(FrozenRecord):
             for t in targets_for(rest, cli_args, pk):
                 out.append(t)
         return out
+
+
+def _consumers(mc: ModelConfig, cfg: Config, packages: dict):
+    from .contracts.consumers import consumers_for_model
+
+    return consumers_for_model(mc, cfg, packages=packages)
 
 
 # --- finding and reading -------------------------------------------------------------------------------

@@ -9,10 +9,26 @@ from .findings import Finding, Location, Severity
 from .records import Record
 
 
+class Later:
+    """A value computed on first use, once: a model's consumers, shared by its variants, are read while
+    its first expansion runs rather than before it starts."""
+
+    __slots__ = ("_fn", "_value")
+
+    def __init__(self, fn):
+        self._fn, self._value = fn, None
+
+    def get(self):
+        if self._fn is not None:
+            fn, self._fn = self._fn, None
+            self._value = fn()
+        return self._value
+
+
 class Target(Record):
     """One model to lint: an entry file with one xacro argument set."""
 
-    # contracts: consumers declared or discovered for this model
+    # contracts: consumers declared or discovered for this model (may be given as a `Later`)
     _fields = ('path', 'args', 'variant', 'contracts', 'packages')
 
     def __init__(self, path: Path,
@@ -25,6 +41,15 @@ class Target(Record):
         self.variant = variant
         self.contracts = contracts
         self.packages = {} if packages is None else packages
+
+    @property
+    def contracts(self):
+        c = self._contracts
+        return c.get() if isinstance(c, Later) else c
+
+    @contracts.setter
+    def contracts(self, value) -> None:
+        self._contracts = value
 
 
 class Result(Record):
