@@ -242,3 +242,29 @@ def test_output_is_deterministic(tmp_path, corpus):
     a = run_cli(["lint", "--format", "json", "--no-config", target])
     b = run_cli(["lint", "--format", "json", "--no-config", target])
     assert a == b
+
+
+def test_a_xacro_file_named_urdf_is_expanded(tmp_path):
+    p = write(tmp_path, "r.urdf", f"""
+        <robot name="r" {XACRO_NS}>
+          <xacro:property name="n" value="b"/>
+          <link name="a"/>
+          <link name="${{n}}"/>
+        </robot>
+        """)
+    exp = loader.expand(p)
+    assert exp.xacro and not exp.findings
+    assert [el.get("name") for el in exp.root.iter("link")] == ["a", "b"]
+
+
+@pytest.mark.parametrize("ns", ["http://www.ros.org/wiki/&#120;acro", "&#104;ttp://www.ros.org/wiki/xac&#x72;o"])
+def test_the_xacro_namespace_is_recognised_when_spelled_with_character_references(tmp_path, ns):
+    # no "xacro" anywhere in the bytes: the loader must still look at the parsed namespace
+    p = write(tmp_path, "r.urdf", f"""
+        <robot name="r" xmlns:x="{ns}">
+          <x:unknown_directive/>
+          <link name="a"/>
+        </robot>
+        """)
+    assert b"xacro" not in p.read_bytes()
+    assert loader.expand(p).xacro

@@ -119,3 +119,41 @@ def test_expand_is_begin_then_result(tmp_path):
     exp = pending.result()
     assert exp.root is not None and exp.root.find("link[@name='x_link']") is not None
     assert loader.expand(p, {"n": "x"}).clean_text() == exp.clean_text()
+
+
+def test_retain_keeps_each_parsed_document_and_changes_no_finding(tmp_path):
+    targets = _targets(tmp_path, 3)
+    kept = []
+    with_retain = lint.lint_targets(targets, retain=kept).findings
+    assert with_retain == lint.lint_targets(targets).findings
+    assert [e.entry for e in kept] == [loader.display(t.path) for t in targets]
+    assert all(e.root is not None for e in kept)
+
+
+def test_only_the_console_entry_pauses_the_collector_and_keeps_documents(tmp_path):
+    import gc
+
+    from urdfcheck import cli, runlint
+
+    p = _targets(tmp_path, 1)[0].path
+    before = len(runlint._UNTIL_EXIT)
+    assert gc.isenabled()
+    assert cli.main(["lint", "--no-config", "--format", "json", str(p)]) == 0
+    # in-process callers (tests, the pytest plugin, scripts) keep a working collector and free everything
+    assert gc.isenabled() and len(runlint._UNTIL_EXIT) == before
+    try:
+        assert cli.main(["lint", "--no-config", "--format", "json", str(p)], one_shot=True) == 0
+        assert not gc.isenabled() and len(runlint._UNTIL_EXIT) == before + 1
+    finally:
+        gc.enable()
+        del runlint._UNTIL_EXIT[before:]
+
+
+def test_a_child_collects_garbage_even_when_the_parent_paused_the_collector():
+    import gc
+
+    gc.disable()
+    try:
+        assert worker.run(gc.isenabled) is True
+    finally:
+        gc.enable()

@@ -155,10 +155,17 @@ def cmd_rules(ns) -> int:
 def cmd_lint(ns) -> int:
     from .runlint import run
 
+    if getattr(ns, "one_shot", False):
+        # The process ends after this command (see `run`). The models it builds hold no reference cycles,
+        # and the collector would only trace them: on 10,000 links, one full pass costs 80 ms.
+        import gc
+
+        gc.disable()
     return run(ns, UsageError)
 
 
-def main(argv: list[str] | None = None) -> int:
+def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
+    """`one_shot`: the process exits after this call (the console entry), so lint may skip cleanup work."""
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and not argv[0].startswith("-") and argv[0] not in ("lint", "expand", "rules", "help") \
             and argv[0] not in PUBLISH_COMMANDS:
@@ -168,6 +175,7 @@ def main(argv: list[str] | None = None) -> int:
     if ns.command is None:
         parser.print_help()
         return EXIT_USAGE
+    ns.one_shot = one_shot
     try:
         return ns.func(ns)
     except UsageError as e:
@@ -191,7 +199,7 @@ def run() -> None:
     Teardown frees a big model object by object (0.1 s for 10,000 links) and nothing needs it: every file
     we write is closed by then, and the standard streams are flushed here.
     """
-    code = main()
+    code = main(one_shot=True)
     try:
         sys.stdout.flush()
     except BrokenPipeError:

@@ -188,7 +188,9 @@ def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple) -> None:
     except xmlfront.XmlRefused as r:
         out.findings.append(_finding(r.issue.code, r.issue.message, shown, r.issue.line, r.issue.column))
         return
-    if is_xacro(p, root):
+    # the xacro namespace is in the bytes (the front end takes UTF-8 only and refuses entity declarations),
+    # unless spelled with character references: without either, skip searching a large tree for it
+    if (b"xacro" in data or b"&#" in data) and is_xacro(p, root):
         out.xacro = True
         _finish_xacro(out, _start_xacro(out, p, *opts).result())
         return

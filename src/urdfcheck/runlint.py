@@ -9,6 +9,10 @@ from .findings import Severity
 from .lint import Target, lint_targets, missing_paths, targets_for
 
 
+# parsed documents a one-shot process keeps until it exits (lint.lint_targets: `retain`)
+_UNTIL_EXIT: list = []
+
+
 def _selection(ns, cfg) -> engine.Selection:
     select = [c for group in ns.select for c in group] or list(getattr(cfg, "select", None) or ["ALL"])
     ignore = list(getattr(cfg, "ignore", None) or []) + [c for group in ns.ignore for c in group]
@@ -62,7 +66,8 @@ def run(ns, usage_error) -> int:
     trusted = ns.trusted or bool(getattr(cfg, "trusted", False))
     allow_env = tuple(ns.allow_env) + tuple(getattr(cfg, "allow_env", ()) or ())
     result = lint_targets(targets, selection, trusted=trusted, allow_env=allow_env, timeout=ns.timeout,
-                          config=cfg, max_elements=ns.max_elements)
+                          config=cfg, max_elements=ns.max_elements,
+                          retain=_UNTIL_EXIT if getattr(ns, "one_shot", False) else None)
     fail_on = ns.fail_on or _cfg_fail_on(cfg) or Severity.WARNING
 
     if ns.write_baseline or ns.baseline:

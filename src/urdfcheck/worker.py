@@ -6,6 +6,7 @@ time-out comes back as a `Failure`, never as a result.
 """
 from __future__ import annotations
 
+import gc
 import os
 import pickle
 import select
@@ -68,6 +69,7 @@ def start(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFA
                 os.close(efd_r)
                 os.dup2(efd_w, 2)
             _limit(memory, timeout)
+            gc.enable()  # a one-shot lint pauses the collector; an expansion makes cyclic garbage (DOM trees)
             try:
                 payload = ("ok", fn(*args, **kwargs))
             except MemoryError:
