@@ -157,3 +157,20 @@ def test_a_child_collects_garbage_even_when_the_parent_paused_the_collector():
         assert worker.run(gc.isenabled) is True
     finally:
         gc.enable()
+
+
+def test_a_result_collected_after_the_time_limit_is_still_delivered():
+    # lint collects a worker only when it reaches that target; a finished child must not count as timed out
+    # while its result (larger than a pipe buffer) waits to be read
+    job = worker.start(lambda: "x" * 1_000_000, timeout=0.3)
+    time.sleep(0.6)
+    assert job.result() == "x" * 1_000_000
+
+
+def test_a_hung_child_collected_late_still_times_out():
+    job = worker.start(time.sleep, 60, timeout=0.2)
+    time.sleep(0.3)
+    t0 = time.monotonic()
+    res = job.result()
+    assert isinstance(res, worker.Failure) and res.kind == "timeout"
+    assert time.monotonic() - t0 < 30  # a bounded grace, not the child's whole sleep

@@ -19,6 +19,7 @@ from .records import FrozenRecord
 DEFAULT_MEMORY = 2 * 1024**3
 DEFAULT_TIMEOUT = 20.0
 MAX_RESULT = 256 * 1024 * 1024
+DELIVERY_GRACE = 2.0  # seconds a late-collected child has to hand over its result
 
 
 class Failure(FrozenRecord):
@@ -129,12 +130,15 @@ class Job:
         if self.pid is None:
             return self.value
         rfd, efd_r, timeout = self.rfd, self.efd, self.timeout
+        # A child that finished while the caller was busy may still be writing into the full pipe: it gets a
+        # moment to deliver, not a time-out. (A child burning CPU meanwhile was stopped by RLIMIT_CPU.)
+        deadline = max(self.deadline, time.monotonic() + min(timeout, DELIVERY_GRACE))
         chunks, size, errs = [], 0, []
         failure = None
         open_fds = {rfd} | ({efd_r} if efd_r is not None else set())
         try:
             while rfd in open_fds:
-                left = self.deadline - time.monotonic()
+                left = deadline - time.monotonic()
                 if left <= 0:
                     failure = Failure("timeout", f"did not finish within {timeout:g} s")
                     break
