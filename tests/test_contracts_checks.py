@@ -115,6 +115,14 @@ def test_interfaces_and_ros2_control_blocks():
     assert [f.code for f in fs] == ["C004"] and "link, not a joint" in fs[0].message
     twice = R2C + R2C.replace('name="base"', 'name="base2"')
     assert "C004" in codes(run(robot(twice)))
+    bare = R2C.replace('<joint name="right_wheel_joint"><command_interface name="velocity"/>'
+                       '<state_interface name="position"/></joint>', '<joint name="right_wheel_joint"/>')
+    (f,) = [f for f in run(robot(bare)) if f.code == "C004"]
+    assert "no command or state interface" in f.message
+    # the ros2_control mimic idiom (TIAGo Pro's grippers): no interfaces of its own is intended
+    for mimic in ('<joint name="right_wheel_joint"><param name="mimic">left_wheel_joint</param></joint>',
+                  '<joint name="right_wheel_joint" mimic="true"/>'):
+        assert "C004" not in codes(run(robot(bare.replace('<joint name="right_wheel_joint"/>', mimic))))
     in_gz = "  <gazebo>\n" + R2C + "  </gazebo>\n"
     assert codes(run(robot(in_gz))) == ["C006"]
 

@@ -55,6 +55,7 @@ EDITS = [
     ("<origin xyz", '<origin xmlns:q="urn:q" q:a="1" xyz'),
     ('<link name="link_0001"', '<link name="link_0001" type="x"'),
     ('<link name="link_0001">', '<link name="link_0001"><self_collision_checking/>'),
+    ('<link name="link_0001">', '<link name="link_0001"><contact><lateral_friction value="1"/></contact>'),
     ('<link name="link_0001"', "<link"),
     (' type="revolute"', ""),
     (re.compile(r'<parent link="[^"]*"/>'), ""),

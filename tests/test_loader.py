@@ -195,6 +195,14 @@ def test_bad_values_become_issues(text, code):
     assert code in [i.code for i in m.issues]
 
 
+def test_simulator_extensions_that_a_consumer_reads_are_not_reported():
+    m = model_from_string('<robot name="r"><link name="a"><contact><lateral_friction value="1"/></contact>'
+                          '<self_collision_checking/></link></robot>')
+    assert not m.issues
+    m = model_from_string('<robot name="r"><link name="a"><contactt/></link></robot>')
+    assert [i.code for i in m.issues] == ["U002"]  # a typo of it still is
+
+
 def test_typo_suggestion():
     m = model_from_string('<robot name="r"><link name="a"><visual><orign/></visual></link></robot>')
     assert "did you mean 'origin'" in m.issues[0].message

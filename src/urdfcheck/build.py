@@ -287,7 +287,9 @@ class _Builder:
             if c.tag in items:
                 cmd = tuple(Interface(i.get("name") or "", self.locate(i)) for i in c.findall("command_interface"))
                 st = tuple(Interface(i.get("name") or "", self.locate(i)) for i in c.findall("state_interface"))
-                items[c.tag].append(HardwareItem(c.tag, c.get("name") or "", self.locate(c), cmd, st))
+                mimic = (c.get("mimic") or "").strip().lower() == "true" or any(
+                    (q.get("name") or "").strip() == "mimic" for q in c.findall("param"))
+                items[c.tag].append(HardwareItem(c.tag, c.get("name") or "", self.locate(c), cmd, st, mimic))
         return Ros2Control(el.get("name") or "", el.get("type") or "", self.locate(el), plugin,
                            tuple(items["joint"]), tuple(items["sensor"]), tuple(items["gpio"]), in_gazebo)
 

@@ -32,8 +32,9 @@ INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _LIMIT = ("lower", "upper", "effort", "velocity")
 _OPTIONAL = {"calibration": ("rising", "falling", "reference_position"),
              "safety_controller": ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")}
-# children that real-world packages carry and URDF parsers ignore without harm
-TOLERATED = {"robot": {"sensor"}, "collision": {"verbose"}, "link": {"self_collision_checking"}}
+# children that real-world packages carry and URDF parsers ignore without harm; PyBullet reads a link's
+# <contact> (friction, restitution), so calling it ignored would be wrong for its users
+TOLERATED = {"robot": {"sensor"}, "collision": {"verbose"}, "link": {"self_collision_checking", "contact"}}
 
 
 def _number(raw: str) -> float:

@@ -135,6 +135,8 @@ class HardwareItem(NamedTuple):
     loc: Location
     command: tuple[Interface, ...] = ()
     state: tuple[Interface, ...] = ()
+    # a ros2_control mimic joint: <param name="mimic"> (Humble, Iron) or mimic="true" (Jazzy and later)
+    mimic: bool = False
 
 
 class Ros2Control(NamedTuple):

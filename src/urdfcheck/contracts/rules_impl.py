@@ -238,7 +238,7 @@ def ros2_control_joint_invalid(model, ctx) -> Iterator[Problem]:
                 yield Problem(f"<ros2_control name={r.name!r}> declares joint {h.name!r}, but it is a {j.type} "
                               f"joint: its state is ignored by robot_state_publisher and commands do nothing",
                               at=h, related=(j,))
-            if not h.command and not h.state:
+            if not h.command and not h.state and not h.mimic:  # a mimic joint may follow its leader unexported
                 yield Problem(f"<ros2_control name={r.name!r}> joint {h.name!r} has no command or state "
                               f"interface", at=h)
             # one joint may appear in several components (an actuator and a position sensor), but each
