@@ -203,6 +203,15 @@ def test_simulator_extensions_that_a_consumer_reads_are_not_reported():
     assert [i.code for i in m.issues] == ["U002"]  # a typo of it still is
 
 
+def test_unexpanded_xacro_in_a_plain_urdf_is_named():
+    m = model_from_string('<robot name="r"><link name="a"><visual><origin xyz="$(optenv X 0 0 1)"/>'
+                          '<geometry><sphere radius="${r}"/></geometry></visual></link></robot>')
+    assert [i.code for i in m.issues] == ["U004", "U005"]
+    assert all("unexpanded xacro substitution" in i.message for i in m.issues)
+    m = model_from_string('<robot name="r"><link name="a"><visual><origin xyz="0 0"/></visual></link></robot>')
+    assert "xacro" not in m.issues[0].message
+
+
 def test_typo_suggestion():
     m = model_from_string('<robot name="r"><link name="a"><visual><orign/></visual></link></robot>')
     assert "did you mean 'origin'" in m.issues[0].message
@@ -276,3 +285,13 @@ def test_the_xacro_namespace_is_recognised_when_spelled_with_character_reference
         """)
     assert b"xacro" not in p.read_bytes()
     assert loader.expand(p).xacro
+
+
+def test_a_declaration_after_blank_lines_is_a_warning_and_the_model_loads(tmp_path):
+    # urdfdom (check_urdf, robot_state_publisher) reads such a file; libxml2 and xacro do not
+    p = tmp_path / "r.urdf"
+    p.write_bytes(b'\n\n<?xml version="1.0"?>\n<robot name="r">\n  <link name="a"/>\n</robot>\n')
+    exp = loader.expand(p)
+    (f,) = exp.findings
+    assert f.code == "X003" and f.location.line == 3 and "not at the start" in f.message
+    assert loader.build_model(exp).links["a"].loc.line == 5

@@ -53,6 +53,14 @@ for _attrs, _ in SCHEMA.values():
     _attrs.add(SRC_ATTR)  # the xacro source marker is ours, never "unknown"
 
 
+def _unexpanded(raw: str) -> str:
+    """A hint for xacro syntax left in a file read as plain URDF (e.g. a .urdf that still says $(optenv ...))."""
+    if "$(" in raw or "${" in raw:
+        return ("; it is an unexpanded xacro substitution: URDF consumers read it literally (expand the file with "
+                "xacro, or name it .xacro and declare xmlns:xacro)")
+    return ""
+
+
 class _Builder:
     def __init__(self, locate: Callable[[object], Location], source: str):
         self.locate = locate
@@ -72,7 +80,7 @@ class _Builder:
         try:
             value = float(raw)
         except ValueError:
-            self.issue("U005", f"<{el.tag} {attr}={raw!r}> is not a number", el)
+            self.issue("U005", f"<{el.tag} {attr}={raw!r}> is not a number{_unexpanded(raw)}", el)
             return default
         if value - value != 0.0 or "_" in raw:  # nan/inf, or Python-only digit separators
             self.issue("U005", f"<{el.tag} {attr}={raw!r}> is not a finite plain number", el)
@@ -87,14 +95,14 @@ class _Builder:
             return default
         parts = raw.split()
         if len(parts) != n:
-            self.issue("U004", f"<{el.tag} {attr}={raw!r}> has {len(parts)} values; {n} expected", el)
+            self.issue("U004", f"<{el.tag} {attr}={raw!r}> has {len(parts)} values; {n} expected{_unexpanded(raw)}", el)
             return default
         try:
             out = tuple(map(float, parts))
         except ValueError:
             out = None
         if out is None or "_" in raw or not all(map(math.isfinite, out)):
-            self.issue("U005", f"<{el.tag} {attr}={raw!r}>: not {n} finite plain numbers", el)
+            self.issue("U005", f"<{el.tag} {attr}={raw!r}>: not {n} finite plain numbers{_unexpanded(raw)}", el)
             return default
         return out
 

@@ -70,19 +70,26 @@ def check_declaration(data: bytes) -> tuple[list[XmlIssue], bytes]:
     attrs = {k.decode("latin-1"): v.decode("latin-1") for k, v in pairs}
     leftover = _DECL_ATTR.sub(b"", body).strip()
     odd = [k for k in attrs if k not in ("version", "encoding", "standalone")]
+    start = m.start(0) + len(m.group(1) or b"")
+    lead = data[start:m.end(0)].index(b"<?xml")
+    line = _line_of(data, start + lead)
     if odd or leftover or "version" not in attrs:
         what = f"unknown attribute {odd[0]!r}" if odd else ("no version" if "version" not in attrs
                                                              else "stray text")
-        out.append(XmlIssue("X003", f"malformed XML declaration ({what}); strict XML parsers reject the file", 1))
+        out.append(XmlIssue("X003", f"malformed XML declaration ({what}); strict XML parsers reject the file", line))
     elif attrs["version"] != "1.0":
-        out.append(XmlIssue("X003", f"XML declaration says version {attrs['version']!r}; ROS parsers expect 1.0", 1))
+        out.append(XmlIssue("X003", f"XML declaration says version {attrs['version']!r}; ROS parsers expect 1.0",
+                            line))
+    if lead:  # urdfdom (TinyXML) reads on; libxml2, expat and so xacro stop at once
+        out.append(XmlIssue("X003", f"the XML declaration is not at the start of the file ({lead} blank "
+                                    "characters before it); urdfdom accepts this, but xacro and other strict XML "
+                                    "parsers reject the file", line))
     enc = attrs.get("encoding")
     if enc is not None and enc.lower().replace("_", "-") not in ("utf-8", "utf8", "ascii", "us-ascii"):
-        out.append(XmlIssue("X003", f"XML declaration says encoding {enc!r}; ROS tools read URDF as UTF-8", 1))
+        out.append(XmlIssue("X003", f"XML declaration says encoding {enc!r}; ROS tools read URDF as UTF-8", line))
     if not out:
         return out, data
     # parse what ROS parses: the bytes as UTF-8, whatever the declaration claims
-    start = m.start(0) + len(m.group(1) or b"")
     blank = bytes(b if b in b"\r\n" else 32 for b in data[start:m.end(0)])
     return out, data[:start] + blank + data[m.end(0):]
 
