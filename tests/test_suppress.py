@@ -223,3 +223,43 @@ def test_yaml_suppressions_are_cached_and_refreshed(in_tmp):
     os.utime(p, ns=(1, 1))  # a different mtime, whatever the clock resolution
     assert [s.codes for s in suppress.yaml_suppressions("c.yml")] == [("C002", "C003")]
     assert suppress.yaml_suppressions("missing.yaml") == []
+
+
+EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "examples")
+
+
+def _package_with_driver_yaml(tmp_path, lines, *extra, example="contract_driver_joint_typo"):
+    import shutil
+
+    pkg = tmp_path / f"pkg{len(list(tmp_path.iterdir()))}"
+    shutil.copytree(os.path.join(EXAMPLES, "broken", example), pkg)
+    drv = pkg / "config" / "agv_driver_ros1.yaml"
+    text = drv.read_text().splitlines()
+    for before, line in sorted(lines, reverse=True):  # insert bottom-up: earlier line numbers stay valid
+        text.insert(before, line)
+    drv.write_text("\n".join(text) + "\n")
+    code, out, err = run_cli(["lint", "--format", "json", ".", *extra], cwd=pkg)
+    assert code in (0, 1), err
+    return [(f["code"], os.path.basename(f["location"]["file"]), f["location"]["line"])
+            for f in json.loads(out)["findings"]]
+
+
+def test_a_yaml_suppression_that_hides_nothing_is_reported(tmp_path):
+    found = _package_with_driver_yaml(tmp_path, [(4, "# urdfcheck: ignore[C001] the typo is fixed upstream"),
+                                                 (6, "# urdfcheck: ignore[C010] old separation")])
+    # the C001 is hidden by its comment (line 5); the C010 comment (line 8) above wheel_separation hides nothing
+    assert found == [("R002", "agv_driver_ros1.yaml", 8)]
+
+
+def test_used_yaml_suppressions_and_deselected_codes_raise_nothing(tmp_path):
+    assert _package_with_driver_yaml(tmp_path, [(4, "# urdfcheck: ignore[C001]")]) == []
+    unused = [(4, "# urdfcheck: ignore[C001]"), (6, "# urdfcheck: ignore[C010]")]
+    assert _package_with_driver_yaml(tmp_path, unused, "--ignore", "C010") == []  # the rule is off: not "unused"
+    assert _package_with_driver_yaml(tmp_path, unused, "--ignore", "R002") == []
+
+
+def test_a_yaml_suppression_used_by_one_variant_only_is_used(tmp_path):
+    # camera_link exists only with use_camera:=true: the C020 comes from the no_camera variant alone
+    assert _package_with_driver_yaml(tmp_path, [(9, "# urdfcheck: ignore[C020] the camera is optional")],
+                                     example="variant_camera_off") == []
+

@@ -126,8 +126,11 @@ def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
 
 
 def finish(findings: list[Finding], selection: Selection, suppressions=(), model: str = "",
-           variant: str = "") -> list[Finding]:
-    """Apply selection and severity to load findings too, fill names, drop suppressed, report unused."""
+           variant: str = "", yaml_used: set | None = None) -> list[Finding]:
+    """Apply selection and severity to load findings too, fill names, drop suppressed, report unused.
+
+    `yaml_used` collects (file, index) of the YAML suppressions that hid a finding: a YAML file serves every
+    model of a package, so only the caller, after the last model, can tell one unused (`unused_yaml`)."""
     cat = rulebook.catalogue()
     kept = []
     used = set()
@@ -141,8 +144,12 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
         if hit is not None:
             used.add(hit)
             continue
-        if is_yaml(f.location.file) and _suppressed(f, yaml_suppressions(f.location.file)) is not None:
-            continue  # `# urdfcheck: ignore[...]` in the YAML file the finding points into
+        if is_yaml(f.location.file):
+            hit = _suppressed(f, yaml_suppressions(f.location.file))
+            if hit is not None:  # `# urdfcheck: ignore[...]` in the YAML file the finding points into
+                if yaml_used is not None:
+                    yaml_used.add((f.location.file, hit))
+                continue
         kept.append(Finding(f.code, sev, f.message.replace(here, ""), _shown(f.location), f.name or (info.name if info else ""),
                             tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant))
     if selection.enabled("R002"):
@@ -157,6 +164,23 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
                                 f"unused suppression of {', '.join(live)}", Location(s.file, s.comment_line),
                                 "unused-suppression", (), model, variant))
     return kept
+
+
+def unused_yaml(files, used: set, selection: Selection) -> list[Finding]:
+    """R002 for each suppression in the YAML `files` (read by the contract checks) that hid nothing."""
+    if not selection.enabled("R002"):
+        return []
+    info = rulebook.catalogue().get("R002")
+    out = []
+    for file in sorted(set(files)):
+        for i, s in enumerate(yaml_suppressions(file)):
+            live = [c for c in s.codes if selection.enabled(c)]
+            if (file, i) in used or not live:
+                continue
+            out.append(Finding("R002", selection.severity_of("R002", info.severity if info else Severity.WARNING),
+                               f"unused suppression of {', '.join(live)}", _shown(Location(file, s.comment_line)),
+                               "unused-suppression"))
+    return out
 
 
 def _shown(loc: Location) -> Location:

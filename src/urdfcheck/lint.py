@@ -85,15 +85,33 @@ def _begin(t: Target, **kw) -> load.Pending:
     return load.begin(t.path, t.args, packages=t.packages, **kw)
 
 
-def _check(t: Target, exp, selection: engine.Selection, config) -> tuple[list[Finding], object]:
+def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse | None = None
+           ) -> tuple[list[Finding], object]:
     findings = list(exp.findings)
     model = load.build_model(exp)
     if model is not None:
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=t.contracts,
                              variant=t.variant)
         findings.extend(engine.run_checks(model, ctx))
+        if yaml is not None:
+            yaml.read(getattr(ctx, "contracts", None))
     shown = exp.entry
-    return engine.finish(findings, selection, exp.suppressions, model=shown, variant=t.variant), model
+    return engine.finish(findings, selection, exp.suppressions, model=shown, variant=t.variant,
+                         yaml_used=yaml.used if yaml is not None else None), model
+
+
+class _YamlUse:
+    """The YAML files the contract checks read, and which of their suppressions hid a finding."""
+
+    def __init__(self):
+        self.files: set[str] = set()
+        self.used: set[tuple[str, int]] = set()
+
+    def read(self, consumers) -> None:
+        from .suppress import is_yaml
+
+        for paths in (getattr(consumers, "files", None) or {}).values():
+            self.files.update(os.path.abspath(p) for p in paths if is_yaml(str(p)))
 
 
 def lint_targets(targets: list[Target], selection: engine.Selection | None = None, *, config=None,
@@ -109,6 +127,7 @@ def lint_targets(targets: list[Target], selection: engine.Selection | None = Non
     models = {}
     ahead = max(1, min(4, os.cpu_count() or 1))
     pending: dict[int, load.Pending] = {}
+    yaml = _YamlUse()
     try:
         for i in range(min(ahead, len(targets))):
             pending[i] = _begin(targets[i], **kw)
@@ -117,7 +136,7 @@ def lint_targets(targets: list[Target], selection: engine.Selection | None = Non
             if i + ahead < len(targets):
                 pending[i + ahead] = _begin(targets[i + ahead], **kw)
             exp = pending.pop(i).result()
-            found, model = _check(t, exp, selection, config)
+            found, model = _check(t, exp, selection, config, yaml)
             if retain is not None:
                 retain.append(exp)
             models[(str(t.path), t.variant)] = model
@@ -125,6 +144,7 @@ def lint_targets(targets: list[Target], selection: engine.Selection | None = Non
     finally:
         for p in pending.values():
             p.cancel()
+    all_findings.extend(engine.unused_yaml(yaml.files, yaml.used, selection))
     return Result(_dedupe(all_findings), targets, models)
 
 
