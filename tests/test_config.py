@@ -63,6 +63,7 @@ severity: {F002: warning, J: info}
 rules: {C010: {tolerance: 0.002}, F002: {expected: [base_link, base_footprint]}}
 trusted: false
 allow_env: [HOME]
+max_elements: 5000
 """
 
 
@@ -89,7 +90,7 @@ def test_full_config(tmp_path):
     assert cfg.select == ("ALL",) and cfg.ignore == ("I005", "G0") and cfg.fail_on == Severity.ERROR
     assert dict(cfg.severity) == {"F002": Severity.WARNING, "J": Severity.INFO}
     assert dict(cfg.rules["C010"]) == {"tolerance": 0.002}
-    assert cfg.allow_env == ("HOME",) and cfg.trusted is False
+    assert cfg.allow_env == ("HOME",) and cfg.trusted is False and cfg.max_elements == 5000
     assert cfg.loc("models", 0, "path").line == 2
     with pytest.raises(AttributeError):
         cfg.trusted = True
@@ -248,3 +249,32 @@ def test_cli_reports_the_bad_key(tmp_path):
     code, out, err = run_cli(["lint", "urdf/plain.urdf"], cwd=tmp_path)
     assert code == 2
     assert "fail_on" in err and "urdfcheck.yaml:2" in err
+
+
+BOMB = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:macro name="m" params="n">
+    <link name="l${n}"/>
+    <xacro:if value="${n > 0}"><xacro:m n="${n - 1}"/></xacro:if>
+  </xacro:macro>
+  <xacro:m n="40"/>
+</robot>
+"""
+
+
+def test_max_elements_from_the_config_limits_expansion(tmp_path):
+    from conftest import run_cli
+
+    (tmp_path / "package.xml").write_text("<package><name>p</name></package>")
+    (tmp_path / "r.urdf.xacro").write_text(BOMB)
+    args = ["lint", "--select", "X", "--format", "json", "r.urdf.xacro"]
+    code, out, err = run_cli(args, cwd=tmp_path)
+    assert code == 0, out + err  # 41 links: well inside the default budget
+    (tmp_path / "urdfcheck.yaml").write_text("max_elements: 50\n")
+    code, out, err = run_cli(args, cwd=tmp_path)
+    assert code == 1 and "X012" in out and "more than 50 elements" in out
+    code, out, err = run_cli(args + ["--max-elements", "100000"], cwd=tmp_path)
+    assert code == 0, out + err  # the command line wins
+    (tmp_path / "urdfcheck.yaml").write_text("max_elements: 0\n")
+    code, out, err = run_cli(args, cwd=tmp_path)
+    assert code == 2 and "max_elements" in err
+

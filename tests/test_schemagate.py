@@ -64,6 +64,8 @@ def instance(draw, schema, depth=0):
         return draw(st.text(min_size=schema.get("minLength", 0), max_size=8))
     if kind == "number":
         return draw(st.one_of(st.integers(-5, 5), st.floats(allow_nan=False, allow_infinity=False)))
+    if kind == "integer":
+        return draw(st.one_of(st.integers(-3, 30000), st.just(2.0)))
     if kind == "boolean":
         return draw(st.booleans())
     if kind == "array":
@@ -126,6 +128,9 @@ def test_example_configs_pass_the_gate(path):
     {"rules": {"F003": []}},
     {"allow_env": ["HOME", "1HOME"]},
     {"modles": []},
+    {"max_elements": 0},
+    {"max_elements": 1.5},
+    {"max_elements": True},
 ])
 def test_invalid_configs_are_refused(doc):
     assert agree(doc) is False

@@ -174,3 +174,19 @@ def test_a_hung_child_collected_late_still_times_out():
     res = job.result()
     assert isinstance(res, worker.Failure) and res.kind == "timeout"
     assert time.monotonic() - t0 < 30  # a bounded grace, not the child's whole sleep
+
+
+def test_the_console_entry_runs_atexit_handlers_and_keeps_the_exit_code(tmp_path):
+    import subprocess
+
+    flag = tmp_path / "atexit-ran"
+    bad = tmp_path / "bad.urdf"
+    bad.write_text('<robot name="r"><link name="a"/><joint name="j" type="revolute"/></robot>')
+    code = ("import atexit, sys; "
+            f"atexit.register(lambda: open({str(flag)!r}, 'w').write('ran')); "
+            f"sys.argv = ['urdfcheck', 'lint', '--no-config', {str(bad)!r}]; "
+            "from urdfcheck.cli import run; run()")
+    env = dict(os.environ, PYTHONPATH=str(SRC) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
+    assert proc.returncode == 1, proc.stderr  # findings
+    assert "J" in proc.stdout and flag.read_text() == "ran"

@@ -40,6 +40,7 @@ severity: {F002: warning}                 # per code or prefix
 rules: {C010: {tolerance: 0.002}, F002: {expected: [base_link, base_footprint]}}   # rule options
 trusted: false                            # stock xacro evaluation (only for your own files)
 allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read
+max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
 ```
 
 `[tool.urdfcheck]` in pyproject.toml takes the same keys (`[[tool.urdfcheck.models]]` for the list).
@@ -119,7 +120,7 @@ class ModelConfig(FrozenRecord):
 class Config(FrozenRecord):
     # path: the config file
     # root: its folder; relative paths start here
-    _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore', 'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'locs')
+    _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore', 'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs')
 
     def __init__(self, path: str,
                  root: str,
@@ -135,6 +136,7 @@ class Config(FrozenRecord):
                  rules: Mapping[str, Mapping[str, Any]] | None = None,
                  trusted: bool = False,
                  allow_env: tuple[str, ...] = (),
+                 max_elements: int | None = None,
                  locs: Mapping[tuple, Location] | None = None):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
@@ -152,6 +154,7 @@ class Config(FrozenRecord):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["trusted"] = trusted
         d["allow_env"] = allow_env
+        d["max_elements"] = max_elements
         d["locs"] = _ro({}) if locs is None else locs
 
     def loc(self, *path) -> Location:
@@ -440,7 +443,8 @@ def load_config(path: str | os.PathLike) -> Config:
         tf_owners=_ro(tf_owners), tf_owner_locs=_ro(tf_owner_locs), packages=_ro(packages),
         select=tuple(data["select"]) if data.get("select") else None,
         ignore=tuple(data.get("ignore") or ()), fail_on=fail_on, severity=_ro(severity), rules=_ro(rules),
-        trusted=bool(data.get("trusted", False)), allow_env=tuple(data.get("allow_env") or ()), locs=_ro(locs),
+        trusted=bool(data.get("trusted", False)), allow_env=tuple(data.get("allow_env") or ()),
+        max_elements=int(data["max_elements"]) if data.get("max_elements") is not None else None, locs=_ro(locs),
     )
 
 

@@ -66,7 +66,7 @@ def run(ns, usage_error) -> int:
     trusted = ns.trusted or bool(getattr(cfg, "trusted", False))
     allow_env = tuple(ns.allow_env) + tuple(getattr(cfg, "allow_env", ()) or ())
     result = lint_targets(targets, selection, trusted=trusted, allow_env=allow_env, timeout=ns.timeout,
-                          config=cfg, max_elements=ns.max_elements,
+                          config=cfg, max_elements=ns.max_elements or getattr(cfg, "max_elements", None),
                           retain=_UNTIL_EXIT if getattr(ns, "one_shot", False) else None)
     fail_on = ns.fail_on or _cfg_fail_on(cfg) or Severity.WARNING
 

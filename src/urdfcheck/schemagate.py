@@ -101,6 +101,12 @@ def _min_length(inst, value, schema, root) -> bool:
     return not isinstance(inst, str) or len(inst) >= value
 
 
+def _minimum(inst, value, schema, root) -> bool:
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        raise _Unknown
+    return not isinstance(inst, (int, float)) or isinstance(inst, bool) or inst >= value
+
+
 def _enum(inst, value, schema, root) -> bool:
     # jsonschema compares with `==` whenever a string is involved, but tells 1 from True: answer only for
     # all-string enums, where a non-string instance simply matches nothing
@@ -130,6 +136,6 @@ def _ref(inst, value, schema, root) -> bool:
 
 _KEYWORDS = {
     "type": _type, "properties": _properties, "additionalProperties": _additional, "required": _required,
-    "propertyNames": _property_names, "items": _items, "pattern": _pattern, "minLength": _min_length,
+    "propertyNames": _property_names, "items": _items, "pattern": _pattern, "minLength": _min_length, "minimum": _minimum,
     "enum": _enum, "const": _const, "oneOf": _one_of, "$ref": _ref,
 }
