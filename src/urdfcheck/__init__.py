@@ -32,7 +32,7 @@ def lint(paths, args=None, *, select=("ALL",), ignore=(), packages=None, **optio
 
     if isinstance(paths, (str, bytes)) or hasattr(paths, "__fspath__"):
         paths = [paths]
-    targets = targets_for([str(p) for p in paths], args, packages)
+    targets = targets_for([str(p) for p in paths], args, packages, trusted=bool(options.get("trusted")))
     return lint_targets(targets, engine.Selection(tuple(select), tuple(ignore)), **options)
 
 

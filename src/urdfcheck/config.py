@@ -173,7 +173,8 @@ class Config(FrozenRecord):
                 return m
         return None
 
-    def targets(self, paths=None, args: Mapping | None = None, packages: Mapping | None = None) -> list:
+    def targets(self, paths=None, args: Mapping | None = None, packages: Mapping | None = None,
+                trusted: bool = False) -> list:
         """`lint.Target`s: every configured model and variant, with its consumers read.
 
         `paths` (from the command line) restricts the run to configured models at or below those paths;
@@ -206,7 +207,7 @@ class Config(FrozenRecord):
                 out.append(Target(path=Path(m.path), args={**vargs, **cli_args}, variant=vname,
                                   contracts=consumers, packages=dict(pk)))
         if rest:
-            for t in targets_for(rest, cli_args, pk):
+            for t in targets_for(rest, cli_args, pk, trusted=trusted or self.trusted):
                 out.append(t)
         return out
 

@@ -68,11 +68,11 @@ class Result(Record):
         return any(f.severity >= fail_on for f in self.findings)
 
 
-def entry_models(folder: Path) -> list[Path]:
+def entry_models(folder: Path, trusted: bool = False) -> list[Path]:
     """Entry models of a package: URDF files, and xacro robots that no other file includes."""
     from .contracts.discover import discover
 
-    return [Path(m) for m in discover(folder).models]
+    return [Path(m) for m in discover(folder, trusted=trusted).models]
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
@@ -181,13 +181,19 @@ def _dedupe(findings: list[Finding]) -> list[Finding]:
     return sorted(seen.values(), key=Finding.sort_key)
 
 
-def targets_for(paths: list[str], args: dict | None = None, packages: dict | None = None) -> list[Target]:
+def targets_for(paths: list[str], args: dict | None = None, packages: dict | None = None, *,
+                trusted: bool = False) -> list[Target]:
     """Targets for plain paths (files or package folders), no config."""
+    from .packages import leaves_cwd
+
     out = []
     for raw in paths:
         p = Path(raw)
+        if not trusted and leaves_cwd(p, (packages or {}).values()):
+            out.append(Target(p, dict(args or {}), packages=dict(packages or {})))  # refused by the loader (X014)
+            continue
         if p.is_dir():
-            out.extend(package_targets(p, args or {}, packages or {}))
+            out.extend(package_targets(p, args or {}, packages or {}, trusted=trusted))
         else:
             out.extend(file_targets(p, args or {}, packages or {}))
     seen, uniq = set(), []
@@ -215,13 +221,13 @@ def file_targets(path: Path, args: dict, packages: dict) -> list[Target]:
     return [Target(path, dict(args), packages=dict(packages))]
 
 
-def package_targets(folder: Path, args: dict, packages: dict) -> list[Target]:
+def package_targets(folder: Path, args: dict, packages: dict, trusted: bool = False) -> list[Target]:
     """Zero-config: each entry model of a package, and for xacro each combination of its boolean
     xacro:args that the command line does not fix (bounded; the variant names the values)."""
     from .config import auto_variants
 
     out = []
-    for entry in entry_models(folder):
+    for entry in entry_models(folder, trusted):
         variants = auto_variants(str(entry), args) if entry.name.endswith(".xacro") else [("", {})]
         for name, vargs in variants:
             out.append(Target(entry, {**vargs, **args}, variant=name, packages=dict(packages)))

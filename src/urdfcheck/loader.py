@@ -142,8 +142,8 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     resolver = None if escapes else Resolver(packages, near=p.resolve(), environ=environ)
     out = Expanded(entry=shown, xacro=False, files=[shown], args=dict(args or {}), resolver=resolver)
     if escapes:  # a symlink committed in a pull request must not read the runner's files
-        out.findings.append(_finding("X014", "the model file is a symbolic link to a file outside the package "
-                                             "roots; not read", shown))
+        out.findings.append(_finding("X014", "the model path is or goes through a symbolic link to outside the "
+                                             "package roots or the working directory; not read", shown))
         return Pending(out)
     try:
         with open(p, "rb") as f:
@@ -204,10 +204,13 @@ def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple) -> None:
 
 
 def _links_outside(p: Path, packages: dict | None) -> bool:
-    """The entry file is a symlink whose target lies outside the workspace around the link itself."""
-    from .packages import workspace_root
+    """The entry file is a symlink whose target lies outside the workspace around the link itself, or the
+    path leads out of the working directory through a linked folder."""
+    from .packages import leaves_cwd, workspace_root
 
     lexical = Path(os.path.abspath(p))
+    if leaves_cwd(lexical, (packages or {}).values()):
+        return True
     if not os.path.islink(lexical):
         return False
     real = os.path.realpath(lexical)

@@ -27,6 +27,22 @@ def package_name(package_xml: Path) -> str | None:
     return m.group(1).decode("utf-8", "replace") if m else None
 
 
+def _below(path: str, base: str) -> bool:
+    return path == base or path.startswith(base.rstrip(os.sep) + os.sep)
+
+
+def leaves_cwd(path: str | os.PathLike, roots=()) -> bool:
+    """`path` is written below the working directory but really lies outside it (and outside `roots`): a
+    symbolic link, of the file or of a folder on the way, that a pull request could point at any file of the
+    machine that runs the check (CI runs in the checkout)."""
+    lexical = os.path.abspath(path)
+    cwd = os.getcwd()
+    if not _below(lexical, cwd):
+        return False
+    real = os.path.realpath(lexical)
+    return not any(_below(real, os.path.realpath(r)) for r in (cwd, *roots))
+
+
 def enclosing_package(path: Path) -> Path | None:
     """The nearest directory at or above `path` that holds a package.xml."""
     p = path if path.is_dir() else path.parent

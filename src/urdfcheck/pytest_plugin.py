@@ -158,7 +158,8 @@ class UrdfcheckItem(pytest.Item):
         from .lint import _dedupe, lint_target
 
         findings, _model = lint_target(self.target, self.state.selection, trusted=self.state.trusted,
-                                       allow_env=self.state.allow_env, config=self.state.cfg)
+                                       allow_env=self.state.allow_env, config=self.state.cfg,
+                                       max_elements=getattr(self.state.cfg, "max_elements", None))
         findings = _dedupe(findings)
         failing = [f for f in findings if f.severity >= self.state.fail_on]
         below = [f for f in findings if f.severity < self.state.fail_on]

@@ -49,9 +49,10 @@ def _config(ns, usage_error):
 def _targets(ns, cfg) -> list[Target]:
     args = dict(ns.args)
     packages = dict(ns.packages)
+    trusted = getattr(ns, "trusted", False) or bool(getattr(cfg, "trusted", False))
     if cfg is not None and hasattr(cfg, "targets"):
-        return cfg.targets(paths=ns.paths or None, args=args, packages=packages)
-    return targets_for(ns.paths or ["."], args, packages)
+        return cfg.targets(paths=ns.paths or None, args=args, packages=packages, trusted=trusted)
+    return targets_for(ns.paths or ["."], args, packages, trusted=trusted)
 
 
 def run(ns, usage_error) -> int:

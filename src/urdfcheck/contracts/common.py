@@ -50,7 +50,12 @@ def read_capped(path, max_bytes: int, what: str = "file") -> bytes:
     """The bytes of a consumer file, refusing one over `max_bytes`. Raises ConsumerError."""
     import os
 
+    from ..packages import leaves_cwd
+
     file = str(path)
+    if leaves_cwd(file):
+        raise ConsumerError(f"{what} is, or lies in, a symbolic link that leads out of the working directory; "
+                            "not read", Location(file))
     try:
         size = os.path.getsize(file)
         if size > max_bytes:

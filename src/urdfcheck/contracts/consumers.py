@@ -208,6 +208,10 @@ def _names_a_joint(pf: ParamFile, joints: set[str]) -> bool:
 
 
 def _mentions(path: str, name: str) -> bool:
+    from ..packages import leaves_cwd
+
+    if leaves_cwd(path):
+        return False
     try:
         with open(path, "rb") as f:
             return name.encode() in f.read(2 * 1024 * 1024)

@@ -52,7 +52,11 @@ def _walk(root: str, max_files: int):
             yield dirpath, f
 
 
-def _read_head(path: str) -> str:
+def _read_head(path: str, trusted: bool = False) -> str:
+    from ..packages import leaves_cwd
+
+    if not trusted and leaves_cwd(path):  # a committed symlink out of the checkout: its target is none of our business
+        return ""
     try:
         with open(path, "rb") as f:
             return f.read(HEAD_BYTES).decode("utf-8", "replace")
@@ -125,7 +129,9 @@ def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
     return hits
 
 
-def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES) -> Discovered:
+def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trusted: bool = False) -> Discovered:
+    """The package's files by role. Unless `trusted`, nothing is read through a link out of the working
+    directory (`packages.leaves_cwd`)."""
     root = os.path.abspath(str(package_dir))
     urdfs, xacros, params, launches = [], [], [], []
     parts_of: dict[str, list[str]] = {}  # dirpath -> its folders below root (relpath per file was slow)
@@ -145,14 +151,21 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES) -> D
             params.append(path)
         if low.endswith(LAUNCH_SUFFIXES) and any(p in LAUNCH_DIRS for p in parts):
             launches.append(path)
-    texts = {p: _read_head(p) for p in xacros}
+    from ..packages import leaves_cwd
+
+    # a model file linked out of the working directory is listed as a model, so that the loader names it
+    # (X014) instead of it silently dropping out of the run; nothing behind the link is read
+    models = [] if trusted else [p for p in urdfs + xacros if leaves_cwd(p)]
+    urdfs = [p for p in urdfs if p not in models]
+    xacros = [p for p in xacros if p not in models]
+    texts = {p: _read_head(p, trusted) for p in xacros}
     included: set[str] = set()
     for p, t in texts.items():
         for m in _INCLUDE.finditer(t):
             included |= _included_files(m.group(2), p, xacros) - {p}
-    models, libs = [], []
+    libs = []
     for p in urdfs:  # a .urdf without any <link> is a fragment (materials, properties) for others to include
-        (models if re.search(r"<\s*link\b", _read_head(p)) else libs).append(p)
+        (models if re.search(r"<\s*link\b", _read_head(p, trusted)) else libs).append(p)
     for p in xacros:
         if p in included:
             libs.append(p)
