@@ -216,3 +216,74 @@ def test_corpus_launch_files_read(corpus):
         assert li.format in ("ros1-xml", "ros2-xml")
     li = read_launch(corpus / "ros-controls+ros2_control_demos/example_2/bringup/launch/diffbot.launch.xml")
     assert [s.name for s in li.state_publishers] == ["robot_state_publisher"]
+
+
+# --- includes of configured launch files ------------------------------------------------------------------
+import json  # noqa: E402
+import os  # noqa: E402
+
+from conftest import run_cli  # noqa: E402
+
+INC_URDF = """<robot name="r">
+  <link name="base_link"/><link name="laser_link"/>
+  <joint name="laser_joint" type="fixed"><parent link="base_link"/><child link="laser_link"/></joint>
+</robot>
+"""
+
+
+def _include_pkg(root, bringup, extra=None):
+    (root / "urdf").mkdir(parents=True)
+    (root / "launch").mkdir()
+    (root / "package.xml").write_text("<package format='3'><name>inc_description</name></package>")
+    (root / "urdf" / "r.urdf").write_text(INC_URDF)
+    (root / "launch" / "bringup.launch.xml").write_text(bringup)
+    (root / "launch" / "tf.launch.xml").write_text(
+        '<launch>\n  <arg name="child" default="camera_link"/>\n'
+        '  <node pkg="tf2_ros" exec="static_transform_publisher" name="extra_tf"\n'
+        '        args="--frame-id base_link --child-frame-id $(var child)"/>\n</launch>\n')
+    for name, text in (extra or {}).items():
+        (root / "launch" / name).write_text(text)
+    (root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/r.urdf\n    launch: [launch/bringup.launch.xml]\n")
+    code, out, err = run_cli(["lint", "--format", "json", "--select", "T,C007"], cwd=root)
+    assert code in (0, 1), err
+    return [(f["code"], os.path.basename(f["location"]["file"]), f["location"]["line"])
+            for f in json.loads(out)["findings"]]
+
+
+def test_a_static_tf_in_an_included_file_is_seen(tmp_path):
+    bringup = ('<launch>\n  <include file="$(find-pkg-share inc_description)/launch/tf.launch.xml">\n'
+               '    <arg name="child" value="laser_link"/>\n  </include>\n</launch>\n')
+    found = _include_pkg(tmp_path / "inc_description", bringup)
+    # the include passes child:=laser_link: the static TF doubles the URDF's fixed joint
+    assert ("T001", "tf.launch.xml", 4) in found, found
+
+
+def test_includes_that_cannot_be_decided_or_leave_the_package_are_not_followed(tmp_path):
+    outside = tmp_path / "elsewhere"
+    outside.mkdir()
+    (outside / "tf.launch.xml").write_text(
+        '<launch><node pkg="tf2_ros" exec="static_transform_publisher" '
+        'args="--frame-id base_link --child-frame-id laser_link"/></launch>\n')
+    bringup = ('<launch>\n  <arg name="sim" default="$(env SIM)"/>\n'
+               '  <include file="$(dirname)/tf.launch.xml" if="$(var sim)"><arg name="child" value="laser_link"/>'
+               '</include>\n'
+               f'  <include file="{outside}/tf.launch.xml"/>\n'
+               '  <include file="$(dirname)/loop.launch.xml"/>\n</launch>\n')
+    loop = '<launch><include file="$(dirname)/bringup.launch.xml"/></launch>\n'
+    assert _include_pkg(tmp_path / "inc_description", bringup, {"loop.launch.xml": loop}) == []
+
+
+def test_reading_includes_records_what_the_included_file_is_passed(tmp_path):
+    from urdfcheck.contracts.launch import parse_launch
+
+    ros1 = parse_launch(b'<launch><arg name="a" default="1"/>'
+                        b'<include file="x.launch"><arg name="b" value="$(arg a)"/></include>'
+                        b'<include file="y.launch" pass_all_args="true"/></launch>', "t.launch")
+    assert [dict(i.args) for i in ros1.includes] == [{"b": "1"}, {"a": "1"}]
+    ros2 = parse_launch(b'<launch><arg name="a" default="1"/><let name="c" value="$(env X)"/>'
+                        b'<include file="x.launch.xml"><arg name="b" value="2"/></include></launch>', "t.launch.xml")
+    (inc,) = ros2.includes
+    assert dict(inc.args) == {"a": "1", "c": None, "b": "2"}  # ROS 2: the including file's configurations too
+    yml = parse_launch(b"launch:\n- include:\n    file: x.launch.yaml\n    arg:\n    - {name: b, value: 3}\n",
+                       "t.launch.yaml")
+    assert dict(yml.includes[0].args) == {"b": "3"}

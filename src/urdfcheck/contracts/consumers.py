@@ -104,12 +104,50 @@ class _Reader:
         return got
 
 
-def _read_launch(paths, out: Consumers, args=None, packages=None, reader: _Reader | None = None) -> None:
-    for p in paths:
+MAX_INCLUDE_DEPTH = 8
+MAX_LAUNCH_FILES = 100
+
+
+def _read_launch(paths, out: Consumers, args=None, packages=None, reader: _Reader | None = None,
+                 follow: bool = False) -> None:
+    """Read the launch files `paths`; with `follow`, also the files they include (the files a config names
+    run together, so what they include runs too). Each file is read once, with the arguments of its first
+    appearance; an include is not followed when its file or condition is not literal, or when it lies
+    outside the including file's package and the known packages."""
+    from .launchparams import _allowed_roots, _inside
+
+    queue = [(str(p), args, 0) for p in paths]
+    seen: set[str] = set()
+    while queue:
+        p, a, depth = queue.pop(0)
+        real = os.path.realpath(p)
+        if real in seen:
+            continue
+        seen.add(real)
         try:
-            out.launch.append(read_launch(p, args=args, packages=packages))
+            li = read_launch(p, args=a, packages=packages)
         except ConsumerError as e:
             out.errors.append(e)
+            continue
+        out.launch.append(li)
+        if not follow:
+            continue
+        for inc in li.includes:
+            why = None
+            if inc.file is None:
+                why = "its file name is not literal"
+            elif inc.condition is not None:
+                why = f"it runs only under a condition that cannot be decided ({inc.condition})"
+            elif depth + 1 > MAX_INCLUDE_DEPTH or len(seen) + len(queue) >= MAX_LAUNCH_FILES:
+                why = "too many nested launch files"
+            elif not _inside(inc.file, _allowed_roots(li, packages or {})):
+                why = "it is outside the including file's package and the known packages"
+            elif not os.path.isfile(inc.file):
+                why = "no such file"
+            if why is not None:
+                out.notes.append((f"include {inc.file or '?'} not followed: {why}", inc.loc))
+                continue
+            queue.append((inc.file, dict(inc.args), depth + 1))
     for li in out.launch:
         out.notes.extend(li.notes)
     if len(out.controllers) and any(li.param_sets for li in out.launch):
@@ -142,7 +180,7 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     loc_pfs = [pf for pf in (r.params(p, out.errors) for p in mc.localization) if pf is not None]
     out.localization = localization_from_params(loc_pfs)
     pk = dict(packages or (config.packages if config is not None else {}))
-    _read_launch(mc.launch, out, dict(mc.launch_args), pk, r)
+    _read_launch(mc.launch, out, dict(mc.launch_args), pk, r, follow=True)
     out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
                  "launch": list(mc.launch), "localization": list(mc.localization)}
     return out

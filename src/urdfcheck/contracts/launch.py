@@ -13,7 +13,7 @@ What is reported (`LaunchInfo`):
 * `state_publishers`: robot_state_publisher nodes with their literal `frame_prefix` (ROS 2) / `tf_prefix` (ROS 1).
 * `joint_state_publishers`: joint_state_publisher(_gui) nodes (a joint state source for every joint).
 * `nodes`: every node found, `spawned` controllers (controller_manager spawner arguments), `param_files`,
-  `includes` (recorded, not followed) and `notes` for what was skipped (non-literal values, unknown
+  `includes` (followed by `consumers` for configured launch files) and `notes` for what was skipped (non-literal values, unknown
   substitutions, conditions that could not be decided).
 * ROS 1 XML only, outside `<node>`: `param_sets`, the parameter server writes in document order, each either a
   literal `ParamSet` (`<param name=... value=...>`, inline `<rosparam>` YAML, names resolved against the
@@ -121,6 +121,16 @@ class RosparamLoad(NamedTuple):
     order: int
 
 
+class Include(NamedTuple):
+    """An <include> of another launch file. `file`: None when not literal. `args`: what the included file sees
+    (value None: not literal). `condition`: an if/unless, its own or a group's, that could not be decided."""
+
+    file: str | None
+    loc: Location
+    args: Mapping[str, str | None]
+    condition: str | None = None
+
+
 class LaunchInfo(Record):
     # format: "ros1-xml", "ros2-xml", "ros2-yaml", "ros2-py"
     # spawned: controller names given to spawners
@@ -135,7 +145,7 @@ class LaunchInfo(Record):
                  joint_state_publishers: list[JointStatePublisher] | None = None,
                  spawned: list[tuple[str, Location]] | None = None,
                  param_files: list[tuple[str, Location]] | None = None,
-                 includes: list[tuple[str, Location]] | None = None,
+                 includes: list[Include] | None = None,
                  notes: list[tuple[str, Location]] | None = None,
                  param_sets: list | None = None):
         self.path = path
@@ -165,7 +175,8 @@ class _Subst:
     def declare(self, name: str, default: str | None) -> None:
         """<arg name default=...>: the caller's value wins (None: unknown)."""
         if name in self.overrides:
-            self.vars[name] = str(self.overrides[name])
+            v = self.overrides[name]
+            self.vars[name] = None if v is None else str(v)  # None: passed, but not literal
         else:
             self.vars[name] = default
 
@@ -194,14 +205,20 @@ class _Subst:
             ok = False
         return text, ok
 
+    def _own_package(self, name: str) -> str | None:
+        """A launch file names its own package (`$(find-pkg-share my_robot)`) without a package map."""
+        if not hasattr(self, "_own"):
+            self._own = _own(self.path)
+        return self._own[1] if self._own[0] == name else None
+
     def _one(self, kind: str, arg: str) -> str | None:
         if kind in ("arg", "var"):
             v = self.vars.get(arg)
-            if v is None and arg in self.overrides:
+            if v is None and self.overrides.get(arg) is not None:
                 v = str(self.overrides[arg])
             return v
         if kind in ("find", "find-pkg-share", "find-pkg-prefix"):
-            return self.packages.get(arg)
+            return self.packages.get(arg) or self._own_package(arg)
         if kind == "dirname":
             return os.path.dirname(os.path.abspath(self.path))
         if kind == "filename":
@@ -209,6 +226,15 @@ class _Subst:
         if kind == "anon":
             return f"{arg}_anon"
         return None  # env, optenv, eval, command, exec-in-pkg, ...: never evaluated
+
+
+def _own(path: str) -> tuple[str | None, str | None]:
+    from pathlib import Path
+
+    from ..packages import enclosing_package, package_name
+
+    d = enclosing_package(Path(os.path.abspath(path)))
+    return (package_name(d / "package.xml"), str(d)) if d is not None else (None, None)
 
 
 def _condition(subst: _Subst, if_text: str | None, unless_text: str | None) -> tuple[bool, str | None]:
@@ -448,7 +474,13 @@ class _XmlReader:
                 ns = _join_ns(ns, v if ok else "?")
             elif tag == "include":
                 f, ok = self.attr(el, "file")
-                self.info.includes.append((f or "", self.loc(el)))
+                # ROS 2 includes see the including file's configurations; ROS 1 only what they are passed
+                passed = dict(self.subst.vars) if self.ros == 2 or as_bool(el.get("pass_all_args")) else {}
+                for a in el:
+                    if _tag(a) == "arg" and a.get("name"):
+                        v, aok = self.attr(a, "value")
+                        passed[a.get("name")] = v if aok else None
+                self.info.includes.append(Include(f if ok else None, self.loc(el), passed, c))
             elif tag == "rosparam":
                 if (el.get("command") or "load") == "load" and el.get("file"):
                     f, ok = self.attr(el, "file")
@@ -688,8 +720,14 @@ class _YamlReader:
                 v, ok = self.s(body.get("namespace"))
                 ns = _join_ns(ns, v if ok else "?")
             elif tag == "include":
-                f, _ = self.s(body.get("file"))
-                self.info.includes.append((f or "", self.doc.loc(*p)))
+                f, ok = self.s(body.get("file"))
+                passed = dict(self.subst.vars)
+                given = body.get("arg")
+                for a in given if isinstance(given, list) else ():
+                    if isinstance(a, dict) and a.get("name"):
+                        v, aok = self.s(a.get("value"))
+                        passed[str(a["name"])] = v if aok else None
+                self.info.includes.append(Include(f if ok else None, self.doc.loc(*p), passed, c))
             elif tag == "node":
                 self.node(body, p, ns, c)
 
