@@ -287,3 +287,95 @@ def test_reading_includes_records_what_the_included_file_is_passed(tmp_path):
     yml = parse_launch(b"launch:\n- include:\n    file: x.launch.yaml\n    arg:\n    - {name: b, value: 3}\n",
                        "t.launch.yaml")
     assert dict(yml.includes[0].args) == {"b": "3"}
+
+
+PY_BRINGUP = '''import os
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch.actions import IncludeLaunchDescription
+from launch.conditions import IfCondition
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    share = get_package_share_directory("inc_description")
+    tf = IncludeLaunchDescription(
+        PythonLaunchDescriptionSource(os.path.join(share, "launch", "tf.launch.py")),
+        launch_arguments={"child": "laser_link"}.items())
+    sim = IncludeLaunchDescription(
+        PythonLaunchDescriptionSource([FindPackageShare("inc_description"), "/launch/tf.launch.py"]),
+        condition=IfCondition(LaunchConfiguration("use_sim")))
+    other = IncludeLaunchDescription(PathJoinSubstitution([FindPackageShare("unknown_pkg"), "x.launch.py"]))
+    return LaunchDescription([tf, sim, other])
+'''
+PY_TF = '''from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        DeclareLaunchArgument("child", default_value="camera_link"),
+        Node(package="tf2_ros", executable="static_transform_publisher",
+             arguments=["--frame-id", "base_link", "--child-frame-id", LaunchConfiguration("child")]),
+    ])
+'''
+
+
+def test_python_includes_are_read_without_running_anything(tmp_path):
+    from urdfcheck.contracts.launch import parse_launch
+
+    root = tmp_path / "inc_description"
+    (root / "launch").mkdir(parents=True)
+    (root / "package.xml").write_text("<package format='3'><name>inc_description</name></package>")
+    info = parse_launch(PY_BRINGUP.encode(), str(root / "launch" / "bringup.launch.py"))
+    tf, sim, other = info.includes
+    assert tf.file == os.path.join(str(root), "launch", "tf.launch.py") and dict(tf.args) == {"child": "laser_link"}
+    assert tf.condition is None and tf.loc.line == 13
+    assert sim.file == str(root) + "/launch/tf.launch.py" and sim.condition.startswith("condition=IfCondition")
+    assert other.file is None  # a package nobody maps
+
+
+def test_a_static_tf_in_an_included_python_file_is_seen(tmp_path):
+    bringup = PY_BRINGUP.replace('    return LaunchDescription([tf, sim, other])', '    return LaunchDescription([tf])')
+    found = _include_pkg(tmp_path / "inc_description", "<launch/>\n",
+                         {"bringup.launch.py": bringup, "tf.launch.py": PY_TF})
+    assert found == []  # the config lists bringup.launch.xml, which includes nothing
+    root = tmp_path / "inc_description"
+    (root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/r.urdf\n    launch: [launch/bringup.launch.py]\n")
+    code, out, err = run_cli(["lint", "--format", "json", "--select", "T,C007"], cwd=root)
+    found = [(f["code"], os.path.basename(f["location"]["file"])) for f in json.loads(out)["findings"]]
+    assert ("T001", "tf.launch.py") in found, (found, err)
+
+
+@pytest.mark.parametrize("body,expected", [
+    ('name = "inc_description"\n'
+     'src = PythonLaunchDescriptionSource([os.path.join(get_package_share_directory(name), "launch", "a.launch.py")])\n'
+     'x = IncludeLaunchDescription(src, launch_arguments={"urdf": os.path.join(get_package_share_directory(name), '
+     '"urdf", "r.urdf")}.items())\n', "launch/a.launch.py"),
+    ('x = IncludeLaunchDescription(PythonLaunchDescriptionSource([ThisLaunchFileDir(), "/b.launch.py"]))\n',
+     "launch/b.launch.py"),
+    ('pkg = FindPackageShare("inc_description")\n'
+     'path = PathJoinSubstitution([pkg, "launch", "c.launch.py"])\n'
+     'x = IncludeLaunchDescription(PythonLaunchDescriptionSource(path))\n', "launch/c.launch.py"),
+    ('x = IncludeLaunchDescription(XMLLaunchDescriptionSource(f"{os.path.dirname(__file__)}/d.launch.xml"))\n',
+     "launch/d.launch.xml"),
+    ('p = "a"\np = "b"\nx = IncludeLaunchDescription(PythonLaunchDescriptionSource(p))\n', None),  # reassigned
+    ('p = p + "x"\nx = IncludeLaunchDescription(PythonLaunchDescriptionSource(p))\n', None),  # refers to itself
+])
+def test_python_include_paths(tmp_path, body, expected):
+    from urdfcheck.contracts.launch import parse_launch
+
+    root = tmp_path / "inc_description"
+    (root / "launch").mkdir(parents=True)
+    (root / "package.xml").write_text("<package format='3'><name>inc_description</name></package>")
+    (inc,) = parse_launch(("import os\n" + body).encode(), str(root / "launch" / "bringup.launch.py")).includes
+    if expected is None:
+        assert inc.file is None
+    else:
+        assert os.path.normpath(inc.file) == str(root / expected)
+    if "urdf" in body:
+        assert dict(inc.args) == {"urdf": os.path.join(str(root), "urdf", "r.urdf")}

@@ -785,6 +785,7 @@ class _PyReader:
         self.tree = tree
         self.overrides = dict(args or {})
         self.defaults: dict[str, str] = {}
+        self.packages = dict(packages or {})
         self.info = LaunchInfo(path, "ros2-py")
 
     def loc(self, node: ast.AST) -> Location:
@@ -811,6 +812,19 @@ class _PyReader:
         for c in calls:
             if self._callee(c) == "Node":
                 self.node(c)
+        from .pyinclude import find_includes
+
+        own: list = []
+
+        def find_package(name: str) -> str | None:
+            if name in self.packages:
+                return self.packages[name]
+            if not own:
+                own.append(_own(self.path))
+            return own[0][1] if own[0][0] == name else None
+
+        inherited = {**self.defaults, **{k: (None if v is None else str(v)) for k, v in self.overrides.items()}}
+        self.info.includes.extend(find_includes(self.tree, self.path, self.literal, find_package, inherited))
         return self.info
 
     def literal(self, node: ast.AST) -> tuple[Any, bool]:
