@@ -190,3 +190,8 @@ def test_the_console_entry_runs_atexit_handlers_and_keeps_the_exit_code(tmp_path
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
     assert proc.returncode == 1, proc.stderr  # findings
     assert "J" in proc.stdout and flag.read_text() == "ran"
+
+
+def test_no_targets_is_an_empty_result():
+    result = lint.lint_targets([])
+    assert result.findings == [] and result.models == {}

@@ -153,6 +153,8 @@ def _warm_up(targets: list[Target], config) -> None:
     when there can be consumers), done while the first expansions run in their workers, not after them."""
     from . import build, rulebook  # noqa: F401
 
+    if not targets:
+        return
     rulebook.load_checks()
     rulebook.catalogue()
     if config is not None or any(t.contracts is not None for t in targets) or _in_package(targets[0].path):
