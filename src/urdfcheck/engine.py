@@ -147,8 +147,8 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
         if is_yaml(f.location.file):
             hit = _suppressed(f, yaml_suppressions(f.location.file))
             if hit is not None:  # `# urdfcheck: ignore[...]` in the YAML file the finding points into
-                if yaml_used is not None:
-                    yaml_used.add((f.location.file, hit))
+                if yaml_used is not None:  # absolute, like the consumer files `unused_yaml` is given
+                    yaml_used.add((os.path.abspath(f.location.file), hit))
                 continue
         kept.append(Finding(f.code, sev, f.message.replace(here, ""), _shown(f.location), f.name or (info.name if info else ""),
                             tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant))
