@@ -18,6 +18,8 @@ from .common import as_bool
 _SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAMLLaunchDescriptionSource",
             "AnyLaunchDescriptionSource", "FrontendLaunchDescriptionSource"}
 _MAX_DEPTH = 20
+_MAX_STEPS = 20_000  # node evaluations per file: variables built from each other must not explode
+_MAX_LEN = 4096  # characters of one path or argument
 
 
 def _callee(call: ast.Call) -> str:
@@ -41,6 +43,8 @@ class _Paths:
         self.literal = literal
         self.find_package = find_package
         self.names: dict[str, ast.AST | None] = {}  # None: assigned more than once
+        self.known: dict[str, str | None] = {}  # variables evaluated so far
+        self.steps = 0
         for n in ast.walk(tree):
             if isinstance(n, ast.Assign) and len(n.targets) == 1 and isinstance(n.targets[0], ast.Name):
                 name = n.targets[0].id
@@ -48,16 +52,23 @@ class _Paths:
 
     def text(self, node: ast.AST, depth: int = 0) -> str | None:
         """The string `node` evaluates to, or None."""
-        if depth > _MAX_DEPTH:
+        self.steps += 1
+        if depth > _MAX_DEPTH or self.steps > _MAX_STEPS:
             return None
-        d = depth + 1
+        out = self._text(node, depth + 1)
+        return out if out is None or len(out) <= _MAX_LEN else None
+
+    def _text(self, node: ast.AST, d: int) -> str | None:
         if isinstance(node, ast.Constant):
             return node.value if isinstance(node.value, str) else None
         if isinstance(node, ast.Name):
             if node.id == "__file__":
                 return os.path.abspath(self.path)
-            value = self.names.get(node.id)
-            return self.text(value, d) if value is not None else None
+            if node.id not in self.known:
+                value = self.names.get(node.id)
+                self.known[node.id] = None  # while it is evaluated: a variable that refers to itself is unknown
+                self.known[node.id] = self.text(value, d) if value is not None else None
+            return self.known[node.id]
         if isinstance(node, (ast.List, ast.Tuple)):  # a substitution list: its pieces are concatenated
             return self._join("", node.elts, d)
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
@@ -92,9 +103,12 @@ class _Paths:
         return None
 
     def _join(self, sep: str, parts, depth: int) -> str | None:
-        texts = [self.text(p, depth) for p in parts]
-        if any(t is None for t in texts):
-            return None
+        texts = []
+        for p in parts:
+            t = self.text(p, depth)
+            if t is None:  # one unknown piece: the whole is unknown, evaluate no further
+                return None
+            texts.append(t)
         if sep == "":
             return "".join(texts)
         return os.path.join(*texts) if texts else None
