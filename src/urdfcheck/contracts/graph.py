@@ -225,18 +225,24 @@ def _who(c: TFClaim) -> str:
 def duplicate_owners(g: TFGraph) -> list[TFProblem]:
     """T001: the same parent -> child edge claimed by two publishers (even with equal values)."""
     out = []
+    for parent, child, cs in _edges(g):
+        kinds = {c.kind for c in cs}
+        if len(cs) < 2 or len(kinds) > 1:
+            continue  # mixed kinds: T002
+        names = " and ".join(_who(c) for c in cs)
+        out.append(TFProblem("T001", f"{parent} -> {child} is published by {len(cs)} publishers: {names}; "
+                                     f"tf2 sees the transform flip between them", tuple(cs), (parent, child)))
+    return out
+
+
+def _edges(g: TFGraph):
+    """(parent, child, claims of that edge), for every edge claimed at least once."""
     for child, claims in g.by_child().items():
         by_parent: dict[str, list[TFClaim]] = {}
         for c in claims:
             by_parent.setdefault(c.parent, []).append(c)
         for parent, cs in by_parent.items():
-            kinds = {c.kind for c in cs}
-            if len(cs) < 2 or len(kinds) > 1:
-                continue  # mixed kinds: T002
-            names = " and ".join(_who(c) for c in cs)
-            out.append(TFProblem("T001", f"{parent} -> {child} is published by {len(cs)} publishers: {names}; "
-                                         f"tf2 sees the transform flip between them", tuple(cs), (parent, child)))
-    return out
+            yield parent, child, cs
 
 
 def static_and_dynamic(g: TFGraph) -> list[TFProblem]:
@@ -245,19 +251,15 @@ def static_and_dynamic(g: TFGraph) -> list[TFProblem]:
     (Claims with different parents are T003; the three analyses T001/T002/T003 do not overlap.)
     """
     out = []
-    for child, claims in g.by_child().items():
-        by_parent: dict[str, list[TFClaim]] = {}
-        for c in claims:
-            by_parent.setdefault(c.parent, []).append(c)
-        for parent, cs in by_parent.items():
-            st = [c for c in cs if c.kind == STATIC]
-            dy = [c for c in cs if c.kind == DYNAMIC]
-            if st and dy:
-                out.append(TFProblem(
-                    "T002",
-                    f"{parent} -> {child} is published both on /tf (by {', '.join(_who(c) for c in dy)}) and on "
-                    f"/tf_static (by {', '.join(_who(c) for c in st)}); the static one never expires and masks "
-                    f"the other", tuple(dy + st), (parent, child)))
+    for parent, child, cs in _edges(g):
+        st = [c for c in cs if c.kind == STATIC]
+        dy = [c for c in cs if c.kind == DYNAMIC]
+        if st and dy:
+            out.append(TFProblem(
+                "T002",
+                f"{parent} -> {child} is published both on /tf (by {', '.join(_who(c) for c in dy)}) and on "
+                f"/tf_static (by {', '.join(_who(c) for c in st)}); the static one never expires and masks "
+                f"the other", tuple(dy + st), (parent, child)))
     return out
 
 
