@@ -52,6 +52,12 @@ def enclosing_package(path: Path) -> Path | None:
     return None
 
 
+def own_package(path: str | os.PathLike) -> tuple[str | None, Path | None]:
+    """Name and folder of the package that encloses `path` ((None, None) outside any package)."""
+    d = enclosing_package(Path(os.path.abspath(path)))
+    return (package_name(d / "package.xml"), d) if d is not None else (None, None)
+
+
 def workspace_root(path: Path) -> Path:
     """The folder to scan for sibling packages: above the outermost package enclosing `path`."""
     p = (path if path.is_dir() else path.parent).resolve()
@@ -143,8 +149,7 @@ class Resolver:
     def _own(self) -> tuple[str | None, Path | None]:
         """Name and folder of the package that encloses the input."""
         if self._own_pkg is None:
-            d = enclosing_package(self.near)
-            self._own_pkg = (package_name(d / "package.xml"), d) if d is not None else (None, None)
+            self._own_pkg = own_package(self.near)
         return self._own_pkg
 
     def roots(self) -> list[Path]:

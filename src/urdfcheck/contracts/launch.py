@@ -229,12 +229,10 @@ class _Subst:
 
 
 def _own(path: str) -> tuple[str | None, str | None]:
-    from pathlib import Path
+    from ..packages import own_package
 
-    from ..packages import enclosing_package, package_name
-
-    d = enclosing_package(Path(os.path.abspath(path)))
-    return (package_name(d / "package.xml"), str(d)) if d is not None else (None, None)
+    name, folder = own_package(path)
+    return name, (str(folder) if folder is not None else None)
 
 
 def _condition(subst: _Subst, if_text: str | None, unless_text: str | None) -> tuple[bool, str | None]:
