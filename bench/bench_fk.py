@@ -54,9 +54,9 @@ def bench_batch(path: Path, n: int) -> dict:
     import numpy as np
     import pinocchio as pin
 
-    from urdfcheck.build import model_from_string
+    from urdfcheck.model.build import model_from_string
     from urdfcheck.publisher import link_poses
-    from urdfcheck.verify import sample_configurations
+    from urdfcheck.verify.compare import sample_configurations
 
     xml = path.read_text()
     model = model_from_string(xml, str(path))
@@ -103,7 +103,7 @@ def bench_batch(path: Path, n: int) -> dict:
 
 
 def bench_messages(path: Path, count: int) -> dict:
-    from urdfcheck.build import model_from_string
+    from urdfcheck.model.build import model_from_string
     from urdfcheck.publisher import JointState, StatePublisher, configuration_joints
 
     model = model_from_string(path.read_text(), str(path))

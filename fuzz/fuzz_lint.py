@@ -96,7 +96,7 @@ def _inprocess_worker():
     import xacro
     import xacro.substitution_args as subst
 
-    from urdfcheck import worker
+    from urdfcheck.load import worker
 
     saved_x, saved_s = dict(vars(xacro)), dict(vars(subst))
     saved_sym = dict(xacro._global_symbols)
@@ -150,7 +150,7 @@ def check_output(fmt: str, out: str) -> None:
 def run_one(data: bytes) -> None:
     """One input through the CLI; raises on any property violation."""
     global _WS
-    from urdfcheck.cli import main
+    from urdfcheck.cli.main import main
 
     if _WS is None:
         _WS = Workspace()
@@ -240,18 +240,18 @@ def main(argv: list[str]) -> int:
     import atheris
 
     with atheris.instrument_imports(include=["urdfcheck"]):
-        import urdfcheck.cli  # noqa: F401
-        import urdfcheck.build  # noqa: F401
-        import urdfcheck.xmlfront  # noqa: F401
-        import urdfcheck.loader  # noqa: F401
-        import urdfcheck.lint  # noqa: F401
-        import urdfcheck.xacro.expand  # noqa: F401
-        import urdfcheck.xacro.safeeval  # noqa: F401
+        import urdfcheck.cli.main  # noqa: F401
+        import urdfcheck.model.build  # noqa: F401
+        import urdfcheck.core.xmlfront  # noqa: F401
+        import urdfcheck.load.loader  # noqa: F401
+        import urdfcheck.pipeline.run  # noqa: F401
+        import urdfcheck.load.xacro.expand  # noqa: F401
+        import urdfcheck.load.xacro.safeeval  # noqa: F401
         import urdfcheck.report  # noqa: F401
         for mod in ("urdfcheck.contracts.discover", "urdfcheck.contracts.consumers", "urdfcheck.contracts.launch",
-                    "urdfcheck.contracts.yamlsrc", "urdfcheck.contracts.controllers", "urdfcheck.engine",
-                    "urdfcheck.checks.structure", "urdfcheck.checks.joints", "urdfcheck.checks.geometry",
-                    "urdfcheck.checks.inertial", "urdfcheck.checks.frames", "urdfcheck.checks.values",
+                    "urdfcheck.contracts.yamlsrc", "urdfcheck.contracts.controllers", "urdfcheck.rules.engine",
+                    "urdfcheck.rules.checks.structure", "urdfcheck.rules.checks.joints", "urdfcheck.rules.checks.geometry",
+                    "urdfcheck.rules.checks.inertial", "urdfcheck.rules.checks.frames", "urdfcheck.rules.checks.values",
                     "urdfcheck.report.text", "urdfcheck.report.jsonout", "urdfcheck.report.sarif",
                     "urdfcheck.report.junit", "urdfcheck.report.github", "urdfcheck.report.markdown"):
             with contextlib.suppress(ImportError):

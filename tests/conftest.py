@@ -26,7 +26,7 @@ def run_cli(args, cwd=None):
     import contextlib
     import io
 
-    from urdfcheck.cli import main
+    from urdfcheck.cli.main import main
 
     out, err = io.StringIO(), io.StringIO()
     old = os.getcwd()
@@ -48,7 +48,7 @@ def lint_json(args, cwd=None):
 
 def write_example(example: dict, folder: Path) -> Path:
     """Materialise a catalogue example; returns the path to lint."""
-    from urdfcheck.rulebook import example_files
+    from urdfcheck.rules.catalogue import example_files
 
     for name, content in example_files(example).items():
         p = folder / name

@@ -1,8 +1,8 @@
 """Baselines: --write-baseline records findings without line numbers; --baseline fails only on new ones."""
 import json
 
-from urdfcheck import baseline
-from urdfcheck.findings import Finding, Location, Severity
+from urdfcheck.report import baseline
+from urdfcheck.core.findings import Finding, Location, Severity
 
 from conftest import run_cli
 from samples import MACROS

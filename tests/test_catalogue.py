@@ -3,8 +3,8 @@ import re
 
 import pytest
 
-from urdfcheck import rulebook
-from urdfcheck.findings import Severity
+from urdfcheck.rules import catalogue as rulebook
+from urdfcheck.core.findings import Severity
 
 from conftest import example_args, lint_json, write_example
 
@@ -72,4 +72,4 @@ def test_index_is_up_to_date():
 
     index = json.loads((rulebook.catalogue_dir() / rulebook.INDEX).read_text(encoding="utf-8"))
     assert index == json.loads(json.dumps(rulebook.read_entries())), \
-        "rules/index.json is stale: regenerate it with `PYTHONPATH=src python -m urdfcheck.rulebook`"
+        "rules/index.json is stale: regenerate it with `PYTHONPATH=src python -m urdfcheck.rules.catalogue`"

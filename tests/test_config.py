@@ -8,8 +8,8 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 import pytest  # noqa: E402
 
-from urdfcheck.config import ConfigError, auto_variants, boolean_args, find_config, load_config  # noqa: E402
-from urdfcheck.findings import Severity  # noqa: E402
+from urdfcheck.pipeline.config import ConfigError, auto_variants, boolean_args, find_config, load_config  # noqa: E402
+from urdfcheck.core.findings import Severity  # noqa: E402
 
 URDF = '<robot name="r"><link name="base_link"/></robot>\n'
 XACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">

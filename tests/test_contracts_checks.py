@@ -7,13 +7,13 @@ SRC = Path(__file__).resolve().parent.parent / "src"
 if str(SRC) not in sys.path:  # runnable without an editable install
     sys.path.insert(0, str(SRC))
 
-from urdfcheck import engine  # noqa: E402
-from urdfcheck.build import model_from_string  # noqa: E402
+from urdfcheck.rules import engine  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
 from urdfcheck.contracts.consumers import Consumers, consumers_for_model, discover_consumers  # noqa: E402
 from urdfcheck.contracts.controllers import read_controllers  # noqa: E402
 from urdfcheck.contracts.launch import parse_launch  # noqa: E402
 from urdfcheck.contracts.params import parse_params  # noqa: E402
-from urdfcheck.findings import Severity  # noqa: E402
+from urdfcheck.core.findings import Severity  # noqa: E402
 
 from conftest import run_cli  # noqa: E402
 
@@ -279,7 +279,7 @@ packages: {{diff_drive_controller: {d}}}
 
 def test_corpus_ros2_demo_is_consistent(corpus):
     d = corpus / "ros-controls+ros2_control_demos"
-    from urdfcheck.loader import load_model
+    from urdfcheck.load.loader import load_model
 
     pk = {"ros2_control_demo_description": str(d / "ros2_control_demo_description"),
           "ros2_control_demo_example_2": str(d / "example_2/description")}
@@ -294,7 +294,7 @@ def test_corpus_ros2_demo_is_consistent(corpus):
 
 
 def test_consumers_for_model_reports_unreadable_files(tmp_path):
-    from urdfcheck.config import load_config
+    from urdfcheck.pipeline.config import load_config
 
     write_pkg(tmp_path, robot(), {"config/bad.yaml": "x: [\n", "launch/a.launch.xml": "<launch><node</launch>"})
     (tmp_path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/bot.urdf\n    controllers: [config/bad.yaml]\n"

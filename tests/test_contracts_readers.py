@@ -8,8 +8,7 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 import pytest  # noqa: E402
 
-from urdfcheck.contracts.controllers import (DIFF_DRIVE, FORWARD, JSB, JSC, JTC, DriverSpec,  # noqa: E402
-                                             load_controllers, read_controllers, read_driver)
+from urdfcheck.contracts.controllers import DIFF_DRIVE, FORWARD, JSB, JSC, JTC, DriverSpec, load_controllers, read_controllers, read_driver
 from urdfcheck.contracts.discover import discover  # noqa: E402
 from urdfcheck.contracts.localization import localization_from_params  # noqa: E402
 from urdfcheck.contracts.params import parse_params, read_params  # noqa: E402

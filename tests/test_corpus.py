@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from urdfcheck.lint import entry_models
+from urdfcheck.pipeline.run import entry_models
 
 from conftest import CORPUS, REPO, lint_json
 

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from urdfcheck import rulebook
+from urdfcheck.rules import catalogue as rulebook
 
 from conftest import REPO, lint_json, run_cli
 

@@ -6,9 +6,10 @@ from pathlib import Path
 
 import pytest
 
-from urdfcheck import build as buildmod
-from urdfcheck import fastbuild, xmlfront
-from urdfcheck.findings import Location
+from urdfcheck.model import build as buildmod
+from urdfcheck.model import fastbuild
+from urdfcheck.core import xmlfront
+from urdfcheck.core.findings import Location
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
 from gen_urdf import generate  # noqa: E402

@@ -3,8 +3,8 @@ import textwrap
 
 import pytest
 
-from urdfcheck import loader
-from urdfcheck.build import model_from_string
+from urdfcheck.load import loader
+from urdfcheck.model.build import model_from_string
 
 from conftest import lint_json, run_cli
 

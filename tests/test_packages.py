@@ -1,7 +1,7 @@
 """Package resolution without ROS: explicit map, ament index, ROS_PACKAGE_PATH, workspace scan."""
 from pathlib import Path
 
-from urdfcheck.packages import Resolver
+from urdfcheck.load.packages import Resolver
 
 
 def pkg(folder: Path, name: str) -> Path:
@@ -59,7 +59,7 @@ def test_install_layout_path_falls_back_to_the_source_layout(tmp_path):
 
 
 def test_the_enclosing_package_is_found_without_a_workspace_scan(tmp_path, monkeypatch):
-    import urdfcheck.packages as packages
+    import urdfcheck.load.packages as packages
 
     mine = pkg(tmp_path / "ws" / "mine", "mine")
     sibling = pkg(tmp_path / "ws" / "sibling", "sibling")

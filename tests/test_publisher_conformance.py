@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from urdfcheck.build import model_from_string
+from urdfcheck.model.build import model_from_string
 from urdfcheck.publisher import JointState, StatePublisher
 
 pytestmark = pytest.mark.conformance

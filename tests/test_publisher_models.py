@@ -4,9 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from urdfcheck.build import model_from_string
-from urdfcheck.publisher import (JointState, StatePublisher, TransformLookupError, configuration_joints, link_poses,
-                                 lookup)
+from urdfcheck.model.build import model_from_string
+from urdfcheck.publisher import JointState, StatePublisher, TransformLookupError, configuration_joints, link_poses, lookup
 
 EPS = 0.01  # the C++ tests' tolerance
 

@@ -3,9 +3,8 @@ import math
 
 import pytest
 
-from urdfcheck.build import model_from_string
-from urdfcheck.publisher import (ROS1, ROS2, JointState, JointStateError, Stamp, StatePublisher,
-                                 TransformLookupError, lookup, lookup_matrix)
+from urdfcheck.model.build import model_from_string
+from urdfcheck.publisher import ROS1, ROS2, JointState, JointStateError, Stamp, StatePublisher, TransformLookupError, lookup, lookup_matrix
 from urdfcheck.publisher.kinematics import kdl_sign, quat_from_matrix, rot_from_quat
 
 ARM = """<robot name="arm">
@@ -247,7 +246,7 @@ def test_lookup_is_tf2_echo_semantics(arm):
     m = lookup_matrix(arm, "cam", "base")
     assert back.translation == pytest.approx((m[0][3], m[1][3], m[2][3]))
     # (cam in base) * (base in cam) = identity
-    from urdfcheck.geometry import compose
+    from urdfcheck.core.geometry import compose
 
     ident = compose(lookup_matrix(arm, "base", "cam"), m)
     assert flat(ident) == pytest.approx(flat([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]), abs=1e-12)

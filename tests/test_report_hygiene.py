@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
-from urdfcheck.findings import Finding, Location, Severity
-from urdfcheck.lint import Result, Target
+from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 
 from conftest import run_cli

@@ -2,9 +2,9 @@
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from urdfcheck import rulebook
-from urdfcheck.findings import Finding, Location, Severity
-from urdfcheck.lint import Result, Target
+from urdfcheck.rules import catalogue as rulebook
+from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 
 from conftest import run_cli

@@ -2,8 +2,8 @@
 import re
 from pathlib import Path
 
-from urdfcheck.findings import Finding, Location, Severity
-from urdfcheck.lint import Result, Target
+from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 from urdfcheck.report.markdown import MAX_CHARS, md, mermaid
 

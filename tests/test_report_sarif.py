@@ -5,9 +5,9 @@ from pathlib import Path
 import jsonschema
 import pytest
 
-from urdfcheck import rulebook
-from urdfcheck.findings import Finding, Location, Severity
-from urdfcheck.lint import Result, Target
+from urdfcheck.rules import catalogue as rulebook
+from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 
 from conftest import run_cli

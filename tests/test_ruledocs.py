@@ -4,7 +4,7 @@ import re
 
 import pytest
 
-from urdfcheck import rulebook, ruledocs
+from urdfcheck.rules import catalogue as rulebook, docs as ruledocs
 
 from conftest import REPO, run_cli
 

@@ -7,10 +7,10 @@ import random
 
 import pytest
 
-from urdfcheck import engine
-from urdfcheck.build import model_from_string
-from urdfcheck.checks.inertial import principal_moments
-from urdfcheck.findings import Severity
+from urdfcheck.rules import engine
+from urdfcheck.model.build import model_from_string
+from urdfcheck.rules.checks.inertial import principal_moments
+from urdfcheck.core.findings import Severity
 
 
 def run(xml: str, select=("I",), options=None):
@@ -48,7 +48,7 @@ def _rotate(diag, rot):
 
 
 def _random_rotation(rng):
-    from urdfcheck.geometry import rpy_matrix
+    from urdfcheck.core.geometry import rpy_matrix
 
     return rpy_matrix(rng.uniform(-math.pi, math.pi), rng.uniform(-1.5, 1.5), rng.uniform(-math.pi, math.pi))
 

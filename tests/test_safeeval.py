@@ -10,8 +10,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from xacro import substitution_args as subst
 
-from urdfcheck.xacro.safeeval import (Evaluator, Limits, Refused, default_evaluator, evaluate_substitution,
-                                      validate)
+from urdfcheck.load.xacro.safeeval import Evaluator, Limits, Refused, default_evaluator, evaluate_substitution, validate
 
 # ----------------------------------------------------------------------------------------------
 # Differential test against eval()

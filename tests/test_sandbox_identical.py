@@ -4,9 +4,9 @@ from pathlib import Path
 
 import pytest
 
-from urdfcheck import loader, worker
-from urdfcheck.lint import entry_models
-from urdfcheck.packages import Resolver
+from urdfcheck.load import loader, worker
+from urdfcheck.pipeline.run import entry_models
+from urdfcheck.load.packages import Resolver
 
 from conftest import CORPUS, REPO
 

@@ -15,8 +15,8 @@ import yaml  # noqa: E402
 from hypothesis import HealthCheck, Phase, find, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from urdfcheck.config import SCHEMA_PATH  # noqa: E402
-from urdfcheck.schemagate import verdict  # noqa: E402
+from urdfcheck.pipeline.config import SCHEMA_PATH  # noqa: E402
+from urdfcheck.pipeline.schemagate import verdict  # noqa: E402
 
 SCHEMA = json.loads(SCHEMA_PATH.read_text(encoding="utf-8"))
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA)

@@ -4,8 +4,9 @@ import os
 
 import pytest
 
-from urdfcheck import engine, suppress
-from urdfcheck.findings import Finding, Location, Severity
+from urdfcheck.rules import engine
+from urdfcheck.core import suppress
+from urdfcheck.core.findings import Finding, Location, Severity
 
 from conftest import run_cli
 

@@ -1,4 +1,4 @@
-"""urdfcheck.verify: publisher vs Pinocchio / yourdfpy, deltas, and peers that crash, run out of memory or hang."""
+"""urdfcheck.verify.compare: publisher vs Pinocchio / yourdfpy, deltas, and peers that crash, run out of memory or hang."""
 import math
 import os
 import signal
@@ -8,9 +8,9 @@ import pytest
 
 np = pytest.importorskip("numpy")
 
-from urdfcheck import verify as V  # noqa: E402
-from urdfcheck.build import model_from_string  # noqa: E402
-from urdfcheck.findings import Severity  # noqa: E402
+from urdfcheck.verify import compare as V  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
+from urdfcheck.core.findings import Severity  # noqa: E402
 
 from conftest import run_cli  # noqa: E402
 
@@ -209,7 +209,7 @@ def test_cli_verify_exit_codes(tmp_path):
 
 
 def test_cli_verify_exits_1_on_a_disagreement(tmp_path, monkeypatch):
-    import urdfcheck.verify as verify_mod
+    import urdfcheck.verify.compare as verify_mod
 
     good = tmp_path / "arm.urdf"
     good.write_text(ARM)

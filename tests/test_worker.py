@@ -14,9 +14,9 @@ import importlib  # noqa: E402
 
 import pytest  # noqa: E402
 
-from urdfcheck import loader, worker  # noqa: E402
+from urdfcheck.load import loader, worker  # noqa: E402
 
-lint = importlib.import_module("urdfcheck.lint")  # the package's `lint` attribute is the API function
+lint = importlib.import_module("urdfcheck.pipeline.run")  # the package's `lint` attribute is the API function
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the worker forks")
 
@@ -133,7 +133,8 @@ def test_retain_keeps_each_parsed_document_and_changes_no_finding(tmp_path):
 def test_only_the_console_entry_pauses_the_collector_and_keeps_documents(tmp_path):
     import gc
 
-    from urdfcheck import cli, runlint
+    from urdfcheck.cli import main as cli
+    from urdfcheck.pipeline import command as runlint
 
     p = _targets(tmp_path, 1)[0].path
     before = len(runlint._UNTIL_EXIT)
@@ -185,7 +186,7 @@ def test_the_console_entry_runs_atexit_handlers_and_keeps_the_exit_code(tmp_path
     code = ("import atexit, sys; "
             f"atexit.register(lambda: open({str(flag)!r}, 'w').write('ran')); "
             f"sys.argv = ['urdfcheck', 'lint', '--no-config', {str(bad)!r}]; "
-            "from urdfcheck.cli import run; run()")
+            "from urdfcheck.cli.main import run; run()")
     env = dict(os.environ, PYTHONPATH=str(SRC) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
     assert proc.returncode == 1, proc.stderr  # findings

@@ -11,24 +11,24 @@ from __future__ import annotations
 __version__ = "0.1.0"
 __all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadError", "__version__"]
 
-from .findings import Finding, Location, Severity  # noqa: E402  (tiny, no heavy imports)
+from urdfcheck.core.findings import Finding, Location, Severity  # noqa: E402  (tiny, no heavy imports)
 
 
 def load(path, args=None, **options):
-    from .loader import load_model
+    from urdfcheck.load.loader import load_model
 
     return load_model(path, args, **options)
 
 
 def expand(path, args=None, **options):
-    from .loader import expand as _expand
+    from urdfcheck.load.loader import expand as _expand
 
     return _expand(path, args, **options)
 
 
 def lint(paths, args=None, *, select=("ALL",), ignore=(), packages=None, **options):
-    from . import engine
-    from .lint import lint_targets, targets_for
+    from urdfcheck.rules import engine
+    from urdfcheck.pipeline.run import lint_targets, targets_for
 
     if isinstance(paths, (str, bytes)) or hasattr(paths, "__fspath__"):
         paths = [paths]
@@ -38,7 +38,7 @@ def lint(paths, args=None, *, select=("ALL",), ignore=(), packages=None, **optio
 
 def __getattr__(name):
     if name == "LoadError":
-        from .loader import LoadError
+        from urdfcheck.load.loader import LoadError
 
         return LoadError
     raise AttributeError(name)

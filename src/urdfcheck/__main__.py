@@ -1,3 +1,3 @@
-from .cli import run
+from urdfcheck.cli.main import run
 
 run()

@@ -43,7 +43,7 @@ class _ConfigProblem(Exception):
 
 def _find_config(rootdir: Path) -> str | None:
     try:
-        from . import config as cfgmod
+        from urdfcheck.pipeline import config as cfgmod
     except ImportError:
         for name in ("urdfcheck.yaml", ".urdfcheck.yaml"):
             if (rootdir / name).is_file():
@@ -75,8 +75,8 @@ def _setup(config) -> SimpleNamespace | None:
 
 
 def _prepare(state, config) -> None:
-    from . import runlint
-    from .findings import Severity
+    from urdfcheck.pipeline import command as runlint
+    from urdfcheck.core.findings import Severity
 
     ns = SimpleNamespace(paths=[] if state.config_path else [str(state.rootdir)], config=state.config_path,
                          no_config=state.config_path is None, args=[], packages=[], select=[], ignore=[])
@@ -155,7 +155,7 @@ class UrdfcheckItem(pytest.Item):
     def runtest(self):
         if self.state.error is not None:
             raise UrdfcheckFailure(f"invalid urdfcheck config: {self.state.error}")
-        from .lint import _dedupe, lint_target
+        from urdfcheck.pipeline.run import _dedupe, lint_target
 
         findings, _model = lint_target(self.target, self.state.selection, trusted=self.state.trusted,
                                        allow_env=self.state.allow_env, config=self.state.cfg,
@@ -167,8 +167,8 @@ class UrdfcheckItem(pytest.Item):
             self.add_report_section("call", "urdfcheck (below the fail level)", "\n".join(_line(f) for f in below))
         if failing:
             n = len(failing)
-            from .findings import clean_text
-            from .loader import display
+            from urdfcheck.core.findings import clean_text
+            from urdfcheck.load.loader import display
 
             head = (f"{n} urdfcheck finding{'s' if n != 1 else ''} at or above {self.state.fail_on} "
                     f"in {clean_text(display(self.target.path), 4096)}"
@@ -185,7 +185,7 @@ class UrdfcheckItem(pytest.Item):
 
 
 def _line(f) -> str:
-    from .findings import clean_text
+    from urdfcheck.core.findings import clean_text
 
     out = f"{clean_text(str(f.location), 4096)}: {f.code} [{f.severity}] {clean_text(f.message)}"
     for v in f.location.via:

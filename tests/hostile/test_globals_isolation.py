@@ -5,7 +5,7 @@ import math
 
 from conftest import run_cli
 from hostile_arena import arena, line_of  # noqa: F401 (fixture)
-from urdfcheck import loader, worker
+from urdfcheck.load import loader, worker
 
 REAL = f"pi_{math.pi}_{math.pi}_{math.cos(math.pi)}"
 

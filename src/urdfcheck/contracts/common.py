@@ -3,8 +3,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..findings import Location
-from ..records import FrozenRecord
+from urdfcheck.core.findings import Location
+from urdfcheck.core.records import FrozenRecord
 
 
 class ConsumerError(Exception):
@@ -50,7 +50,7 @@ def read_capped(path, max_bytes: int, what: str = "file") -> bytes:
     """The bytes of a consumer file, refusing one over `max_bytes`. Raises ConsumerError."""
     import os
 
-    from ..packages import leaves_cwd
+    from urdfcheck.load.packages import leaves_cwd
 
     file = str(path)
     if leaves_cwd(file):

@@ -13,14 +13,14 @@ import os
 from pathlib import Path
 from typing import Mapping
 
-from ..findings import Location
-from .common import ConsumerError
-from .controllers import ControllerSet, Driver, read_controllers, read_driver
-from .graph import TFClaim, claims_from_owners
-from .launch import LaunchInfo, read_launch
-from .localization import LocalizationNode, localization_from_params
-from .params import ParamFile, read_params
-from ..records import Record
+from urdfcheck.core.findings import Location
+from urdfcheck.contracts.common import ConsumerError
+from urdfcheck.contracts.controllers import ControllerSet, Driver, read_controllers, read_driver
+from urdfcheck.contracts.graph import TFClaim, claims_from_owners
+from urdfcheck.contracts.launch import LaunchInfo, read_launch
+from urdfcheck.contracts.localization import LocalizationNode, localization_from_params
+from urdfcheck.contracts.params import ParamFile, read_params
+from urdfcheck.core.records import Record
 
 DEFAULT_FRAMES = {"map": "map", "odom": "odom", "base": "base_link"}
 
@@ -114,7 +114,7 @@ def _read_launch(paths, out: Consumers, args=None, packages=None, reader: _Reade
     run together, so what they include runs too). Each file is read once, with the arguments of its first
     appearance; an include is not followed when its file or condition is not literal, or when it lies
     outside the including file's package and the known packages."""
-    from .launchparams import _allowed_roots, _inside
+    from urdfcheck.contracts.launchparams import _allowed_roots, _inside
 
     queue = [(str(p), args, 0) for p in paths]
     seen: set[str] = set()
@@ -151,7 +151,7 @@ def _read_launch(paths, out: Consumers, args=None, packages=None, reader: _Reade
     for li in out.launch:
         out.notes.extend(li.notes)
     if len(out.controllers) and any(li.param_sets for li in out.launch):
-        from .launchparams import apply_launch_params
+        from urdfcheck.contracts.launchparams import apply_launch_params
 
         r = reader or _Reader()
         out.notes.extend(apply_launch_params(out.controllers, out.launch, lambda f: r.params(f, []), packages or {}))
@@ -197,7 +197,7 @@ def _package_root(entry: str) -> Path | None:
 
 def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | None = None) -> Consumers | None:
     """Consumers found next to a model without a config; None when the model is in no ROS package."""
-    from .discover import discover
+    from urdfcheck.contracts.discover import discover
 
     root = _package_root(entry)
     if root is None:
@@ -246,7 +246,7 @@ def _names_a_joint(pf: ParamFile, joints: set[str]) -> bool:
 
 
 def _mentions(path: str, name: str) -> bool:
-    from ..packages import leaves_cwd
+    from urdfcheck.load.packages import leaves_cwd
 
     if leaves_cwd(path):
         return False

@@ -31,10 +31,10 @@ from __future__ import annotations
 import os
 from typing import Iterable, Mapping, Sequence, NamedTuple
 
-from ..findings import Location
-from .common import ConsumerError, Value, as_bool, as_float, as_str_list
-from .params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
-from ..records import Record
+from urdfcheck.core.findings import Location
+from urdfcheck.contracts.common import ConsumerError, Value, as_bool, as_float, as_str_list
+from urdfcheck.contracts.params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
+from urdfcheck.core.records import Record
 
 # --- controller kinds --------------------------------------------------------------------------------
 DIFF_DRIVE = "diff_drive"

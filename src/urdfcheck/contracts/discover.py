@@ -53,7 +53,7 @@ def _walk(root: str, max_files: int):
 
 
 def _read_head(path: str, trusted: bool = False) -> str:
-    from ..packages import leaves_cwd
+    from urdfcheck.load.packages import leaves_cwd
 
     if not trusted and leaves_cwd(path):  # a committed symlink out of the checkout: its target is none of our business
         return ""
@@ -151,7 +151,7 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
             params.append(path)
         if low.endswith(LAUNCH_SUFFIXES) and any(p in LAUNCH_DIRS for p in parts):
             launches.append(path)
-    from ..packages import leaves_cwd
+    from urdfcheck.load.packages import leaves_cwd
 
     # a model file linked out of the working directory is listed as a model, so that the loader names it
     # (X014) instead of it silently dropping out of the run; nothing behind the link is read

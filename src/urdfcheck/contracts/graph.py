@@ -21,8 +21,8 @@ from __future__ import annotations
 
 from typing import Iterable, Mapping, Sequence, NamedTuple
 
-from ..findings import Location
-from ..records import Record
+from urdfcheck.core.findings import Location
+from urdfcheck.core.records import Record
 
 STATIC = "static"
 DYNAMIC = "dynamic"

@@ -36,11 +36,11 @@ from typing import Any, Mapping, NamedTuple
 
 from lxml import etree
 
-from .. import geometry
-from ..findings import Location
-from .common import ConsumerError, Value, as_bool
-from ..records import FrozenRecord, Record
-from .yamlsrc import YamlDoc, parse_yaml
+from urdfcheck.core import geometry
+from urdfcheck.core.findings import Location
+from urdfcheck.contracts.common import ConsumerError, Value, as_bool
+from urdfcheck.core.records import FrozenRecord, Record
+from urdfcheck.contracts.yamlsrc import YamlDoc, parse_yaml
 
 MAX_BYTES = 2 * 1024 * 1024
 MAX_ELEMENTS = 100_000
@@ -229,7 +229,7 @@ class _Subst:
 
 
 def _own(path: str) -> tuple[str | None, str | None]:
-    from ..packages import own_package
+    from urdfcheck.load.packages import own_package
 
     name, folder = own_package(path)
     return name, (str(folder) if folder is not None else None)
@@ -810,7 +810,7 @@ class _PyReader:
         for c in calls:
             if self._callee(c) == "Node":
                 self.node(c)
-        from .pyinclude import find_includes
+        from urdfcheck.contracts.pyinclude import find_includes
 
         own: list = []
 
@@ -957,7 +957,7 @@ def parse_launch(data: bytes | str, path: str, *, args: Mapping[str, str] | None
 def read_launch(path: str | os.PathLike, *, args: Mapping[str, str] | None = None,
                 packages: Mapping[str, str] | None = None) -> LaunchInfo:
     """Read a launch file. Raises ConsumerError (unreadable, too large, bad syntax)."""
-    from .common import read_capped
+    from urdfcheck.contracts.common import read_capped
 
     file = str(path)
     return parse_launch(read_capped(file, MAX_BYTES, "launch file"), file, args=args, packages=packages)

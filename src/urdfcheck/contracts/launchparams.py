@@ -25,10 +25,10 @@ import os
 from pathlib import Path
 from typing import Callable, Iterable, Mapping
 
-from .common import Value
-from .controllers import Controller, ControllerSet, finish_controller
-from .launch import LaunchInfo, ParamSet, RosparamLoad
-from .params import ParamFile
+from urdfcheck.contracts.common import Value
+from urdfcheck.contracts.controllers import Controller, ControllerSet, finish_controller
+from urdfcheck.contracts.launch import LaunchInfo, ParamSet, RosparamLoad
+from urdfcheck.contracts.params import ParamFile
 
 
 def _ns_join(ns: str, rest: str) -> str:
@@ -59,7 +59,7 @@ def _inside(path: str, roots: Iterable[str]) -> bool:
 
 def _allowed_roots(li: LaunchInfo, packages: Mapping[str, str]) -> list[str]:
     """Where a launch file may load parameter files from: its own package and the known packages."""
-    from ..packages import enclosing_package
+    from urdfcheck.load.packages import enclosing_package
 
     roots = [os.path.realpath(p) for p in packages.values()]
     own = enclosing_package(Path(os.path.abspath(li.path)))

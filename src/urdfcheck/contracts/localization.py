@@ -15,9 +15,9 @@ from __future__ import annotations
 import re
 from typing import Iterable, NamedTuple
 
-from ..findings import Location
-from .common import Value, as_bool
-from .params import NodeParams, ParamFile
+from urdfcheck.core.findings import Location
+from urdfcheck.contracts.common import Value, as_bool
+from urdfcheck.contracts.params import NodeParams, ParamFile
 
 _RL_INPUT = re.compile(r"^(odom|imu|pose|twist)\d+$")
 

@@ -22,10 +22,10 @@ import os
 import re
 from typing import Iterable
 
-from ..findings import Location
-from .common import ConsumerError, Value
-from ..records import Record
-from .yamlsrc import MAX_BYTES, YamlDoc, load_yaml, parse_yaml
+from urdfcheck.core.findings import Location
+from urdfcheck.contracts.common import ConsumerError, Value
+from urdfcheck.core.records import Record
+from urdfcheck.contracts.yamlsrc import MAX_BYTES, YamlDoc, load_yaml, parse_yaml
 
 ROS2_KEY = "ros__parameters"
 

@@ -12,8 +12,8 @@ import ast
 import os
 from typing import Callable
 
-from ..findings import Location
-from .common import as_bool
+from urdfcheck.core.findings import Location
+from urdfcheck.contracts.common import as_bool
 
 _SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAMLLaunchDescriptionSource",
             "AnyLaunchDescriptionSource", "FrontendLaunchDescriptionSource"}
@@ -160,7 +160,7 @@ def find_includes(tree: ast.AST, path: str, literal: Callable, find_package: Cal
                   inherited: dict | None = None) -> list:
     """The includes of a Python launch file, as `launch.Include` records, in source order. `inherited`: the
     launch configurations the including file knows, which ROS 2 passes on to every included file."""
-    from .launch import Include
+    from urdfcheck.contracts.launch import Include
 
     paths = _Paths(tree, path, literal, find_package)
     calls = sorted((n for n in ast.walk(tree) if isinstance(n, ast.Call) and _callee(n) == "IncludeLaunchDescription"),

@@ -9,13 +9,11 @@ from __future__ import annotations
 import re
 from typing import Iterator
 
-from ..findings import Location, Problem, closest
-from .consumers import Consumers, discover_consumers
-from .controllers import JSB, JSC
-from .graph import (PublisherInfo, TFGraph, add_declared, claims_from_localization, claims_from_model,
-                    claims_from_odom, claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners,
-                    multiple_parents, not_one_tree, prefix_collisions, static_and_dynamic)
-from .wheels import DEFAULT_ANGLE_TOLERANCE, DEFAULT_TOLERANCE, check_drive
+from urdfcheck.core.findings import Location, Problem, closest
+from urdfcheck.contracts.consumers import Consumers, discover_consumers
+from urdfcheck.contracts.controllers import JSB, JSC
+from urdfcheck.contracts.graph import PublisherInfo, TFGraph, add_declared, claims_from_localization, claims_from_model, claims_from_odom, claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents, not_one_tree, prefix_collisions, static_and_dynamic
+from urdfcheck.contracts.wheels import DEFAULT_ANGLE_TOLERANCE, DEFAULT_TOLERANCE, check_drive
 
 _UNRESOLVED = re.compile(r"\$\(|\$\{")
 

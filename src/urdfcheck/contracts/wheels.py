@@ -30,10 +30,10 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
-from .. import geometry as G
-from ..findings import Location, Severity
-from .controllers import DriveSpec, JointUse
-from ..records import FrozenRecord, Record
+from urdfcheck.core import geometry as G
+from urdfcheck.core.findings import Location, Severity
+from urdfcheck.contracts.controllers import DriveSpec, JointUse
+from urdfcheck.core.records import FrozenRecord, Record
 
 DEFAULT_TOLERANCE = 1e-3  # m
 DEFAULT_ANGLE_TOLERANCE = 1e-3  # rad

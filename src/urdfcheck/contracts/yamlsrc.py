@@ -24,9 +24,9 @@ from typing import Any, Iterator
 import yaml
 from yaml.constructor import SafeConstructor
 
-from ..findings import Location
-from .common import ConsumerError
-from ..records import Record
+from urdfcheck.core.findings import Location
+from urdfcheck.contracts.common import ConsumerError
+from urdfcheck.core.records import Record
 
 MAX_BYTES = 2 * 1024 * 1024
 MAX_NODES = 100_000
@@ -350,7 +350,7 @@ def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_
 
 def load_yaml(path: str | os.PathLike, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES) -> YamlDoc:
     """Read and parse a YAML file. Raises ConsumerError (unreadable, too large, bad YAML, bomb)."""
-    from .common import read_capped
+    from urdfcheck.contracts.common import read_capped
 
     file = str(path)
     return parse_yaml(read_capped(file, max_bytes), file, max_bytes=max_bytes, max_nodes=max_nodes)

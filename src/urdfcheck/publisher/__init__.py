@@ -16,11 +16,11 @@ Nothing here imports numpy, Pinocchio or yourdfpy at import time.
 """
 from __future__ import annotations
 
-from .batch import configuration_joints, link_poses
-from .kinematics import KinematicTree, Note, Segment, kinematic_tree
-from .lookup import TransformLookupError, lookup, lookup_matrix
-from .messages import JointState, Stamp, Transform, stamp_from_ns, to_ns
-from .state import PROFILES, ROS1, ROS2, JointStateError, Profile, StatePublisher, get_profile
+from urdfcheck.publisher.batch import configuration_joints, link_poses
+from urdfcheck.publisher.kinematics import KinematicTree, Note, Segment, kinematic_tree
+from urdfcheck.publisher.lookup import TransformLookupError, lookup, lookup_matrix
+from urdfcheck.publisher.messages import JointState, Stamp, Transform, stamp_from_ns, to_ns
+from urdfcheck.publisher.state import PROFILES, ROS1, ROS2, JointStateError, Profile, StatePublisher, get_profile
 
 __all__ = [
     "JointState", "Transform", "Stamp", "stamp_from_ns", "to_ns",

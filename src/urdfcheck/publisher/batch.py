@@ -4,7 +4,7 @@ numpy is imported inside the functions; importing this module costs nothing.
 """
 from __future__ import annotations
 
-from .kinematics import KinematicTree, kinematic_tree, rot_from_quat
+from urdfcheck.publisher.kinematics import KinematicTree, kinematic_tree, rot_from_quat
 
 
 def configuration_joints(model) -> list[str]:

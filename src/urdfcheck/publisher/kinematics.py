@@ -21,7 +21,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Callable
 
-from .messages import Stamp, Transform
+from urdfcheck.publisher.messages import Stamp, Transform
 
 MOVABLE = ("revolute", "continuous", "prismatic")
 KNOWN_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
@@ -119,7 +119,7 @@ def rpy_from_matrix(m) -> tuple[float, float, float]:
 class Segment:
     """One URDF joint as a KDL segment (parent link -> child link)."""
 
-    joint: object  # urdfcheck.model.Joint
+    joint: object  # urdfcheck.model.robot.Joint
     name: str
     parent: str
     child: str

@@ -7,9 +7,9 @@ coordinates).
 """
 from __future__ import annotations
 
-from ..geometry import compose, identity, inverse
-from .kinematics import kinematic_tree, matrix_from_tq, quat_from_matrix
-from .messages import Transform, stamp_from_ns, to_ns
+from urdfcheck.core.geometry import compose, identity, inverse
+from urdfcheck.publisher.kinematics import kinematic_tree, matrix_from_tq, quat_from_matrix
+from urdfcheck.publisher.messages import Transform, stamp_from_ns, to_ns
 
 
 class TransformLookupError(LookupError):

@@ -104,7 +104,7 @@ class Transform(NamedTuple):
 
     def matrix(self) -> tuple:
         """4x4 nested tuples."""
-        from .kinematics import matrix_from_tq
+        from urdfcheck.publisher.kinematics import matrix_from_tq
 
         return matrix_from_tq(self.translation, self.rotation)
 

@@ -29,8 +29,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from .kinematics import KinematicTree, Note, kinematic_tree
-from .messages import NS, JointState, Stamp, Transform, stamp_from_ns, to_ns
+from urdfcheck.publisher.kinematics import KinematicTree, Note, kinematic_tree
+from urdfcheck.publisher.messages import NS, JointState, Stamp, Transform, stamp_from_ns, to_ns
 
 
 class JointStateError(ValueError):

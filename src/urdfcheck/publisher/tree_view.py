@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import json
 
-from ..findings import clean_text
-from .kinematics import kinematic_tree
+from urdfcheck.core.findings import clean_text
+from urdfcheck.publisher.kinematics import kinematic_tree
 
 
 def publication(seg) -> str:
@@ -15,7 +15,7 @@ def publication(seg) -> str:
 
 
 def tree_data(model, frame_prefix: str = "", profile="ros2") -> dict:
-    from .state import get_profile
+    from urdfcheck.publisher.state import get_profile
 
     prof = get_profile(profile)
     tree = kinematic_tree(model)

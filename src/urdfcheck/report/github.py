@@ -9,7 +9,7 @@ every line this module prints starts with `::<level> ` or is a fixed summary.
 """
 from __future__ import annotations
 
-from ..findings import Severity, clean_text
+from urdfcheck.core.findings import Severity, clean_text
 
 COMMANDS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "notice"}
 

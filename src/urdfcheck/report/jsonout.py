@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import json
 
-from ..findings import clean_text
+from urdfcheck.core.findings import clean_text
 
 SCHEMA_VERSION = 1
 
@@ -16,7 +16,7 @@ def location(loc) -> dict:
 
 
 def as_dict(result) -> dict:
-    from .. import __version__
+    from urdfcheck import __version__
 
     counts = {"error": 0, "warning": 0, "info": 0}
     for f in result.findings:

@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 
-from ..findings import Severity, clean_text
+from urdfcheck.core.findings import Severity, clean_text
 
 # XML 1.0 cannot carry these at all, even escaped (clean_text already removed C0/C1 controls)
 _NOT_XML = re.compile("[^\u0009\u000a\u000d\u0020-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
@@ -24,20 +24,20 @@ def x(text: object, limit: int = 4096) -> str:
 
 
 def families() -> list[str]:
-    from .. import rulebook
+    from urdfcheck.rules import catalogue as rulebook
 
     return sorted({r.family for r in rulebook.catalogue().values()})
 
 
 def family_of(code: str) -> str:
-    from .. import rulebook
+    from urdfcheck.rules import catalogue as rulebook
 
     info = rulebook.catalogue().get(code)
     return info.family if info else OTHER_FAMILY
 
 
 def _display(path) -> str:
-    from ..loader import display
+    from urdfcheck.load.loader import display
 
     try:
         return display(path)

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import re
 
-from ..findings import Severity, clean_text
-from .junit import by_target
+from urdfcheck.core.findings import Severity, clean_text
+from urdfcheck.report.junit import by_target
 
 MAX_CHARS = 60_000
 MAX_ROWS = 200

@@ -15,7 +15,7 @@ from collections import Counter
 from pathlib import PurePosixPath
 from urllib.parse import quote
 
-from ..findings import Location, Severity, clean_text
+from urdfcheck.core.findings import Location, Severity, clean_text
 
 SCHEMA_URI = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
 INFORMATION_URI = "https://pypi.org/project/urdfcheck/"
@@ -65,7 +65,7 @@ def physical(loc: Location) -> dict:
 
 
 def _rule(r) -> dict:
-    from .. import ruledocs
+    from urdfcheck.rules import docs as ruledocs
 
     return {
         "id": r.code,
@@ -84,14 +84,15 @@ def _fallback_rule(code: str, name: str) -> dict:
 
 
 def fingerprint(f) -> str:
-    from ..baseline import normalise_message, portable_path
+    from urdfcheck.report.baseline import normalise_message, portable_path
 
     text = "\x1f".join([f.code, portable_path(f.location.file), normalise_message(f.message)])
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
 
 
 def as_dict(result) -> dict:
-    from .. import __version__, rulebook
+    from urdfcheck import __version__
+    from urdfcheck.rules import catalogue as rulebook
 
     cat = rulebook.catalogue()
     rules = [_rule(cat[c]) for c in sorted(cat)]

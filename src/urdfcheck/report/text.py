@@ -1,7 +1,7 @@
 """Human text: grouped by file, `file:line:col  CODE  message`, colour on a terminal, one summary line."""
 from __future__ import annotations
 
-from ..findings import Severity, clean_text
+from urdfcheck.core.findings import Severity, clean_text
 
 _COLOURS = {Severity.ERROR: "\x1b[31m", Severity.WARNING: "\x1b[33m", Severity.INFO: "\x1b[36m"}
 _BOLD, _DIM, _RESET = "\x1b[1m", "\x1b[2m", "\x1b[0m"

@@ -1,0 +1,449 @@
+"""Subcommands `tf`, `publish`, `tree` and `verify` (wired into cli.py by ``add_parsers``).
+
+Each loads the model with the loader (xacro arguments via ``--arg NAME:=VALUE``); a model that cannot be
+loaded prints the loader's findings and exits 1. ``verify`` exits 1 when a peer disagrees beyond the
+tolerance or could not run to completion (crash, out of memory, time-out, refused, not installed).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import sys
+
+EXIT_OK, EXIT_FAIL, EXIT_USAGE = 0, 1, 2
+
+
+class _Usage(Exception):
+    pass
+
+
+# --- shared ---------------------------------------------------------------------------------------------------
+
+
+def _joint_value(text: str):
+    sep = ":=" if ":=" in text else "="
+    if sep not in text:
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    k, v = text.split(sep, 1)
+    try:
+        value = float(v)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"joint value {v!r} of {k!r} is not a number") from None
+    if not k:
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    return k, value
+
+
+def _add_load_options(p: argparse.ArgumentParser) -> None:
+    from urdfcheck.cli.main import add_load_options
+
+    add_load_options(p)
+
+
+def _loader():
+    from urdfcheck.load import loader
+
+    return loader
+
+
+def _load_options(ns) -> dict:
+    from urdfcheck.cli.main import _load_kwargs
+
+    return _load_kwargs(ns)
+
+
+def _print_findings(findings) -> None:
+    from urdfcheck.core.findings import clean_text
+
+    for f in findings:
+        print(f"{f.location}: {f.code} {clean_text(f.message)}", file=sys.stderr)
+
+
+def _load(ns, want_xml: bool = False):
+    """(model, xml or None), or None after printing the load findings."""
+    if not os.path.isfile(ns.model):
+        raise _Usage(f"no such file: {ns.model}")
+    loader = _loader()
+    args = dict(getattr(ns, "args", None) or [])
+    opts = _load_options(ns)
+    if want_xml and hasattr(loader, "expand") and hasattr(loader, "build_model"):
+        exp = loader.expand(ns.model, args, **opts)
+        from urdfcheck.core.findings import Severity
+
+        errors = [f for f in exp.findings if f.severity >= Severity.ERROR]
+        if exp.root is None or errors:
+            _print_findings(errors or exp.findings)
+            return None
+        try:
+            xml = exp.clean_text()
+        except Exception:
+            xml = None
+        return loader.build_model(exp), xml
+    try:
+        model = loader.load_model(ns.model, args, **opts)
+    except loader.LoadError as e:
+        _print_findings(e.findings)
+        return None
+    return model, None
+
+
+def _run(fn):
+    def wrapped(ns) -> int:
+        try:
+            return fn(ns)
+        except _Usage as e:
+            print(f"urdfcheck {ns.command}: error: {e}", file=sys.stderr)
+            return EXIT_USAGE
+
+    return wrapped
+
+
+def add_parsers(subparsers) -> None:
+    p = subparsers.add_parser("tf", help="transform between two frames for given joint values (like tf2_echo)",
+                              description="Print the pose of TARGET in SOURCE (what `tf2_echo SOURCE TARGET` "
+                              "prints) from the transforms robot_state_publisher would publish.")
+    p.add_argument("model", metavar="MODEL")
+    p.add_argument("source", metavar="SOURCE", help="reference frame (tf2_echo's first argument)")
+    p.add_argument("target", metavar="TARGET", help="frame whose pose is printed")
+    p.add_argument("--joint", action="append", default=[], type=_joint_value, metavar="NAME=VALUE",
+                   help="joint position (rad or m; repeatable)")
+    p.add_argument("--zero-missing", action="store_true",
+                   help="movable joints without --joint are at 0 (default: an error naming them)")
+    p.add_argument("--format", choices=["text", "json"], default="text")
+    p.add_argument("--precision", type=int, default=6, help="decimals in text output (default 6)")
+    _add_load_options(p)
+    p.set_defaults(func=_run(cmd_tf))
+
+    p = subparsers.add_parser("publish", help="what robot_state_publisher would publish for joint states",
+                              description="Replay JointState messages (JSON or YAML list, each with name, "
+                              "position and stamp) and print, message by message, the transforms "
+                              "robot_state_publisher would put on /tf_static and /tf, as JSON.")
+    p.add_argument("model", metavar="MODEL")
+    p.add_argument("--joint-states", required=True, metavar="FILE",
+                   help="JSON or YAML: a list of {name: [...], position: [...], stamp: SECONDS|[sec, nanosec]}")
+    p.add_argument("--profile", choices=["ros2", "ros1"], default="ros2")
+    p.add_argument("--publish-frequency", type=float, default=None, metavar="HZ",
+                   help="default 20 (ros2) or 50 (ros1)")
+    p.add_argument("--ignore-timestamp", action="store_true")
+    p.add_argument("--frame-prefix", default="", metavar="PREFIX",
+                   help="ros2 frame_prefix (prepended verbatim) or ros1 tf_prefix ('prefix/frame')")
+    p.add_argument("--no-tf-static", dest="use_tf_static", action="store_false", default=None,
+                   help="ros1 use_tf_static:=false: fixed transforms go on /tf every publish interval")
+    _add_load_options(p)
+    p.set_defaults(func=_run(cmd_publish))
+
+    p = subparsers.add_parser("tree", help="the TF tree robot_state_publisher builds (static/dynamic edges)")
+    p.add_argument("model", metavar="MODEL")
+    p.add_argument("--format", choices=["text", "mermaid", "dot", "json"], default="text")
+    p.add_argument("--frame-prefix", default="", metavar="PREFIX")
+    p.add_argument("--profile", choices=["ros2", "ros1"], default="ros2")
+    _add_load_options(p)
+    p.set_defaults(func=_run(cmd_tree))
+
+    p = subparsers.add_parser("verify", help="check the publisher against Pinocchio and yourdfpy",
+                              description="Sample seeded configurations inside the joint limits and compare the "
+                              "link poses from the published transforms with Pinocchio and yourdfpy. Exit 1 when "
+                              "a peer disagrees beyond the tolerance or could not run (crash, out of memory, "
+                              "time-out, refused; Pinocchio not installed). Where the tools genuinely differ "
+                              "(planar, floating, zero axis, ...) the links are left out and a V002 delta says why.")
+    p.add_argument("model", metavar="MODEL")
+    p.add_argument("-n", "--configurations", dest="n", type=int, default=1000, metavar="N")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--tolerance", type=float, default=1e-9, help="metres and radians (default 1e-9)")
+    p.add_argument("--format", choices=["text", "json"], default="text")
+    p.add_argument("--no-yourdfpy", action="store_true", help="compare with Pinocchio only")
+    p.add_argument("--yourdfpy-samples", type=int, default=None, metavar="N",
+                   help="configurations checked with yourdfpy (slow; default 50, 0 = all)")
+    p.add_argument("--peer-timeout", type=float, default=None, metavar="SECONDS",
+                   help="wall-clock limit for each peer (default 120)")
+    p.add_argument("--peer-memory", type=float, default=None, metavar="GIB",
+                   help="address space each peer may add (default 2 GiB)")
+    p.add_argument("--max-dof", type=int, default=None, help="refuse Pinocchio above this many DoF (default 256)")
+    p.add_argument("--max-depth", type=int, default=None,
+                   help="refuse Pinocchio above this chain depth (default 1000)")
+    _add_load_options(p)
+    p.set_defaults(func=_run(cmd_verify))
+
+
+# --- tf ---------------------------------------------------------------------------------------------------------
+def cmd_tf(ns) -> int:
+    from urdfcheck.core.findings import clean_text
+    from urdfcheck.publisher import TransformLookupError, lookup_matrix
+    from urdfcheck.publisher.kinematics import quat_from_matrix, rpy_from_matrix
+
+    loaded = _load(ns)
+    if loaded is None:
+        return EXIT_FAIL
+    model, _ = loaded
+    joints = dict(ns.joint)
+    unknown = [k for k in joints if k not in model.joints]
+    if unknown:
+        raise _Usage("not joints of the model: " + ", ".join(clean_text(k) for k in unknown))
+    try:
+        m = lookup_matrix(model, ns.source, ns.target, joints, default=0.0 if ns.zero_missing else None)
+    except TransformLookupError as e:
+        raise _Usage(clean_text(str(e)))
+    t = [m[0][3], m[1][3], m[2][3]]
+    q = list(quat_from_matrix(m))
+    rpy = list(rpy_from_matrix(m))
+    if ns.format == "json":
+        print(json.dumps({"source": ns.source, "target": ns.target, "joints": joints, "translation": t,
+                          "rotation": q, "rpy": rpy, "rpy_degrees": [math.degrees(a) for a in rpy],
+                          "matrix": [list(r) for r in m]}, indent=2))
+        return EXIT_OK
+    d = max(0, ns.precision)
+
+    def vec(v):
+        return "[" + ", ".join(f"{x:.{d}f}" for x in v) + "]"
+
+    print(f"Pose of {clean_text(ns.target)} in {clean_text(ns.source)} (tf2_echo {clean_text(ns.source)} "
+          f"{clean_text(ns.target)})")
+    print(f"- Translation: {vec(t)}")
+    print(f"- Rotation: in Quaternion (xyzw) {vec(q)}")
+    print(f"- Rotation: in RPY (radian) {vec(rpy)}")
+    print(f"- Rotation: in RPY (degree) {vec([math.degrees(a) for a in rpy])}")
+    print("- Matrix:")
+    for row in m:
+        print("  " + " ".join(f"{x:{d + 4}.{d}f}" for x in row))
+    if any(x != x for x in t + q):
+        print("warning: NaN: a joint on the path has a zero axis (robot_state_publisher publishes NaN too)",
+              file=sys.stderr)
+    return EXIT_OK
+
+
+# --- publish ----------------------------------------------------------------------------------------------------
+def _read_joint_states(path: str) -> list:
+    try:
+        with open(path, "rb") as f:
+            data = f.read(64 * 1024 * 1024 + 1)
+    except OSError as e:
+        raise _Usage(f"cannot read {path}: {e.strerror}") from None
+    if len(data) > 64 * 1024 * 1024:
+        raise _Usage(f"{path} is larger than 64 MiB")
+    text = data.decode("utf-8", "replace")
+    try:
+        doc = json.loads(text)
+        docs = [doc]
+    except ValueError:
+        import yaml
+
+        try:
+            docs = [d for d in yaml.safe_load_all(text) if d is not None]
+        except yaml.YAMLError as e:
+            raise _Usage(f"{path} is neither JSON nor YAML: {e}") from None
+    msgs = []
+    for d in docs:
+        if isinstance(d, dict) and isinstance(d.get("messages"), list):
+            d = d["messages"]
+        if isinstance(d, list):
+            msgs.extend(d)
+        else:
+            msgs.append(d)
+    return msgs
+
+
+def _tf_dict(t) -> dict:
+    return {"parent": t.parent, "child": t.child, "translation": list(t.translation),
+            "rotation": list(t.rotation), "stamp": {"sec": t.stamp.sec, "nanosec": t.stamp.nanosec}}
+
+
+def cmd_publish(ns) -> int:
+    from urdfcheck.publisher import JointState, JointStateError, StatePublisher
+
+    raw = _read_joint_states(ns.joint_states)
+    loaded = _load(ns)
+    if loaded is None:
+        return EXIT_FAIL
+    model, _ = loaded
+    try:
+        pub = StatePublisher(model, profile=ns.profile, frame_prefix=ns.frame_prefix,
+                             publish_frequency=ns.publish_frequency, ignore_timestamp=ns.ignore_timestamp,
+                             use_tf_static=ns.use_tf_static)
+    except ValueError as e:
+        raise _Usage(str(e)) from None
+    first_stamp = 0.0
+    for r in raw:
+        try:
+            first_stamp = JointState.from_dict(r).stamp
+            break
+        except (TypeError, ValueError):
+            continue
+    start = pub.startup(first_stamp)
+    out = {
+        "model": model.name,
+        "profile": pub.profile.name,
+        "publish_frequency": pub.publish_frequency,
+        "publish_interval_ns": pub.publish_interval_ns,
+        "frame_prefix": pub.frame_prefix,
+        "ignore_timestamp": pub.ignore_timestamp,
+        "use_tf_static": pub.profile.use_tf_static,
+        "notes": [{"code": n.code, "joint": n.joint, "message": n.message} for n in pub.notes],
+        "startup": {"/tf_static": [_tf_dict(t) for t in start.get("/tf_static", [])], "/tf": []},
+        "messages": [],
+    }
+    errors = 0
+    for i, r in enumerate(raw):
+        entry = {"index": i}
+        try:
+            msg = JointState.from_dict(r)
+        except (TypeError, ValueError) as e:
+            entry.update({"error": f"not a JointState: {e}", "/tf_static": [], "/tf": []})
+            out["messages"].append(entry)
+            errors += 1
+            continue
+        st = msg.stamp_ns
+        entry["stamp"] = {"sec": st // 1_000_000_000, "nanosec": st % 1_000_000_000}
+        fixed = pub.tick(msg.stamp)
+        try:
+            tfs = pub.on_joint_state(msg)
+        except JointStateError as e:
+            entry.update({"error": str(e), "/tf_static": [], "/tf": [_tf_dict(t) for t in fixed]})
+            out["messages"].append(entry)
+            errors += 1
+            continue
+        entry.update({"published": not pub.last_throttled, "throttled": pub.last_throttled,
+                      "/tf_static": [], "/tf": [_tf_dict(t) for t in fixed + tfs]})
+        if pub.last_unknown:
+            entry["unknown_joints"] = list(pub.last_unknown)
+        if pub.last_ignored:
+            entry["ignored_joints"] = list(pub.last_ignored)
+        out["messages"].append(entry)
+    json.dump(out, sys.stdout, indent=2)
+    sys.stdout.write("\n")
+    if errors:
+        print(f"urdfcheck publish: {errors} message(s) rejected (see \"error\" in the output)", file=sys.stderr)
+    return EXIT_OK
+
+
+# --- tree -------------------------------------------------------------------------------------------------------
+def cmd_tree(ns) -> int:
+    from urdfcheck.publisher.tree_view import render
+
+    loaded = _load(ns)
+    if loaded is None:
+        return EXIT_FAIL
+    model, _ = loaded
+    print(render(model, ns.format, ns.frame_prefix, ns.profile))
+    return EXIT_OK
+
+
+# --- verify -----------------------------------------------------------------------------------------------------
+class _Progress:
+    """One status line on a terminal, shown only once a run has lasted `delay` seconds."""
+
+    def __init__(self, stream, delay: float = 0.5):
+        import time
+
+        self.stream = stream
+        self.state: dict[str, float] = {}
+        self.shown = False
+        self.clock = time.monotonic
+        self.start = self.clock()
+        self.delay = delay
+
+    def __call__(self, stage: str, done: int, total: int) -> None:
+        self.state[stage] = done / total if total else 1.0
+        if not self.shown and self.clock() - self.start < self.delay:
+            return
+        line = "verify: " + "  ".join(f"{k} {int(v * 100):3d}%" for k, v in self.state.items())
+        self.stream.write("\r" + line + "\x1b[K")
+        self.stream.flush()
+        self.shown = True
+
+    def close(self) -> None:
+        if self.shown:
+            self.stream.write("\r\x1b[K")
+            self.stream.flush()
+
+
+def _fmt_err(x: float) -> str:
+    return f"{x:.2e}" if math.isfinite(x) else str(x)
+
+
+def format_report(report) -> str:
+    from urdfcheck.core.findings import clean_text
+
+    lines = [f"verify {clean_text(report.model)} ({clean_text(report.source)}): {report.configurations} "
+             f"configurations, seed {report.seed}, tolerance {report.tolerance:g}, "
+             f"{len(report.joints)} independent joints"]
+    label = {"batch": "publisher vs batch FK", "pinocchio": "pinocchio", "yourdfpy": "yourdfpy"}
+    for p in report.peers:
+        name = label.get(p.name, p.name) + (f" {p.version}" if p.version else "")
+        if p.ran:
+            w = p.worst
+            lines.append(f"  {name:<28} {p.status:<9} max {_fmt_err(p.max_translation)} m, "
+                         f"{_fmt_err(p.max_rotation)} rad over {len(p.links)} links"
+                         + (f" (worst {clean_text(w.link)})" if w and p.status != "ok" else "")
+                         + (f"; {clean_text(p.detail)}" if p.detail and p.name != "batch" else ""))
+            for e in p.failing()[:10]:
+                lines.append(f"      {clean_text(e.link)}: {_fmt_err(e.translation)} m, {_fmt_err(e.rotation)} rad "
+                             f"(configuration {e.configuration})")
+            if p.excluded:
+                lines.append(f"      not compared: {len(p.excluded)} link(s): " +
+                             ", ".join(f"{clean_text(k)} [{v}]" for k, v in list(p.excluded.items())[:5]) +
+                             (" ..." if len(p.excluded) > 5 else ""))
+        else:
+            lines.append(f"  {name:<28} {p.status}" + (f": {clean_text(p.detail)}" if p.detail else ""))
+        if p.stderr.strip() and (not p.ran or p.status == "mismatch"):
+            lines.append("      output:")
+            out_lines = p.stderr.strip().splitlines()
+            for ln in out_lines[:12]:
+                lines.append("        " + clean_text(ln))
+            if len(out_lines) > 12:
+                lines.append(f"        ... ({len(out_lines) - 12} more lines)")
+    if report.deltas:
+        lines.append("semantic deltas:")
+        for d in report.deltas:
+            lines.append(f"  {d.loc or report.source}: V002 {clean_text(d.message)}")
+    lines.append(f"result: {report.status} ({report.seconds:.2f} s)")
+    return "\n".join(lines)
+
+
+def cmd_verify(ns) -> int:
+    from urdfcheck.verify import compare as V
+
+    if ns.n < 1:
+        raise _Usage("-n must be at least 1")
+    if not os.path.isfile(ns.model):
+        raise _Usage(f"no such file: {ns.model}")
+    peers = ("pinocchio",) if ns.no_yourdfpy else ("pinocchio", "yourdfpy")
+    # fork the peers now: they import Pinocchio / yourdfpy while this process loads the model
+    pre = {}
+    if ns.peer_timeout is not None:
+        pre["timeout"] = ns.peer_timeout
+    if ns.peer_memory is not None:
+        pre["memory"] = int(ns.peer_memory * 1024**3)
+    workers = V.prestart(peers, **pre)
+    try:
+        loaded = _load(ns, want_xml=True)
+    except BaseException:
+        V.cancel(workers)
+        raise
+    if loaded is None:
+        V.cancel(workers)
+        return EXIT_FAIL
+    model, xml = loaded
+    kwargs = {"workers": workers}
+    if ns.yourdfpy_samples is not None:
+        kwargs["yourdfpy_samples"] = ns.yourdfpy_samples
+    if ns.peer_timeout is not None:
+        kwargs["timeout"] = ns.peer_timeout
+    if ns.peer_memory is not None:
+        kwargs["memory"] = int(ns.peer_memory * 1024**3)
+    if ns.max_dof is not None:
+        kwargs["max_dof"] = ns.max_dof
+    if ns.max_depth is not None:
+        kwargs["max_depth"] = ns.max_depth
+    progress = _Progress(sys.stderr) if sys.stderr.isatty() else None
+    try:
+        report = V.verify(model, ns.n, ns.seed, ns.tolerance, xml=xml, peers=peers, progress=progress, **kwargs)
+    finally:
+        if progress is not None:
+            progress.close()
+    if ns.format == "json":
+        print(json.dumps(report.to_dict(), indent=2))
+    else:
+        print(format_report(report))
+    return EXIT_OK if report.passed else EXIT_FAIL

@@ -1,0 +1,295 @@
+"""Load: path -> expanded XML with a source map (plain URDF or xacro) -> Model.
+
+Every failure is a located Finding; nothing here raises on bad input except `load_model`, which raises
+LoadError (carrying the findings) for callers that need a model or nothing.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from urdfcheck.core import xmlfront
+from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.load.packages import Resolver
+from urdfcheck.core.records import Record
+from urdfcheck.core.suppress import Suppression
+
+MAX_BYTES = xmlfront.MAX_BYTES
+XACRO_TIMEOUT = 20.0
+XACRO_MEMORY = 2 * 1024**3
+
+# Severity of load findings; the catalogue may override the names but these codes are fixed here
+# because loading happens before any rule runs.
+_LOAD_SEVERITY = {"X003": Severity.WARNING, "X016": Severity.WARNING}
+
+
+def display(path: str | os.PathLike) -> str:
+    """Path as shown in reports: relative to the working directory when below it."""
+    p = os.path.abspath(path)
+    cwd = os.getcwd()
+    if p == cwd or p.startswith(cwd.rstrip(os.sep) + os.sep):
+        return os.path.relpath(p, cwd)
+    return p
+
+
+XACRO_NS = "http://www.ros.org/wiki/xacro"
+
+
+def is_xacro(path: Path, root=None) -> bool:
+    """A .xacro file, or a file whose parsed tree uses xacro elements (some packages name them .urdf)."""
+    if path.name.endswith(".xacro"):
+        return True
+    if root is None:
+        return False
+    return next(root.iter("{" + XACRO_NS + "}*"), None) is not None  # lxml filters in C
+
+
+class Expanded(Record):
+    # entry: display path of the entry file
+    # root: lxml root element of the (expanded) document
+    # files: display paths, index = marker file index
+    # text: expanded XML with markers (xacro only)
+    _fields = ('entry', 'xacro', 'root', 'files', 'findings', 'suppressions', 'declared_args', 'args', 'text', 'resolver', '_cache')
+
+    def __init__(self, entry: str,
+                 xacro: bool,
+                 root: object | None = None,
+                 files: list[str] | None = None,
+                 findings: list[Finding] | None = None,
+                 suppressions: list[Suppression] | None = None,
+                 declared_args: dict | None = None,
+                 args: dict | None = None,
+                 text: str | None = None,
+                 resolver: Resolver | None = None,
+                 _cache: dict | None = None):
+        self.entry = entry
+        self.xacro = xacro
+        self.root = root
+        self.files = [] if files is None else files
+        self.findings = [] if findings is None else findings
+        self.suppressions = [] if suppressions is None else suppressions
+        self.declared_args = {} if declared_args is None else declared_args
+        self.args = {} if args is None else args
+        self.text = text
+        self.resolver = resolver
+        self._cache = {} if _cache is None else _cache
+
+    def clean_text(self) -> str:
+        """The expanded document exactly as stock xacro prints it (no source markers)."""
+        from urdfcheck.load.xacro.expand import STRIP_RE
+
+        if self.text is not None:
+            return STRIP_RE.sub("", self.text)
+        with open(self.entry, "rb") as f:
+            return f.read().decode("utf-8", "replace")
+
+    def locate(self, el) -> Location:
+        """Source location of an element of `root` (xacro markers or lxml line numbers)."""
+        if not self.xacro:  # a 10,000-link URDF asks 180,000 times: skip NamedTuple's keyword handling
+            return _new_location(Location, (self.entry, el.sourceline, None, ()))
+        from urdfcheck.load.xacro.expand import SRC_ATTR
+
+        node = el
+        while node is not None:
+            m = node.get(SRC_ATTR) if isinstance(node.tag, str) else None
+            if m:
+                loc = self._cache.get(m)
+                if loc is None:
+                    loc = self._cache[m] = self._decode(m)
+                return loc
+            node = node.getparent()
+        return Location(self.entry, None)
+
+    def _decode(self, marker: str) -> Location:
+        parts = []
+        for item in marker.split(";"):
+            if not item:
+                continue
+            i, _, line = item.partition(":")
+            try:
+                parts.append((self.files[int(i)], int(line)))
+            except (ValueError, IndexError):
+                continue
+        if not parts:
+            return Location(self.entry, None)
+        via = tuple(Location(f, ln) for f, ln in parts[1:])
+        return Location(parts[0][0], parts[0][1], via=via)
+
+
+_new_location = tuple.__new__
+
+
+def _finding(code: str, message: str, file: str, line: int | None = None, column: int | None = None,
+             via=()) -> Finding:
+    from urdfcheck.core.findings import clean_text
+
+    return Finding(code=code, severity=_LOAD_SEVERITY.get(code, Severity.ERROR), message=clean_text(message),
+                   location=Location(file, line, column, tuple(via)))
+
+
+def expand(path: str | os.PathLike, args: dict | None = None, **kwargs) -> Expanded:
+    """Read and (for xacro) expand one entry model. Problems are findings on the result."""
+    return begin(path, args, **kwargs).result()
+
+
+def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict | None = None,
+          trusted: bool = False, allow_env=(), timeout: float = XACRO_TIMEOUT,
+          memory: int = XACRO_MEMORY, environ: dict | None = None, max_elements: int | None = None) -> Pending:
+    """Start `expand`: a xacro file starts expanding in its worker now, and the caller works on meanwhile."""
+    p = Path(path)
+    shown = display(p)
+    escapes = not trusted and _links_outside(p, packages)
+    resolver = None if escapes else Resolver(packages, near=p.resolve(), environ=environ)
+    out = Expanded(entry=shown, xacro=False, files=[shown], args=dict(args or {}), resolver=resolver)
+    if escapes:  # a symlink committed in a pull request must not read the runner's files
+        out.findings.append(_finding("X014", "the model path is or goes through a symbolic link to outside the "
+                                             "package roots or the working directory; not read", shown))
+        return Pending(out)
+    try:
+        with open(p, "rb") as f:
+            data = f.read(MAX_BYTES + 1)
+    except OSError as e:
+        out.findings.append(_finding("X001", f"cannot read file: {e.strerror}", shown))
+        return Pending(out)
+    opts = (trusted, allow_env, timeout, memory, max_elements)
+    if is_xacro(p):
+        out.xacro = True
+        return Pending(out, job=_start_xacro(out, p, *opts))
+    return Pending(out, later=lambda: _read_plain(out, p, data, opts))
+
+
+class Pending:
+    """An expansion under way: `result()` gives the Expanded (waiting for the worker); `cancel()` drops it."""
+
+    __slots__ = ("_out", "_job", "_later")
+
+    def __init__(self, out: Expanded, job=None, later=None):
+        self._out, self._job, self._later = out, job, later
+
+    def result(self) -> Expanded:
+        job, later = self._job, self._later
+        self._job = self._later = None
+        if job is not None:
+            _finish_xacro(self._out, job.result())
+        elif later is not None:
+            later()
+        return self._out
+
+    def cancel(self) -> None:
+        if self._job is not None:
+            self._job.cancel()
+        self._job = self._later = None
+
+
+def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple) -> None:
+    shown = out.entry
+    try:
+        root, warnings = xmlfront.parse(data)
+    except xmlfront.XmlRefused as r:
+        out.findings.append(_finding(r.issue.code, r.issue.message, shown, r.issue.line, r.issue.column))
+        return
+    # the xacro namespace is in the bytes (the front end takes UTF-8 only and refuses entity declarations),
+    # unless spelled with character references: without either, skip searching a large tree for it
+    if (b"xacro" in data or b"&#" in data) and is_xacro(p, root):
+        out.xacro = True
+        _finish_xacro(out, _start_xacro(out, p, *opts).result())
+        return
+    for w in warnings:
+        out.findings.append(_finding(w.code, w.message, shown, w.line))
+    from urdfcheck.core.suppress import scan_comments
+
+    if b"urdfcheck" in data:  # comments keep their bytes: no such word, no suppression (skips a tree walk)
+        out.suppressions = [Suppression(shown, a, b, c, d) for a, b, c, d in scan_comments(root)]
+    out.root = root
+
+
+def _links_outside(p: Path, packages: dict | None) -> bool:
+    """The entry file is a symlink whose target lies outside the workspace around the link itself, or the
+    path leads out of the working directory through a linked folder."""
+    from urdfcheck.load.packages import leaves_cwd, workspace_root
+
+    lexical = Path(os.path.abspath(p))
+    if leaves_cwd(lexical, (packages or {}).values()):
+        return True
+    if not os.path.islink(lexical):
+        return False
+    real = os.path.realpath(lexical)
+    roots = [workspace_root(lexical.parent)] + [Path(v) for v in (packages or {}).values()]
+    for r in roots:
+        base = os.path.realpath(r)
+        if real == base or real.startswith(base.rstrip(os.sep) + os.sep):
+            return False
+    return True
+
+
+def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None):
+    from urdfcheck.load import worker
+    from urdfcheck.load.xacro import expand as xexpand
+
+    opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
+                           max_evals=max_elements)
+    xexpand.preload()
+    return worker.start(xexpand.expand, str(p), opts, timeout=timeout, memory=memory)
+
+
+def _finish_xacro(out: Expanded, res) -> None:
+    from urdfcheck.load import worker
+
+    if isinstance(res, worker.Failure):
+        what = {"timeout": "xacro expansion timed out", "memory": "xacro expansion ran out of memory",
+                "output": "xacro expansion produced too much output"}.get(res.kind, "xacro expansion failed")
+        code = "X012" if res.kind in ("timeout", "memory", "output") else "X010"
+        out.findings.append(_finding(code, f"{what}: {res.message}", out.entry, 1))
+        return
+    out.files = [display(f) for f in res["files"]] or [out.entry]
+    out.declared_args = dict(res.get("args", {}))
+    for idx, first, last, codes, cline in res["suppressions"]:
+        out.suppressions.append(Suppression(out.files[idx], first, last, codes, cline))
+    for idx, code, message, line in res.get("xml_warnings", []):
+        out.findings.append(_finding(code, message, out.files[idx], line))
+    for kind, text, marker in res.get("warnings", []):
+        if kind in ("warning", "error") and text.strip():
+            loc = out._decode(marker) if marker else Location(out.entry, None)
+            out.findings.append(Finding("X016", Severity.WARNING, f"xacro {kind}: " + _short(text), loc))
+    err = res.get("error")
+    if err is not None:
+        loc = out._decode(err["marker"]) if err.get("marker") else Location(out.entry, None)
+        out.findings.append(_finding(err["code"], err["message"], loc.file, loc.line, via=loc.via))
+        return
+    out.text = res["xml"]
+    try:
+        root, _ = xmlfront.parse(out.text.encode("utf-8"))
+    except xmlfront.XmlRefused as r:
+        out.findings.append(_finding(r.issue.code, "expanded document: " + r.issue.message, out.entry))
+        return
+    out.root = root
+
+
+def _short(text: str) -> str:
+    from urdfcheck.core.findings import clean_text
+
+    return clean_text(text.strip().splitlines()[0] if text.strip() else text)
+
+
+class LoadError(Exception):
+    def __init__(self, findings: list[Finding]):
+        super().__init__("; ".join(f"{f.location}: {f.code} {f.message}" for f in findings) or "cannot load")
+        self.findings = findings
+
+
+def build_model(exp: Expanded):
+    """Model for an expanded document, or None when there is no document."""
+    if exp.root is None:
+        return None
+    from urdfcheck.model.build import build
+
+    return build(exp.root, exp.locate, exp.entry)
+
+
+def load_model(path, args: dict | None = None, **kwargs):
+    """Model or LoadError. For `tree`, `tf`, `publish`, `verify` and API users."""
+    exp = expand(path, args, **kwargs)
+    errors = [f for f in exp.findings if f.severity >= Severity.ERROR]
+    if exp.root is None or errors:
+        raise LoadError(errors or exp.findings)
+    return build_model(exp)

@@ -1,0 +1,382 @@
+"""Run the PyPI xacro package as a library, with source markers and (by default) the sandbox.
+
+This module patches xacro's module globals, so it must only run inside a throw-away worker process
+(see worker.py): the parent never executes xacro code, so nothing leaks from one file to the next.
+
+Source map: every element read from a file gets an attribute `__ucsrc="F:L"` (file index, line).
+When an element is first evaluated, the macro call sites active at that moment are appended
+("F:L;F2:L2;..." innermost call first). The markers survive macro cloning because they are plain
+attributes; they are stripped from the output for `urdfcheck expand`.
+"""
+from __future__ import annotations
+
+import io
+import os
+import re
+import sys
+import xml.dom.minidom
+from xml.dom import expatbuilder
+
+from urdfcheck.core import xmlfront
+
+SRC_ATTR = "__ucsrc"
+STRIP_RE = re.compile(r' __ucsrc="[^"]*"')
+BUILTINS = {"include", "property", "macro", "arg", "element", "attribute", "if", "unless",
+            "insert_block", "call"}
+MAX_INCLUDES = 5000
+MAX_FILE_BYTES = 16 * 1024 * 1024
+# Elements evaluated. The largest corpus model (PR2) evaluates ~2 800; a 1.2 KB macro bomb reaches 10 000 in
+# about a second, where 400 000 took minutes (xacro's cost per element grows with the document). Trusted
+# (own) files keep a larger budget.
+MAX_EVALS = 20_000  # ~1 s of expansion; PR2, the largest corpus model, evaluates 2,786 elements
+MAX_EVALS_TRUSTED = 400_000
+# Budgets for one expansion, far above what real models use (corpus maxima: 868 items iterated by all
+# ${...}, one value of 768 characters, 153 000 characters of values in all), low enough that the worst
+# input stays within about a second.
+MAX_EXPR_ITER = 500_000  # items iterated by all ${...} together
+MAX_VALUE = 1_000_000  # characters/items of one value
+MAX_TEXT = 8 * 1024 * 1024  # characters of evaluated attribute and text values in all (macro-cloned bulk)
+
+
+class Refusal(Exception):
+    """A construct the sandbox will not run. `code` is the finding code."""
+
+    def __init__(self, code: str, message: str):
+        super().__init__(message)
+        self.code = code
+        self.message = message
+
+
+class Options:
+    def __init__(self, mappings=None, trusted=False, allow_env=(), resolver=None, max_evals=None):
+        self.mappings = dict(mappings or {})
+        self.trusted = trusted
+        self.allow_env = set(allow_env)
+        self.resolver = resolver
+        self.max_evals = max_evals or (MAX_EVALS_TRUSTED if trusted else MAX_EVALS)
+
+
+class _State:
+    def __init__(self):
+        self.files: list[str] = []
+        self.file_index: dict[str, int] = {}
+        self.calls: list[str] = []  # active macro call sites (markers), outermost first
+        self.frames: list[list] = []  # [element marker, builtin marker] per eval_all level
+        self.evals = 0
+        self.text = 0
+        self.suppressions: list[tuple] = []
+        self.warnings: list[tuple[str, str | None]] = []
+        self.declared_args: dict[str, str] = {}
+        self.xml_warnings: list[tuple] = []
+
+    def index(self, path: str) -> int:
+        if path not in self.file_index:
+            self.file_index[path] = len(self.files)
+            self.files.append(path)
+        return self.file_index[path]
+
+
+def _line_builder(state: _State, idx: int):
+    class LineBuilder(expatbuilder.ExpatBuilderNS):
+        def start_element_handler(self, name, attributes):
+            super().start_element_handler(name, attributes)
+            node = self.curNode
+            node.setAttribute(SRC_ATTR, f"{idx}:{self._parser.CurrentLineNumber}")
+
+    return LineBuilder()
+
+
+def _collect_suppressions(state: _State, idx: int, root) -> None:
+    from urdfcheck.core.suppress import scan_comments
+
+    state.suppressions.extend((idx,) + s for s in scan_comments(root))
+
+
+def preload() -> None:
+    """Import what `expand` needs, in the calling process.
+
+    Called before forking the worker: each child then inherits the modules instead of importing them
+    again (a package with argument variants forks once per variant), and PyYAML, which xacro imports,
+    is already there for the contract readers. Importing runs no user input.
+    """
+    import xacro  # noqa: F401
+    from xacro import substitution_args  # noqa: F401
+
+    from urdfcheck.load.xacro import safeeval, yamlguard  # noqa: F401
+
+
+def expand(path: str, opts: Options) -> dict:
+    """Expand `path`. Returns a dict (picklable): xml (marked), files, suppressions, warnings, args.
+
+    Errors are returned, not raised: {"error": {"code", "message", "marker"}}.
+    """
+    import xacro
+    from xacro import substitution_args as subst
+
+    state = _State()
+    resolver = opts.resolver
+    out: dict = {"files": state.files, "suppressions": state.suppressions, "warnings": state.warnings,
+                 "args": state.declared_args, "xml_warnings": state.xml_warnings}
+
+    # --- fresh module state: nothing survives from an earlier run -------------------------
+    xacro.all_includes = []
+    xacro.substitution_args_context = {}
+    xacro.root_dir = os.curdir
+    xacro.verbosity = 1
+    xacro.filestack = None
+    xacro.macrostack = None
+
+    orig_eval_all = xacro.eval_all
+    orig_handle_macro_call = xacro.handle_macro_call
+    orig_check_attrs = xacro.check_attrs
+    orig_eval_extension = xacro.eval_extension
+    orig_eval_text = xacro.eval_text
+
+    def marker_of(node):
+        if node.nodeType == node.ELEMENT_NODE and node.hasAttribute(SRC_ATTR):
+            return node.getAttribute(SRC_ATTR)
+        return None
+
+    def annotate(node):
+        m = marker_of(node)
+        if m is not None and ";" not in m:
+            node.setAttribute(SRC_ATTR, m + ";" + ";".join(reversed(state.calls)))
+
+    def eval_all(node, macros, symbols):
+        state.evals += 1
+        if state.evals > opts.max_evals:
+            raise Refusal("X012", f"expansion evaluated more than {opts.max_evals} elements "
+                                  "(a macro that multiplies itself?)")
+        annotate(node)
+        state.frames.append([marker_of(node) or (state.frames[-1][0] if state.frames else None), None])
+        try:
+            orig_eval_all(node, macros, symbols)
+        except BaseException as e:
+            if getattr(e, "_uc_marker", None) is None:
+                frame = state.frames[-1]
+                try:
+                    e._uc_marker = frame[1] or frame[0]
+                except AttributeError:
+                    pass
+            raise
+        finally:
+            state.frames.pop()
+
+    def handle_macro_call(node, macros, symbols):
+        if not node.tagName.startswith("xacro:"):
+            return False
+        site = node.getAttribute(SRC_ATTR) if node.hasAttribute(SRC_ATTR) else None
+        if site is not None:
+            node.removeAttribute(SRC_ATTR)
+            site = site.split(";")[0]
+        # block arguments were written at the call site: give them the outer call chain first
+        for child in node.getElementsByTagName("*"):
+            annotate(child)
+        if site is not None:
+            state.calls.append(site)
+        try:
+            return orig_handle_macro_call(node, macros, symbols)
+        except BaseException as e:
+            if getattr(e, "_uc_marker", None) is None and site is not None:
+                try:
+                    e._uc_marker = ";".join([site] + list(reversed(state.calls[:-1])))
+                except AttributeError:
+                    pass
+            raise
+        finally:
+            if site is not None:
+                state.calls.pop()
+
+    def check_attrs(tag, required, optional):
+        if tag.hasAttribute(SRC_ATTR):
+            m = tag.getAttribute(SRC_ATTR).split(";")[0]
+            tag.removeAttribute(SRC_ATTR)
+            if state.frames:
+                state.frames[-1][1] = ";".join([m] + list(reversed(state.calls)))
+        result = orig_check_attrs(tag, required, optional)
+        if tag.tagName == "xacro:arg" and result and result[0] is not None:
+            state.declared_args.setdefault(result[0], result[1] if len(result) > 1 else None)
+        return result
+
+    def parse(inp, filename=None):
+        if inp is not None:
+            return xml.dom.minidom.parseString(inp) if isinstance(inp, str) else inp
+        full = os.path.join(xacro.root_dir, filename)
+        # never stat a path outside the package roots (source_layout only maps paths inside them anyway)
+        if resolver is not None and resolver.allowed(full) and not os.path.exists(full):
+            full = str(resolver.source_layout(full) or full)
+        if len(state.files) >= MAX_INCLUDES:
+            raise Refusal("X012", f"more than {MAX_INCLUDES} files included")
+        if not opts.trusted and resolver is not None and not resolver.allowed(full):
+            raise Refusal("X014", f"refusing to read {filename!r}: it is outside the package roots")
+        try:
+            with open(full, "rb") as f:
+                data = f.read(MAX_FILE_BYTES + 1)
+        except OSError as e:
+            xacro.filestack.pop()  # as stock xacro does: the missing file is not "the current file"
+            raise xacro.XacroException(f"{e.strerror}: {e.filename}", exc=e)
+        idx = state.index(os.path.normpath(full))
+        try:
+            root, warnings = xmlfront.parse(data)
+        except xmlfront.XmlRefused as r:
+            err = Refusal(r.issue.code, r.issue.message)
+            err._uc_marker = f"{idx}:{r.issue.line or 1}"
+            raise err from None
+        for w in warnings:
+            state.xml_warnings.append((idx, w.code, w.message, w.line))
+        _collect_suppressions(state, idx, root)
+        builder = _line_builder(state, idx)
+        return builder.parseString(data)
+
+    def eval_text(text, symbols):
+        result = orig_eval_text(text, symbols)
+        if isinstance(result, str):
+            state.text += len(result)
+            if state.text > MAX_TEXT:
+                raise Refusal("X012", f"expansion produced more than {MAX_TEXT} characters of values "
+                                      "(a large value multiplied by macros?)")
+        return result
+
+    def eval_extension(s):
+        if s == "$(cwd)" and not opts.trusted:
+            raise Refusal("X015", "$(cwd) is refused in the sandbox (it copies the runner's path into the model)")
+        return orig_eval_extension(s)
+
+    def eval_env(name):
+        if not opts.trusted and name not in opts.allow_env:
+            raise Refusal("X015", f"$(env {name}) is refused: the variable is not allow-listed in the config")
+        return os.environ[name]
+
+    def eval_optenv(name, default=""):
+        if not opts.trusted and name not in opts.allow_env:
+            raise Refusal("X015", f"$(optenv {name}) is refused: the variable is not allow-listed in the config")
+        return os.environ.get(name, default)
+
+    def eval_find(pkg):
+        hit = resolver.find(pkg) if resolver is not None else None
+        if hit is None:
+            raise Refusal("X013", f"package {pkg!r} not found (pass --package {pkg}=PATH)")
+        return str(hit)
+
+    def collect(kind):
+        def note(*args, **kwargs):
+            kwargs.pop("print_location", None)
+            text = " ".join(str(a) for a in args)
+            frame = state.frames[-1] if state.frames else [None, None]
+            state.warnings.append((kind, text, frame[1] or frame[0]))
+        return note
+
+    units = getattr(xacro, "ConstructUnits", None)
+    orig_unit_constructor = getattr(units, "constructor", None)
+
+    def unit_constructor(unit, loader, node):
+        # a YAML tag such as !degrees evaluates its scalar: locate a failure at that YAML line
+        try:
+            return orig_unit_constructor(unit, loader, node)
+        except Exception as e:
+            if getattr(e, "_uc_marker", None) is None and getattr(node.start_mark, "name", None):
+                frame = state.frames[-1] if state.frames else [None, None]
+                where = f"{state.index(os.path.normpath(node.start_mark.name))}:{node.start_mark.line + 1}"
+                try:
+                    e._uc_marker = ";".join(m for m in (where, frame[1] or frame[0]) if m)
+                except AttributeError:
+                    pass
+            raise
+
+    if orig_unit_constructor is not None:
+        units.constructor = unit_constructor
+    xacro.eval_all = eval_all
+    xacro.handle_macro_call = handle_macro_call
+    xacro.check_attrs = check_attrs
+    xacro.parse = parse
+    xacro.eval_extension = eval_extension
+    xacro.eval_text = eval_text
+    xacro.warning = collect("warning")
+    xacro.message = collect("message")
+    xacro.error = collect("error")
+    subst._eval_env = eval_env
+    subst._eval_optenv = eval_optenv
+    subst._eval_find = eval_find
+
+    if not opts.trusted:
+        _install_sandbox(xacro, subst, resolver, {"env": eval_env, "optenv": eval_optenv, "find": eval_find})
+
+    sys.stderr = io.StringIO()  # print_location and friends write here; never to the user's terminal
+    try:
+        doc = xacro.process_file(path, mappings=dict(opts.mappings))
+        text = doc.toprettyxml(indent="  ")
+    except RecursionError:
+        out["error"] = {"code": "X012", "message": "expansion nested too deeply (recursive macro?)", "marker": None}
+        return out
+    except Refusal as e:
+        out["error"] = {"code": e.code, "message": e.message, "marker": getattr(e, "_uc_marker", None)}
+        return out
+    except Exception as e:
+        out["error"] = _describe(e, xacro)
+        return out
+    out["xml"] = text
+    out["deps"] = sorted(set(xacro.all_includes))
+    return out
+
+
+def _describe(e: BaseException, xacro) -> dict:
+    """Turn a xacro failure into {code, message, marker}, looking through wrapped exceptions."""
+    marker = getattr(e, "_uc_marker", None)
+    inner = e
+    seen = 0
+    while inner is not None and seen < 10:
+        seen += 1
+        if isinstance(inner, Refusal):
+            return {"code": inner.code, "message": inner.message, "marker": marker}
+        if _is_refused(inner):
+            expr = getattr(inner, "expr", "")
+            reason = getattr(inner, "reason", str(inner))
+            return {"code": "X011", "message": f"refused expression {expr!r}: {reason}",
+                    "marker": getattr(inner, "_uc_marker", None) or marker}  # e.g. the YAML line of a !degrees
+        nxt = getattr(inner, "exc", None) or inner.__cause__ or inner.__context__
+        inner = nxt if nxt is not inner else None
+    msg = str(e) or repr(e)
+    if type(e).__name__ == "ExpatError":
+        msg = f"XML parsing error: {msg}"
+    macros = [m.body.getAttribute("name") for m in reversed(xacro.macrostack or []) if m.body is not None]
+    if macros:
+        msg += " (in macro " + " <- ".join(macros) + ")"
+    return {"code": "X010", "message": msg.strip(), "marker": marker}
+
+
+def _is_refused(e) -> bool:
+    return type(e).__name__ == "Refused" and type(e).__module__.endswith("safeeval")
+
+
+def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
+    import functools
+
+    from urdfcheck.load.xacro import safeeval
+
+    def confined_load_yaml(filename):
+        full = xacro.abs_filename_spec(filename)
+        if resolver is not None and not resolver.allowed(full):
+            raise Refusal("X014", f"refusing to load YAML {filename!r}: it is outside the package roots")
+        from urdfcheck.load.xacro.yamlguard import YamlRefused, check_yaml_file
+        try:
+            check_yaml_file(full)
+        except YamlRefused as e:  # an alias bomb is an expansion limit (X012), not a xacro error
+            raise Refusal(e.code, e.message.replace(full, repr(filename))) from None
+        return orig_load_yaml(filename)
+
+    orig_load_yaml = xacro.load_yaml
+    symbols = xacro._global_symbols
+    symbols["load_yaml"] = confined_load_yaml
+    if "xacro" in symbols:
+        dict.__setitem__(symbols["xacro"], "load_yaml", confined_load_yaml)
+    # one budget for all expressions of the expansion: a cheap-looking loop repeated by macros adds up
+    evaluator = safeeval.default_evaluator(symbols, safeeval.Limits(
+        max_len=MAX_VALUE, max_alloc=5 * MAX_VALUE, max_total_iter=MAX_EXPR_ITER))
+
+    def safe_eval(expr, globals, locals=None):
+        return evaluator.evaluate(expr, globals)
+
+    xacro.safe_eval = safe_eval
+    # $(eval) sees env/optenv/find too (stock binds them at import time): give it the confined ones
+    functions = {**safeeval.default_substitution_functions(), **confined}
+    subst._eval = functools.partial(safeeval.evaluate_substitution, functions=functions, evaluator=evaluator)

@@ -1,0 +1,155 @@
+"""Rule registry: check functions (code) and their catalogue entries (top-level `rules/*.yaml`).
+
+The catalogue is the single source for a rule's name, default severity, summary, rationale, fix and
+examples: the engine, `urdfcheck rules`, the generated docs and SARIF metadata all read it.
+"""
+from __future__ import annotations
+
+import functools
+import importlib
+import pkgutil
+from pathlib import Path
+from typing import Callable, NamedTuple
+
+from urdfcheck.core.findings import Severity
+
+CHECKS: dict[str, Callable] = {}  # code -> check function (one function may serve several codes)
+_CHECK_PACKAGES = ("urdfcheck.rules.checks", "urdfcheck.contracts.registry")
+
+
+def check(*codes: str):
+    """Register `fn(model, ctx) -> Iterable[Problem]` for the given codes."""
+
+    def deco(fn):
+        fn.codes = codes
+        for c in codes:
+            if c in CHECKS and CHECKS[c] is not fn:
+                raise RuntimeError(f"rule {c} registered twice ({CHECKS[c].__name__}, {fn.__name__})")
+            CHECKS[c] = fn
+        return fn
+
+    return deco
+
+
+class RuleInfo(NamedTuple):
+    code: str
+    name: str
+    severity: Severity
+    family: str
+    summary: str
+    rationale: str = ""
+    fix: str = ""
+    examples: dict = {}  # always given by _info(); NamedTuple: cheap to define, immutable
+    options: dict = {}
+    path: str = ""
+
+
+class CatalogueError(Exception):
+    pass
+
+
+def catalogue_dir() -> Path:
+    """Installed wheels carry the catalogue inside the package; a source checkout reads `rules/`."""
+    package = Path(__file__).resolve().parent.parent
+    inside = package / "catalogue"
+    if inside.is_dir():
+        return inside
+    return package.parent.parent / "rules"
+
+
+_REQUIRED = ("code", "name", "severity", "family", "summary", "rationale", "fix", "examples")
+
+
+INDEX = "index.json"
+
+
+def read_entries(folder: Path | None = None) -> dict[str, dict]:
+    """Parse every rules/*.yaml (the source of truth)."""
+    import yaml
+
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    folder = folder or catalogue_dir()
+    out: dict[str, dict] = {}
+    for path in sorted(folder.glob("*.yaml")):
+        with open(path, encoding="utf-8") as f:
+            data = yaml.load(f, Loader=loader)
+        missing = [k for k in _REQUIRED if k not in (data or {})]
+        if missing:
+            raise CatalogueError(f"{path.name}: missing {', '.join(missing)}")
+        if path.stem != str(data["code"]):
+            raise CatalogueError(f"{path.name}: file name must be the code {data['code']}")
+        out[str(data["code"])] = data
+    return out
+
+
+def write_index(folder: Path | None = None) -> Path:
+    """rules/index.json: the parsed catalogue, so a lint run reads one JSON file instead of ~70 YAML
+    files. Generated; tests/test_catalogue.py fails when it is stale."""
+    import json
+
+    folder = folder or catalogue_dir()
+    path = folder / INDEX
+    path.write_text(json.dumps(read_entries(folder), indent=1, sort_keys=True, ensure_ascii=False) + "\n",
+                    encoding="utf-8")
+    return path
+
+
+@functools.lru_cache(maxsize=None)
+def catalogue() -> dict[str, RuleInfo]:
+    import json
+
+    folder = catalogue_dir()
+    index = folder / INDEX
+    if index.is_file():
+        with open(index, encoding="utf-8") as f:
+            entries = json.load(f)
+    else:
+        entries = read_entries(folder)
+    return {code: _info(data, str(folder / f"{code}.yaml")) for code, data in sorted(entries.items())}
+
+
+def _info(data: dict, path: str) -> RuleInfo:
+    return RuleInfo(
+        code=str(data["code"]), name=str(data["name"]), severity=Severity.parse(data["severity"]),
+        family=str(data["family"]), summary=str(data["summary"]).strip(),
+        rationale=str(data["rationale"]).strip(), fix=str(data["fix"]).strip(),
+        examples=dict(data["examples"] or {}), options=dict(data.get("options") or {}), path=path,
+    )
+
+
+@functools.lru_cache(maxsize=None)
+def load_checks() -> dict[str, Callable]:
+    for pkg_name in _CHECK_PACKAGES:
+        try:
+            pkg = importlib.import_module(pkg_name)
+        except ModuleNotFoundError as e:
+            if e.name == pkg_name:
+                continue
+            raise
+        if hasattr(pkg, "__path__"):
+            for mod in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda m: m.name):
+                importlib.import_module(f"{pkg_name}.{mod.name}")
+    return dict(CHECKS)
+
+
+def info(code: str) -> RuleInfo | None:
+    return catalogue().get(code)
+
+
+def example_files(ex: dict) -> dict[str, str]:
+    """The files of a catalogue example: `files:` plus the `urdf:`/`xacro:` shorthands."""
+    files = dict(ex.get("files") or {})
+    if "urdf" in ex:
+        files["robot.urdf"] = ex["urdf"]
+    if "xacro" in ex:
+        files["robot.urdf.xacro"] = ex["xacro"]
+    return files
+
+
+def matches(code: str, patterns) -> bool:
+    """ruff-style selection: a pattern is a full code or a prefix ('S', 'J00', 'ALL')."""
+    return any(p == "ALL" or code.startswith(p) for p in patterns)
+
+
+if __name__ == "__main__":  # python -m urdfcheck.rules.catalogue: regenerate rules/index.json
+    print(write_index())

@@ -1,0 +1,206 @@
+"""Run the checks over a model: selection, severities, locations, suppressions.
+
+A check only yields Problems pointing at model parts; this module turns them into Findings. A check
+that raises becomes an R001 finding, never a traceback.
+"""
+from __future__ import annotations
+
+import os
+
+from urdfcheck.core import nogc
+from urdfcheck.rules import catalogue as rulebook
+from urdfcheck.core.findings import Finding, Location, Problem, Severity, clean_text
+from urdfcheck.core.records import Record
+from urdfcheck.core.suppress import is_yaml, yaml_suppressions
+
+
+class Selection(Record):
+    # severity: code or prefix -> Severity
+    # options: code -> {option: value}
+    _fields = ('select', 'ignore', 'severity', 'options')
+
+    def __init__(self, select: tuple[str, ...] = ("ALL",),
+                 ignore: tuple[str, ...] = (),
+                 severity: dict | None = None,
+                 options: dict | None = None):
+        self.select = select
+        self.ignore = ignore
+        self.severity = {} if severity is None else severity
+        self.options = {} if options is None else options
+
+    def enabled(self, code: str) -> bool:
+        return rulebook.matches(code, self.select) and not rulebook.matches(code, self.ignore)
+
+    def severity_of(self, code: str, default: Severity) -> Severity:
+        best = None
+        for key, sev in self.severity.items():
+            if code.startswith(key) and (best is None or len(key) > len(best[0])):
+                best = (key, sev)
+        return best[1] if best else default
+
+
+class Context(Record):
+    """What a check may look at besides the model."""
+
+    # expanded: load.Expanded (entry, files, resolver)
+    # config: config.Config or None
+    # contracts: the consumers read for this model (controllers, launch files...)
+    # options: the running rule's options (catalogue defaults + config)
+    _fields = ('selection', 'expanded', 'config', 'contracts', 'variant', 'options')
+
+    def __init__(self, selection: Selection | None = None,
+                 expanded: object = None,
+                 config: object = None,
+                 contracts: object = None,
+                 variant: str = "",
+                 options: dict | None = None):
+        self.selection = Selection() if selection is None else selection
+        self.expanded = expanded
+        self.config = config
+        self.contracts = contracts
+        self.variant = variant
+        self.options = {} if options is None else options
+
+    @property
+    def resolver(self):
+        return getattr(self.expanded, "resolver", None)
+
+
+def _loc(at, default: Location) -> Location:
+    if at is None:
+        return default
+    if isinstance(at, Location):
+        return at
+    loc = getattr(at, "loc", None)
+    return loc if isinstance(loc, Location) else default
+
+
+def run_checks(model, ctx: Context) -> list[Finding]:
+    # on a large model the rules build large indexes in turn (link graph, name maps, tensors)
+    return nogc.call(_run_checks, model, ctx)
+
+
+def _run_checks(model, ctx: Context) -> list[Finding]:
+    cat = rulebook.catalogue()
+    checks = rulebook.load_checks()
+    out: list[Finding] = []
+    done = set()
+    for code in sorted(checks):
+        fn = checks[code]
+        if fn in done:
+            continue
+        done.add(fn)
+        codes = [c for c in fn.codes if ctx.selection.enabled(c)]
+        if not codes:
+            continue
+        first = cat.get(codes[0])
+        opts = dict(first.options) if first else {}
+        opts.update(ctx.selection.options.get(codes[0], {}))
+        ctx.options = opts
+        try:
+            for p in fn(model, ctx) or ():
+                f = _finding(p, fn, model, ctx, cat)
+                if f is not None:
+                    out.append(f)
+        except Exception as e:  # a broken rule must not hide the others
+            if ctx.selection.enabled("R001"):
+                out.append(Finding("R001", Severity.ERROR,
+                                   clean_text(f"rule {'/'.join(fn.codes)} crashed: {type(e).__name__}: {e}"),
+                                   model.loc, name="rule-crashed"))
+    return out
+
+
+def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
+    code = p.code or fn.codes[0]
+    if not ctx.selection.enabled(code):
+        return None
+    info = cat.get(code)
+    default = p.severity or (info.severity if info else Severity.ERROR)
+    return Finding(
+        code=code,
+        severity=ctx.selection.severity_of(code, default),
+        message=clean_text(p.message),
+        location=_loc(p.at, model.loc),
+        name=info.name if info else "",
+        related=tuple(_loc(r, model.loc) for r in p.related),
+    )
+
+
+def finish(findings: list[Finding], selection: Selection, suppressions=(), model: str = "",
+           variant: str = "", yaml_used: set | None = None) -> list[Finding]:
+    """Apply selection and severity to load findings too, fill names, drop suppressed, report unused.
+
+    `yaml_used` collects (file, index) of the YAML suppressions that hid a finding: a YAML file serves every
+    model of a package, so only the caller, after the last model, can tell one unused (`unused_yaml`)."""
+    cat = rulebook.catalogue()
+    kept = []
+    used = set()
+    here = os.getcwd().rstrip(os.sep) + os.sep  # messages name files too: show them relative, like locations
+    for f in findings:
+        if not selection.enabled(f.code):
+            continue
+        info = cat.get(f.code)
+        sev = selection.severity_of(f.code, f.severity if f.name or not info else info.severity)
+        hit = _suppressed(f, suppressions)
+        if hit is not None:
+            used.add(hit)
+            continue
+        if is_yaml(f.location.file):
+            hit = _suppressed(f, yaml_suppressions(f.location.file))
+            if hit is not None:  # `# urdfcheck: ignore[...]` in the YAML file the finding points into
+                if yaml_used is not None:  # absolute, like the consumer files `unused_yaml` is given
+                    yaml_used.add((os.path.abspath(f.location.file), hit))
+                continue
+        kept.append(Finding(f.code, sev, f.message.replace(here, ""), _shown(f.location), f.name or (info.name if info else ""),
+                            tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant))
+    if selection.enabled("R002"):
+        for i, s in enumerate(suppressions):
+            if i in used:
+                continue
+            live = [c for c in s.codes if selection.enabled(c)]
+            if not live:
+                continue
+            info = cat.get("R002")
+            kept.append(Finding("R002", selection.severity_of("R002", info.severity if info else Severity.WARNING),
+                                f"unused suppression of {', '.join(live)}", Location(s.file, s.comment_line),
+                                "unused-suppression", (), model, variant))
+    return kept
+
+
+def unused_yaml(files, used: set, selection: Selection) -> list[Finding]:
+    """R002 for each suppression in the YAML `files` (read by the contract checks) that hid nothing."""
+    if not selection.enabled("R002"):
+        return []
+    info = rulebook.catalogue().get("R002")
+    out = []
+    for file in sorted(set(files)):
+        for i, s in enumerate(yaml_suppressions(file)):
+            live = [c for c in s.codes if selection.enabled(c)]
+            if (file, i) in used or not live:
+                continue
+            out.append(Finding("R002", selection.severity_of("R002", info.severity if info else Severity.WARNING),
+                               f"unused suppression of {', '.join(live)}", _shown(Location(file, s.comment_line)),
+                               "unused-suppression"))
+    return out
+
+
+def _shown(loc: Location) -> Location:
+    """Every location the way reports show files: relative to the working directory when below it
+    (readers of YAML and launch files record absolute paths)."""
+    if not os.path.isabs(loc.file) and not loc.via:
+        return loc
+    from urdfcheck.load.loader import display
+
+    file = display(loc.file) if os.path.isabs(loc.file) else loc.file
+    return Location(file, loc.line, loc.column, tuple(_shown(v) for v in loc.via))
+
+
+def _suppressed(f: Finding, suppressions) -> int | None:
+    locs = (f.location,) + f.location.via
+    for i, s in enumerate(suppressions):
+        if f.code not in s.codes and "ALL" not in s.codes:
+            continue
+        for loc in locs:
+            if loc.file == s.file and (s.first == 0 or (loc.line is not None and s.first <= loc.line <= s.last)):
+                return i
+    return None
