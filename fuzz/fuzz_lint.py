@@ -202,6 +202,17 @@ def make_corpus(dest: Path) -> int:
                 data = join(kind, payload, fmt)
                 (dest / hashlib.sha1(data).hexdigest()).write_bytes(data)
             n += 1
+    # issue 11: callables handed out as values (fuzz/callables.py's grammar), as xacro seeds for libFuzzer to mutate
+    sys.path.insert(0, str(HERE))
+    import random
+
+    from callables import generate
+
+    rng = random.Random(11)
+    for _ in range(200):
+        data = join("xacro", generate(rng)["xacro"].encode("utf-8"), "json")
+        (dest / hashlib.sha1(data).hexdigest()).write_bytes(data)
+        n += 1
     return n
 
 

@@ -213,8 +213,8 @@ def test_boolean_args_and_auto_variants(tmp_path):
     f.write_text(XACRO)
     assert boolean_args(str(f)) == {"use_camera": "true", "use_lidar": "false"}
     names = [n for n, _ in auto_variants(str(f), {})]
-    assert names == ["use_camera=true,use_lidar=false", "use_camera=true,use_lidar=true",
-                     "use_camera=false,use_lidar=false", "use_camera=false,use_lidar=true"]
+    # named by what differs from the defaults (issue 15: short, readable labels)
+    assert names == ["defaults", "use_lidar=true", "use_camera=false", "use_camera=false,use_lidar=true"]
     assert [a for _, a in auto_variants(str(f), {"use_lidar": "true"})] == [{"use_camera": "true"}, {"use_camera": "false"}]
     many = "".join(f'<xacro:arg name="a{i}" default="false"/>' for i in range(6))
     g = tmp_path / "many.xacro"
@@ -227,18 +227,21 @@ def test_targets(tmp_path):
     (root / "urdfcheck.yaml").write_text(
         "models:\n  - path: urdf/agv.urdf.xacro\n    variants: auto\n    args: {use_lidar: 'true'}\n"
         "    controllers: [config/ctrl.yaml]\npackages: {agv_description: .}\n")
-    cfg = load_config(root / "urdfcheck.yaml")
-    ts = cfg.targets()
-    assert [(t.variant, t.args) for t in ts] == [("use_camera=true", {"use_lidar": "true", "use_camera": "true"}),
+    from urdfcheck.pipeline.plan import plan
+    from urdfcheck.pipeline.request import make_request
+
+    cfg = str(root / "urdfcheck.yaml")
+    ts = plan(make_request([], config=cfg))
+    assert [(t.variant, t.args) for t in ts] == [("defaults", {"use_lidar": "true", "use_camera": "true"}),
                                                  ("use_camera=false", {"use_lidar": "true", "use_camera": "false"})]
     assert ts[0].contracts is ts[1].contracts  # consumers are read once per model
     assert ts[0].contracts.files["controllers"] == [str(root / "config" / "ctrl.yaml")]
     assert ts[0].packages == {"agv_description": str(root)}
-    over = cfg.targets(args={"use_camera": "false"}, packages={"other": "/x"})
+    over = plan(make_request([], config=cfg, args={"use_camera": "false"}, packages={"other": "/x"}))
     assert all(t.args["use_camera"] == "false" for t in over) and over[0].packages["other"] == "/x"
-    only = cfg.targets(paths=[str(root / "urdf" / "plain.urdf")])
+    only = plan(make_request([str(root / "urdf" / "plain.urdf")], config=cfg))
     assert [t.path.name for t in only] == ["plain.urdf"] and only[0].contracts is None  # not configured: zero-config
-    assert len(cfg.targets(paths=[str(root)])) == 2
+    assert len(plan(make_request([str(root)], config=cfg))) == 2
 
 
 def test_cli_reports_the_bad_key(tmp_path):

@@ -74,8 +74,13 @@ def test_separation_mismatch_and_multiplier():
     assert p.code == "C010" and p.at == Location(YAML, 4)
     assert "0.52" in p.message and "0.5 m apart" in p.message
     assert p.data["measured"] == pytest.approx(0.5, abs=1e-6)
-    assert codes(check_drive(robot(LEFT, RIGHT), drive(sep=0.5, sep_mult=1.04))) == ["C010"]
-    assert codes(check_drive(robot(LEFT, RIGHT), drive(sep=0.48076923, sep_mult=1.04))) == []
+    # a multiplier other than 1 is a declared slip factor (issue 15): the base value is compared with the
+    # model and the finding is information saying what the multiplier does
+    (p,) = check_drive(robot(LEFT, RIGHT), drive(sep=0.5, sep_mult=1.04)).problems()
+    assert p.code == "C010" and p.severity == Severity.INFO and p.at == Location(YAML, 6)
+    assert "matches" in p.message and "1.04 x 0.5 = 0.52 m" in p.message and len(p.message) < 400
+    (p,) = check_drive(robot(LEFT, RIGHT), drive(sep=0.48076923, sep_mult=1.04)).problems()
+    assert p.severity == Severity.INFO and "differs" in p.message
 
 
 def test_tolerance():
@@ -89,10 +94,14 @@ def test_separation_is_frame_independent():
 
 
 def test_radius_mismatch_with_side_multipliers():
-    rep = check_drive(robot(LEFT, RIGHT), drive(radius=0.1, lmult=1.05))
-    (p,) = rep.problems()
-    assert p.code == "C011" and "left_link" in p.message and p.at == Location(YAML, 5)
+    rep = check_drive(robot(LEFT, RIGHT), drive(radius=0.105))
+    (p,) = [p for p in rep.problems() if "left_link" in p.message]
+    assert p.code == "C011" and p.at == Location(YAML, 5) and p.severity is None
     assert p.related[0].file == "r.urdf"  # the wheel's collision cylinder
+    # a radius multiplier other than 1 is a declared correction: information at the multiplier
+    (p,) = check_drive(robot(LEFT, RIGHT), drive(radius=0.1, lmult=1.05)).problems()
+    assert p.code == "C011" and p.severity == Severity.INFO and p.at == Location(YAML, 7)
+    assert "matches" in p.message and "1.05 x 0.1 = 0.105 m" in p.message
 
 
 def test_sphere_and_visual_fallback_and_mesh():

@@ -20,6 +20,7 @@ import copy
 import json
 import os
 import shutil
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -359,3 +360,81 @@ def test_deep_nesting(depth, tag, xacro, close):
         report = check_cli([f], p.root)
         if not close or depth > 250:
             assert report["findings"], "deep or broken nesting must be a finding"
+
+
+# ---- issue 11: callables handed out as values; extreme finite numbers ------------------------------
+
+def _callables_grammar():
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("fuzz_callables", REPO / "fuzz" / "callables.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+CALLABLES = _callables_grammar()
+
+
+@settings(FUZZ, max_examples=max(20, FUZZ.max_examples))
+@given(rnd=st.randoms(use_true_random=False))
+def test_callables_as_values_leak_nothing(rnd):
+    """fuzz/callables.py's grammar (a guarded method or function passed to map/filter/sorted(key=)/min/max, nested
+    maps, properties, $(eval), unit tags) through the whole CLI: with a secret in the environment and a marker in
+    argv, no output holds either (nor a module's file path nor the workspace's absolute path)."""
+    case = CALLABLES.generate(rnd)
+    old_argv = list(sys.argv)
+    os.environ[CALLABLES.SECRET_VAR] = CALLABLES.SECRET
+    sys.argv.append(CALLABLES.ARGV_MARK)
+    try:
+        with Pkg(keep=("package.xml",)) as p:
+            (p.pkg / "config").mkdir(exist_ok=True)
+            f = p.pkg / "urdf" / "p.urdf.xacro"
+            f.parent.mkdir(exist_ok=True)
+            f.write_text(case["xacro"], encoding="utf-8")
+            if case["yaml"] is not None:
+                (p.pkg / "config" / "u.yaml").write_text(case["yaml"], encoding="utf-8")
+            (p.root / "outside").mkdir()
+            (p.root / "outside" / "secret.yaml").write_text(f"x: {CALLABLES.FILE_SECRET}\n")
+            report = check_cli([f], p.root)
+            text = json.dumps(report)
+            for marker in CALLABLES.LEAK_MARKERS + (str(p.root),):
+                assert marker not in text, (marker, case["xacro"][-300:])
+    finally:
+        sys.argv[:] = old_argv
+        os.environ.pop(CALLABLES.SECRET_VAR, None)
+
+
+EXTREME = [1.7976931348623157e308, -1.7976931348623157e308, 1e308, 1e200, -1e200, 1e154, 1e-300, -1e-300,
+           5e-324, -5e-324, 0.0, -0.0, 2.0 ** 53 + 1, 1e16, 3.4e38]
+
+
+@settings(FUZZ, max_examples=max(30, FUZZ.max_examples))
+@given(data=st.data())
+def test_extreme_finite_numbers_are_findings_not_crashes(data):
+    """Every number of every numeric attribute of the example URDF replaced by an extreme finite float (hypothesis
+    picks which): rules report the values, none crashes (R001: 'rule ... crashed', e.g. OverflowError)."""
+    root = etree.fromstring(_seed("urdf/agv.urdf"))
+    slots = [(el, name) for el in root.iter() if isinstance(el.tag, str) for name, value in el.attrib.items()
+             if all(_is_number(v) for v in value.split()) and value.split()]
+    floats = st.one_of(st.sampled_from(EXTREME), st.floats(allow_nan=False, allow_infinity=False))
+    picked = data.draw(st.lists(st.sampled_from(range(len(slots))), min_size=1, max_size=12, unique=True))
+    for i in picked:
+        el, name = slots[i]
+        n = len(el.get(name).split())
+        el.set(name, " ".join(repr(data.draw(floats)) for _ in range(n)))
+    with Pkg(keep=("package.xml",)) as p:
+        f = p.pkg / "urdf" / "robot.urdf"
+        f.parent.mkdir()
+        f.write_bytes(etree.tostring(root))
+        report = check_cli([f], p.root)
+        crashed = [x["message"] for x in report["findings"] if x["code"] == "R001"]
+        assert not crashed, crashed
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True

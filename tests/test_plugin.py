@@ -129,3 +129,26 @@ def test_junit_xml_of_the_package_run(pkg):
     result.assert_outcomes(passed=1, failed=1)
     xml = (pkg.root / "out.xml").read_text()
     assert 'name="urdfcheck"' in xml and "U002" in xml
+
+
+def test_an_unused_yaml_suppression_fails_the_plugin_like_the_cli(pkg):
+    # the suppression bookkeeping runs in the plugin too: one pipeline (R002, as `urdfcheck lint` reports it)
+    import shutil
+
+    from conftest import run_cli
+
+    src = Path(__file__).resolve().parent.parent / "examples" / "broken" / "contract_driver_joint_typo"
+    for name in ("urdf", "config", "launch"):
+        shutil.rmtree(pkg.root / name, ignore_errors=True)
+        shutil.copytree(src / name, pkg.root / name)
+    shutil.copy(src / "urdfcheck.yaml", pkg.root / "urdfcheck.yaml")
+    drv = pkg.root / "config" / "agv_driver_ros1.yaml"
+    lines = drv.read_text().splitlines()
+    lines[4:4] = ["# urdfcheck: ignore[C001] the typo is fixed upstream"]
+    lines[6:6] = ["# urdfcheck: ignore[C010] old separation"]
+    drv.write_text("\n".join(lines) + "\n")
+    code, out, err = run_cli(["lint", "--select", "C,R"], cwd=pkg.root)
+    assert code == 1 and "R002" in out and "agv_driver_ros1.yaml:7" in out, out + err
+    result = run(pkg, "-v")
+    result.assert_outcomes(passed=1, failed=1)
+    result.stdout.fnmatch_lines(["*agv_driver_ros1.yaml:7: R002 ?warning? unused suppression of C010*"])

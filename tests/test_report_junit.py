@@ -3,7 +3,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from urdfcheck.rules import catalogue as rulebook
-from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.core.findings import Finding, Location, Place, Severity
 from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 
@@ -81,7 +81,8 @@ def test_variants_are_separate_suites_and_unknown_codes_go_to_other():
     t2 = Target(Path("robot.urdf.xacro"), {"cam": "false"}, variant="nocam")
     findings = [
         Finding("U002", Severity.WARNING, "m", Location("robot.urdf.xacro", 3), "unknown-element",
-                model="robot.urdf.xacro", variant="cam,nocam"),
+                model="robot.urdf.xacro", variant="cam",
+                where=(Place("robot.urdf.xacro", "cam"), Place("robot.urdf.xacro", "nocam"))),
         Finding("Z123", Severity.ERROR, "z", Location("robot.urdf.xacro", 4), "zed",
                 model="robot.urdf.xacro", variant="nocam"),
     ]
@@ -92,7 +93,9 @@ def test_variants_are_separate_suites_and_unknown_codes_go_to_other():
     cam = {c.get("name"): c for c in suites["robot.urdf.xacro [cam]"].findall("testcase")}
     nocam = {c.get("name"): c for c in suites["robot.urdf.xacro [nocam]"].findall("testcase")}
     fam = rulebook.catalogue()["U002"].family
-    assert cam[fam].find("failure") is not None and nocam[fam].find("failure") is not None
+    # a finding of several variants is one line (issue 15), in the first suite, naming where it applies
+    assert cam[fam].find("failure") is not None and nocam[fam].find("failure") is None
+    assert "in all 2 variants" in cam[fam].find("failure").text
     assert "other" not in cam and nocam["other"].find("failure").get("type") == "error"
 
 

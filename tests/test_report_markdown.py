@@ -2,7 +2,7 @@
 import re
 from pathlib import Path
 
-from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.core.findings import Finding, Place, Location, Severity
 from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 from urdfcheck.report.markdown import MAX_CHARS, md, mermaid
@@ -78,7 +78,7 @@ def test_unloadable_model_and_variants():
     t1 = Target(Path("r.urdf.xacro"), variant="a")
     t2 = Target(Path("r.urdf.xacro"), variant="b")
     f = Finding("X001", Severity.ERROR, "broken", Location("r.urdf.xacro", 1), "xml-syntax",
-                model="r.urdf.xacro", variant="a,b")
+                model="r.urdf.xacro", variant="a", where=(Place("r.urdf.xacro", "a"), Place("r.urdf.xacro", "b")))
     out = render("markdown", Result([f], [t1, t2], {("r.urdf.xacro", "a"): None, ("r.urdf.xacro", "b"): None}),
                  fail_on=Severity.WARNING)
     rows = [cells(r) for r in table_rows(out, "| model | variant | errors | warnings | info |")]

@@ -1,5 +1,4 @@
 """schemagate.verdict answers like jsonschema whenever it answers, and answers for every JSON document."""
-import json
 import re
 import sys
 from pathlib import Path
@@ -15,10 +14,10 @@ import yaml  # noqa: E402
 from hypothesis import HealthCheck, Phase, find, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from urdfcheck.pipeline.config import SCHEMA_PATH  # noqa: E402
+from urdfcheck.pipeline.config import config_schema  # noqa: E402
 from urdfcheck.pipeline.schemagate import verdict  # noqa: E402
 
-SCHEMA = json.loads(SCHEMA_PATH.read_text(encoding="utf-8"))
+SCHEMA = config_schema()  # the file, with `rules:` built from the catalogue's option declarations
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA)
 
 

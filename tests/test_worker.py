@@ -134,7 +134,7 @@ def test_only_the_console_entry_pauses_the_collector_and_keeps_documents(tmp_pat
     import gc
 
     from urdfcheck.cli import main as cli
-    from urdfcheck.pipeline import command as runlint
+    from urdfcheck.cli import lint as runlint
 
     p = _targets(tmp_path, 1)[0].path
     before = len(runlint._UNTIL_EXIT)
@@ -196,3 +196,40 @@ def test_the_console_entry_runs_atexit_handlers_and_keeps_the_exit_code(tmp_path
 def test_no_targets_is_an_empty_result():
     result = lint.lint_targets([])
     assert result.findings == [] and result.models == {}
+
+
+def _environment_seen():
+    import posix
+
+    return (dict(os.environ), {os.fsdecode(k) for k in os.environb}, {os.fsdecode(k) for k in posix.environ},
+            list(sys.argv), list(getattr(sys, "orig_argv", [])), os.getenv("URDFCHECK_TEST_SECRET"))
+
+
+def test_a_worker_starts_with_a_scrubbed_environment_and_argv(monkeypatch):
+    # issue 11: a format-string walk (or anything else) in a worker found the CI job's secrets and command line
+    monkeypatch.setenv("URDFCHECK_TEST_SECRET", "s3cr3t-worker-9f2")
+    monkeypatch.setenv("KEPT_BY_ALLOW_ENV", "yes")
+    monkeypatch.setattr(sys, "argv", sys.argv + ["ARGV_MARK_0c4e"])
+    env, envb, raw, argv, orig, getenv = worker.run(_environment_seen, env_keep=("KEPT_BY_ALLOW_ENV",))
+    for names in (set(env), envb, raw):
+        assert "URDFCHECK_TEST_SECRET" not in names and "KEPT_BY_ALLOW_ENV" in names
+        assert names <= set(worker.ENV_ALLOW) | {"KEPT_BY_ALLOW_ENV"}
+    assert getenv is None  # the C environment too
+    assert "ARGV_MARK_0c4e" not in " ".join(argv + orig)
+    # the parent is untouched
+    assert os.environ["URDFCHECK_TEST_SECRET"] == "s3cr3t-worker-9f2" and "ARGV_MARK_0c4e" in sys.argv
+
+
+def test_a_trusted_worker_keeps_the_environment_but_not_argv(monkeypatch):
+    monkeypatch.setenv("URDFCHECK_TEST_SECRET", "s3cr3t-worker-9f2")
+    monkeypatch.setattr(sys, "argv", sys.argv + ["ARGV_MARK_0c4e"])
+    env, _, _, argv, _, _ = worker.run(_environment_seen, scrub_env=False)
+    assert env["URDFCHECK_TEST_SECRET"] == "s3cr3t-worker-9f2" and "ARGV_MARK_0c4e" not in argv
+
+
+def test_a_job_cut_by_the_run_budget_gets_no_delivery_grace():
+    job = worker.start(time.sleep, 60, timeout=0.2, grace=0.0)
+    time.sleep(0.5)
+    t0 = time.monotonic()
+    assert isinstance(job.result(), worker.Failure)
+    assert time.monotonic() - t0 < 0.5

@@ -4,12 +4,16 @@ Public API (the CLI uses exactly this):
 
     urdfcheck.load(path, args=None, **options) -> Model          # raises LoadError with findings
     urdfcheck.expand(path, args=None, **options) -> Expanded     # expanded XML + source map + findings
-    urdfcheck.lint(paths, args=None, select=..., ignore=..., **options) -> Result
+    urdfcheck.lint(paths=(), **options) -> Result                  # like `urdfcheck lint`, config included
+    urdfcheck.UsageError                                           # an unusable request (the CLI's exit 2)
+
+`lint` options are the `LintRequest` fields (pipeline/request.py): args, packages, select, ignore, severity,
+rules, fail_on, trusted, allow_env, timeout, max_elements, config, no_config, root, baseline.
 """
 from __future__ import annotations
 
 __version__ = "0.1.0"
-__all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadError", "__version__"]
+__all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadError", "UsageError", "__version__"]
 
 from urdfcheck.core.findings import Finding, Location, Severity  # noqa: E402  (tiny, no heavy imports)
 
@@ -26,14 +30,14 @@ def expand(path, args=None, **options):
     return _expand(path, args, **options)
 
 
-def lint(paths, args=None, *, select=("ALL",), ignore=(), packages=None, **options):
-    from urdfcheck.rules import engine
-    from urdfcheck.pipeline.run import lint_targets, targets_for
+def lint(paths=(), args=None, **options):
+    """Lint like `urdfcheck lint PATHS...` from the working directory: the same config files (found upward
+    from each path, one per package in a workspace), the same findings. Callable any number of times.
+    Returns a `pipeline.run.Result` (`.findings`, `.failed()`); raises UsageError where the CLI exits 2."""
+    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.pipeline.run import run
 
-    if isinstance(paths, (str, bytes)) or hasattr(paths, "__fspath__"):
-        paths = [paths]
-    targets = targets_for([str(p) for p in paths], args, packages, trusted=bool(options.get("trusted")))
-    return lint_targets(targets, engine.Selection(tuple(select), tuple(ignore)), **options)
+    return run(make_request(paths, args=args, **options))
 
 
 def __getattr__(name):
@@ -41,4 +45,8 @@ def __getattr__(name):
         from urdfcheck.load.loader import LoadError
 
         return LoadError
+    if name == "UsageError":
+        from urdfcheck.pipeline.request import UsageError
+
+        return UsageError
     raise AttributeError(name)

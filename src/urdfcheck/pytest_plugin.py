@@ -9,7 +9,10 @@ Registered through the `pytest11` entry point, so installing urdfcheck is enough
 The models are what the config declares (each variant is its own item), else the entry models found
 below the rootdir. An item fails when the model has findings at or above the fail level
 (`--urdfcheck-fail-on`, else the config's `fail_on`, else `warning`); the failure text lists the located
-findings. Items are marked `urdfcheck`: `pytest -m urdfcheck` runs only them, `-m "not urdfcheck"` skips
+findings. The plugin makes the request `urdfcheck lint` run in the rootdir makes and runs the same pipeline
+(pipeline/plan.py, pipeline/run.py) once, on the first item: every item shows its model's share, and an unused
+suppression in a YAML file fails the item of the first model that read the file, as R002 fails the CLI.
+Items are marked `urdfcheck`: `pytest -m urdfcheck` runs only them, `-m "not urdfcheck"` skips
 them, `-p no:urdfcheck` turns the plugin off.
 """
 from __future__ import annotations
@@ -37,19 +40,10 @@ def pytest_configure(config):
     config.addinivalue_line("markers", "urdfcheck: a urdfcheck lint item (one per robot model and variant)")
 
 
-class _ConfigProblem(Exception):
-    pass
-
-
 def _find_config(rootdir: Path) -> str | None:
-    try:
-        from urdfcheck.pipeline import config as cfgmod
-    except ImportError:
-        for name in ("urdfcheck.yaml", ".urdfcheck.yaml"):
-            if (rootdir / name).is_file():
-                return str(rootdir / name)
-        return None
-    return cfgmod.find_config(rootdir)
+    from urdfcheck.pipeline.config import find_config
+
+    return find_config(rootdir)
 
 
 def _setup(config) -> SimpleNamespace | None:
@@ -62,34 +56,37 @@ def _setup(config) -> SimpleNamespace | None:
     found = _find_config(rootdir)
     at_root = found is not None and Path(found).resolve().parent == rootdir
     if explicit or at_root:
-        state = SimpleNamespace(rootdir=rootdir, config_path=found, error=None, targets=[], cfg=None,
-                                selection=None, fail_on=None, trusted=False, allow_env=())
+        state = SimpleNamespace(rootdir=rootdir, config_path=found, error=None, targets=[], result=None,
+                                fail_on=None)
         try:
             _prepare(state, config)
-        except _ConfigProblem as e:
-            state.error = str(e)
         except Exception as e:  # never break the package's own test session: report it as a failing item
-            state.error = f"{type(e).__name__}: {e}"
+            from urdfcheck.pipeline.request import UsageError
+
+            state.error = str(e) if isinstance(e, UsageError) else f"{type(e).__name__}: {e}"
     setattr(config, _STATE, state)
     return state
 
 
 def _prepare(state, config) -> None:
-    from urdfcheck.pipeline import command as runlint
-    from urdfcheck.core.findings import Severity
+    """The request `urdfcheck lint` makes when run in the rootdir, planned once; the items lint their targets
+    together on first use."""
+    from urdfcheck.pipeline.plan import plan
+    from urdfcheck.pipeline.request import make_request
 
-    ns = SimpleNamespace(paths=[] if state.config_path else [str(state.rootdir)], config=state.config_path,
-                         no_config=state.config_path is None, args=[], packages=[], select=[], ignore=[])
-    cfg = runlint._config(ns, _ConfigProblem)
-    state.cfg = cfg
-    state.selection = runlint._selection(ns, cfg)
-    if cfg is None and state.config_path is not None:  # config module unavailable: discover
-        ns.paths = [str(state.rootdir)]
-    state.targets = runlint._targets(ns, cfg)
     level = config.getoption("urdfcheck_fail_on")
-    state.fail_on = Severity.parse(level) if level else (runlint._cfg_fail_on(cfg) or Severity.WARNING)
-    state.trusted = bool(getattr(cfg, "trusted", False))
-    state.allow_env = tuple(getattr(cfg, "allow_env", ()) or ())
+    state.request = make_request([], fail_on=level)
+    state.targets = plan(state.request, here=str(state.rootdir))
+    state.fail_on = state.request.fail_on  # None: each item's config decides
+
+
+def _result(state):
+    """The whole run, once (the suppression bookkeeping needs every model); each item shows its share."""
+    if state.result is None:
+        from urdfcheck.pipeline.run import lint_targets
+
+        state.result = lint_targets(state.targets)
+    return state.result
 
 
 def pytest_report_header(config):
@@ -120,10 +117,10 @@ def pytest_collection_modifyitems(session, config, items):
         parent, kids = parent_for(Path(state.config_path or state.rootdir))
         kids.append(UrdfcheckItem.from_parent(parent, name="urdfcheck-config", target=None, state=state))
     else:
-        for t in state.targets:
+        for i, t in enumerate(state.targets):
             parent, kids = parent_for(t.path)
             name = f"urdfcheck[{t.variant}]" if t.variant else "urdfcheck"
-            kids.append(UrdfcheckItem.from_parent(parent, name=name, target=t, state=state))
+            kids.append(UrdfcheckItem.from_parent(parent, name=name, target=t, state=state, index=i))
     new = []
     for path, parent in parents.items():
         # report the collection like pytest does for files it collects (counts, --co, junitxml)
@@ -146,23 +143,23 @@ class UrdfcheckFailure(Exception):
 
 
 class UrdfcheckItem(pytest.Item):
-    def __init__(self, *, target, state, **kwargs):
+    def __init__(self, *, target, state, index=0, **kwargs):
         super().__init__(**kwargs)
         self.target = target
+        self.index = index
         self.state = state
         self.add_marker("urdfcheck")
 
     def runtest(self):
         if self.state.error is not None:
             raise UrdfcheckFailure(f"invalid urdfcheck config: {self.state.error}")
-        from urdfcheck.pipeline.run import _dedupe, lint_target
+        from urdfcheck.pipeline.run import _dedupe
 
-        findings, _model = lint_target(self.target, self.state.selection, trusted=self.state.trusted,
-                                       allow_env=self.state.allow_env, config=self.state.cfg,
-                                       max_elements=getattr(self.state.cfg, "max_elements", None))
-        findings = _dedupe(findings)
-        failing = [f for f in findings if f.severity >= self.state.fail_on]
-        below = [f for f in findings if f.severity < self.state.fail_on]
+        result = _result(self.state)
+        findings = _dedupe(result.by_target[self.index])
+        fail_on = self.state.fail_on or self.target.settings.fail_on
+        failing = [f for f in findings if f.severity >= fail_on]
+        below = [f for f in findings if f.severity < fail_on]
         if below:
             self.add_report_section("call", "urdfcheck (below the fail level)", "\n".join(_line(f) for f in below))
         if failing:
@@ -170,7 +167,7 @@ class UrdfcheckItem(pytest.Item):
             from urdfcheck.core.findings import clean_text
             from urdfcheck.load.loader import display
 
-            head = (f"{n} urdfcheck finding{'s' if n != 1 else ''} at or above {self.state.fail_on} "
+            head = (f"{n} urdfcheck finding{'s' if n != 1 else ''} at or above {fail_on} "
                     f"in {clean_text(display(self.target.path), 4096)}"
                     + (f" [{clean_text(self.target.variant)}]" if self.target.variant else ""))
             raise UrdfcheckFailure("\n".join([head] + [_line(f) for f in failing]))

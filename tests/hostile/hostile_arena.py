@@ -287,7 +287,7 @@ def stock_xacro(path: Path, cwd: Path) -> str:
         except BaseException as e:  # noqa: BLE001 - the control only reports
             return f"stock xacro failed: {type(e).__name__}: {e}"
 
-    res = worker.run(run, timeout=30)
+    res = worker.run(run, timeout=30, scrub_env=False)  # the control: stock xacro as a user runs it
     return res if isinstance(res, str) else f"stock xacro failed: {res}"
 
 

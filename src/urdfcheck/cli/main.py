@@ -9,29 +9,19 @@ import argparse
 import os
 import sys
 
-EXIT_CLEAN, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
+from urdfcheck.cli.common import (  # noqa: F401  (EXIT_*, UsageError: also read from here)
+    EPILOG,
+    EXIT_CLEAN,
+    EXIT_FINDINGS,
+    EXIT_USAGE,
+    UsageError,
+    add_load_options,
+    kv,
+    load_kwargs,
+    usage_message,
+)
 
-EPILOG = """exit codes:
-  0  no findings at or above --fail-on
-  1  findings at or above --fail-on (a malformed or hostile model is a finding too)
-  2  unusable invocation: missing path, bad flag, invalid config file; or an internal error
-"""
-
-
-class UsageError(Exception):
-    pass
-
-
-def _kv(sep: str, what: str):
-    def parse(text: str):
-        if sep not in text:
-            raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
-        k, v = text.split(sep, 1)
-        if not k:
-            raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
-        return k, v
-
-    return parse
+_kv = kv
 
 
 def _codes(text: str) -> list[str]:
@@ -49,22 +39,6 @@ def _severity(text: str):
         return Severity.parse(text)
     except ValueError as e:
         raise argparse.ArgumentTypeError(str(e)) from None
-
-
-def add_load_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--arg", dest="args", action="append", default=[], type=_kv(":=", "NAME:=VALUE"),
-                   metavar="NAME:=VALUE", help="xacro argument (repeatable)")
-    p.add_argument("--package", dest="packages", action="append", default=[], type=_kv("=", "NAME=PATH"),
-                   metavar="NAME=PATH", help="where a ROS package lives, for $(find) and package:// (repeatable)")
-    p.add_argument("--trusted", action="store_true",
-                   help="evaluate xacro with stock Python eval and allow $(env): only for your own files")
-    p.add_argument("--allow-env", action="append", default=[], metavar="VAR",
-                   help="environment variable that $(env)/$(optenv) may read in the sandbox (repeatable)")
-    p.add_argument("--timeout", type=float, default=20.0, metavar="SECONDS",
-                   help="wall-clock limit for one xacro expansion (default 20)")
-    p.add_argument("--max-elements", type=int, default=None, metavar="N",
-                   help="xacro elements one expansion may evaluate (default 20000; 400000 with --trusted); "
-                        "a macro bomb stops here")
 
 
 PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify")
@@ -98,6 +72,10 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     lint.add_argument("--color", choices=["auto", "always", "never"], default="auto")
     lint.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
     lint.add_argument("--no-config", action="store_true", help="ignore config files")
+    lint.add_argument("--list", action="store_true",
+                      help="print what would be linted (models, variants, deployments from launch files) and exit")
+    lint.add_argument("--root", metavar="DIR",
+                      help="show paths relative to DIR (default: the working directory)")
     lint.add_argument("--baseline", metavar="FILE", help="only fail on findings not in this baseline")
     lint.add_argument("--write-baseline", metavar="FILE", help="write current findings as a baseline and exit 0")
     lint.set_defaults(func=cmd_lint)
@@ -119,9 +97,7 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     return parser
 
 
-def _load_kwargs(ns) -> dict:
-    return dict(packages=dict(ns.packages), trusted=ns.trusted, allow_env=tuple(ns.allow_env), timeout=ns.timeout,
-                max_elements=ns.max_elements)
+_load_kwargs = load_kwargs
 
 
 def cmd_expand(ns) -> int:
@@ -153,7 +129,7 @@ def cmd_rules(ns) -> int:
 
 
 def cmd_lint(ns) -> int:
-    from urdfcheck.pipeline.command import run
+    from urdfcheck.cli.lint import run
 
     if getattr(ns, "one_shot", False):
         # The process ends after this command (see `run`). The models it builds hold no reference cycles,
@@ -179,7 +155,7 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
     try:
         return ns.func(ns)
     except UsageError as e:
-        print(f"urdfcheck {ns.command}: error: {e}", file=sys.stderr)
+        print(usage_message(ns.command, e), file=sys.stderr)
         return EXIT_USAGE
     except KeyboardInterrupt:
         return 130

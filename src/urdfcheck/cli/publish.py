@@ -12,12 +12,10 @@ import math
 import os
 import sys
 
-EXIT_OK, EXIT_FAIL, EXIT_USAGE = 0, 1, 2
-
-
-class _Usage(Exception):
-    pass
-
+from urdfcheck.cli.common import EXIT_CLEAN as EXIT_OK
+from urdfcheck.cli.common import EXIT_FINDINGS as EXIT_FAIL
+from urdfcheck.cli.common import EXIT_USAGE, add_load_options, load_kwargs, print_findings, usage_message
+from urdfcheck.cli.common import UsageError as _Usage
 
 # --- shared ---------------------------------------------------------------------------------------------------
 
@@ -36,29 +34,15 @@ def _joint_value(text: str):
     return k, value
 
 
-def _add_load_options(p: argparse.ArgumentParser) -> None:
-    from urdfcheck.cli.main import add_load_options
-
-    add_load_options(p)
+_add_load_options = add_load_options
+_load_options = load_kwargs
+_print_findings = print_findings
 
 
 def _loader():
     from urdfcheck.load import loader
 
     return loader
-
-
-def _load_options(ns) -> dict:
-    from urdfcheck.cli.main import _load_kwargs
-
-    return _load_kwargs(ns)
-
-
-def _print_findings(findings) -> None:
-    from urdfcheck.core.findings import clean_text
-
-    for f in findings:
-        print(f"{f.location}: {f.code} {clean_text(f.message)}", file=sys.stderr)
 
 
 def _load(ns, want_xml: bool = False):
@@ -94,7 +78,7 @@ def _run(fn):
         try:
             return fn(ns)
         except _Usage as e:
-            print(f"urdfcheck {ns.command}: error: {e}", file=sys.stderr)
+            print(usage_message(ns.command, e), file=sys.stderr)
             return EXIT_USAGE
 
     return wrapped

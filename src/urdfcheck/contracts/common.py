@@ -60,8 +60,9 @@ def read_capped(path, max_bytes: int, what: str = "file") -> bytes:
         size = os.path.getsize(file)
         if size > max_bytes:
             raise ConsumerError(f"{what} is larger than {max_bytes} bytes ({size}); refused", Location(file))
-        with open(file, "rb") as f:
-            return f.read(max_bytes + 1)
+        from urdfcheck.core.safeio import read_file
+
+        return read_file(file, max_bytes)  # a regular file only: a committed FIFO must not block
     except OSError as e:
         raise ConsumerError(f"cannot read file: {e.strerror or e}", Location(file)) from None
 

@@ -181,6 +181,7 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     out.localization = localization_from_params(loc_pfs)
     pk = dict(packages or (config.packages if config is not None else {}))
     _read_launch(mc.launch, out, dict(mc.launch_args), pk, r, follow=True)
+    _launch_typed(out, pfs)
     out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
                  "launch": list(mc.launch), "localization": list(mc.localization)}
     return out
@@ -228,8 +229,26 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
             launches.append(p)
     pk = dict(packages or {})
     _read_launch(launches, out, None, pk, r)
-    out.files = {"params": [pf.path for pf in pfs], "launch": launches}
+    _launch_typed(out, pfs)
+    # every launch file of the package, associated with this model or not: when none starts a
+    # robot_state_publisher, nothing in the package needs joint states (C003)
+    out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found.launch)}
     return out
+
+
+def _launch_typed(out: Consumers, pfs: list) -> None:
+    """Controllers whose type a launch file gives (`spawner NAME -t TYPE`) and whose parameter file does not:
+    read the parameter files again with those types (issue 15: such a diff drive was never checked)."""
+    from urdfcheck.contracts.controllers import spawner_types
+
+    types = spawner_types(out.launch)
+    if not pfs or not types or all(out.controllers.by_name(n) is not None for n in types) \
+            or any(li.param_sets for li in out.launch):  # (ROS 1 launch parameters were applied already)
+        return
+    out.controllers = read_controllers(pfs, launch_types=types)
+    for c in out.controllers:
+        if out.controllers.by_name(c.name) is c and c.name in types:
+            out.notes.extend(c.notes)
 
 
 def _names_a_joint(pf: ParamFile, joints: set[str]) -> bool:
@@ -251,7 +270,8 @@ def _mentions(path: str, name: str) -> bool:
     if leaves_cwd(path):
         return False
     try:
-        with open(path, "rb") as f:
-            return name.encode() in f.read(2 * 1024 * 1024)
+        from urdfcheck.core.safeio import read_file
+
+        return name.encode() in read_file(path, 2 * 1024 * 1024)
     except OSError:
         return False

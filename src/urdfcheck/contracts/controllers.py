@@ -29,6 +29,7 @@ the config (`DriverSpec`) and read with `read_driver`.
 from __future__ import annotations
 
 import os
+import re
 from typing import Iterable, Mapping, Sequence, NamedTuple
 
 from urdfcheck.core.findings import Location
@@ -105,24 +106,60 @@ class DriveSpec(NamedTuple):
     from_urdf: bool = False  # ROS 1: separation/radius not set are computed from the URDF by the controller
 
     @staticmethod
-    def _num(v: Value | None, default: float = 1.0) -> float:
-        f = as_float(v.value) if v is not None else None
-        return default if f is None else f
+    def _num(v: Value | None, default: float = 1.0) -> float | None:
+        """A multiplier: `default` when not set, None when set to something that is not a number."""
+        return default if v is None else number(v)
 
     @property
     def separation(self) -> float | None:
         """wheel_separation x wheel_separation_multiplier (None when not set / not a number)."""
-        if self.wheel_separation is None:
-            return None
-        s = as_float(self.wheel_separation.value)
-        return None if s is None else s * self._num(self.separation_multiplier)
+        s = number(self.wheel_separation)
+        m = self._num(self.separation_multiplier)
+        return None if s is None or m is None else s * m
 
     def radius(self, side: str) -> float | None:
-        if self.wheel_radius is None:
+        r = number(self.wheel_radius)
+        m = self._num(self.left_radius_multiplier if side == "left" else self.right_radius_multiplier)
+        return None if r is None or m is None else r * m
+
+    def multiplier(self, which: str) -> float | None:
+        """A multiplier the file sets to a number other than 1 (a declared correction), else None.
+        `which`: "separation", "left" or "right"."""
+        v = {"separation": self.separation_multiplier, "left": self.left_radius_multiplier,
+             "right": self.right_radius_multiplier}[which]
+        if v is None or v.default:
             return None
-        r = as_float(self.wheel_radius.value)
-        m = self.left_radius_multiplier if side == "left" else self.right_radius_multiplier
-        return None if r is None else r * self._num(m)
+        m = number(v)
+        return None if m is None or m == 1.0 else m
+
+
+# a ROS 1 parameter written `$(optenv NAME default)` (rosparam subst_value, <param value=...>): the default
+# is what the controller gets unless the environment sets NAME
+_OPTENV = re.compile(r"^\s*\$\(optenv\s+(\S+)\s+([^()\s]+)\s*\)\s*$")
+
+
+def number(v: Value | None) -> float | None:
+    """The number a parameter holds: plain, or the default of `$(optenv NAME default)`; else None."""
+    if v is None:
+        return None
+    f = as_float(v.value)
+    if f is None and isinstance(v.value, str):
+        m = _OPTENV.match(v.value)
+        if m:
+            f = as_float(m.group(2))
+    return f
+
+
+def number_text(v: Value | None) -> str:
+    """How to print a parameter's number in a message: '0.05', or '0.05 (the default of $(optenv R))'."""
+    f = number(v)
+    if f is None:
+        return "?" if v is None else repr(v.value)
+    text = f"{f:.6g}"
+    if v is not None and isinstance(v.value, str) and as_float(v.value) is None:
+        name = _OPTENV.match(v.value).group(1)
+        text += f" (the default of $(optenv {name}))"
+    return text
 
 
 class OdomTF(NamedTuple):
@@ -245,9 +282,10 @@ def _str_list(params: Mapping[str, Value], key: str, notes: list) -> tuple[list[
 
 
 class _Reader:
-    def __init__(self, files: Sequence[ParamFile]):
+    def __init__(self, files: Sequence[ParamFile], launch_types: Mapping[str, Value] | None = None):
         self.files = list(files)
         self.notes: list = []
+        self.launch_types = dict(launch_types or {})
 
     # ROS 2 ---------------------------------------------------------------------------------------
     def ros2(self) -> dict[str, Controller]:
@@ -282,6 +320,13 @@ class _Reader:
                                        f"manager but as {t} in its own parameters", tv.loc))
             own[key] = (t, tv)
         declared.update(own)
+        # a type given by a launch file (spawner -t) declares a controller its parameter file only configures
+        for cname, tv in self.launch_types.items():
+            if not _is_type_string(tv.value) or any(k.rsplit("/", 1)[-1] == cname for k in declared):
+                continue
+            keys = [key for key, node in nodes.items() if node.basename == cname and "*" not in key]
+            for key in keys or ["/" + cname]:  # a controller with no parameters at all still runs
+                declared[key] = (str(tv.value).strip(), tv)
         # a wildcard declaration ("/**/ctrl") applies to every concrete node it matches ("/robot1/ctrl")
         instances: dict[str, tuple[str, Value]] = {}
         for ckey, tv in declared.items():
@@ -405,10 +450,14 @@ def _finish(c: Controller, names_set: set[str]) -> None:
         joints = _str_list(p, "joints", notes)
         ifaces = _str_list(p, "interfaces", notes)
         if joints and joints[0]:
-            # (extra_joints are published with a zero state and need no hardware)
             c.state_joints = _joint_uses(joints[0], joints[1], c.name, names_set, (), ifaces[0] if ifaces else ())
         else:
             c.broadcasts_all = True
+        # extra_joints are published with a zero state (joint_state_broadcaster userdoc) and need no hardware
+        # interface: a state source for those joints, with no interface claims
+        extra = _str_list(p, "extra_joints", notes)
+        if extra and extra[0]:
+            c.state_joints += _joint_uses(extra[0], extra[1], c.name, set(), (), (), role="extra")
     elif c.kind == JSC:
         c.broadcasts_all = True
     # any controller: odometry of other drive types, and stamped frames
@@ -488,10 +537,14 @@ def _finish_diff_drive(c: Controller, names_set: set[str]) -> None:
     c.frames += (Value(base, base_v.loc, base_v.default),)
 
 
-def read_controllers(files: Iterable[ParamFile | str | os.PathLike]) -> ControllerSet:
-    """Controllers declared in parameter files (merged in order). Paths are read; ConsumerError propagates."""
+def read_controllers(files: Iterable[ParamFile | str | os.PathLike],
+                     launch_types: Mapping[str, Value] | None = None) -> ControllerSet:
+    """Controllers declared in parameter files (merged in order). Paths are read; ConsumerError propagates.
+
+    `launch_types`: controller name -> its type given by a launch file (`spawner NAME -t TYPE`,
+    `spawner_types`); it declares the controller the parameter files configure without a `type`."""
     pfs = [f if isinstance(f, ParamFile) else read_params(f) for f in files]
-    r = _Reader(pfs)
+    r = _Reader(pfs, launch_types)
     ctrls = {**r.ros1(), **r.ros2()}
     names = {c.name for c in ctrls.values()}
     for c in ctrls.values():
@@ -500,6 +553,41 @@ def read_controllers(files: Iterable[ParamFile | str | os.PathLike]) -> Controll
     for pf in pfs:
         notes.extend(pf.notes)
     return ControllerSet(ctrls, tuple(pf.path for pf in pfs), notes)
+
+
+_SPAWNERS = ("spawner", "spawner.py")
+_SPAWNER_VALUE_FLAGS = ("-c", "--controller-manager", "-p", "--param-file", "-n", "--namespace",
+                        "--controller-manager-timeout", "--switch-timeout", "--service-call-timeout",
+                        "--controller-ros-args", "--ns", "--timeout", "--shutdown-timeout")
+
+
+def spawner_types(launch_infos) -> dict[str, Value]:
+    """Controller name -> type given on a ROS 2 spawner's command line (`spawner NAME -t TYPE`; "if not
+    provided it should exist in the controller manager namespace", controller_manager userdoc), from the
+    launch files read (`launch.LaunchInfo.nodes`; arguments not literal are skipped)."""
+    out: dict[str, Value] = {}
+    for li in launch_infos:
+        for node in getattr(li, "nodes", ()):
+            if node.package != "controller_manager" or node.executable not in _SPAWNERS or not node.args:
+                continue
+            toks, names, ctype = list(node.args), [], None
+            i = 0
+            while i < len(toks):
+                t = toks[i]
+                if t in ("-t", "--controller-type") and i + 1 < len(toks):
+                    ctype = toks[i + 1]
+                    i += 2
+                elif t in _SPAWNER_VALUE_FLAGS:
+                    i += 2
+                elif t.startswith("-") or "\x00" in t:
+                    i += 1
+                else:
+                    names.append(t)
+                    i += 1
+            if ctype and "\x00" not in ctype:
+                for n in names:
+                    out.setdefault(n, Value(ctype, node.loc))
+    return out
 
 
 # --- custom drivers ----------------------------------------------------------------------------------

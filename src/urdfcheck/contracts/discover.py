@@ -2,8 +2,9 @@
 
 * entry models: every `.urdf`, and every `.xacro` whose root element is `<robot>`, that is not included by
   another xacro of the package (`xacro:include filename="..."`, matched on the path tail) and that does more
-  than define macros/properties (a pure macro library has only `xacro:macro`/`property`/`arg`/`include`
-  children and expands to an empty robot);
+  than define macros/properties (a library has only `xacro:macro`/`property`/`arg`/`include` children, also
+  inside `xacro:if`/`unless`, at least one macro or property, and expands to an empty robot; it is linted
+  through the robots that include it, never alone);
 * parameter YAML: `*.yaml`/`*.yml` in any `config/`, `params/` or `param/` directory;
 * launch files: `*.launch`, `*.launch.xml`, `*.launch.py`, `*.launch.yaml`, `*.launch.yml` in any `launch/`
   directory.
@@ -58,8 +59,10 @@ def _read_head(path: str, trusted: bool = False) -> str:
     if not trusted and leaves_cwd(path):  # a committed symlink out of the checkout: its target is none of our business
         return ""
     try:
-        with open(path, "rb") as f:
-            return f.read(HEAD_BYTES).decode("utf-8", "replace")
+        from urdfcheck.core.safeio import decode_model_text, read_file
+
+        # a regular file only (a FIFO must not block); a UTF-16 model is found, then reported by the loader
+        return decode_model_text(read_file(path, HEAD_BYTES)[:HEAD_BYTES])
     except OSError:
         return ""
 
@@ -93,12 +96,43 @@ def _is_library(text: str) -> bool:
     kids = [c for c in root if isinstance(c.tag, str)]
     if not kids:
         return False
+    defs = _definitions(kids, 0)
+    # macros or properties only (an `xacro:if` holding only definitions counts): a library. A file holding
+    # only includes and args may include a robot body; it stays a model
+    return defs is not None and bool(defs & {"macro", "property"})
+
+
+def _definitions(kids, depth: int) -> set[str] | None:
+    """The definition tags among `kids`, or None when one of them is not a definition."""
+    found: set[str] = set()
     for c in kids:
         q = etree.QName(c)
-        if q.namespace in _XACRO_NS and q.localname in _DEFINITION_TAGS:
-            continue
-        return False
-    return any(etree.QName(c).localname == "macro" for c in kids)
+        if q.namespace not in _XACRO_NS:
+            return None
+        if q.localname in _DEFINITION_TAGS:
+            found.add(q.localname)
+        elif q.localname in ("if", "unless") and depth < 8:
+            inner = _definitions([k for k in c if isinstance(k.tag, str)], depth + 1)
+            if inner is None:
+                return None
+            found |= inner
+        else:
+            return None
+    return found
+
+
+_SRDF = re.compile(r"<\s*(?:disable_collisions|group_state|virtual_joint|end_effector|passive_joint)\b")
+
+
+def _no_links(text: str) -> bool:
+    """A xacro that can produce no <link>: none written and nothing included (materials, colours): a fragment
+    for other files to include, like a .urdf without links (ros2_control_demos' diffbot.materials.xacro)."""
+    return not re.search(r"<\s*link\b", text) and not re.search(r"<\s*xacro:include\b", text)
+
+
+def _is_srdf(text: str) -> bool:
+    """MoveIt SRDF written as xacro (root <robot> too): SRDF elements and no <link> of its own."""
+    return bool(_SRDF.search(text)) and not re.search(r"<\s*link\b", text)
 
 
 def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
@@ -145,7 +179,8 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
         if low.endswith(".urdf"):
             urdfs.append(path)
         elif low.endswith(".xacro"):
-            xacros.append(path)
+            if not low.endswith(".srdf.xacro"):  # MoveIt's semantic description (also <robot>): not a URDF
+                xacros.append(path)
         elif low.endswith((".yaml", ".yml")) and not low.endswith((".launch.yaml", ".launch.yml")) \
                 and any(p in PARAM_DIRS for p in parts):
             params.append(path)
@@ -174,7 +209,7 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
         if tag is None or tag.split(":")[-1] != "robot":
             libs.append(p)
             continue
-        if _is_library(texts[p]):
+        if _is_library(texts[p]) or _is_srdf(texts[p]) or _no_links(texts[p]):
             libs.append(p)
             continue
         models.append(p)

@@ -68,6 +68,8 @@ class StatePublisher(NamedTuple):
     source_file: str
     prefix_loc: Location | None = None
     condition: str | None = None
+    description: Any = None  # pylaunch.ModelRef: the model it publishes, when the launch file says
+    description_key: str | None = None  # ROS 1: the global parameter it reads the model from, when not found
 
 
 class JointStatePublisher(NamedTuple):
@@ -135,7 +137,8 @@ class LaunchInfo(Record):
     # format: "ros1-xml", "ros2-xml", "ros2-yaml", "ros2-py"
     # spawned: controller names given to spawners
     # param_sets: ROS 1: ParamSet / RosparamLoad, in document order
-    _fields = ('path', 'format', 'nodes', 'static_tfs', 'state_publishers', 'joint_state_publishers', 'spawned', 'param_files', 'includes', 'notes', 'param_sets')
+    # declared: launch argument name -> pylaunch.Declared (default, choices)
+    _fields = ('path', 'format', 'nodes', 'static_tfs', 'state_publishers', 'joint_state_publishers', 'spawned', 'param_files', 'includes', 'notes', 'param_sets', 'declared')
 
     def __init__(self, path: str,
                  format: str,
@@ -147,7 +150,8 @@ class LaunchInfo(Record):
                  param_files: list[tuple[str, Location]] | None = None,
                  includes: list[Include] | None = None,
                  notes: list[tuple[str, Location]] | None = None,
-                 param_sets: list | None = None):
+                 param_sets: list | None = None,
+                 declared: dict | None = None):
         self.path = path
         self.format = format
         self.nodes = [] if nodes is None else nodes
@@ -159,9 +163,26 @@ class LaunchInfo(Record):
         self.includes = [] if includes is None else includes
         self.notes = [] if notes is None else notes
         self.param_sets = [] if param_sets is None else param_sets
+        self.declared = {} if declared is None else declared
 
 
 # --- substitutions -----------------------------------------------------------------------------------
+_CMD_START, _CMD_END, _CMD_UNKNOWN = "\x02", "\x03", "\x01"
+_DESCRIPTION_KEY = "\x00description_key"  # LaunchNode.params entry: where a ROS 1 rsp reads its model
+
+
+def description_of(value, loc: Location):
+    """A robot_description parameter value -> pylaunch.ModelRef (None: no model named)."""
+    from urdfcheck.contracts import pylaunch
+
+    if isinstance(value, pylaunch.ModelRef):
+        return value
+    if isinstance(value, str) and _CMD_START in value:
+        inner = value[value.index(_CMD_START) + 1:].split(_CMD_END)[0].replace(_CMD_UNKNOWN, pylaunch.UNKNOWN)
+        return pylaunch.command_model(inner, loc)
+    return None
+
+
 _SUBST = re.compile(r"\$\(\s*([A-Za-z][\w-]*)((?:\s+[^()$]*)?)\)")
 
 
@@ -225,6 +246,10 @@ class _Subst:
             return os.path.abspath(self.path)
         if kind == "anon":
             return f"{arg}_anon"
+        if kind == "find-exec" and arg == "xacro":  # the xacro executable: its name is all a model reader needs
+            return "xacro"
+        if kind == "command":  # kept as a marked command line: robot_state_publisher's model is read from it
+            return _CMD_START + re.sub(r"\x00[\w-]+\x00", _CMD_UNKNOWN, arg) + _CMD_END
         return None  # env, optenv, eval, command, exec-in-pkg, ...: never evaluated
 
 
@@ -332,7 +357,7 @@ def _record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
     info.nodes.append(node)
     pkg, exe = node.package, node.executable
     if pkg in _STATIC_PKGS and exe in ("static_transform_publisher", "static_transform_publisher_node"):
-        if node.args is None:
+        if node.args is None or any("\x00" in a for a in node.args):
             info.notes.append(("static_transform_publisher arguments are not literal; skipped", node.loc))
             return
         try:
@@ -355,8 +380,12 @@ def _record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
                 prefix = prefix.strip("/") + "/"
         else:
             prefix, ploc = None, v.loc
+        d = node.params.get("robot_description")
+        desc = description_of(d.value, d.loc) if d is not None else None
+        key = node.params.get(_DESCRIPTION_KEY)
         info.state_publishers.append(StatePublisher(node.name or "robot_state_publisher", node.namespace, prefix,
-                                                    node.loc, info.path, ploc, node.condition))
+                                                    node.loc, info.path, ploc, node.condition, desc,
+                                                    key.value if key is not None and desc is None else None))
     elif pkg in _JSP_PKGS:
         info.joint_state_publishers.append(JointStatePublisher(node.name or pkg, pkg, node.loc, info.path, node.condition))
     elif pkg == "controller_manager" and exe in ("spawner", "spawner.py", "controller_manager"):
@@ -375,7 +404,7 @@ def _record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
                         info.param_files.append((toks[i + 1], node.loc))
                     i += 2
                     continue
-                if t.startswith("-") or t in ("spawn", "load", "start", "stop"):
+                if t.startswith("-") or t in ("spawn", "load", "start", "stop") or "\x00" in t:
                     i += 1
                     continue
                 info.spawned.append((t, node.loc))
@@ -424,12 +453,29 @@ class _XmlReader:
         ros2 = root.xpath("boolean(.//*[@exec] | .//let | .//push-ros-namespace | .//push_ros_namespace)")
         self.ros = 2 if ros2 or "$(var " in etree.tostring(root, encoding="unicode") else 1
         self.info = LaunchInfo(path, "ros2-xml" if self.ros == 2 else "ros1-xml")
+        self.descriptions: dict = {}  # global parameter name -> ModelRef (ROS 1 <param command=...>)
+        self.info.descriptions = self.descriptions
 
     def loc(self, el) -> Location:
         return Location(self.path, el.sourceline)
 
     def attr(self, el, name: str) -> tuple[str | None, bool]:
         return self.subst(el.get(name))
+
+    def _desc_value(self, el):
+        """<param name="robot_description" command="xacro ..."/> or textfile="..." -> ModelRef (or None)."""
+        from urdfcheck.contracts import pylaunch
+
+        for attr, how in (("command", "xacro"), ("textfile", "file")):
+            raw = el.get(attr)
+            if raw is None:
+                continue
+            v, _ = self.subst(raw)
+            text = re.sub(r"\$\([\w-]+ \?\)", pylaunch.UNKNOWN, v or "")
+            if how == "xacro":
+                return description_of(_CMD_START + text + _CMD_END, self.loc(el))
+            return pylaunch.ModelRef(text.strip(), (), "file", self.loc(el))
+        return None
 
     def run(self) -> LaunchInfo:
         if _tag(self.root) != "launch":
@@ -492,6 +538,11 @@ class _XmlReader:
                         self.info.notes.append((f"rosparam file {el.get('file')!r} not resolved", self.loc(el)))
                 elif self.ros == 1 and not c and (el.get("command") or "load") == "load" and (el.text or "").strip():
                     self._inline_rosparam(el, ns)
+            elif tag == "param" and el.get("value") is None and (el.get("command") or el.get("textfile")):
+                d = self._desc_value(el)
+                name, ok = self.subst(el.get("name"))
+                if d is not None and ok and name:
+                    self.descriptions[_join_ns(ns, name)] = d
             elif tag == "param" and self.ros == 1 and not c:
                 self._param(el, ns)
             elif tag == "node":
@@ -600,7 +651,8 @@ class _XmlReader:
                     continue
                 raw = ch.get("value")
                 if raw is None:
-                    params[pname] = Value(None, self.loc(ch))  # command=/textfile=: not literal
+                    desc = self._desc_value(ch) if pname == "robot_description" else None
+                    params[pname] = Value(desc, self.loc(ch))  # command=/textfile=: not literal
                     continue
                 v, ok = self.subst(raw)
                 params[pname] = Value(v if ok else None, self.loc(ch))
@@ -608,6 +660,18 @@ class _XmlReader:
                 f, ok = self.attr(ch, "file")
                 if ok:
                     pfiles.append(f)
+        if pkg == "robot_state_publisher" and "robot_description" not in params:
+            key = "robot_description"
+            for ch in el:
+                if _tag(ch) == "remap" and ch.get("from") == "robot_description" and ch.get("to"):
+                    to, ok = self.subst(ch.get("to"))
+                    key = to if ok and to else key
+            full = _join_ns(ns, key)
+            d = self.descriptions.get(full) or self.descriptions.get(_join_ns("/", key))
+            if d is not None:
+                params["robot_description"] = Value(d, d.loc)
+            else:  # written by an included launch file, perhaps: the deployment finder looks there
+                params[_DESCRIPTION_KEY] = Value(full, self.loc(el))
         node = LaunchNode(pkg or "", exe or "", name or "", ns or "/", tuple(args) if args is not None else None,
                           self.loc(el), params, tuple(pfiles), cond)
         _record_node(self.info, node, self.ros)

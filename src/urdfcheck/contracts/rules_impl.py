@@ -6,6 +6,7 @@ ROS package's config/ and launch/ files) and stored back on the context for the 
 """
 from __future__ import annotations
 
+import os
 import re
 from typing import Iterator
 
@@ -83,6 +84,17 @@ def _unresolved(name: str) -> bool:
     return bool(_UNRESOLVED.search(name))
 
 
+def _WARNING():
+    from urdfcheck.core.findings import Severity
+
+    return Severity.WARNING
+
+
+def _inferred(owner):
+    """A driver whose keys were read by their shape (zero config, pipeline/deployments): its findings warn."""
+    return _WARNING() if getattr(owner, "inferred", False) else None
+
+
 def _owner_desc(owner_kind: str, owner) -> str:
     if owner_kind == "controller":
         return f"controller {owner.name}"
@@ -108,7 +120,7 @@ def unknown_joint(model, ctx) -> Iterator[Problem]:
         else:
             hint = _suggest(u.joint, model.joints)
         yield Problem(f"{_owner_desc(kind, owner)} names joint {u.joint!r}{via}, which the model does not "
-                      f"have{hint}", at=u.loc, data={"joint": u.joint})
+                      f"have{hint}", at=u.loc, data={"joint": u.joint}, severity=_inferred(owner))
 
 
 def joint_not_movable(model, ctx) -> Iterator[Problem]:
@@ -122,7 +134,9 @@ def joint_not_movable(model, ctx) -> Iterator[Problem]:
             yield from _not_movable(model, u, f"controller {ctrl.name}", seen)
     for d in c.drivers:
         for u in d.joints:
-            yield from _not_movable(model, u, f"driver {d.name}", seen)
+            for p in _not_movable(model, u, f"driver {d.name}", seen):
+                p.severity = p.severity or _inferred(d)
+                yield p
 
 
 def _not_movable(model, u, who: str, seen: set):
@@ -150,7 +164,10 @@ def _gazebo_state_joints(model) -> tuple[bool, set[str]]:
                     named.update(joints)
                 else:
                     all_cov = True
-            elif "diff_drive" in fname and re.search(r"<publish_?[Ww]heel_?[Jj]oint_?[Ss]tate>\s*(true|1)\s*<", body):
+            elif "diff_drive" in fname and re.search(
+                    r"<publish_?[Ww]heel_?(?:[Jj]oint_?[Ss]tate|[Tt][Ff])>\s*(true|1)\s*<", body):
+                # wheel joint states (ROS 1 publishWheelJointState), or the wheel-to-base transforms themselves
+                # (gazebo_ros_diff_drive publish_wheel_tf): either way the wheels are in TF
                 named.update(re.findall(r"<(?:left|right)_?[Jj]oint>\s*([^<\s]+)\s*<", body))
     return all_cov, named
 
@@ -160,6 +177,11 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
     c = consumers(model, ctx)
     bringup = any(li.state_publishers for li in c.launch)  # a launch file that brings the robot up
     if not len(c.controllers) and not c.drivers and not bringup:
+        return
+    if _no_state_publisher(c, model, ctx):
+        # nothing known turns these joint states into TF: the launch files read start no robot_state_publisher,
+        # and the model's package has launch files, none of which is known to start one (ros_controllers' test
+        # robots run none)
         return
     movable = [j for j in model.joint_list if j.movable and j.mimic is None]
     if not movable:
@@ -205,6 +227,23 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
         yield Problem(f"nothing publishes the state of joint {j.name!r} (the joint state broadcaster does not "
                       f"cover it and no driver names it); robot_state_publisher will not publish "
                       f"{j.child!r}", at=j, data={"joint": j.name})
+
+
+def _package_launches(c: Consumers, model, ctx) -> list:
+    """The launch files of the model's package (zero-config discovery lists them; for a config, which may
+    declare none, they are looked up)."""
+    known = (c.files or {}).get("package_launch")
+    if known is not None or c.origin != "config":
+        return known or []
+    from urdfcheck.contracts.consumers import _package_root
+    from urdfcheck.contracts.discover import LAUNCH_SUFFIXES, _walk
+
+    entry = getattr(getattr(ctx, "expanded", None), "entry", None) or model.source
+    root = _package_root(entry) if entry else None
+    if root is None:
+        return []
+    # any launch file of the package, wherever it lies (ros_controllers keeps its test launch files in test/)
+    return [os.path.join(d, f) for d, f in _walk(str(root), 5000) if f.lower().endswith(LAUNCH_SUFFIXES)]
 
 
 def _consumer_anchor(c: Consumers) -> Location | None:
@@ -328,6 +367,7 @@ def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
     tol = _opt(ctx, "tolerance", DEFAULT_TOLERANCE)
     ang = _opt(ctx, "angle_tolerance", DEFAULT_ANGLE_TOLERANCE)
     prefix = c.rsp_prefix
+    inferred = {d.name for d in c.drivers if _inferred(d)}
     for drive, base in _drives(c):
         b = base[len(prefix):] if base and prefix and base.startswith(prefix) else base
         if b not in model.links:
@@ -336,7 +376,8 @@ def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
         for p in rep.problems():
             if p.code == code:
                 related = _dedupe_locs(p.related, p.at)
-                yield Problem(p.message, at=p.at, related=related, severity=p.severity, data=p.data)
+                yield Problem(p.message, at=p.at, related=related, data=p.data,
+                              severity=_WARNING() if drive.owner in inferred else p.severity)
 
 
 def wheel_separation_mismatch(model, ctx):
@@ -373,6 +414,7 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
         items.extend((v, f"controller {ctrl.name}", ctrl.name) for v in ctrl.frames)
     for d in c.drivers:
         items.extend((v, f"driver {d.name}", d.name) for v in d.frames)
+    inferred = {d.name for d in c.drivers if _inferred(d)}
     for n in c.localization:
         items.append((n.base_frame, f"{n.kind} {n.node}", f" {n.node}"))
     seen = set()
@@ -388,7 +430,7 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
         seen.add((name, v.loc))
         yield Problem(f"{who} uses frame {name!r}, which is neither a link of the model nor published by "
                       f"anything else{_suggest_frame(name, sorted(links | others))}", at=v.loc,
-                      data={"frame": name})
+                      data={"frame": name}, severity=_WARNING() if owner in inferred else None)
 
 
 # --- T001..T006: TF ownership ------------------------------------------------------------------------------
@@ -453,6 +495,13 @@ def _tf_problems(model, ctx, analysis):
     for p in analysis(g):
         if not _alternatives(p, c):
             yield p
+
+
+def _no_state_publisher(c: Consumers, model, ctx) -> bool:
+    """The launch files known start no robot_state_publisher, and the model's package has launch files:
+    nothing publishes the model's own frames (ros_controllers' test robots)."""
+    bringup = any(li.state_publishers for li in c.launch)
+    return not bringup and bool(c.launch or _package_launches(c, model, ctx))
 
 
 def duplicate_tf_owner(model, ctx):

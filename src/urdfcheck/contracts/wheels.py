@@ -32,7 +32,7 @@ from typing import NamedTuple
 
 from urdfcheck.core import geometry as G
 from urdfcheck.core.findings import Location, Severity
-from urdfcheck.contracts.controllers import DriveSpec, JointUse
+from urdfcheck.contracts.controllers import DriveSpec, JointUse, number, number_text
 from urdfcheck.core.records import FrozenRecord, Record
 
 DEFAULT_TOLERANCE = 1e-3  # m
@@ -195,7 +195,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                     g = shape.geometry
                     radius, shape_kind, shape_loc = g.radius, g.kind, g.loc
                     if g.kind == "cylinder":
-                        zc = _unit(G.rotate(G.pose_matrix(shape.origin.xyz, shape.origin.rpy), (0.0, 0.0, 1.0)))
+                        zc = _unit(G.rotate(G.origin_matrix(shape.origin), (0.0, 0.0, 1.0)))
                         ja = _unit(j.axis)
                         if zc is not None and ja is not None:
                             ang = _angle(zc, ja)
@@ -239,14 +239,20 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
         names = f"{', '.join(w.use.joint for w in lefts)} / {', '.join(w.use.joint for w in rights)}"
         data = {"measured": rep.measured_separation, "expected": expected, "distance": rep.urdf_distance,
                 "tolerance": tolerance}
+        sep = drive.wheel_separation
+        base_sep = number(sep)
+        slip = drive.multiplier("separation")
         if rep.measured_separation <= tolerance:
             rep.problems_.append(WheelProblem(
                 "C010",
                 f"the wheels of {drive.owner} ({names}) are {_fmt(rep.urdf_distance)} m apart but 0 m apart along "
                 f"their axis {_vec(ref.axis)}: they sit one behind the other, not side by side",
                 lefts[0].joint_loc, (rights[0].joint_loc,), None, data))
+        elif slip is not None and base_sep is not None:
+            # a declared slip factor (skid steer): compare the base value with the model, say what it does
+            rep.problems_.append(_slip_problem(drive, sep, slip, base_sep, rep.measured_separation, names,
+                                               tolerance, (lefts[0].joint_loc, rights[0].joint_loc), data))
         elif expected is None:
-            sep = drive.wheel_separation
             if drive.from_urdf and sep is None:
                 if abs(rep.urdf_distance - rep.measured_separation) > tolerance:
                     rep.problems_.append(WheelProblem(
@@ -262,13 +268,11 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                     f"{_fmt(rep.measured_separation)} m apart ({names})",
                     drive.loc, (lefts[0].joint_loc, rights[0].joint_loc), None, data))
             else:
-                rep.notes.append((f"wheel_separation {sep.value!r} is not a number", sep.loc))
+                bad = sep if base_sep is None else drive.separation_multiplier
+                what = "wheel_separation" if base_sep is None else "wheel_separation_multiplier"
+                rep.notes.append((f"{what} {bad.value!r} is not a number", bad.loc))
         elif abs(expected - rep.measured_separation) > tolerance:
-            sep = drive.wheel_separation
-            mult = drive.separation_multiplier
-            how = f"wheel_separation {_fmt(float(sep.value))}" if sep is not None else "wheel_separation"
-            if mult is not None and not mult.default and (mult.value != 1 and mult.value != 1.0):
-                how += f" x wheel_separation_multiplier {mult.value} = {_fmt(expected)}"
+            how = f"wheel_separation {number_text(sep)}" if sep is not None else "wheel_separation"
             rep.problems_.append(WheelProblem(
                 "C010",
                 f"{drive.owner}: {how} m, but the model's wheels ({names}) are {_fmt(rep.measured_separation)} m "
@@ -276,6 +280,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                 f"tolerance {_fmt(tolerance)} m)",
                 sep.loc if sep is not None else drive.loc, (lefts[0].joint_loc, rights[0].joint_loc), None, data))
     # --- radii --------------------------------------------------------------------------------------
+    radius_said: set = set()
     for w in rep.wheels:
         expected = drive.radius(w.side)
         rad_v = drive.wheel_radius
@@ -306,19 +311,53 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                     f"{_fmt(w.radius)} m",
                     drive.loc, (w.shape_loc or w.joint_loc,), None, {"measured": w.radius, "expected": None}))
             continue
-        if abs(expected - w.radius) > tolerance:
-            mult = drive.left_radius_multiplier if w.side == "left" else drive.right_radius_multiplier
-            how = f"wheel_radius {_fmt(float(rad_v.value))}"
-            if mult is not None and not mult.default and mult.value not in (1, 1.0):
-                how += f" x {w.side} radius multiplier {mult.value} = {_fmt(expected)}"
+        slip = drive.multiplier(w.side)
+        base_r = number(rad_v)
+        data = {"measured": w.radius, "expected": expected, "link": w.link, "tolerance": tolerance}
+        if slip is not None and base_r is not None:
+            # a declared correction (tyre compression, slip): compare the base radius, say what it does
+            off = abs(base_r - w.radius) > tolerance
+            if (w.side, off) in radius_said:
+                continue  # one note per side and outcome, not one per wheel
+            radius_said.add((w.side, off))
+            mult_v = drive.left_radius_multiplier if w.side == "left" else drive.right_radius_multiplier
+            agree = f"differs from ({_fmt(abs(base_r - w.radius))} m off)" if off else "matches"
             rep.problems_.append(WheelProblem(
                 "C011",
-                f"{drive.owner}: {how} m, but wheel link {w.link} ({w.use.joint}) has a {w.shape_from} {w.shape_kind} "
-                f"of radius {_fmt(w.radius)} m (difference {_fmt(abs(expected - w.radius))} m, tolerance "
-                f"{_fmt(tolerance)} m)",
-                rad_v.loc, (w.shape_loc or w.joint_loc,), None,
-                {"measured": w.radius, "expected": expected, "link": w.link, "tolerance": tolerance}))
+                f"{drive.owner}: wheel_radius {number_text(rad_v)} m {agree} the {w.shape_from} {w.shape_kind} of "
+                f"wheel link {w.link} ({_fmt(w.radius)} m); the {w.side} wheel radius multiplier {_fmt(slip)} is a "
+                f"declared correction: the controller converts {w.side} wheel rotation to and from ground speed "
+                f"with {_fmt(slip)} x {_fmt(base_r)} = {_fmt(base_r * slip)} m",
+                mult_v.loc, (w.shape_loc or w.joint_loc, rad_v.loc), Severity.INFO, data))
+            continue
+        if abs(expected - w.radius) > tolerance:
+            rep.problems_.append(WheelProblem(
+                "C011",
+                f"{drive.owner}: wheel_radius {number_text(rad_v)} m, but wheel link {w.link} ({w.use.joint}) has a "
+                f"{w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m (difference "
+                f"{_fmt(abs(expected - w.radius))} m, tolerance {_fmt(tolerance)} m)",
+                rad_v.loc, (w.shape_loc or w.joint_loc,), None, data))
     return rep
+
+
+def _slip_problem(drive: DriveSpec, sep, slip: float, base: float, measured: float, names: str, tolerance: float,
+                  related: tuple, data: dict) -> WheelProblem:
+    """C010 as information: a wheel_separation_multiplier other than 1 is how the turning of a skid-steer (or
+    otherwise slipping) base is tuned. diff_drive_controller (ROS 1 and 2) multiplies wheel_separation by it for
+    the wheel commands and the odometry alike; the base value should still be the model's track."""
+    eff = slip * base
+    if abs(base - measured) <= tolerance:
+        agree = f"matches the model's {_fmt(measured)} m ({names})"
+    else:
+        agree = f"differs from the model's {_fmt(measured)} m ({names}) by {_fmt(abs(base - measured))} m"
+    what = ("more wheel speed difference per turn than ideal rolling wheels need: skid-steer slip" if slip > 1 else
+            "less wheel speed difference per turn than ideal rolling wheels need")
+    msg = (f"{drive.owner}: wheel_separation_multiplier {_fmt(slip)} is a declared slip factor: wheels are commanded "
+           f"and odometry integrated with {_fmt(slip)} x {_fmt(base)} = {_fmt(eff)} m ({what}); the base "
+           f"wheel_separation {number_text(sep)} m {agree}")
+    mult = drive.separation_multiplier
+    return WheelProblem("C010", msg, mult.loc if mult is not None else sep.loc, (sep.loc,) + related,
+                        Severity.INFO, {**data, "multiplier": slip, "base": base})
 
 
 def _sides_problem(drive: DriveSpec, base: str, lefts, rights, pl, pr, fwd: float) -> WheelProblem:

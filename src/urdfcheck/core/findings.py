@@ -39,6 +39,15 @@ class Location(NamedTuple):
         return out
 
 
+class Place(NamedTuple):
+    """One model (and variant) a collapsed finding applies to; `message` when it reads differently there
+    (a macro used with another prefix names other links)."""
+
+    model: str
+    variant: str = ""
+    message: str = ""
+
+
 class Finding(NamedTuple):
     code: str
     severity: Severity
@@ -48,6 +57,12 @@ class Finding(NamedTuple):
     related: tuple[Location, ...] = ()
     model: str = ""  # the entry model the finding came from
     variant: str = ""  # xacro argument set name, when several were linted
+    # every model/variant the same problem was found in, when several (pipeline/collapse.py); () means just
+    # `model`/`variant` above, which are always the first of them
+    where: tuple[Place, ...] = ()
+
+    def places(self) -> tuple[Place, ...]:
+        return self.where or (Place(self.model, self.variant),)
 
     def sort_key(self):
         loc = self.location

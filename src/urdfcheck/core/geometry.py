@@ -1,6 +1,8 @@
 """Small pure-Python rigid-transform helpers (4x4 as nested tuples), for the lint path where numpy is not loaded.
 
 URDF conventions: rpy are fixed-axis roll about x, then pitch about y, then yaw about z, i.e. R = Rz(y) Ry(p) Rx(r).
+An <origin> (model.robot.Pose) gives its rotation as rpy or, from URDF 1.1, as quat_xyzw; `origin_quaternion`,
+`origin_rotation` and `origin_matrix` are the one place that turns either into a rotation.
 """
 from __future__ import annotations
 
@@ -47,6 +49,61 @@ def from_rt(rot, xyz) -> Mat:
 
 def pose_matrix(xyz, rpy) -> Mat:
     return from_rt(rpy_matrix(*rpy), xyz)
+
+
+def quat_from_rpy(r: float, p: float, y: float) -> tuple[float, float, float, float]:
+    """urdfdom's Rotation::setFromRPY (then normalised), as (x, y, z, w)."""
+    phi, the, psi = r / 2.0, p / 2.0, y / 2.0
+    sphi, cphi = math.sin(phi), math.cos(phi)
+    sthe, cthe = math.sin(the), math.cos(the)
+    spsi, cpsi = math.sin(psi), math.cos(psi)
+    x = sphi * cthe * cpsi - cphi * sthe * spsi
+    yy = cphi * sthe * cpsi + sphi * cthe * spsi
+    z = cphi * cthe * spsi - sphi * sthe * cpsi
+    w = cphi * cthe * cpsi + sphi * sthe * spsi
+    return normalized_quaternion(x, yy, z, w)
+
+
+def normalized_quaternion(x: float, y: float, z: float, w: float) -> tuple[float, float, float, float]:
+    """urdfdom's Rotation::normalize: divided by its norm, no tolerance; a zero quaternion becomes identity
+    (urdfdom_headers pose.h, `if (squared_norm <= 0.0)`); NaN stays NaN."""
+    sq = x * x + y * y + z * z + w * w
+    if sq <= 0.0:
+        return (0.0, 0.0, 0.0, 1.0)
+    s = math.sqrt(sq)
+    return (x / s, y / s, z / s, w / s)
+
+
+def quat_matrix(x: float, y: float, z: float, w: float) -> tuple:
+    """3x3 rotation of a unit quaternion (KDL::Rotation::Quaternion)."""
+    x2, y2, z2, w2 = x * x, y * y, z * z, w * w
+    return (
+        (w2 + x2 - y2 - z2, 2 * x * y - 2 * w * z, 2 * x * z + 2 * w * y),
+        (2 * x * y + 2 * w * z, w2 - x2 + y2 - z2, 2 * y * z - 2 * w * x),
+        (2 * x * z - 2 * w * y, 2 * y * z + 2 * w * x, w2 - x2 - y2 + z2),
+    )
+
+
+def origin_quaternion(pose) -> tuple[float, float, float, float]:
+    """The rotation urdfdom holds for an <origin>: quat_xyzw normalised when the model's URDF version read
+    one (the builder leaves `quat` None otherwise), else setFromRPY(rpy)."""
+    q = pose.quat
+    if q is not None:
+        return normalized_quaternion(*q)
+    return quat_from_rpy(*pose.rpy)
+
+
+def origin_rotation(pose) -> tuple:
+    """3x3 rotation of an <origin>."""
+    q = pose.quat
+    if q is not None:
+        return quat_matrix(*normalized_quaternion(*q))
+    return rpy_matrix(*pose.rpy)
+
+
+def origin_matrix(pose) -> Mat:
+    """4x4 transform of an <origin>."""
+    return from_rt(origin_rotation(pose), pose.xyz)
 
 
 def compose(a: Mat, b: Mat) -> Mat:

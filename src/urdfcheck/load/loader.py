@@ -13,6 +13,8 @@ from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.load.packages import Resolver
 from urdfcheck.core.records import Record
 from urdfcheck.core.suppress import Suppression
+from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
+from urdfcheck.load import budget
 
 MAX_BYTES = xmlfront.MAX_BYTES
 XACRO_TIMEOUT = 20.0
@@ -80,8 +82,7 @@ class Expanded(Record):
 
         if self.text is not None:
             return STRIP_RE.sub("", self.text)
-        with open(self.entry, "rb") as f:
-            return f.read().decode("utf-8", "replace")
+        return read_file(self.entry, MAX_BYTES).decode("utf-8", "replace")
 
     def locate(self, el) -> Location:
         """Source location of an element of `root` (xacro markers or lxml line numbers)."""
@@ -145,17 +146,62 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
         out.findings.append(_finding("X014", "the model path is or goes through a symbolic link to outside the "
                                              "package roots or the working directory; not read", shown))
         return Pending(out)
+    run = budget.current()
+    spent = run.spent() if run is not None else None
+    if spent is not None:  # what was not linted is a finding, located at the model
+        out.findings.append(_finding("X017", f"not linted: {spent}", shown))
+        return Pending(out)
+    cut = False
+    if run is not None:
+        timeout, cut = run.timeout(timeout)
     try:
-        with open(p, "rb") as f:
-            data = f.read(MAX_BYTES + 1)
+        data = read_file(p, MAX_BYTES)  # a regular file only: a committed FIFO must not block the run
     except OSError as e:
         out.findings.append(_finding("X001", f"cannot read file: {e.strerror}", shown))
         return Pending(out)
+    problem = encoding_problem(data)
+    if problem is not None:  # UTF-16/32: urdfdom reads UTF-8 only; never silently skipped or read as garbage
+        out.findings.append(_finding("X001", problem, shown, 1))
+        return Pending(out)
+    if data.startswith(UTF8_BOM):  # read on (urdfdom and xacro skip it), but say so
+        out.findings.append(_finding("X003", "the file starts with a UTF-8 byte-order mark: urdfdom and xacro skip "
+                                             "it, but a launch file that reads the text into robot_description "
+                                             "passes U+FEFF on to every consumer; save it as UTF-8 without BOM",
+                                     shown, 1))
     opts = (trusted, allow_env, timeout, memory, max_elements)
     if is_xacro(p):
         out.xacro = True
-        return Pending(out, job=_start_xacro(out, p, *opts))
+        job = _start_xacro(out, p, *opts, grace=0.0 if cut else None)
+        job.budget_cut = cut
+        return Pending(out, job=job)
+    too_big = _too_many_elements(data)
+    if too_big is not None:
+        out.findings.append(_finding("X017", too_big, shown, 1))
+        return Pending(out)
     return Pending(out, later=lambda: _read_plain(out, p, data, opts))
+
+
+# Elements of one document that the main process builds a model from. The largest real robots have hundreds of
+# links, the benchmark models 10 000; a million sibling links (23 MB, under the size cap) cost 12 s and 1.9 GB.
+MAX_LINKS_JOINTS = 100_000
+MAX_ELEMENTS = 2_000_000
+
+
+def _too_many_elements(data) -> str | None:
+    """Counted on the bytes before parsing: a byte count instead of a libxml2 tree and a model."""
+    if isinstance(data, str):
+        data = data.encode("utf-8", "replace")
+    if len(data) < 2_000_000:  # too small to hold that many elements
+        return None
+    parts = sum(data.count(t) for t in (b"<link ", b"<link>", b"<link/", b"<link\n", b"<link\t",
+                                        b"<joint ", b"<joint>", b"<joint/", b"<joint\n", b"<joint\t"))
+    if parts > MAX_LINKS_JOINTS:
+        return (f"not linted: the model has more than {MAX_LINKS_JOINTS} links and joints ({parts}); "
+                "no robot description is that large")
+    tags = data.count(b"<") - data.count(b"</")
+    if tags > MAX_ELEMENTS:
+        return f"not linted: the model has more than {MAX_ELEMENTS} elements ({tags})"
+    return None
 
 
 class Pending:
@@ -170,7 +216,7 @@ class Pending:
         job, later = self._job, self._later
         self._job = self._later = None
         if job is not None:
-            _finish_xacro(self._out, job.result())
+            _finish_xacro(self._out, job.result(), getattr(job, "budget_cut", False))
         elif later is not None:
             later()
         return self._out
@@ -222,20 +268,26 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
     return True
 
 
-def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None):
+def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None, grace=None):
     from urdfcheck.load import worker
     from urdfcheck.load.xacro import expand as xexpand
 
     opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
                            max_evals=max_elements)
     xexpand.preload()
-    return worker.start(xexpand.expand, str(p), opts, timeout=timeout, memory=memory)
+    extra = {} if grace is None else {"grace": grace}  # cut by the run budget: no delivery grace past it
+    return worker.start(xexpand.expand, str(p), opts, timeout=timeout, memory=memory,
+                        env_keep=tuple(allow_env), scrub_env=not trusted, **extra)
 
 
-def _finish_xacro(out: Expanded, res) -> None:
+def _finish_xacro(out: Expanded, res, budget_cut: bool = False) -> None:
     from urdfcheck.load import worker
 
     if isinstance(res, worker.Failure):
+        if res.kind == "timeout" and budget_cut:
+            out.findings.append(_finding("X017", "not linted: the run's time budget ran out during its xacro "
+                                                 "expansion", out.entry, 1))
+            return
         what = {"timeout": "xacro expansion timed out", "memory": "xacro expansion ran out of memory",
                 "output": "xacro expansion produced too much output"}.get(res.kind, "xacro expansion failed")
         code = "X012" if res.kind in ("timeout", "memory", "output") else "X010"
@@ -255,6 +307,10 @@ def _finish_xacro(out: Expanded, res) -> None:
     if err is not None:
         loc = out._decode(err["marker"]) if err.get("marker") else Location(out.entry, None)
         out.findings.append(_finding(err["code"], err["message"], loc.file, loc.line, via=loc.via))
+        return
+    too_big = _too_many_elements(res["xml"])
+    if too_big is not None:
+        out.findings.append(_finding("X017", too_big, out.entry, 1))
         return
     out.text = res["xml"]
     try:

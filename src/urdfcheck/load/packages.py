@@ -19,8 +19,9 @@ SCAN_LIMIT = 5000  # directories visited at most
 
 def package_name(package_xml: Path) -> str | None:
     try:
-        with open(package_xml, "rb") as f:
-            head = f.read(65536)
+        from urdfcheck.core.safeio import read_file
+
+        head = read_file(package_xml, 65536)
     except OSError:
         return None
     m = _NAME.search(head)
@@ -93,6 +94,54 @@ def scan(root: Path, near: Path | None = None) -> dict[str, Path]:
     return found
 
 
+WORKSPACE_LIMIT = 50_000  # directories visited at most when scanning a named workspace
+_WORKSPACES: dict[str, dict[str, list[Path]]] = {}
+
+
+def workspace_packages(root: str | os.PathLike) -> dict[str, list[Path]]:
+    """name -> every folder holding a package.xml of that name, at any depth below `root` (a workspace the
+    user named). Hidden and build folders are skipped; the scan is done once per root and process."""
+    key = os.path.abspath(root)
+    got = _WORKSPACES.get(key)
+    if got is not None:
+        return got
+    found: dict[str, list[Path]] = {}
+    visited = 0
+    stack = [Path(key)]
+    while stack and visited < WORKSPACE_LIMIT:
+        d = stack.pop()
+        visited += 1
+        try:
+            entries = sorted(os.scandir(d), key=lambda e: e.name, reverse=True)
+        except OSError:
+            continue
+        for e in entries:
+            if e.name == "package.xml" and e.is_file(follow_symlinks=False):
+                name = package_name(Path(e.path))
+                if name:
+                    found.setdefault(name, []).append(Path(d))
+            elif e.is_dir(follow_symlinks=False) and e.name not in _SKIP_DIRS and not e.name.startswith("."):
+                stack.append(Path(e.path))
+    _WORKSPACES[key] = found
+    return found
+
+
+def nearest(folders: list[Path], near: Path | None) -> Path:
+    """The folder sharing the longest path prefix with `near` (the first one on a tie)."""
+    best = folders[0]
+    for f in folders[1:]:
+        if _closer(f, best, near):
+            best = f
+    return best
+
+
+def workspace_map(root: str | os.PathLike, near: str | os.PathLike | None = None) -> dict[str, str]:
+    """name -> folder for every package below `root`; a name found twice resolves to the copy nearest `near`
+    (a model in one repository prefers its own repository's package). Usable as an explicit package map."""
+    n = Path(os.path.abspath(near)) if near is not None else None
+    return {name: str(nearest(dirs, n)) for name, dirs in workspace_packages(root).items()}
+
+
 def _closer(a: Path, b: Path, near: Path | None) -> bool:
     if near is None:
         return False
@@ -103,11 +152,27 @@ def _closer(a: Path, b: Path, near: Path | None) -> bool:
     return shared(a) > shared(b)
 
 
+_RESOLVED: dict[str, Path] = {}
+
+
+def _resolved(path) -> Path:
+    """Path(path).resolve(), remembered: a workspace map of a hundred packages is given to every model."""
+    key = os.fspath(path)
+    got = _RESOLVED.get(key)
+    if got is None:
+        if len(_RESOLVED) > 10_000:
+            _RESOLVED.clear()
+        got = _RESOLVED[key] = Path(key).resolve()
+    return got
+
+
 class Resolver:
     def __init__(self, explicit: dict[str, str] | None = None, near: Path | None = None,
-                 environ: dict | None = None):
+                 environ: dict | None = None, workspace: str | os.PathLike | None = None):
         env = os.environ if environ is None else environ
-        self.explicit = {k: Path(v).resolve() for k, v in (explicit or {}).items()}
+        # a workspace the user named: every package below it, at any depth, resolves before the scan
+        self.named_workspace = Path(os.path.abspath(workspace)) if workspace is not None else None
+        self.explicit = {k: _resolved(v) for k, v in (explicit or {}).items()}
         self._ament = [Path(p) for p in env.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
         self._ros = [Path(p) for p in env.get("ROS_PACKAGE_PATH", "").split(os.pathsep) if p]
         self.workspace = workspace_root(near) if near is not None else None
@@ -139,12 +204,28 @@ class Resolver:
                 return self._ros_scanned[name]
         if self.near is not None and name == self._own()[0]:
             return self._own()[1]  # `$(find own_package)`, the usual case, needs no workspace scan
+        if self.named_workspace is not None:
+            dirs = workspace_packages(self.named_workspace).get(name)
+            if dirs:
+                return nearest(dirs, self.near)
         if self.workspace is not None:
             if self._scanned is None:
                 self._scanned = scan(self.workspace, self.near)
             if name in self._scanned:
                 return self._scanned[name]
-        return None
+        return self._below_cwd(name)
+
+    def _below_cwd(self, name: str) -> Path | None:
+        """Last resort: the packages below the working directory, the folder the user runs in (CI: the
+        checkout), when the input lies below it and its own repository lacks the package (a description that
+        includes a package of a repository beside it). Scanned once per process, on the first miss."""
+        if self.near is None:
+            return None
+        cwd = os.getcwd()
+        if not _below(str(self.near), cwd) or (self.workspace is not None and _below(cwd, str(self.workspace))):
+            return None  # outside the working directory, or the repository scan covered it already
+        dirs = workspace_packages(cwd).get(name)
+        return nearest(dirs, self.near) if dirs else None
 
     def _own(self) -> tuple[str | None, Path | None]:
         """Name and folder of the package that encloses the input."""
@@ -154,20 +235,24 @@ class Resolver:
 
     def roots(self) -> list[Path]:
         """Folders that files may be read from."""
-        out = [p.resolve() for p in self.explicit.values()]
+        key = len(self.used)  # the roots only grow when a package is found
+        cached = getattr(self, "_roots", None)
+        if cached is not None and cached[0] == key:
+            return cached[1]
+        out = list(self.explicit.values())  # resolved already
         if self.workspace is not None:
             out.append(self.workspace.resolve())
-        out.extend(p.resolve() for p in self.used.values())
-        seen, uniq = set(), []
-        for p in out:
-            if p not in seen:
-                seen.add(p)
-                uniq.append(p)
+        if self.named_workspace is not None:
+            out.append(self.named_workspace.resolve())
+        out.extend(_resolved(p) for p in self.used.values())
+        uniq = list(dict.fromkeys(out))
+        self._roots = (key, uniq, [str(p) for p in uniq])
         return uniq
 
     def allowed(self, path: str | Path) -> bool:
-        real = Path(os.path.realpath(path))
-        return any(real == r or r in real.parents for r in self.roots())
+        real = os.path.realpath(path)
+        self.roots()
+        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in self._roots[2])
 
     def source_layout(self, path: str | Path) -> Path | None:
         """The source file behind an install-layout path, when `path` does not exist.
@@ -206,3 +291,93 @@ class Resolver:
         if re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*://", uri):
             return None, f"unsupported URI scheme in {uri!r}"
         return base_dir / uri, None
+
+
+# --- unresolved packages, all of them in one run -------------------------------------------------------
+_PKG_REF = re.compile(r"\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)|package://([A-Za-z0-9_]+)/")
+_XINCLUDE = re.compile(r"""<\s*xacro:include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
+MAX_REF_FILES = 500
+MAX_REF_BYTES = 4 * 1024 * 1024
+
+
+def missing_packages(entries, find) -> dict[str, list[tuple[str, int]]]:
+    """Every package name that model files reference (`$(find X)`, `$(find-pkg-share X)`, `package://X/`) and
+    `find(name)` cannot resolve, with each (file, line) that references it, in first-seen order.
+
+    Read as text, without expanding: starting from `entries`, the includes whose file name is literal or
+    `$(find known_package)/literal` are followed (the source layout too: `share/P/urdf` may be `P/description/urdf`).
+    An expansion stops at its first unknown package; this names them all, so one run lists every package
+    that is missing (`find` returns a folder or None)."""
+    missing: dict[str, list[tuple[str, int]]] = {}
+    known: dict[str, Path | None] = {}
+
+    def lookup(name: str) -> Path | None:
+        if name not in known:
+            known[name] = find(name)
+        return known[name]
+
+    queue = [os.path.abspath(e) for e in entries]
+    seen: set[str] = set()
+    while queue and len(seen) < MAX_REF_FILES:
+        path = queue.pop(0)
+        if path in seen:
+            continue
+        seen.add(path)
+        try:
+            from urdfcheck.core.safeio import read_file
+
+            text = read_file(path, MAX_REF_BYTES)[:MAX_REF_BYTES].decode("utf-8", "replace")
+        except OSError:
+            continue
+        for m in _PKG_REF.finditer(text):
+            name = m.group(1) or m.group(2)
+            if lookup(name) is None:
+                places = missing.setdefault(name, [])
+                where = (path, text.count("\n", 0, m.start()) + 1)
+                if where not in places:
+                    places.append(where)
+        for m in _XINCLUDE.finditer(text):
+            target = _literal_include(m.group(2).strip(), path, lookup)
+            if target is not None and target not in seen:
+                queue.append(target)
+    return missing
+
+
+def _literal_include(ref: str, includer: str, lookup) -> str | None:
+    m = re.match(r"^\$\(\s*find\s+([A-Za-z0-9_]+)\s*\)(.*)$", ref)
+    if m:
+        root = lookup(m.group(1))
+        rest = m.group(2).lstrip("/")
+        if root is None or "$" in rest:
+            return None
+        cand = os.path.join(str(root), rest)
+        if not os.path.isfile(cand):  # install layout vs source layout
+            hits = [str(c) for c in Path(root).glob(f"*/{rest}") if c.is_file()] or \
+                   [str(c) for c in Path(root).glob(f"*/*/{rest}") if c.is_file()]
+            cand = hits[0] if len(hits) == 1 else cand
+        return os.path.abspath(cand)
+    if "$" in ref or not ref:
+        return None
+    return os.path.abspath(os.path.join(os.path.dirname(includer), ref))
+
+
+def included_files(entry, find, max_files: int = MAX_REF_FILES) -> set[str]:
+    """The files a model reads through its literal includes (itself included), read as text: what a
+    library file's robots are found by."""
+    queue, seen = [os.path.abspath(entry)], set()
+    while queue and len(seen) < max_files:
+        path = queue.pop(0)
+        if path in seen:
+            continue
+        seen.add(path)
+        try:
+            from urdfcheck.core.safeio import read_file
+
+            text = read_file(path, MAX_REF_BYTES)[:MAX_REF_BYTES].decode("utf-8", "replace")
+        except OSError:
+            continue
+        for m in _XINCLUDE.finditer(text):
+            target = _literal_include(m.group(2).strip(), path, find)
+            if target is not None and target not in seen:
+                queue.append(target)
+    return {os.path.realpath(p) for p in seen}

@@ -33,6 +33,36 @@ class Failure(FrozenRecord):
         d["stderr"] = stderr
 
 
+# What a worker keeps of the environment (plus what the caller names, e.g. --allow-env). A CI job's environment
+# holds its secrets; an expansion needs none of it. Locale only: it was read at start-up already.
+ENV_ALLOW = ("LANG", "LANGUAGE", "LC_ALL", "LC_CTYPE", "TZ")
+WORKER_ARGV = ["urdfcheck-worker"]
+
+
+def scrub(keep=()) -> None:
+    """In the child: drop every environment variable not allow-listed, from every copy Python keeps (os.environ,
+    os.environb, posix.environ, which a format-string walk could reach, and the C environment through unsetenv),
+    and the command line (sys.argv, sys.orig_argv)."""
+    allowed = set(ENV_ALLOW) | set(keep)
+    for key in list(os.environ):
+        if key not in allowed:
+            del os.environ[key]  # unsetenv as well
+    environb = getattr(os, "environb", None)
+    if environb is not None:
+        for key in list(environb):
+            if os.fsdecode(key) not in allowed:
+                environb._data.pop(key, None)  # the C environment is already clean
+    posix = sys.modules.get("posix") or sys.modules.get("nt")
+    raw = getattr(posix, "environ", None)
+    if isinstance(raw, dict):
+        for key in list(raw):
+            if os.fsdecode(key) not in allowed:
+                del raw[key]
+    sys.argv[:] = WORKER_ARGV
+    if hasattr(sys, "orig_argv"):
+        sys.orig_argv = list(WORKER_ARGV)
+
+
 def _limit(memory: int | None, cpu: float | None) -> None:
     import resource
 
@@ -45,14 +75,19 @@ def _limit(memory: int | None, cpu: float | None) -> None:
 
 
 def run(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFAULT_MEMORY,
-        capture_fd2: bool = False, **kwargs):
+        capture_fd2: bool = False, env_keep=(), scrub_env: bool = True, **kwargs):
     """fn(*args, **kwargs) in a child. Returns its (picklable) result or a Failure."""
-    return start(fn, *args, timeout=timeout, memory=memory, capture_fd2=capture_fd2, **kwargs).result()
+    return start(fn, *args, timeout=timeout, memory=memory, capture_fd2=capture_fd2, env_keep=env_keep,
+                 scrub_env=scrub_env, **kwargs).result()
 
 
 def start(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFAULT_MEMORY,
-          capture_fd2: bool = False, **kwargs) -> "Job":
-    """Fork the child now and return at once: the caller works on while it runs. The clock starts here."""
+          capture_fd2: bool = False, env_keep=(), scrub_env: bool = True, grace: float = DELIVERY_GRACE,
+          **kwargs) -> "Job":
+    """Fork the child now and return at once: the caller works on while it runs. The clock starts here.
+
+    The child starts with a scrubbed environment (`ENV_ALLOW` + `env_keep`) and argv unless `scrub_env` is
+    false (--trusted expansions, whose $(env) may read any variable)."""
     if not hasattr(os, "fork"):  # pragma: no cover - non-POSIX: no isolation available
         return Job(None, None, None, None, value=fn(*args, **kwargs))
     rfd, wfd = os.pipe()
@@ -70,6 +105,10 @@ def start(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFA
                 os.close(efd_r)
                 os.dup2(efd_w, 2)
             _limit(memory, timeout)
+            if scrub_env:
+                scrub(env_keep)
+            else:
+                sys.argv[:] = WORKER_ARGV
             gc.enable()  # a one-shot lint pauses the collector; an expansion makes cyclic garbage (DOM trees)
             try:
                 payload = ("ok", fn(*args, **kwargs))
@@ -96,15 +135,17 @@ def start(fn, *args, timeout: float = DEFAULT_TIMEOUT, memory: int | None = DEFA
     os.close(wfd)
     if efd_w is not None:
         os.close(efd_w)
-    return Job(pid, rfd, efd_r, time.monotonic() + timeout, timeout=timeout)
+    return Job(pid, rfd, efd_r, time.monotonic() + timeout, timeout=timeout, grace=grace)
 
 
 class Job:
     """A running child. `result()` waits for it (once); `cancel()` kills it. Either reaps the child."""
 
-    def __init__(self, pid, rfd, efd, deadline, timeout: float = DEFAULT_TIMEOUT, value=None):
+    def __init__(self, pid, rfd, efd, deadline, timeout: float = DEFAULT_TIMEOUT, value=None,
+                 grace: float = DELIVERY_GRACE):
         self.pid, self.rfd, self.efd, self.deadline, self.timeout = pid, rfd, efd, deadline, timeout
         self.value = value
+        self.grace = grace
 
     def cancel(self) -> None:
         if self.pid is None:
@@ -132,7 +173,7 @@ class Job:
         rfd, efd_r, timeout = self.rfd, self.efd, self.timeout
         # A child that finished while the caller was busy may still be writing into the full pipe: it gets a
         # moment to deliver, not a time-out. (A child burning CPU meanwhile was stopped by RLIMIT_CPU.)
-        deadline = max(self.deadline, time.monotonic() + min(timeout, DELIVERY_GRACE))
+        deadline = max(self.deadline, time.monotonic() + min(timeout, self.grace))
         chunks, size, errs = [], 0, []
         failure = None
         open_fds = {rfd} | ({efd_r} if efd_r is not None else set())

@@ -1,55 +1,98 @@
-"""Build the Model from a parsed (and expanded) URDF document.
+"""Build the Model from a parsed (and expanded) URDF document: one builder, driven by the grammar.
 
-Values that cannot be read do not stop the build: they become `Issue`s (reported by the U rules) and
-the part gets the value URDF parsers default to, so later rules see a usable model. Links and joints
-written the ordinary way are read by fastbuild.py instead; this builder takes over whatever it refuses.
+Every element's attributes are read by a reader generated from `grammar.GRAMMAR` for the model's declared URDF
+version (readers.py, written by readergen.py): values that are there and well formed take a short path (one
+`get` per attribute, a count against the element's attributes, cached vector texts); anything else (an unknown
+attribute, one a newer URDF version introduced, a missing or unreadable value, an unexpected child) calls back
+into this builder and becomes a located `Issue`, reported by its rule, and the part gets the value URDF parsers
+default to, so later rules see a usable model. There is no second builder to keep in step: what is reported
+and what is read come from the same code and the same table.
 """
 from __future__ import annotations
 
-import math
 import re
+from collections.abc import Callable
+from math import isfinite
 from types import MappingProxyType
-from typing import Callable
+from typing import NamedTuple
 
 from lxml import etree
 
 from urdfcheck.core import nogc
-from urdfcheck.model.fastbuild import INERTIA, NO_DYNAMICS, ONE, POSE0, SRC_ATTR, TOLERATED, X_AXIS, ZERO, FastParts, Irregular
 from urdfcheck.core.findings import Location, closest
-from urdfcheck.model.robot import Block, Geometry, HardwareItem, Inertial, Interface, Issue, Joint, Limit, Link, Material, MaterialRef, Mimic, Model, Pose, Ros2Control, Shape, Transmission
+from urdfcheck.model import extensions
+from urdfcheck.model import grammar as G
+from urdfcheck.model.robot import (
+    Block,
+    Geometry,
+    HardwareItem,
+    Inertial,
+    Interface,
+    Issue,
+    Joint,
+    Limit,
+    Link,
+    Material,
+    MaterialRef,
+    Mimic,
+    Model,
+    Pose,
+    Ros2Control,
+    Shape,
+    Transmission,
+)
 
-# element -> (attributes, child elements) of the URDF core; extension blocks are not checked
-SCHEMA = {
-    "robot": ({"name", "version"}, {"link", "joint", "material", "transmission", "gazebo", "ros2_control"}),
-    "link": ({"name", "type"}, {"inertial", "visual", "collision"}),
-    "inertial": (set(), {"origin", "mass", "inertia"}),
-    "mass": ({"value"}, set()),
-    "inertia": ({"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}, set()),
-    "visual": ({"name"}, {"origin", "geometry", "material"}),
-    "collision": ({"name"}, {"origin", "geometry"}),
-    "origin": ({"xyz", "rpy"}, set()),
-    "geometry": (set(), {"box", "cylinder", "sphere", "mesh", "capsule"}),
-    "box": ({"size"}, set()),
-    "cylinder": ({"radius", "length"}, set()),
-    "capsule": ({"radius", "length"}, set()),
-    "sphere": ({"radius"}, set()),
-    "mesh": ({"filename", "scale"}, set()),
-    "material": ({"name"}, {"color", "texture"}),
-    "color": ({"rgba"}, set()),
-    "texture": ({"filename"}, set()),
-    "joint": ({"name", "type"}, {"origin", "parent", "child", "axis", "calibration", "dynamics", "limit",
-                                  "mimic", "safety_controller"}),
-    "parent": ({"link"}, set()),
-    "child": ({"link"}, set()),
-    "axis": ({"xyz"}, set()),
-    "calibration": ({"rising", "falling", "reference_position"}, set()),
-    "dynamics": ({"damping", "friction"}, set()),
-    "limit": ({"lower", "upper", "effort", "velocity"}, set()),
-    "mimic": ({"joint", "multiplier", "offset"}, set()),
-    "safety_controller": ({"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}, set()),
-}
-for _attrs, _ in SCHEMA.values():
-    _attrs.add(SRC_ATTR)  # the xacro source marker is ours, never "unknown"
+SRC_ATTR = G.SRC_ATTR
+ZERO, ONE, INERTIA = G.ZERO, G.ONE, G.INERTIA
+X_AXIS = (1.0, 0.0, 0.0)
+POSE0 = Pose()
+NO_DYNAMICS = MappingProxyType({})
+TOLERATED = G.TOLERATED
+_SHAPE_SINCE = {tag: G.GRAMMAR[tag].since for tag in G.SHAPES}
+_new = tuple.__new__  # parts filled in field order, without NamedTuple's keyword handling (half the cost)
+
+
+class _Reading(NamedTuple):
+    """An element's attributes as one URDF version reads them (for the messages off the good path)."""
+
+    tag: str
+    attrs: tuple[G.Attr, ...]  # the attributes this version reads, grammar order (the readers' indexes)
+    known: frozenset  # their names + the source marker
+    later: dict  # attribute -> Attr, for the ones a newer URDF version introduced
+
+
+def _reading(tag: str, version: G.Version) -> _Reading:
+    el = G.GRAMMAR[tag]
+    attrs = tuple(a for a in el.attrs if a.since <= version)
+    return _Reading(tag, attrs, frozenset(a.name for a in attrs) | {SRC_ATTR},
+                    {a.name: a for a in el.attrs if a.since > version})
+
+
+# --- readers compiled from the grammar ----------------------------------------------------------------------------
+# One function per element and URDF version, `read(builder, el) -> tuple of values in grammar order`, written out
+# from the grammar by readergen.py into readers.py (generated, checked by a test): straight-line code (one `get`
+# per attribute, a count against the element's attributes, cached vector texts, defaults as constants) is what
+# makes the good path cheap on 10,000-link models, and every deviation calls back into the builder (`missing`,
+# `bad_number`, `vector`, `odd_attributes`, `exclusive`, `children_of_leaf`), which reports it.
+def readers(version: G.Version) -> dict:
+    from urdfcheck.model.readers import READERS
+
+    r = READERS.get(version)
+    if r is None or len(r) != len(G.GRAMMAR):  # readers.py is stale (the grammar was edited): compile them now
+        from urdfcheck.model import readergen
+
+        r = READERS[version] = readergen.compiled(version)
+    return r
+
+
+_READINGS: dict[tuple, _Reading] = {}
+
+
+def reading(tag: str, version: G.Version) -> _Reading:
+    r = _READINGS.get((tag, version))
+    if r is None:
+        r = _READINGS[(tag, version)] = _reading(tag, version)
+    return r
 
 
 def _unexpanded(raw: str) -> str:
@@ -60,59 +103,115 @@ def _unexpanded(raw: str) -> str:
     return ""
 
 
+def _hint(word: str, options) -> str:
+    close = closest(word, sorted(options))
+    return f" (did you mean {close!r}?)" if close else ""
+
+
+def _named(el) -> str:
+    """`<tag>` with the name of the element, or of its parent, for messages about a missing attribute."""
+    name = el.get("name")
+    if name:
+        return f"<{el.tag} name={name!r}>"
+    parent = el.getparent()
+    pname = parent.get("name") if parent is not None and isinstance(parent.tag, str) else None
+    return f"<{el.tag}> of <{parent.tag} name={pname!r}>" if pname else f"<{el.tag}>"
+
+
 class _Builder:
-    def __init__(self, locate: Callable[[object], Location], source: str):
+    def __init__(self, locate: Callable[[object], Location], source: str, version: G.Version, declared: str | None):
         self.locate = locate
         self.source = source
+        self.version = version
+        self.declared = declared
+        self.R = readers(version)
         self.issues: list[Issue] = []
+        # vector text -> values: real models repeat "0 0 0", "1 0 0" and the shared origin of a link's
+        # visual, collision and inertial; splitting and converting is the costly part of reading them
+        self.vectors: dict[str, tuple] = {}
 
-    # --- reading values ----------------------------------------------------------
     def issue(self, code: str, message: str, el) -> None:
         self.issues.append(Issue(code, message, self.locate(el)))
 
-    def number(self, el, attr: str, default: float | None = None, *, required: bool = False) -> float | None:
-        raw = el.get(attr)
-        if raw is None:
-            if required:
-                self.issue("U006", f"<{el.tag}> has no {attr!r} attribute", el)
-            return default
-        try:
-            value = float(raw)
-        except ValueError:
-            self.issue("U005", f"<{el.tag} {attr}={raw!r}> is not a number{_unexpanded(raw)}", el)
-            return default
-        if value - value != 0.0 or "_" in raw:  # nan/inf, or Python-only digit separators
-            self.issue("U005", f"<{el.tag} {attr}={raw!r}> is not a finite plain number", el)
-            return default
-        return value
+    # --- attributes: the compiled readers call these for anything off the good path ---------------------------
+    def missing(self, el, tag: str, i: int) -> None:
+        a = reading(tag, self.version).attrs[i]
+        self.issue("U006", f"{_named(el)} has no {a.name!r} attribute", el)
 
-    def vector(self, el, attr: str, n: int, default: tuple | None, *, required: bool = False):
-        raw = el.get(attr)
-        if raw is None:
-            if required:
-                self.issue("U006", f"<{el.tag}> has no {attr!r} attribute", el)
-            return default
+    def bad_number(self, el, tag: str, i: int, raw: str, parsed: bool):
+        a = reading(tag, self.version).attrs[i]
+        if parsed:
+            self.issue("U005", f"<{el.tag} {a.name}={raw!r}> is not a finite plain number", el)
+        else:
+            self.issue("U005", f"<{el.tag} {a.name}={raw!r}> is not a number{_unexpanded(raw)}", el)
+        return a.default
+
+    def vector(self, el, tag: str, i: int, raw: str, n: int):
+        """A vector text not seen before (or seen with another length): read, cached, or reported."""
         parts = raw.split()
+        if len(parts) == n:
+            try:
+                out = tuple(map(float, parts))
+            except ValueError:
+                out = None
+            if out is not None and "_" not in raw and all(map(isfinite, out)):
+                self.vectors[raw] = out
+                return out
+        a = reading(tag, self.version).attrs[i]
         if len(parts) != n:
-            self.issue("U004", f"<{el.tag} {attr}={raw!r}> has {len(parts)} values; {n} expected{_unexpanded(raw)}", el)
-            return default
-        try:
-            out = tuple(map(float, parts))
-        except ValueError:
-            out = None
-        if out is None or "_" in raw or not all(map(math.isfinite, out)):
-            self.issue("U005", f"<{el.tag} {attr}={raw!r}>: not {n} finite plain numbers{_unexpanded(raw)}", el)
-            return default
-        return out
+            self.issue("U004", f"<{el.tag} {a.name}={raw!r}> has {len(parts)} values; {n} expected{_unexpanded(raw)}",
+                       el)
+        else:
+            self.issue("U005", f"<{el.tag} {a.name}={raw!r}>: not {n} finite plain numbers{_unexpanded(raw)}", el)
+        return a.default
 
-    # --- parts -------------------------------------------------------------------
+    def odd_attributes(self, el, tag: str) -> None:
+        """Attributes outside what the declared version reads: the source marker and namespaced ones are
+        fine; one a newer URDF version introduced is U008; anything else is unknown (U003)."""
+        r = reading(tag, self.version)
+        for k in el.keys():
+            if k in r.known or k[:1] == "{":
+                continue
+            later = r.later.get(k)
+            if later is not None:
+                self.issue("U008", f"<{r.tag} {k}> needs URDF {G.version_text(later.since)}, but the model declares "
+                                   f"{self.declared_text()}: urdfdom ignores it{_IGNORED.get((r.tag, k), '')}", el)
+            elif extensions.known("attribute", r.tag, k) is None:  # a known extension is read by its consumer
+                hint = _hint(k, G.attributes(r.tag) | extensions.names("attribute", r.tag))
+                self.issue("U003", f"<{r.tag}> has unknown attribute {k!r}{hint}", el)
+
+    def declared_text(self) -> str:
+        return f'version="{self.declared}"' if self.declared is not None else "no version (URDF 1.0)"
+
+    def exclusive(self, el, names: tuple[str, ...]) -> None:
+        """Attributes given together that must not be (U009). urdfdom >= 5.1 (pose.cpp): "Both rpy and
+        quat_xyzw orientations are defined. Use either one or the other." and the origin is not read."""
+        parent = el.getparent()
+        self.issue("U009", _BOTH.get(parent.tag if parent is not None else "", _BOTH[""]), el)
+
+    def children_of_leaf(self, el, tag: str) -> None:
+        for c in el:
+            if isinstance(c.tag, str) and not c.tag.startswith("{") and extensions.known("element", tag, c.tag) is None:
+                self.issue("U002", f"<{tag}> takes no child elements; <{c.tag}> is ignored", c)
+
+    def unknown(self, parent_tag: str, c) -> None:
+        tag = c.tag
+        if not isinstance(tag, str) or tag.startswith("{") or tag in TOLERATED.get(parent_tag, ()):
+            return
+        if extensions.known("element", parent_tag, tag) is not None:
+            return  # a known extension (model/extensions.yaml): its consumer reads it
+        hint = _hint(tag, set(G.children(parent_tag)) | extensions.names("element", parent_tag))
+        self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{hint}; URDF parsers ignore it", c)
+
+    # --- parts ---------------------------------------------------------------------------------------------
     # Each element's children are walked once with a dispatch on the tag (lxml proxies are costly).
     def pose(self, el) -> Pose:
-        self.check(el, "origin")
-        return Pose(self.vector(el, "xyz", 3, ZERO), self.vector(el, "rpy", 3, ZERO), self.locate(el))
+        v = self.R["origin"](self, el)
+        # both rpy and quat_xyzw (U009) stay in the model as written; core.geometry prefers the quaternion
+        return _new(Pose, (v[0], v[1], self.locate(el), v[2] if len(v) == 3 else None))
 
     def geometry(self, g) -> Geometry:
-        self.check(g, "geometry")
+        self.R["geometry"](self, g)
         shapes = [c for c in g if isinstance(c.tag, str) and not c.tag.startswith("{")]
         if not shapes:
             return Geometry("", self.locate(g))
@@ -120,90 +219,85 @@ class _Builder:
             self.issue("U002", f"<geometry> holds {len(shapes)} shapes; URDF parsers use only the first", shapes[1])
         s = shapes[0]
         tag = s.tag
-        if tag in _SHAPES:  # an unknown shape is G005's (urdfdom rejects the visual)
-            self.check(s, tag)
         loc = self.locate(s)
+        since = _SHAPE_SINCE.get(tag)
+        if since is None:  # an unknown shape is G005's (urdfdom rejects the visual)
+            return Geometry(tag, loc)
+        if since > self.version:
+            self.issue("U008", f"<{tag}> needs URDF {G.version_text(since)}, but the model declares "
+                               f"{self.declared_text()}: urdfdom drops this <{g.getparent().tag}> (urdfdom >= 5.1 "
+                               f"warns, older ones call it an unknown geometry type); add version=\"1.1\" to "
+                               f"<robot> (urdfdom >= 5.1, ROS 2 Rolling only) or use a cylinder", s)
+        v = self.R[tag](self, s)
         if tag == "box":
-            return Geometry("box", loc, size=self.vector(s, "size", 3, None, required=True))
+            return _new(Geometry, ("box", loc, v[0], None, None, None, None))
         if tag == "cylinder" or tag == "capsule":
-            return Geometry(tag, loc, radius=self.number(s, "radius", None, required=True),
-                            length=self.number(s, "length", None, required=True))
+            return _new(Geometry, (tag, loc, None, v[0], v[1], None, None))
         if tag == "sphere":
-            return Geometry("sphere", loc, radius=self.number(s, "radius", None, required=True))
-        if tag == "mesh":
-            fn = s.get("filename")
-            if not fn:
-                self.issue("U006", "<mesh> has no 'filename' attribute", s)
-            return Geometry("mesh", loc, filename=fn or None, scale=self.vector(s, "scale", 3, ONE))
-        return Geometry(tag, loc)
+            return _new(Geometry, ("sphere", loc, None, v[0], None, None, None))
+        return _new(Geometry, ("mesh", loc, None, None, None, v[0], v[1]))
 
     def _colour_texture(self, mat):
         rgba = texture = None
         for c in mat:
-            if c.tag == "color":
-                self.check(c, "color")
-                rgba = self.vector(c, "rgba", 4, None, required=True)
-            elif c.tag == "texture":
-                self.check(c, "texture")
-                texture = c.get("filename")
+            tag = c.tag
+            if tag == "color":
+                rgba = self.R["color"](self, c)[0]
+            elif tag == "texture":
+                texture = self.R["texture"](self, c)[0]
             else:
                 self.unknown("material", c)
         return rgba, texture
 
     def material(self, el) -> Material | None:
-        self.check(el, "material")
-        name = el.get("name")
-        if not name:
+        name = self.R["material"](self, el)[0]
+        if name == "":  # a top-level material is looked up by name: an empty one is none
             self.issue("U006", "<material> has no 'name' attribute", el)
+        if not name:
             return None
         rgba, texture = self._colour_texture(el)
-        return Material(name, self.locate(el), rgba, texture)
+        return _new(Material, (name, self.locate(el), rgba, texture))
 
     def shape(self, el, kind: str) -> Shape:
-        self.check(el, kind)
+        R, locate = self.R, self.locate
+        name = R[kind](self, el)[0]
         origin, geometry, mat = POSE0, None, None
         for c in el:
             tag = c.tag
             if tag == "origin":
-                origin = self.pose(c)
+                v = R["origin"](self, c)
+                origin = _new(Pose, (v[0], v[1], locate(c), v[2] if len(v) == 3 else None))  # = self.pose(c)
             elif tag == "geometry":
                 geometry = self.geometry(c)
             elif tag == "material" and kind == "visual":
-                self.check(c, "material")
-                rgba, texture = self._colour_texture(c)
-                name = c.get("name")
-                if name is None:  # urdfdom then rejects the visual and stops reading the link
-                    self.issue("U006", "<material> in a <visual> has no 'name' attribute", c)
-                mat = MaterialRef(name or "", self.locate(c), rgba, texture)
+                # urdfdom rejects the visual (and stops reading the link) when its material has no name
+                mname = R["material"](self, c)[0]
+                rgba, texture = self._colour_texture(c) if len(c) else (None, None)
+                mat = _new(MaterialRef, (mname or "", locate(c), rgba, texture))
             else:
                 self.unknown(kind, c)
-        return Shape(kind, self.locate(el), el.get("name") or "", origin, geometry, mat)
+        return _new(Shape, (kind, locate(el), name or "", origin, geometry, mat))
 
     def inertial(self, el) -> Inertial:
-        self.check(el, "inertial")
+        R, locate = self.R, self.locate
+        R["inertial"](self, el)
         origin, mass, mass_loc, inertia, inertia_loc = POSE0, None, None, None, None
         for c in el:
             tag = c.tag
             if tag == "mass":
-                self.check(c, "mass")
-                mass = self.number(c, "value", None, required=True)
-                mass_loc = self.locate(c)
+                mass, mass_loc = R["mass"](self, c)[0], locate(c)
             elif tag == "inertia":
-                self.check(c, "inertia")
-                number = self.number
-                inertia = tuple(number(c, k, 0.0, required=True) for k in INERTIA)
-                inertia_loc = self.locate(c)
+                inertia, inertia_loc = R["inertia"](self, c), locate(c)
             elif tag == "origin":
-                origin = self.pose(c)
+                v = R["origin"](self, c)
+                origin = _new(Pose, (v[0], v[1], locate(c), v[2] if len(v) == 3 else None))  # = self.pose(c)
             else:
                 self.unknown("inertial", c)
-        return Inertial(self.locate(el), origin, mass, mass_loc, inertia, inertia_loc)
+        return _new(Inertial, (locate(el), origin, mass, mass_loc, inertia, inertia_loc))
 
     def link(self, el) -> Link | None:
-        self.check(el, "link")
-        name = el.get("name")
+        name = self.R["link"](self, el)[0]
         if not name:
-            self.issue("U006", "<link> has no 'name' attribute", el)
             return None
         inertial, visuals, collisions = None, [], []
         for c in el:
@@ -219,70 +313,56 @@ class _Builder:
                     self.issue("U002", f"link {name!r} has more than one <inertial>; only the first is used", c)
             else:
                 self.unknown("link", c)
-        return Link(name, self.locate(el), inertial, tuple(visuals), tuple(collisions))
+        return _new(Link, (name, self.locate(el), inertial, tuple(visuals), tuple(collisions)))
 
     def joint(self, el) -> Joint | None:
-        self.check(el, "joint")
-        name = el.get("name")
+        R, locate = self.R, self.locate
+        name, jtype = R["joint"](self, el)
         if not name:
-            self.issue("U006", "<joint> has no 'name' attribute", el)
             return None
-        jtype = el.get("type")
         if jtype is None:
-            self.issue("U006", f"joint {name!r} has no 'type' attribute", el)
             jtype = ""
-        ends = {}
-        origin, axis, axis_loc, limit, mimic, dyn = POSE0, X_AXIS, None, None, None, {}
+        parent = child = parent_loc = child_loc = None
+        origin, axis, axis_loc, limit, mimic, dyn = POSE0, X_AXIS, None, None, None, None
         for c in el:
             tag = c.tag
-            if tag == "parent" or tag == "child":
-                self.check(c, tag)
-                link = c.get("link")
-                if not link:
-                    self.issue("U006", f"<{tag}> of joint {name!r} has no 'link' attribute", c)
-                ends[tag] = (link or None, self.locate(c))
+            if tag == "parent":
+                parent, parent_loc = R["parent"](self, c)[0], locate(c)
+            elif tag == "child":
+                child, child_loc = R["child"](self, c)[0], locate(c)
             elif tag == "origin":
-                origin = self.pose(c)
+                v = R["origin"](self, c)
+                origin = _new(Pose, (v[0], v[1], locate(c), v[2] if len(v) == 3 else None))  # = self.pose(c)
             elif tag == "axis":
-                self.check(c, "axis")
-                # urdfdom reads <axis/> without xyz as a zero vector (robot_state_publisher then
-                # publishes NaN), not as the default x axis: model what the robot will do
-                axis = self.vector(c, "xyz", 3, ZERO, required=True)
-                axis_loc = self.locate(c)
+                axis, axis_loc = R["axis"](self, c)[0], locate(c)
             elif tag == "limit":
-                self.check(c, "limit")
-                # urdfdom refuses any <limit> without effort and velocity, whatever the joint type
-                limit = Limit(self.locate(c), self.number(c, "lower"), self.number(c, "upper"),
-                              self.number(c, "effort", required=True), self.number(c, "velocity", required=True))
+                v = R["limit"](self, c)
+                if len(v) == 4:  # acceleration, deceleration, jerk: not read before URDF 1.2
+                    v += (None, None, None)
+                limit = _new(Limit, (locate(c), *v))
             elif tag == "mimic":
-                self.check(c, "mimic")
-                target = c.get("joint")
-                if not target:
-                    self.issue("U006", f"<mimic> of joint {name!r} has no 'joint' attribute", c)
-                else:
-                    mimic = Mimic(self.locate(c), target, self.number(c, "multiplier", 1.0),
-                                  self.number(c, "offset", 0.0))
+                target, multiplier, offset = R["mimic"](self, c)
+                if target:
+                    mimic = _new(Mimic, (locate(c), target, multiplier, offset))
             elif tag == "dynamics":
-                self.check(c, "dynamics")
-                for k in ("damping", "friction"):
-                    v = self.number(c, k)
-                    if v is not None:
-                        dyn[k] = v
-            elif tag == "calibration" or tag == "safety_controller":
-                self.check(c, tag)
-                for k in c.keys():
-                    if k in SCHEMA[tag][0] and k != SRC_ATTR:
-                        self.number(c, k)
+                damping, friction = R["dynamics"](self, c)
+                dyn = dyn or {}
+                if damping is not None:
+                    dyn["damping"] = damping
+                if friction is not None:
+                    dyn["friction"] = friction
+            elif tag == "calibration" or tag == "safety_controller":  # read only to report unreadable values
+                R[tag](self, c)
             else:
                 self.unknown("joint", c)
-        for end in ("parent", "child"):
-            if end not in ends:
-                self.issue("U006", f"joint {name!r} has no <{end}> element", el)
-                ends[end] = (None, None)
-        return Joint(name, jtype, self.locate(el), ends["parent"][0], ends["child"][0], origin, axis,
-                     axis_loc, limit, mimic, MappingProxyType(dyn) if dyn else NO_DYNAMICS,
-                     ends["parent"][1], ends["child"][1])
+        if parent_loc is None:
+            self.issue("U006", f"joint {name!r} has no <parent> element", el)
+        if child_loc is None:
+            self.issue("U006", f"joint {name!r} has no <child> element", el)
+        return _new(Joint, (name, jtype, locate(el), parent, child, origin, axis, axis_loc, limit, mimic,
+                            MappingProxyType(dyn) if dyn else NO_DYNAMICS, parent_loc, child_loc))
 
+    # --- extension blocks kept for the contract rules --------------------------------------------------------
     def ros2_control(self, el, in_gazebo: bool) -> Ros2Control:
         items = {"joint": [], "sensor": [], "gpio": []}
         plugin = ""
@@ -304,35 +384,28 @@ class _Builder:
         joints = tuple(Interface(j.get("name") or "", self.locate(j)) for j in el.findall("joint"))
         return Transmission(el.get("name") or "", self.locate(el), joints)
 
-    # --- unknown elements and attributes (typos such as <orign>) ------------------
-    def check(self, el, tag: str) -> None:
-        """Unknown attributes of a URDF core element; for leaf elements also any child element."""
-        attrs, children = SCHEMA[tag]
-        keys = el.keys()
-        if keys and not attrs.issuperset(keys):
-            for a in keys:
-                if a not in attrs and not a.startswith("{"):
-                    self.issue("U003", f"<{tag}> has unknown attribute {a!r}{_hint(a, attrs)}", el)
-        if not children and len(el):
-            for c in el:
-                if isinstance(c.tag, str) and not c.tag.startswith("{"):
-                    self.issue("U002", f"<{tag}> takes no child elements; <{c.tag}> is ignored", c)
 
-    def unknown(self, parent_tag: str, c) -> None:
-        tag = c.tag
-        if not isinstance(tag, str) or tag.startswith("{") or tag in TOLERATED.get(parent_tag, ()):
-            return
-        allowed = SCHEMA[parent_tag][1]
-        self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{_hint(tag, allowed)}; "
-                           "URDF parsers ignore it", c)
+# what urdfdom 6.0 then does, by where the <origin> is (run on urdfdom 6.0.0)
+_BOTH = {
+    "joint": "<origin> gives both rpy and quat_xyzw: urdfdom refuses the joint origin, so the whole model is "
+             "rejected (robot_state_publisher does not start); give one of them",
+    "visual": "<origin> gives both rpy and quat_xyzw: urdfdom refuses this <visual> and drops it; give one of them",
+    "collision": "<origin> gives both rpy and quat_xyzw: urdfdom refuses this <collision> and drops it; give one "
+                 "of them",
+    "inertial": "<origin> gives both rpy and quat_xyzw: urdfdom refuses this <inertial>, the link then has no "
+                "mass and no inertia; give one of them",
+    "": "<origin> gives both rpy and quat_xyzw: urdfdom refuses it; give one of them",
+}
 
-
-_SHAPES = ("box", "cylinder", "capsule", "sphere", "mesh")
-
-
-def _hint(word: str, options) -> str:
-    close = closest(word, sorted(options))
-    return f" (did you mean {close!r}?)" if close else ""
+# what urdfdom reads instead of a construct the declared version does not have (urdfdom 6.0 pose.cpp,
+# joint.cpp; urdfdom before 5.1 does not know them at all and ignores them without a word)
+_IGNORED = {
+    ("origin", "quat_xyzw"): " and uses the rpy rotation (identity without rpy); add version=\"1.1\" to <robot> "
+                             "(read by urdfdom >= 5.1, ROS 2 Rolling only) or write the rotation as rpy",
+    ("limit", "acceleration"): " (no acceleration limit); add version=\"1.2\" to <robot> (urdfdom >= 6.0)",
+    ("limit", "deceleration"): " (no deceleration limit); add version=\"1.2\" to <robot> (urdfdom >= 6.0)",
+    ("limit", "jerk"): " (no jerk limit); add version=\"1.2\" to <robot> (urdfdom >= 6.0)",
+}
 
 
 def _raw_xml(el) -> str:
@@ -345,44 +418,42 @@ def build(root, locate: Callable[[object], Location], source: str) -> Model:
 
 
 def _build(root, locate: Callable[[object], Location], source: str) -> Model:
-    b = _Builder(locate, source)
-    fast = FastParts(locate)
-    if root.tag != "robot":
+    is_robot = root.tag == "robot"
+    declared = root.get("version") if is_robot else None
+    parsed, _ = G.parse_version(declared)
+    # a version urdfdom cannot read is reported once (U007); the rest is read as the newest URDF reads it,
+    # so that one wrong number does not turn every newer construct into a finding of its own
+    version = parsed if parsed in G.VERSIONS else G.NEWEST
+    b = _Builder(locate, source, version, declared)
+    if not is_robot:
         b.issue("U001", f"the root element is <{root.tag}>, not <robot>", root)
-    if root.tag == "robot":
-        b.check(root, "robot")
+    else:
+        b.R["robot"](b, root)
     links, joints, materials, blocks, r2c, trans = [], [], [], [], [], []
     for el in root:
-        if not isinstance(el.tag, str):
-            continue
-        if el.tag == "link":
-            try:
-                links.append(fast.link(el))
-            except Irregular:  # something to report or to read with care: the careful builder's
-                part = b.link(el)
-                if part:
-                    links.append(part)
-        elif el.tag == "joint":
-            try:
-                joints.append(fast.joint(el))
-            except Irregular:
-                part = b.joint(el)
-                if part:
-                    joints.append(part)
-        elif el.tag == "material":
+        tag = el.tag
+        if tag == "link":
+            part = b.link(el)
+            if part:
+                links.append(part)
+        elif tag == "joint":
+            part = b.joint(el)
+            if part:
+                joints.append(part)
+        elif tag == "material":
             part = b.material(el)
             if part:
                 materials.append(part)
-        elif el.tag in ("transmission", "gazebo", "ros2_control"):
-            blocks.append(Block(el.tag, locate(el), MappingProxyType(dict(el.attrib)), _raw_xml(el)))
-            if el.tag == "ros2_control":
+        elif tag in ("transmission", "gazebo", "ros2_control"):
+            blocks.append(Block(tag, locate(el), MappingProxyType(dict(el.attrib)), _raw_xml(el)))
+            if tag == "ros2_control":
                 r2c.append(b.ros2_control(el, False))
-            elif el.tag == "gazebo":
+            elif tag == "gazebo":
                 for inner in el.iter("ros2_control"):
                     r2c.append(b.ros2_control(inner, True))
             else:
                 trans.append(b.transmission(el))
-        elif root.tag == "robot":
+        elif is_robot and isinstance(tag, str):
             b.unknown("robot", el)
     return Model(
         name=root.get("name") or "",
@@ -398,6 +469,8 @@ def _build(root, locate: Callable[[object], Location], source: str) -> Model:
         source=source,
         ros2_control=tuple(r2c),
         transmissions=tuple(trans),
+        version=version,
+        declared_version=declared,
     )
 
 

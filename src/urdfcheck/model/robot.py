@@ -19,9 +19,13 @@ MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
 
 
 class Pose(NamedTuple):
+    """An <origin> as written: rpy, or (URDF >= 1.1) a quaternion. `core.geometry.origin_quaternion` and
+    `origin_matrix` turn it into the rotation urdfdom reads; nothing else should interpret rpy or quat."""
+
     xyz: Vec3 = (0.0, 0.0, 0.0)
     rpy: Vec3 = (0.0, 0.0, 0.0)
     loc: Location | None = None
+    quat: tuple[float, float, float, float] | None = None  # quat_xyzw as written (x, y, z, w), not normalised
 
 
 class Inertial(NamedTuple):
@@ -71,11 +75,16 @@ class Link(NamedTuple):
 
 
 class Limit(NamedTuple):
+    """A <limit> as written (None: not given, or not read by the model's URDF version)."""
+
     loc: Location
     lower: float | None = None
     upper: float | None = None
     effort: float | None = None
     velocity: float | None = None
+    acceleration: float | None = None  # URDF 1.2
+    deceleration: float | None = None  # URDF 1.2
+    jerk: float | None = None  # URDF 1.2
 
 
 class Mimic(NamedTuple):
@@ -168,7 +177,10 @@ class Model(FrozenRecord):
     # links: first definition wins on duplicates
     # link_list: in document order, duplicates included
     # source: the entry file
-    _fields = ('name', 'loc', 'links', 'joints', 'materials', 'link_list', 'joint_list', 'material_list', 'blocks', 'issues', 'source', 'ros2_control', 'transmissions')
+    # version: the URDF version the model is read as (the declared one; 1.0 when none is declared; the newest
+    #   when the declared one is one no urdfdom reads); declared_version: <robot version> as written
+    _fields = ('name', 'loc', 'links', 'joints', 'materials', 'link_list', 'joint_list', 'material_list', 'blocks',
+               'issues', 'source', 'ros2_control', 'transmissions', 'version', 'declared_version')
 
     def __init__(self, name: str,
                  loc: Location,
@@ -182,7 +194,9 @@ class Model(FrozenRecord):
                  issues: tuple[Issue, ...],
                  source: str,
                  ros2_control: tuple[Ros2Control, ...] = (),
-                 transmissions: tuple[Transmission, ...] = ()):
+                 transmissions: tuple[Transmission, ...] = (),
+                 version: tuple[int, int] = (1, 0),
+                 declared_version: str | None = None):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["name"] = name
         d["loc"] = loc
@@ -197,6 +211,8 @@ class Model(FrozenRecord):
         d["source"] = source
         d["ros2_control"] = ros2_control
         d["transmissions"] = transmissions
+        d["version"] = version
+        d["declared_version"] = declared_version
 
     # --- derived structure -------------------------------------------------
     @property
@@ -287,7 +303,7 @@ class Model(FrozenRecord):
 
     def world_poses(self) -> dict[str, tuple]:
         """Pose of every link reachable from the roots at zero configuration, as 4x4 nested tuples."""
-        from urdfcheck.core.geometry import compose, identity, pose_matrix
+        from urdfcheck.core.geometry import compose, identity, origin_matrix
 
         out: dict[str, tuple] = {}
         for root in self.roots:
@@ -295,5 +311,5 @@ class Model(FrozenRecord):
             for name in self.descendants_in_order(root):
                 for j in self.child_joints.get(name, ()):
                     if j.child is not None and j.child not in out:
-                        out[j.child] = compose(out[name], pose_matrix(j.origin.xyz, j.origin.rpy))
+                        out[j.child] = compose(out[name], origin_matrix(j.origin))
         return out

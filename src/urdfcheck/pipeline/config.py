@@ -173,55 +173,13 @@ class Config(FrozenRecord):
                 return m
         return None
 
-    def targets(self, paths=None, args: Mapping | None = None, packages: Mapping | None = None,
-                trusted: bool = False) -> list:
-        """`lint.Target`s: every configured model and variant, with its consumers read.
-
-        `paths` (from the command line) restricts the run to configured models at or below those paths;
-        paths no model covers are linted like without a config (zero-config consumer discovery).
-        CLI `args` override the config's xacro args, CLI `packages` the config's package map.
-        """
-        from urdfcheck.pipeline.run import Later, Target, targets_for
-
-        pk = {**dict(self.packages), **dict(packages or {})}
-        cli_args = {str(k): str(v) for k, v in (args or {}).items()}
-        chosen: list[ModelConfig] = []
-        rest: list[str] = []
-        if paths:
-            for raw in paths:
-                real = os.path.realpath(raw)
-                hits = [m for m in self.models if os.path.realpath(m.path) == real
-                        or os.path.realpath(m.path).startswith(real.rstrip(os.sep) + os.sep)]
-                if hits:
-                    chosen.extend(m for m in hits if m not in chosen)
-                else:
-                    rest.append(raw)
-        else:
-            chosen = list(self.models)
-            if not self.models:
-                rest = [self.root]
-        out = []
-        for m in chosen:
-            consumers = Later(lambda m=m: _consumers(m, self, pk))  # read in lint's warm-up
-            for vname, vargs in m.variant_args():
-                out.append(Target(path=Path(m.path), args={**vargs, **cli_args}, variant=vname,
-                                  contracts=consumers, packages=dict(pk)))
-        if rest:
-            for t in targets_for(rest, cli_args, pk, trusted=trusted or self.trusted):
-                out.append(t)
-        return out
-
-
-def _consumers(mc: ModelConfig, cfg: Config, packages: dict):
-    from urdfcheck.contracts.consumers import consumers_for_model
-
-    return consumers_for_model(mc, cfg, packages=packages)
-
 
 # --- finding and reading -------------------------------------------------------------------------------
 def _pyproject_has_table(path: Path) -> bool:
     try:
-        text = path.read_text(encoding="utf-8", errors="replace")
+        from urdfcheck.core.safeio import read_file
+
+        text = read_file(path, 1024 * 1024).decode("utf-8", "replace")
     except OSError:
         return False
     return re.search(r"^\s*\[\[?\s*tool\.urdfcheck(\s*\]|\.)", text, re.M) is not None
@@ -284,8 +242,9 @@ def _read_pyproject(path: str):
     import tomllib
 
     try:
-        with open(path, "rb") as f:
-            raw = f.read(1024 * 1024 + 1)
+        from urdfcheck.core.safeio import read_file
+
+        raw = read_file(path, 1024 * 1024)
         text = raw.decode("utf-8")
         data = tomllib.loads(text)
     except OSError as e:
@@ -303,9 +262,9 @@ def _read_pyproject(path: str):
 def _validate(data, path: str, key_loc, val_loc) -> None:
     from urdfcheck.pipeline.schemagate import verdict
 
-    with open(SCHEMA_PATH, encoding="utf-8") as f:
-        schema = json.load(f)
+    schema = config_schema()
     if verdict(data, schema) is True:  # the usual case: skip importing jsonschema (~60 ms)
+        _check_codes(data, key_loc, val_loc)
         return
     try:
         import jsonschema
@@ -314,6 +273,7 @@ def _validate(data, path: str, key_loc, val_loc) -> None:
     validator = jsonschema.Draft202012Validator(schema)
     errors = sorted(validator.iter_errors(data), key=lambda e: (list(e.absolute_path), e.message))
     if not errors:
+        _check_codes(data, key_loc, val_loc)
         return
     err = jsonschema.exceptions.best_match(errors)
     where = tuple(err.absolute_path)
@@ -332,6 +292,29 @@ def _validate(data, path: str, key_loc, val_loc) -> None:
         raise ConfigError(f"bad key '{dotted}': {_short_message(err)}", loc)
     loc = val_loc(*where) if where else Location(path)
     raise ConfigError(f"'{key}': {_short_message(err)}", loc)
+
+
+def config_schema() -> dict:
+    """schemas/config.schema.json, with `rules:` built from the options the catalogue entries declare."""
+    from urdfcheck.rules.catalogue import options_schema
+
+    with open(SCHEMA_PATH, encoding="utf-8") as f:
+        schema = json.load(f)
+    schema["properties"]["rules"] = options_schema()
+    return schema
+
+
+def _check_codes(data: dict, key_loc, val_loc) -> None:
+    """select/ignore/severity name rules that exist (the schema only checks their shape)."""
+    from urdfcheck.rules.catalogue import unknown_codes
+
+    for key in ("select", "ignore"):
+        for i, code in enumerate(data.get(key) or ()):
+            for problem in unknown_codes([code]):
+                raise ConfigError(f"'{key}': {problem}", val_loc(key, i))
+    for code in data.get("severity") or {}:
+        for problem in unknown_codes([code]):
+            raise ConfigError(f"'severity': {problem}", key_loc("severity", code))
 
 
 _CODE_PATTERNS = ("^(ALL|[A-Z][0-9]{0,3})$", "^[A-Z][0-9]{3}$")
@@ -458,8 +441,9 @@ _BOOLS = {"true": "false", "false": "true", "True": "False", "False": "True", "1
 def boolean_args(path: str) -> dict[str, str]:
     """xacro:args of the entry file whose default is a boolean literal (name -> default), in order."""
     try:
-        with open(path, "rb") as f:
-            text = f.read(4 * 1024 * 1024).decode("utf-8", "replace")
+        from urdfcheck.core.safeio import read_file
+
+        text = read_file(path, 4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
     except OSError:
         return {}
     text = re.sub(r"<!--.*?-->", "", text, flags=re.S)
@@ -483,7 +467,9 @@ def auto_variants(path: str, base: Mapping[str, str]) -> list[tuple[str, dict]]:
     if len(names) <= MAX_AUTO_ARGS:
         for combo in itertools.product(*[(flags[n], _BOOLS[flags[n]]) for n in names]):
             args = dict(zip(names, combo))
-            out.append((",".join(f"{k}={v}" for k, v in args.items()), args))
+            # named by what differs from the defaults: short, and the same name in both enumerations
+            flipped = ",".join(f"{k}={v}" for k, v in args.items() if v != flags[k])
+            out.append((flipped or "defaults", args))
     else:
         out.append(("defaults", {}))
         for n in names:

@@ -1,89 +1,94 @@
-"""`lint`: load each entry model (and each variant), build it, run the checks, collect findings."""
+"""Running: load -> build -> check -> finish, for the targets `pipeline.plan` made from a request.
+
+    run(request) -> Result           # what every front end calls (CLI, urdfcheck.lint, pytest plugin)
+
+finish = suppressions (in the models and in the YAML files the contract checks read, with the bookkeeping
+of unused ones), one finding per problem across variants and models (`pipeline.collapse`), the baseline,
+and paths shown relative to the request's root.
+"""
 from __future__ import annotations
 
 import os
 from pathlib import Path
 
-from urdfcheck.rules import engine
-from urdfcheck.load import loader as load
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
-
-
-class Later:
-    """A value computed on first use, once: a model's consumers, shared by its variants, are read while
-    its first expansion runs rather than before it starts."""
-
-    __slots__ = ("_fn", "_value")
-
-    def __init__(self, fn):
-        self._fn, self._value = fn, None
-
-    def get(self):
-        if self._fn is not None:
-            fn, self._fn = self._fn, None
-            self._value = fn()
-        return self._value
-
-
-class Target(Record):
-    """One model to lint: an entry file with one xacro argument set."""
-
-    # contracts: consumers declared or discovered for this model (may be given as a `Later`)
-    _fields = ('path', 'args', 'variant', 'contracts', 'packages')
-
-    def __init__(self, path: Path,
-                 args: dict | None = None,
-                 variant: str = "",
-                 contracts: object = None,
-                 packages: dict | None = None):
-        self.path = path
-        self.args = {} if args is None else args
-        self.variant = variant
-        self.contracts = contracts
-        self.packages = {} if packages is None else packages
-
-    @property
-    def contracts(self):
-        c = self._contracts
-        return c.get() if isinstance(c, Later) else c
-
-    @contracts.setter
-    def contracts(self, value) -> None:
-        self._contracts = value
+from urdfcheck.load import loader as load
+from urdfcheck.pipeline.plan import Later, Target, plan  # noqa: F401  (Later, Target: imported from here too)
+from urdfcheck.pipeline.request import LintRequest, UsageError, shown
+from urdfcheck.rules import engine
 
 
 class Result(Record):
     # models: (entry, variant) -> Model (None when it failed to load)
-    _fields = ('findings', 'targets', 'models')
+    # by_target: the findings of each target (index as in `targets`), before merging across targets; an
+    #   unused suppression in a YAML file belongs to the first target that read the file
+    # fail_on: the level at which the run fails (flags, else the config, else warning)
+    # root: reports show paths relative to this folder ("" = the working directory)
+    _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
 
-    def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None):
+    def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
+                 by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
         self.findings = findings
         self.targets = targets
         self.models = {} if models is None else models
+        self.by_target = [[] for _ in targets] if by_target is None else by_target
+        self.fail_on = fail_on
+        self.root = root
 
     def worst(self) -> Severity | None:
         return max((f.severity for f in self.findings), default=None)
 
-    def failed(self, fail_on: Severity) -> bool:
-        return any(f.severity >= fail_on for f in self.findings)
+    def failed(self, fail_on: Severity | None = None) -> bool:
+        """Any finding at or above `fail_on`; by default the level of the config each finding's model was
+        planned under (a workspace run: each package's own `fail_on`; a flag sets them all)."""
+        if fail_on is not None:
+            return any(f.severity >= fail_on for f in self.findings)
+        levels: dict[tuple, Severity] = {}
+        for t, found in zip(self.targets, self.by_target):
+            level = t.settings.fail_on if t.settings is not None else self.fail_on
+            for f in found:
+                key = (f.code, f.location)
+                levels[key] = min(levels.get(key, level), level)
+        return any(f.severity >= levels.get((f.code, f.location), self.fail_on) for f in self.findings)
+
+    def shown(self, path) -> str:
+        """A path as the reports print it (relative to the root when below it)."""
+        return shown(path, self.root)
 
 
-def entry_models(folder: Path, trusted: bool = False) -> list[Path]:
-    """Entry models of a package: URDF files, and xacro robots that no other file includes."""
-    from urdfcheck.contracts.discover import discover
+def run(request: LintRequest, *, retain: list | None = None) -> Result:
+    """Plan, lint, finish. Raises UsageError when there is nothing to lint or an input is unusable."""
+    targets = plan(request)
+    if not targets:
+        raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
+    result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    if request.fail_on is not None:
+        result.fail_on = request.fail_on
+    elif targets[0].settings is not None:
+        result.fail_on = targets[0].settings.fail_on
+    if request.baseline:
+        from urdfcheck.pipeline import baseline
 
-    return [Path(m) for m in discover(folder, trusted=trusted).models]
+        try:
+            result.findings = baseline.filter_new(request.baseline, result.findings)
+        except (OSError, ValueError) as e:
+            raise UsageError(f"cannot read baseline {request.baseline}: {e}") from None
+    if request.root and os.path.abspath(request.root) != os.getcwd():
+        _rebase(result, os.path.abspath(request.root))
+    return result
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
                 config=None, max_elements=None) -> tuple[list[Finding], object]:
-    pending = _begin(t, trusted=trusted, allow_env=allow_env, timeout=timeout, max_elements=max_elements)
+    """One target on its own (tests). A run lints all its targets with `lint_targets`."""
+    pending = _begin(t, dict(trusted=trusted, allow_env=allow_env, timeout=timeout, max_elements=max_elements))
     return _check(t, pending.result(), selection, config)
 
 
-def _begin(t: Target, **kw) -> load.Pending:
-    return load.begin(t.path, t.args, packages=t.packages, **kw)
+def _begin(t: Target, kw: dict) -> load.Pending:
+    opts = t.settings.load_options() if t.settings is not None else kw
+    return load.begin(t.path, t.args, packages=t.packages, **opts)
 
 
 def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse | None = None
@@ -95,71 +100,101 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
                              variant=t.variant)
         findings.extend(engine.run_checks(model, ctx))
         if yaml is not None:
-            yaml.read(getattr(ctx, "contracts", None))
-    shown = exp.entry
-    return engine.finish(findings, selection, exp.suppressions, model=shown, variant=t.variant,
+            yaml.read(ctx.contracts, selection)
+    return engine.finish(findings, selection, exp.suppressions, model=exp.entry, variant=t.variant,
                          yaml_used=yaml.used if yaml is not None else None), model
 
 
 class _YamlUse:
-    """The YAML files the contract checks read, and which of their suppressions hid a finding."""
+    """The YAML files the contract checks read (with the selection they were read under, and the first
+    target that read each), and which of their suppressions hid a finding."""
 
     def __init__(self):
-        self.files: set[str] = set()
+        self.files: dict[str, tuple[engine.Selection, int]] = {}
         self.used: set[tuple[str, int]] = set()
+        self.index = 0  # the target being checked
 
-    def read(self, consumers) -> None:
+    def read(self, consumers, selection) -> None:
         from urdfcheck.core.suppress import is_yaml
 
         for paths in (getattr(consumers, "files", None) or {}).values():
-            self.files.update(os.path.abspath(p) for p in paths if is_yaml(str(p)))
+            for p in paths:
+                if is_yaml(str(p)):
+                    self.files.setdefault(os.path.abspath(p), (selection, self.index))
+
+    def unused(self) -> list[tuple[int, Finding]]:
+        """(first target that read the file, R002 finding) for each suppression that hid nothing."""
+        out = []
+        for file in sorted(self.files):
+            selection, first = self.files[file]
+            out.extend((first, f) for f in engine.unused_yaml([file], self.used, selection))
+        return out
 
 
 def lint_targets(targets: list[Target], selection: engine.Selection | None = None, *, config=None,
-                 retain: list | None = None, **kw) -> Result:
+                 retain: list | None = None, budget: float | None = None, **kw) -> Result:
+    """`_lint_targets` within one time and memory budget for all models and variants (load.budget; `budget`
+    seconds, default 300): what the budget leaves unlinted is an X017 finding at its model."""
+    from urdfcheck.load.budget import run_budget
+
+    with run_budget(budget):
+        return _lint_targets(targets, selection, config=config, retain=retain, **kw)
+
+
+def _lint_targets(targets: list[Target], selection: engine.Selection | None = None, *, config=None,
+                  retain: list | None = None, **kw) -> Result:
     """Lint every target. Xacro expansions run ahead in their workers (a few at a time), so this process
     imports the rules and builds the previous model while the next ones expand.
+
+    Each target is linted under its own settings (its config file); targets without settings (made by
+    hand) under `selection`, `config` and the load options `kw`.
 
     `retain`: a list that keeps each parsed document alive. A process that exits right after (the console
     command) passes one: freeing a large libxml2 tree costs time, and the allocator's clean-up of its
     million small blocks on the next large request costs more (~0.1 s for 10,000 links)."""
     selection = selection or engine.Selection()
-    all_findings: list[Finding] = []
+    by_target: list[list[Finding]] = [[] for _ in targets]
     models = {}
     ahead = max(1, min(4, os.cpu_count() or 1))
     pending: dict[int, load.Pending] = {}
     yaml = _YamlUse()
     try:
         for i in range(min(ahead, len(targets))):
-            pending[i] = _begin(targets[i], **kw)
+            pending[i] = _begin(targets[i], kw)
         _warm_up(targets, config)
         for i, t in enumerate(targets):
             if i + ahead < len(targets):
-                pending[i + ahead] = _begin(targets[i + ahead], **kw)
+                pending[i + ahead] = _begin(targets[i + ahead], kw)
             exp = pending.pop(i).result()
-            found, model = _check(t, exp, selection, config, yaml)
+            yaml.index = i
+            if t.settings is not None:
+                found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
+            else:
+                found, model = _check(t, exp, selection, config, yaml)
             if retain is not None:
                 retain.append(exp)
             models[(str(t.path), t.variant)] = model
-            all_findings.extend(found)
+            by_target[i].extend(found)
     finally:
         for p in pending.values():
             p.cancel()
-    all_findings.extend(engine.unused_yaml(yaml.files, yaml.used, selection))
-    return Result(_dedupe(all_findings), targets, models)
+    for i, f in yaml.unused():
+        by_target[i].append(f)
+    return Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
 
 
 def _warm_up(targets: list[Target], config) -> None:
     """What the run needs after loading (model builders, rule modules, the catalogue, the contract readers
     when there can be consumers), done while the first expansions run in their workers, not after them."""
-    from urdfcheck.model import build
-    from urdfcheck.rules import catalogue as rulebook  # noqa: F401
+    from urdfcheck.model import build  # noqa: F401
+    from urdfcheck.rules import catalogue as rulebook
 
     if not targets:
         return
     rulebook.load_checks()
     rulebook.catalogue()
-    if config is not None or any(t.contracts is not None for t in targets) or _in_package(targets[0].path):
+    if config is not None or any(t.settings is not None and t.settings.config is not None for t in targets) \
+            or any(t._contracts is not None for t in targets) or _in_package(targets[0].path):
         from urdfcheck.contracts import rules_impl  # noqa: F401
 
 
@@ -171,71 +206,46 @@ def _in_package(path) -> bool:
 
 
 def _dedupe(findings: list[Finding]) -> list[Finding]:
-    """The same problem seen in several variants is reported once, naming the variants."""
-    seen: dict = {}
-    for f in findings:
-        key = (f.code, f.message, f.location, f.model)
-        if key in seen:
-            prev = seen[key]
-            if f.variant and f.variant not in prev.variant.split(","):
-                seen[key] = Finding(prev.code, prev.severity, prev.message, prev.location, prev.name,
-                                    prev.related, prev.model, ",".join(filter(None, [prev.variant, f.variant])))
-            continue
-        seen[key] = f
-    return sorted(seen.values(), key=Finding.sort_key)
+    """The same problem seen in several variants or models is reported once, naming where (issue 15)."""
+    from urdfcheck.pipeline.collapse import collapse
+
+    return collapse(findings)
 
 
+def _rebase(result: Result, root: str) -> None:
+    """Paths relative to `root` instead of the working directory (--root)."""
+    def path(file: str) -> str:
+        return shown(file, root) if file and not file.startswith("<") else file
+
+    def loc(lc: Location) -> Location:
+        return Location(path(lc.file), lc.line, lc.column, tuple(loc(v) for v in lc.via))
+
+    def finding(f: Finding) -> Finding:
+        places = tuple(p._replace(model=path(p.model)) for p in f.where)
+        return f._replace(location=loc(f.location), related=tuple(loc(r) for r in f.related),
+                          model=path(f.model), where=places,
+                          message=f.message.replace(root.rstrip(os.sep) + os.sep, ""))
+
+    result.findings = [finding(f) for f in result.findings]
+    result.by_target = [[finding(f) for f in fs] for fs in result.by_target]
+    result.root = root
+
+
+# --- compatibility: plain paths without a request (tests, scripts) ---------------------------------------
 def targets_for(paths: list[str], args: dict | None = None, packages: dict | None = None, *,
                 trusted: bool = False) -> list[Target]:
     """Targets for plain paths (files or package folders), no config."""
-    from urdfcheck.load.packages import leaves_cwd
+    from urdfcheck.pipeline.request import make_request
 
-    out = []
-    for raw in paths:
-        p = Path(raw)
-        if not trusted and leaves_cwd(p, (packages or {}).values()):
-            out.append(Target(p, dict(args or {}), packages=dict(packages or {})))  # refused by the loader (X014)
-            continue
-        if p.is_dir():
-            out.extend(package_targets(p, args or {}, packages or {}, trusted=trusted))
-        else:
-            out.extend(file_targets(p, args or {}, packages or {}))
-    seen, uniq = set(), []
-    for t in out:  # several library files of one package lead to the same entry models
-        key = (os.path.realpath(t.path), tuple(sorted(t.args.items())))  # realpath: no stat of a link's target
-        if key not in seen:
-            seen.add(key)
-            uniq.append(t)
-    return uniq
+    req = make_request(paths, args=args or {}, packages=packages or {}, trusted=trusted, use_config=False)
+    return plan(req)
 
 
-def file_targets(path: Path, args: dict, packages: dict) -> list[Target]:
-    """An explicitly named file. A xacro library (macros only, or included by another file of its
-    package) is no robot by itself: lint the package's entry models instead, which expand it
-    (this is what a per-file pre-commit hook needs)."""
-    if path.name.endswith(".xacro"):
-        from urdfcheck.contracts.discover import discover
-        from urdfcheck.load.packages import enclosing_package
+def entry_models(folder: Path, trusted: bool = False) -> list[Path]:
+    """Entry models of a package: URDF files, and xacro robots that no other file includes."""
+    from urdfcheck.contracts.discover import discover
 
-        pkg = enclosing_package(Path(os.path.abspath(path)).parent)  # the package the file appears in
-        if pkg is not None:
-            found = discover(pkg)
-            if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and found.models:
-                return [Target(Path(m), dict(args), packages=dict(packages)) for m in found.models]
-    return [Target(path, dict(args), packages=dict(packages))]
-
-
-def package_targets(folder: Path, args: dict, packages: dict, trusted: bool = False) -> list[Target]:
-    """Zero-config: each entry model of a package, and for xacro each combination of its boolean
-    xacro:args that the command line does not fix (bounded; the variant names the values)."""
-    from urdfcheck.pipeline.config import auto_variants
-
-    out = []
-    for entry in entry_models(folder, trusted):
-        variants = auto_variants(str(entry), args) if entry.name.endswith(".xacro") else [("", {})]
-        for name, vargs in variants:
-            out.append(Target(entry, {**vargs, **args}, variant=name, packages=dict(packages)))
-    return out
+    return [Path(m) for m in discover(folder, trusted=trusted).models]
 
 
 def missing_paths(paths: list[str]) -> list[str]:

@@ -4,10 +4,11 @@ kdl_parser turns every URDF joint into a KDL segment whose pose for a joint valu
 
     origin * motion(q)
 
-where ``origin`` is the joint's <origin> (rpy -> quaternion as urdfdom's ``Rotation::setFromRPY`` does, then
-``KDL::Rotation::Quaternion``) and ``motion`` is a rotation by ``q`` about the *normalised* axis (revolute,
-continuous) or a translation by ``q`` along it (prismatic): ``KDL::Joint`` divides the axis by its norm, so a
-zero axis gives NaN everywhere (revolute) or a NaN translation (prismatic). Every other type (fixed,
+where ``origin`` is the joint's <origin> (rpy -> quaternion as urdfdom's ``Rotation::setFromRPY`` does, or, from
+URDF 1.1, quat_xyzw normalised as ``Rotation::initQuaternion`` does; then ``KDL::Rotation::Quaternion``) and
+``motion`` is a rotation by ``q`` about the *normalised* axis (revolute, continuous) or a translation by ``q``
+along it (prismatic): ``KDL::Joint`` divides the axis by its norm, so a zero axis gives NaN everywhere
+(revolute) or a NaN translation (prismatic). Every other type (fixed,
 planar, floating, unknown) becomes ``KDL::Joint::None``; robot_state_publisher then publishes it as a fixed
 transform at the origin, except floating joints, which it skips (no transform at all).
 
@@ -21,6 +22,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Callable
 
+from urdfcheck.core import geometry
 from urdfcheck.publisher.messages import Stamp, Transform
 
 MOVABLE = ("revolute", "continuous", "prismatic")
@@ -29,30 +31,10 @@ NAN = float("nan")
 
 
 # --- small rotation helpers ---------------------------------------------------------------------------------
-def quat_from_rpy(r: float, p: float, y: float) -> tuple[float, float, float, float]:
-    """urdfdom's Rotation::setFromRPY (then normalised), as (x, y, z, w)."""
-    phi, the, psi = r / 2.0, p / 2.0, y / 2.0
-    sphi, cphi = math.sin(phi), math.cos(phi)
-    sthe, cthe = math.sin(the), math.cos(the)
-    spsi, cpsi = math.sin(psi), math.cos(psi)
-    x = sphi * cthe * cpsi - cphi * sthe * spsi
-    yy = cphi * sthe * cpsi + sphi * cthe * spsi
-    z = cphi * cthe * spsi - sphi * sthe * cpsi
-    w = cphi * cthe * cpsi + sphi * sthe * spsi
-    n = math.sqrt(x * x + yy * yy + z * z + w * w)
-    if n == 0.0 or not math.isfinite(n):
-        return (NAN, NAN, NAN, NAN)
-    return (x / n, yy / n, z / n, w / n)
-
-
-def rot_from_quat(x: float, y: float, z: float, w: float) -> tuple:
-    """KDL::Rotation::Quaternion: 3x3 nested tuples."""
-    x2, y2, z2, w2 = x * x, y * y, z * z, w * w
-    return (
-        (w2 + x2 - y2 - z2, 2 * x * y - 2 * w * z, 2 * x * z + 2 * w * y),
-        (2 * x * y + 2 * w * z, w2 - x2 + y2 - z2, 2 * y * z - 2 * w * x),
-        (2 * x * z - 2 * w * y, 2 * y * z + 2 * w * x, w2 - x2 - y2 + z2),
-    )
+# urdfdom's setFromRPY and KDL::Rotation::Quaternion; an <origin>'s rotation (rpy or quat_xyzw) is turned into a
+# quaternion in one place, core.geometry.origin_quaternion
+quat_from_rpy = geometry.quat_from_rpy
+rot_from_quat = geometry.quat_matrix
 
 
 def kdl_sign(x: float, y: float, z: float, w: float) -> tuple[float, float, float, float]:
@@ -236,8 +218,7 @@ class Segment:
 
 def make_segment(joint) -> Segment:
     xyz = tuple(float(v) for v in (joint.origin.xyz or (0.0, 0.0, 0.0)))
-    rpy = tuple(float(v) for v in (joint.origin.rpy or (0.0, 0.0, 0.0)))
-    q0 = kdl_sign(*quat_from_rpy(*rpy))
+    q0 = kdl_sign(*geometry.origin_quaternion(joint.origin))
     r0 = rot_from_quat(*q0)
     jtype = joint.type
     if jtype in MOVABLE:

@@ -12,6 +12,15 @@ def _vec(v) -> str:
     return " ".join(repr(float(x)) for x in v)
 
 
+def _rpy(origin):
+    """rpy as written, or the rpy of a quaternion origin (URDF 1.1), which every reader understands."""
+    if origin.quat is None:
+        return origin.rpy
+    from urdfcheck.core import geometry
+
+    return geometry.rpy(geometry.origin_matrix(origin))
+
+
 def model_to_urdf(model) -> str:
     out = [f"<robot name={quoteattr(model.name or 'robot')}>"]
     for name in model.links:
@@ -20,7 +29,7 @@ def model_to_urdf(model) -> str:
         if j.parent is None or j.child is None:
             continue
         out.append(f"  <joint name={quoteattr(j.name)} type={quoteattr(j.type)}>")
-        out.append(f"    <origin xyz={quoteattr(_vec(j.origin.xyz))} rpy={quoteattr(_vec(j.origin.rpy))}/>")
+        out.append(f"    <origin xyz={quoteattr(_vec(j.origin.xyz))} rpy={quoteattr(_vec(_rpy(j.origin)))}/>")
         out.append(f"    <parent link={quoteattr(j.parent)}/>")
         out.append(f"    <child link={quoteattr(j.child)}/>")
         if j.type not in ("fixed", "floating"):

@@ -22,7 +22,9 @@ def escape_property(text: str) -> str:
     return escape_data(text).replace(":", "%3A").replace(",", "%2C")
 
 
-def command(f) -> str:
+def command(f, totals: dict | None = None) -> str:
+    from urdfcheck.pipeline.collapse import describe
+
     props = []
     if f.location.file:
         props.append("file=" + escape_property(clean_text(f.location.file, 4096)))
@@ -33,15 +35,19 @@ def command(f) -> str:
     title = f"{f.code} {clean_text(f.name)}".strip()
     props.append("title=" + escape_property(title))
     lines = [clean_text(f.message) or f.code]
-    if f.variant:
-        lines[0] += f" [{clean_text(f.variant)}]"
+    where = describe(f, totals)
+    if where:
+        lines[0] += f" [{clean_text(where)}]"
     lines += [f"via macro call at {clean_text(str(v), 4096)}" for v in f.location.via]
     lines += [f"see also {clean_text(str(r), 4096)}" for r in f.related]
     return f"::{COMMANDS[f.severity]} {','.join(props)}::{escape_data(chr(10).join(lines))}"
 
 
 def render(result, **_) -> str:
-    out = [command(f) for f in result.findings]
+    from urdfcheck.pipeline.collapse import variant_totals
+
+    totals = variant_totals(result.targets)
+    out = [command(f, totals) for f in result.findings]
     n = len(result.findings)
     m = len(result.targets)
     out.append(f"urdfcheck: {n} finding{'s' if n != 1 else ''} in {m} model{'s' if m != 1 else ''}")

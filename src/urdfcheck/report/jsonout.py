@@ -15,6 +15,12 @@ def location(loc) -> dict:
     return out
 
 
+def _shown(result, path) -> str:
+    """A model path relative to the run's root (the working directory), like every finding's file."""
+    shown = getattr(result, "shown", None)
+    return shown(path) if shown is not None else str(path)
+
+
 def as_dict(result) -> dict:
     from urdfcheck import __version__
 
@@ -24,7 +30,7 @@ def as_dict(result) -> dict:
     return {
         "schema_version": SCHEMA_VERSION,
         "tool": {"name": "urdfcheck", "version": __version__},
-        "models": [{"path": clean_text(str(t.path), 4096), "variant": clean_text(t.variant),
+        "models": [{"path": clean_text(_shown(result, t.path), 4096), "variant": clean_text(t.variant),
                     "args": {k: clean_text(v) for k, v in sorted(t.args.items())}} for t in result.targets],
         "summary": counts,
         "findings": [
@@ -37,6 +43,9 @@ def as_dict(result) -> dict:
                 "related": [location(r) for r in f.related],
                 "model": clean_text(f.model, 4096),
                 "variant": clean_text(f.variant),
+                # every model/variant the same problem was found in (one entry when just `model`/`variant`)
+                "where": [{"model": clean_text(p.model, 4096), "variant": clean_text(p.variant),
+                           **({"message": clean_text(p.message)} if p.message else {})} for p in f.places()],
             }
             for f in result.findings
         ],

@@ -45,16 +45,19 @@ def _display(path) -> str:
         return str(path)
 
 
-def by_target(result) -> list[tuple[str, str, list]]:
-    """[(model display path, variant, findings)] in target order; findings of no target come last."""
+def by_target(result, once: bool = False) -> list[tuple[str, str, list]]:
+    """[(model display path, variant, findings)] in target order; findings of no target come last.
+    A finding that applies to several models/variants (`Finding.where`) counts in each of them, or with
+    `once` only in the first (a report that prints it once, naming the others)."""
     groups = []
     claimed = set()
     for t in result.targets:
-        shown = _display(t.path)
+        shown = result.shown(t.path) if hasattr(result, "shown") else _display(t.path)
         mine = []
         for i, f in enumerate(result.findings):
-            variants = f.variant.split(",") if f.variant else [""]
-            if f.model == shown and t.variant in variants:
+            if once and i in claimed:
+                continue
+            if any(p.model == shown and p.variant == t.variant for p in f.places()):
                 mine.append(f)
                 claimed.add(i)
         groups.append((shown, t.variant, mine))
@@ -66,8 +69,11 @@ def by_target(result) -> list[tuple[str, str, list]]:
     return groups
 
 
-def finding_line(f) -> str:
-    out = f"{x(str(f.location))}: {f.code} [{f.severity}] {x(f.message)}"
+def finding_line(f, totals: dict | None = None) -> str:
+    from urdfcheck.pipeline.collapse import describe
+
+    where = describe(f, totals, every=True)  # shown in one suite only: name the others
+    out = f"{x(str(f.location))}: {f.code} [{f.severity}] {x(f.message)}" + (f" [{x(where)}]" if where else "")
     for v in f.location.via:
         out += f"\n    via macro call at {x(str(v))}"
     for r in f.related:
@@ -86,7 +92,10 @@ def as_tree(result, fail_on: Severity = Severity.WARNING) -> ET.Element:
     fams = families()
     root = ET.Element("testsuites", name="urdfcheck")
     totals = {"tests": 0, "failures": 0}
-    for model, variant, findings in by_target(result):
+    from urdfcheck.pipeline.collapse import variant_totals
+
+    vtotals = variant_totals(result.targets)
+    for model, variant, findings in by_target(result, once=True):  # a collapsed finding: one line, in its first suite
         suite_name = model + (f" [{variant}]" if variant else "")
         classname = model.replace(".", "_").replace("/", ".").replace("\\", ".") + (f"[{variant}]" if variant else "")
         groups: dict[str, list] = {fam: [] for fam in fams}
@@ -102,11 +111,12 @@ def as_tree(result, fail_on: Severity = Severity.WARNING) -> ET.Element:
                 n_fail += 1
                 worst = max(f.severity for f in failing)
                 fail = ET.SubElement(case, "failure", message=_summary(failing), type=str(worst))
-                fail.text = "\n".join(finding_line(f) for f in failing) + "\n"
+                fail.text = "\n".join(finding_line(f, vtotals) for f in failing) + "\n"
             below = [f for f in fs if f.severity < fail_on]
             if below:
                 out = ET.SubElement(case, "system-out")
-                out.text = ("below --fail-on:\n" if failing else "") + "\n".join(finding_line(f) for f in below) + "\n"
+                lines = "\n".join(finding_line(f, vtotals) for f in below)
+                out.text = ("below --fail-on:\n" if failing else "") + lines + "\n"
         suite.set("tests", str(len(groups)))
         suite.set("failures", str(n_fail))
         totals["tests"] += len(groups)

@@ -103,11 +103,15 @@ def _findings(result, max_rows: int) -> list[str]:
     if not result.findings:
         return []
     lines = ["", "### Findings", "", "| severity | rule | location | message |", "| --- | --- | --- | --- |"]
+    from urdfcheck.pipeline.collapse import describe, variant_totals
+
+    totals = variant_totals(result.targets)
     ordered = sorted(result.findings, key=lambda f: (-int(f.severity), f.sort_key()))
     for f in ordered[:max_rows]:
         msg = md(f.message)
-        if f.variant:
-            msg += f" \\[{md(f.variant)}\\]"
+        where = describe(f, totals)
+        if where:
+            msg += f" \\[{md(where)}\\]"
         lines.append(f"| {_ICON[f.severity]} | **{f.code}** {md(f.name)} | {_where(f)} | {msg} |")
     if len(ordered) > max_rows:
         lines += ["", f"… and {len(ordered) - max_rows} more (see the full report in the job output)."]
@@ -119,7 +123,8 @@ def _trees(result) -> list[str]:
     out = []
     for t in result.targets:
         model = models.get((str(t.path), t.variant))
-        title = md(str(t.path), 4096) + (f" \\[{md(t.variant)}\\]" if t.variant else "")
+        shown = result.shown(t.path) if hasattr(result, "shown") else str(t.path)  # relative, like the findings
+        title = md(shown, 4096) + (f" \\[{md(t.variant)}\\]" if t.variant else "")
         if model is None:
             out += [f"- {title}: not loaded (see the findings)"]
             continue

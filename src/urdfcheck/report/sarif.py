@@ -84,10 +84,15 @@ def _fallback_rule(code: str, name: str) -> dict:
 
 
 def fingerprint(f) -> str:
-    from urdfcheck.report.baseline import normalise_message, portable_path
+    from urdfcheck.pipeline.baseline import normalise_message, portable_path
 
     text = "\x1f".join([f.code, portable_path(f.location.file), normalise_message(f.message)])
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
+
+
+def _where(f, totals, describe) -> str:
+    where = describe(f, totals)
+    return f" [{clean_text(where)}]" if where else ""
 
 
 def as_dict(result) -> dict:
@@ -102,6 +107,9 @@ def as_dict(result) -> dict:
             index[f.code] = len(rules)
             rules.append(_fallback_rule(f.code, f.name))
 
+    from urdfcheck.pipeline.collapse import describe, variant_totals
+
+    totals = variant_totals(result.targets)
     seen: Counter = Counter()
     results = []
     for f in result.findings:
@@ -118,7 +126,7 @@ def as_dict(result) -> dict:
             "ruleId": f.code,
             "ruleIndex": index[f.code],
             "level": LEVELS[f.severity],
-            "message": {"text": clean_text(f.message) or f.code},
+            "message": {"text": (clean_text(f.message) or f.code) + _where(f, totals, describe)},
             "locations": [{"physicalLocation": physical(f.location)}],
             "partialFingerprints": {FINGERPRINT: f"{fp}:{seen[fp]}"},
         }

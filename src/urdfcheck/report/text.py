@@ -11,6 +11,9 @@ def render(result, colour: bool = False, **_) -> str:
     def c(code, text):
         return f"{code}{text}{_RESET}" if colour else text
 
+    from urdfcheck.pipeline.collapse import describe, variant_totals
+
+    totals = variant_totals(result.targets)
     lines = []
     current = None
     for f in result.findings:
@@ -22,9 +25,12 @@ def render(result, colour: bool = False, **_) -> str:
             current = loc.file
         where = clean_text(str(loc))
         tag = f"{f.code}"
-        extra = f" [{clean_text(f.variant)}]" if f.variant else ""
+        where_ = describe(f, totals)
+        extra = f" [{clean_text(where_)}]" if where_ else ""
         lines.append(f"{where}  {c(_COLOURS[f.severity], tag)}  {c(_DIM, str(f.severity))}  "
                      f"{clean_text(f.message)}{extra}")
+        if len(f.places()) > 1:
+            continue  # found in several models/variants: one line (their macro call chains differ; JSON has them)
         for v in loc.via:
             lines.append(c(_DIM, f"    via macro call at {clean_text(str(v))}"))
         for r in f.related:

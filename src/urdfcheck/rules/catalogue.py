@@ -31,6 +31,48 @@ def check(*codes: str):
     return deco
 
 
+# option types a catalogue entry may declare -> the JSON Schema a config value must satisfy
+OPTION_TYPES = {
+    "number": {"type": "number"},
+    "integer": {"type": "integer"},
+    "boolean": {"type": "boolean"},
+    "string": {"type": "string"},
+    "strings": {"type": "array", "items": {"type": "string"}},
+}
+
+
+class OptionSpec(NamedTuple):
+    """One rule option, declared once in the catalogue entry: `options: {name: {type, default, doc}}`."""
+
+    name: str
+    type: str
+    default: object
+    doc: str
+    minimum: float | None = None
+
+    def schema(self) -> dict:
+        out = dict(OPTION_TYPES[self.type], description=self.doc)
+        if self.minimum is not None:
+            out["minimum"] = self.minimum
+        return out
+
+
+def option_ok(spec: OptionSpec, value) -> bool:
+    """Does `value` satisfy the option's declared type (and minimum)? The config file is checked by its
+    schema, which `options_schema` builds from the same declarations; this is for values given in Python."""
+    def number(v):
+        return isinstance(v, (int, float)) and not isinstance(v, bool)
+
+    ok = {
+        "number": number,
+        "integer": lambda v: isinstance(v, int) and not isinstance(v, bool),
+        "boolean": lambda v: isinstance(v, bool),
+        "string": lambda v: isinstance(v, str),
+        "strings": lambda v: isinstance(v, (list, tuple)) and all(isinstance(x, str) for x in v),
+    }[spec.type](value)
+    return ok and (spec.minimum is None or not number(value) or value >= spec.minimum)
+
+
 class RuleInfo(NamedTuple):
     code: str
     name: str
@@ -40,8 +82,9 @@ class RuleInfo(NamedTuple):
     rationale: str = ""
     fix: str = ""
     examples: dict = {}  # always given by _info(); NamedTuple: cheap to define, immutable
-    options: dict = {}
+    options: dict = {}  # name -> default (what a check gets when the config sets nothing)
     path: str = ""
+    option_specs: dict = {}  # name -> OptionSpec
 
 
 class CatalogueError(Exception):
@@ -108,12 +151,34 @@ def catalogue() -> dict[str, RuleInfo]:
     return {code: _info(data, str(folder / f"{code}.yaml")) for code, data in sorted(entries.items())}
 
 
+def _option_specs(code: str, raw) -> dict[str, OptionSpec]:
+    out = {}
+    for name, d in (raw or {}).items():
+        if not isinstance(d, dict) or d.get("type") not in OPTION_TYPES or "default" not in d or not d.get("doc"):
+            raise CatalogueError(f"{code}: option {name!r} must declare type ({', '.join(OPTION_TYPES)}), "
+                                 "default and doc")
+        out[str(name)] = OptionSpec(str(name), d["type"], d["default"], str(d["doc"]).strip(), d.get("minimum"))
+    return out
+
+
+def options_schema() -> dict:
+    """JSON Schema of the config's `rules:` mapping, built from the options each rule declares: an unknown
+    rule, an unknown option or a value of the wrong type is a config error."""
+    rules = {}
+    for code, r in catalogue().items():
+        rules[code] = {"type": "object", "additionalProperties": False,
+                       "properties": {n: s.schema() for n, s in r.option_specs.items()}}
+    return {"type": "object", "properties": rules, "additionalProperties": False}
+
+
 def _info(data: dict, path: str) -> RuleInfo:
+    specs = _option_specs(str(data["code"]), data.get("options"))
     return RuleInfo(
         code=str(data["code"]), name=str(data["name"]), severity=Severity.parse(data["severity"]),
         family=str(data["family"]), summary=str(data["summary"]).strip(),
         rationale=str(data["rationale"]).strip(), fix=str(data["fix"]).strip(),
-        examples=dict(data["examples"] or {}), options=dict(data.get("options") or {}), path=path,
+        examples=dict(data["examples"] or {}), options={n: s.default for n, s in specs.items()}, path=path,
+        option_specs=specs,
     )
 
 
@@ -144,6 +209,22 @@ def example_files(ex: dict) -> dict[str, str]:
     if "xacro" in ex:
         files["robot.urdf.xacro"] = ex["xacro"]
     return files
+
+
+def unknown_codes(patterns) -> list[str]:
+    """Problems with selection patterns: each is 'CODE is not a rule code or prefix (did you mean ...)'.
+    A pattern is valid when it is ALL, a rule code, or a prefix of at least one rule code."""
+    from urdfcheck.core.findings import closest
+
+    codes = sorted(set(catalogue()) | set(CHECKS))
+    out = []
+    for p in patterns:
+        if p == "ALL" or any(c.startswith(p) for c in codes):
+            continue
+        close = closest(p, codes, cutoff=0.6)
+        out.append(f"{p!r} is not a rule code or prefix" + (f" (did you mean {close!r}?)" if close else
+                                                           " (`urdfcheck rules` lists them)"))
+    return out
 
 
 def matches(code: str, patterns) -> bool:

@@ -51,9 +51,10 @@ def help_markdown(r: rulebook.RuleInfo) -> str:
     parts.append(f"**Use instead.** {md(r.fix)}\n")
     if r.examples.get("pass"):
         parts.append(_example(r.examples["pass"]))
-    if r.options:
-        parts.append("**Options** (set under `rules: {" + r.code + ": {...}}` in urdfcheck.yaml): "
-                     + ", ".join(f"`{k}` (default `{v}`)" for k, v in r.options.items()) + "\n")
+    if r.option_specs:
+        parts.append("**Options** (set under `rules: {" + r.code + ": {...}}` in urdfcheck.yaml):\n\n"
+                     + "".join(f"- `{s.name}` ({s.type}, default `{s.default}`): {md(s.doc)}\n"
+                               for s in r.option_specs.values()))
     return "\n".join(parts)
 
 
@@ -64,8 +65,9 @@ def help_text(r: rulebook.RuleInfo) -> str:
         lines += ["", "Fails:", _example_text(r.examples["fail"])]
     if r.examples.get("pass"):
         lines += ["Passes:", _example_text(r.examples["pass"])]
-    if r.options:
-        lines += ["Options: " + ", ".join(f"{k} (default {v})" for k, v in r.options.items())]
+    if r.option_specs:
+        lines += ["Options:"] + [f"  {s.name} ({s.type}, default {s.default}): {s.doc}"
+                                 for s in r.option_specs.values()]
     return "\n".join(lines).rstrip() + "\n"
 
 
@@ -92,7 +94,8 @@ def page(code: str, fmt: str = "text") -> str | None:
 
 def _as_dict(r: rulebook.RuleInfo) -> dict:
     return {"code": r.code, "name": r.name, "severity": str(r.severity), "family": r.family,
-            "summary": r.summary, "rationale": r.rationale, "fix": r.fix, "options": r.options}
+            "summary": r.summary, "rationale": r.rationale, "fix": r.fix, "options": r.options,
+            "option_types": {n: {"type": s.type, "doc": s.doc} for n, s in r.option_specs.items()}}
 
 
 def listing(fmt: str = "text") -> str:

@@ -258,6 +258,14 @@ def semantic_deltas(model, tree: KinematicTree | None = None, peers=("pinocchio"
         elif s.type not in ("revolute", "continuous", "prismatic", "fixed"):
             out.append(Delta("unknown-type", s.name, f"joint {s.name!r} has unknown type {s.type!r}: urdfdom "
                              "refuses the model; urdfcheck treats it as fixed", ("pinocchio", "yourdfpy"), j.loc))
+    # URDF 1.1 quat_xyzw: yourdfpy reads only xyz and rpy (its _parse_origin), so it uses the identity rotation
+    if "yourdfpy" in peers:
+        for s in tree.segments:
+            if s.joint.origin.quat is not None:
+                out.append(Delta("quaternion-origin", s.name, f"joint {s.name!r}: its <origin> gives the rotation "
+                                 "as quat_xyzw (URDF 1.1), which yourdfpy does not read (it uses the identity); "
+                                 "links below are not compared with yourdfpy", ("yourdfpy",),
+                                 s.joint.origin.loc or s.joint.loc, _subtree(tree, s)))
     # <axis> without xyz: the model reads it as urdfdom does (a zero axis), so the zero-axis delta above
     # covers it; yourdfpy alone uses the default 1 0 0
     for s in tree.segments:
@@ -668,6 +676,16 @@ def _yourdfpy_job(progress, xml: str, links: list, values: dict, n: int):
     return {"poses": out, "version": getattr(yourdfpy, "__version__", ""), "base": u.base_link}
 
 
+def _urdf_read_by_pinocchio() -> tuple[int, int]:
+    """The newest URDF version the urdfdom beside Pinocchio reads (cmeel-urdfdom wheel; unknown: the newest)."""
+    v = _dist_version("cmeel-urdfdom")
+    try:
+        major, minor = (int(x) for x in v.split(".")[:2])
+    except ValueError:
+        return (1, 2)
+    return (1, 2) if major >= 6 else (1, 1) if (major, minor) >= (5, 1) else (1, 0)
+
+
 def _available(module: str) -> bool:
     import importlib.util
 
@@ -851,6 +869,14 @@ def _verify(model, n, seed, tolerance, xml, peers, yourdfpy_samples, timeout, me
         if not _available("pinocchio"):
             pre.append(PeerResult("pinocchio", "unavailable", "the 'pin' package is not installed "
                                   "(pip install urdfcheck[verify])", tolerance=tolerance))
+        elif _urdf_read_by_pinocchio() < model.version:
+            newest = ".".join(map(str, _urdf_read_by_pinocchio()))
+            declared = ".".join(map(str, model.version))
+            report.deltas.append(Delta("urdf-version", "", f"the model is URDF {declared}, but the urdfdom Pinocchio "
+                                       f"uses reads URDF up to {newest} (urdfdom 5.1 reads 1.1, 6.0 reads 1.2): "
+                                       "Pinocchio cannot load it, so it is not compared", ("pinocchio",), model.loc))
+            pre.append(PeerResult("pinocchio", "skipped", f"its urdfdom reads URDF up to {newest}, the model is "
+                                  f"{declared}", tolerance=tolerance))
         elif dof > max_dof or depth > max_depth:
             pre.append(PeerResult("pinocchio", "refused", f"model too large for a safe run: {dof} DoF "
                                   f"(cap {max_dof}), chain depth {depth} (cap {max_depth})", tolerance=tolerance))

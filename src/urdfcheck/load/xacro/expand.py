@@ -10,6 +10,7 @@ attributes; they are stripped from the output for `urdfcheck expand`.
 """
 from __future__ import annotations
 
+import glob
 import io
 import os
 import re
@@ -18,6 +19,7 @@ import xml.dom.minidom
 from xml.dom import expatbuilder
 
 from urdfcheck.core import xmlfront
+from urdfcheck.core.safeio import encoding_problem, read_file
 
 SRC_ATTR = "__ucsrc"
 STRIP_RE = re.compile(r' __ucsrc="[^"]*"')
@@ -36,6 +38,9 @@ MAX_EVALS_TRUSTED = 400_000
 MAX_EXPR_ITER = 500_000  # items iterated by all ${...} together
 MAX_VALUE = 1_000_000  # characters/items of one value
 MAX_TEXT = 8 * 1024 * 1024  # characters of evaluated attribute and text values in all (macro-cloned bulk)
+
+
+_GLOB_MAGIC = re.compile(r"[*?\[]")  # what xacro's get_include_files treats as a pattern
 
 
 class Refusal(Exception):
@@ -198,6 +203,41 @@ def expand(path: str, opts: Options) -> dict:
             state.declared_args.setdefault(result[0], result[1] if len(result) > 1 else None)
         return result
 
+    shown = _shown
+
+    def get_include_files(filename_spec, symbols):
+        # stock globs the pattern as written: '/*/*/*.xacro' or '../../*' walks the runner's file system, and
+        # the refusal of the first match named a file outside the package. Here the folder the pattern
+        # starts from must lie inside the package roots, and every match too; messages name the pattern only.
+        written = str(xacro.eval_text(filename_spec, symbols))
+        full = os.path.normpath(os.path.join(xacro.root_dir, xacro.abs_filename_spec(written)))
+        confine = not opts.trusted and resolver is not None
+        if _GLOB_MAGIC.search(full):
+            parts = full.split(os.sep)
+            first = next(i for i, part in enumerate(parts) if _GLOB_MAGIC.search(part))
+            base = os.sep.join(parts[:first]) or os.sep
+            if confine and not resolver.allowed(base):
+                raise Refusal("X014", f"refusing the include pattern {shown(written)}: it searches outside the "
+                                      "package roots")
+            filenames = []
+            for match in glob.iglob(full):
+                if len(filenames) + len(state.files) >= MAX_INCLUDES:
+                    raise Refusal("X012", f"more than {MAX_INCLUDES} files included")
+                if confine and not resolver.allowed(match):
+                    raise Refusal("X014", f"refusing the include pattern {shown(written)}: a file it matches is "
+                                          "outside the package roots")
+                filenames.append(match)
+            filenames.sort()
+            if not filenames:
+                xacro.warning(xacro.include_no_matches_msg.format(shown(written, quote=False)))
+        else:
+            if confine and not resolver.allowed(full):
+                raise Refusal("X014", f"refusing to read {shown(written)}: it is outside the package roots")
+            filenames = [xacro.abs_filename_spec(written)]
+        for filename in filenames:
+            xacro.all_includes.append(filename)
+            yield filename
+
     def parse(inp, filename=None):
         if inp is not None:
             return xml.dom.minidom.parseString(inp) if isinstance(inp, str) else inp
@@ -208,14 +248,20 @@ def expand(path: str, opts: Options) -> dict:
         if len(state.files) >= MAX_INCLUDES:
             raise Refusal("X012", f"more than {MAX_INCLUDES} files included")
         if not opts.trusted and resolver is not None and not resolver.allowed(full):
-            raise Refusal("X014", f"refusing to read {filename!r}: it is outside the package roots")
+            raise Refusal("X014", f"refusing to read {shown(filename)}: it is outside the package roots")
         try:
-            with open(full, "rb") as f:
-                data = f.read(MAX_FILE_BYTES + 1)
+            data = read_file(full, MAX_FILE_BYTES)
         except OSError as e:
             xacro.filestack.pop()  # as stock xacro does: the missing file is not "the current file"
-            raise xacro.XacroException(f"{e.strerror}: {e.filename}", exc=e)
+            raise xacro.XacroException(f"{e.strerror}: {shown(filename, quote=False)}", exc=e)
+        if len(data) > MAX_FILE_BYTES:
+            raise Refusal("X012", f"{shown(filename)} is larger than {MAX_FILE_BYTES} bytes")
         idx = state.index(os.path.normpath(full))
+        problem = encoding_problem(data)
+        if problem is not None:  # an included UTF-16 file: say so, not "invalid UTF-8"
+            err = Refusal("X001", problem)
+            err._uc_marker = f"{idx}:1"
+            raise err
         try:
             root, warnings = xmlfront.parse(data)
         except xmlfront.XmlRefused as r:
@@ -248,8 +294,9 @@ def expand(path: str, opts: Options) -> dict:
         return os.environ[name]
 
     def eval_optenv(name, default=""):
+        # sandbox: the default (or ""), never the runner's environment, unless the variable is allow-listed
         if not opts.trusted and name not in opts.allow_env:
-            raise Refusal("X015", f"$(optenv {name}) is refused: the variable is not allow-listed in the config")
+            return default
         return os.environ.get(name, default)
 
     def eval_find(pkg):
@@ -283,8 +330,26 @@ def expand(path: str, opts: Options) -> dict:
                     pass
             raise
 
+    def sandbox_unit_constructor(unit, loader, node):
+        # stock: float(eval(scalar)); a failure echoed the evaluated text ("could not convert string to float:
+        # '<whatever the expression computed>'"). Here the scalar goes through the sandbox evaluator (the same
+        # guards as ${...}) and a non-number is reported by its type, never by its text.
+        value = loader.construct_scalar(node)
+        try:
+            result = xacro.safe_eval(value, xacro._global_symbols)
+        except SyntaxError:
+            raise xacro.XacroException(f"invalid expression after {unit.value.tag}") from None
+        if not isinstance(result, (int, float)):
+            raise xacro.XacroException(f"the value after {unit.value.tag} is not a number "
+                                       f"(it evaluates to a {type(result).__name__})")
+        return float(result) * unit.value.conversion_constant
+
     if orig_unit_constructor is not None:
+        if not opts.trusted:
+            orig_unit_constructor = sandbox_unit_constructor
         units.constructor = unit_constructor
+    if not opts.trusted:
+        xacro.get_include_files = get_include_files
     xacro.eval_all = eval_all
     xacro.handle_macro_call = handle_macro_call
     xacro.check_attrs = check_attrs
@@ -324,8 +389,11 @@ def _describe(e: BaseException, xacro) -> dict:
     marker = getattr(e, "_uc_marker", None)
     inner = e
     seen = 0
+    located = None  # the innermost exception's own location (a !degrees failure: its YAML line)
     while inner is not None and seen < 10:
         seen += 1
+        if inner is not e and getattr(inner, "_uc_marker", None):
+            located = inner._uc_marker
         if isinstance(inner, Refusal):
             return {"code": inner.code, "message": inner.message, "marker": marker}
         if _is_refused(inner):
@@ -335,13 +403,41 @@ def _describe(e: BaseException, xacro) -> dict:
                     "marker": getattr(inner, "_uc_marker", None) or marker}  # e.g. the YAML line of a !degrees
         nxt = getattr(inner, "exc", None) or inner.__cause__ or inner.__context__
         inner = nxt if nxt is not inner else None
-    msg = str(e) or repr(e)
+    msg = _text(e)
     if type(e).__name__ == "ExpatError":
         msg = f"XML parsing error: {msg}"
     macros = [m.body.getAttribute("name") for m in reversed(xacro.macrostack or []) if m.body is not None]
     if macros:
         msg += " (in macro " + " <- ".join(macros) + ")"
-    return {"code": "X010", "message": msg.strip(), "marker": marker}
+    return {"code": "X010", "message": msg.strip(), "marker": located or marker}
+
+
+def _text(e: BaseException, limit: int = 4000) -> str:
+    """An exception's message, bounded; str() itself may fail (a KeyError of a 100 000-digit integer)."""
+    try:
+        msg = str(e) or repr(e)
+    except Exception:  # noqa: BLE001 - any failure to describe is described by the type
+        msg = type(e).__name__
+    return msg if len(msg) <= limit else msg[:limit - 3] + "..."
+
+
+def _shown(path, quote=True) -> str:
+    """A path for a message: relative to the working directory, never the runner's absolute path."""
+    text = str(path)
+    if os.path.isabs(text):
+        rel = os.path.relpath(os.path.normpath(text), os.getcwd())
+        if rel == ".." or rel.startswith(".." + os.sep):
+            return "a file outside the working directory"
+        text = rel
+    return repr(text) if quote else text
+
+
+class _NamedText(io.StringIO):
+    """YAML text with the file's name: PyYAML's marks (the !degrees error locations) carry it."""
+
+    def __init__(self, text: str, name: str):
+        super().__init__(text)
+        self.name = name
 
 
 def _is_refused(e) -> bool:
@@ -353,22 +449,50 @@ def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
 
     from urdfcheck.load.xacro import safeeval
 
+    import yaml
+
+    from urdfcheck.load.xacro import yamlguard
+
     def confined_load_yaml(filename):
+        # stock load_yaml, reading the file once: a regular file only (a committed FIFO would block), capped,
+        # checked for alias bombs and nesting before PyYAML builds it
         full = xacro.abs_filename_spec(filename)
         if resolver is not None and not resolver.allowed(full):
-            raise Refusal("X014", f"refusing to load YAML {filename!r}: it is outside the package roots")
-        from urdfcheck.load.xacro.yamlguard import YamlRefused, check_yaml_file
+            raise Refusal("X014", f"refusing to load YAML {_shown(filename)}: it is outside the package roots")
         try:
-            check_yaml_file(full)
-        except YamlRefused as e:  # an alias bomb is an expansion limit (X012), not a xacro error
-            raise Refusal(e.code, e.message.replace(full, repr(filename))) from None
-        return orig_load_yaml(filename)
+            data = read_file(full, yamlguard.MAX_BYTES)
+        except OSError as e:
+            raise xacro.XacroException(f"{e.strerror}: {_shown(filename, quote=False)}", exc=e) from None
+        try:
+            text = data.decode("utf-8")
+            yamlguard.check_yaml_text(text, _shown(filename))
+        except UnicodeDecodeError:
+            raise xacro.XacroException(f"{_shown(filename)} is not UTF-8 text") from None
+        except yamlguard.YamlRefused as e:  # an alias bomb is an expansion limit (X012), not a xacro error
+            raise Refusal(e.code, e.message) from None
+        for unit in xacro.ConstructUnits:
+            yaml.SafeLoader.add_constructor(unit.value.tag, unit.constructor)
+        xacro.filestack.append(full)
+        try:
+            return xacro.YamlListWrapper.wrap(yaml.safe_load(_NamedText(text, full)))
+        finally:
+            xacro.filestack.pop()
+            xacro.all_includes.append(full)
 
-    orig_load_yaml = xacro.load_yaml
+    def confined_abs_filename(filename_spec):
+        # stock prepends the current file's folder: the runner's absolute path, copied into the model. Every
+        # xacro use of a relative name (include, load_yaml) resolves it against that same folder, so the name
+        # is returned as written.
+        if not isinstance(filename_spec, str):
+            raise TypeError(f"expected a file name, not {type(filename_spec).__name__}")
+        return filename_spec
+
     symbols = xacro._global_symbols
     symbols["load_yaml"] = confined_load_yaml
+    symbols["abs_filename"] = confined_abs_filename
     if "xacro" in symbols:
         dict.__setitem__(symbols["xacro"], "load_yaml", confined_load_yaml)
+        dict.__setitem__(symbols["xacro"], "abs_filename", confined_abs_filename)
     # one budget for all expressions of the expansion: a cheap-looking loop repeated by macros adds up
     evaluator = safeeval.default_evaluator(symbols, safeeval.Limits(
         max_len=MAX_VALUE, max_alloc=5 * MAX_VALUE, max_total_iter=MAX_EXPR_ITER))

@@ -21,7 +21,6 @@ import ast
 import builtins
 import math
 import operator
-import os
 import re
 import string
 from functools import lru_cache
@@ -255,6 +254,7 @@ def _describe(fn) -> str:
 
 
 _SIZED = (str, bytes, list, tuple, dict, set, frozenset, range)
+_NESTED = (list, tuple, dict, set, frozenset)  # containers whose items may be containers
 _SEQ = (str, bytes, list, tuple)
 
 
@@ -402,9 +402,9 @@ def _m_format(run, template, args, kwargs):
     reason, nested = _format_reason(template, run.limits)
     if reason:
         run.refuse(reason)
-    if nested:  # a width taken from an argument: bound the integer arguments
+    if nested:  # a width taken from an argument: bound the integers, and the widths spelt in strings ('>999999999')
         for v in list(args) + list(kwargs.values()):
-            if isinstance(v, int) and v > run.limits.max_len:
+            if (isinstance(v, int) and v > run.limits.max_len) or (isinstance(v, str) and _digits_reason(v, run.limits)):
                 run.refuse("format width taken from an argument is too large")
     return args
 
@@ -572,8 +572,14 @@ class _Run:
         if isinstance(value, int):
             if value.bit_length() > lim.max_bits:
                 self.refuse(f"integer result larger than {lim.max_bits} bits")
-        elif isinstance(value, _SIZED) and not isinstance(value, range) and len(value) > lim.max_len:
-            self.refuse(f"result longer than {lim.max_len} items")
+        elif isinstance(value, _SIZED) and not isinstance(value, range):
+            if len(value) > lim.max_len:
+                self.refuse(f"result longer than {lim.max_len} items")
+            if isinstance(value, _NESTED) and self.evaluator._nested_size(self, value) > lim.max_len:
+                # [[0]*10000]*3000 costs 13 000 items of memory and 30 million in every repr, comparison, hash or
+                # error message ("... is not in list") that walks it
+                self.refuse(f"result holds more than {lim.max_len} items and characters when nested values are "
+                            "counted each time they occur")
         return value
 
     def ev(self, node, scope):
@@ -729,11 +735,11 @@ def _elements(run, elts, scope):
 
 
 def _h_tuple(run, node, scope):
-    return tuple(_elements(run, node.elts, scope))
+    return run.check(tuple(_elements(run, node.elts, scope)))
 
 
 def _h_list(run, node, scope):
-    return _elements(run, node.elts, scope)
+    return run.check(_elements(run, node.elts, scope))
 
 
 def _h_set(run, node, scope):
@@ -743,7 +749,7 @@ def _h_set(run, node, scope):
             out.update(run.iterate(run.ev(e.value, scope)))
         else:
             out.add(run.ev(e, scope))
-    return out
+    return run.check(out)
 
 
 def _h_dict(run, node, scope):
@@ -756,7 +762,7 @@ def _h_dict(run, node, scope):
         else:
             key = run.ev(k, scope)
             out[key] = run.ev(v, scope)
-    return out
+    return run.check(out)
 
 
 def _h_call(run, node, scope):
@@ -781,12 +787,12 @@ def _h_call(run, node, scope):
 
 def _h_listcomp(run, node, scope):
     local, first = run.comprehension(node, scope)
-    return [run.ev(node.elt, local) for _ in run.loop(node.generators, local, first)]
+    return run.check([run.ev(node.elt, local) for _ in run.loop(node.generators, local, first)])
 
 
 def _h_setcomp(run, node, scope):
     local, first = run.comprehension(node, scope)
-    return {run.ev(node.elt, local) for _ in run.loop(node.generators, local, first)}
+    return run.check({run.ev(node.elt, local) for _ in run.loop(node.generators, local, first)})
 
 
 def _h_dictcomp(run, node, scope):
@@ -795,7 +801,7 @@ def _h_dictcomp(run, node, scope):
     for _ in run.loop(node.generators, local, first):
         key = run.ev(node.key, local)
         out[key] = run.ev(node.value, local)
-    return out
+    return run.check(out)
 
 
 def _h_genexp(run, node, scope):
@@ -846,6 +852,35 @@ _CHEAP = frozenset(id(f) for f in (len, str, repr, bool, hash, isinstance, issub
                                   abs, round, ord))
 
 
+class Passed:
+    """A callable that leaves the evaluator as a value: an argument of a call (``map(s.format, xs)``,
+    ``sorted(xs, key=math.factorial)``) or the value of an expression. Calling it, from C code or anywhere,
+    is a call through the evaluator that made it: the allow-list, the screening of its own arguments,
+    the cost guards (str.format fields and widths, ljust, join, factorial, tokenize, ...) and the
+    evaluation's budget all apply on every call. It exposes nothing of the callable it holds."""
+
+    __slots__ = ("_fn", "_run")
+
+    def __init__(self, fn, run):
+        self._fn = fn
+        self._run = run
+
+    def __call__(self, *args, **kwargs):
+        run = self._run
+        return run.evaluator._invoke(run, self._fn, list(args), kwargs)
+
+    def __repr__(self) -> str:
+        return f"<function {_describe(self._fn)}>"
+
+    __str__ = __repr__
+
+    def __reduce__(self):  # never pickled out of a worker with what it holds
+        raise TypeError("a function is not a value that can leave the expansion")
+
+
+Passed.__name__ = "function"  # Python's own messages ("'function' object is not iterable") name no internals
+
+
 class Evaluator:
     """Evaluate xacro expressions with an allow-list of callables (compared by identity).
 
@@ -855,6 +890,7 @@ class Evaluator:
     def __init__(self, allowed=(), *, mapping_types=(), limits: Limits | None = None):
         self.limits = limits or Limits()
         self.spent = 0  # items iterated by finished evaluations (Limits.max_total_iter)
+        self._sizes: dict[int, tuple[object, int]] = {}  # id -> (container, nested size); values are never mutated
         self._allowed: dict[int, object] = {}
         self._guards: dict[int, tuple[object, object]] = {}
         self._mapping_types: tuple[type, ...] = ()
@@ -883,6 +919,8 @@ class Evaluator:
         self._mapping_types = tuple(dict.fromkeys(self._mapping_types + tuple(types_)))
 
     def is_allowed(self, fn, extra=None) -> bool:
+        if type(fn) is Passed:
+            fn = fn._fn
         key = id(fn)
         if self._allowed.get(key) is fn or (extra and extra.get(key) is fn):
             return True
@@ -912,9 +950,66 @@ class Evaluator:
         if reason:
             run.refuse(reason)
         try:
-            return run.check(run.ev(tree.body, None))
+            result = run.check(run.ev(tree.body, None))
         finally:
             self.spent += run.iters
+        if callable(result) and type(result) is not Passed and not isinstance(result, type):
+            # a method or function as the value of an expression (a property): it leaves the evaluator
+            # guarded; the evaluator unwraps it when an expression calls it
+            return Passed(result, run)
+        return result
+
+    def _nested_size(self, run, value) -> int:
+        """Items of `value` with nested containers counted each time they occur and strings by length (what a repr
+        prints, a comparison or hash walks), capped at max_len + 1. Memoised per container, so the walk costs the
+        values' memory, not their nested size; charged to the evaluation's budget."""
+        memo, cap = self._sizes, self.limits.max_len + 1
+        hit = memo.get(id(value))
+        if hit is not None and hit[0] is value:
+            return hit[1]
+        work, stack, open_ = 0, [value], set()
+        while stack:
+            x = stack[-1]
+            key = id(x)
+            hit = memo.get(key)
+            if hit is not None and hit[0] is x:
+                stack.pop()
+                continue
+            items = (*x.keys(), *x.values()) if isinstance(x, dict) else x
+            if key not in open_:  # first visit: size the nested containers first
+                kinds = set(map(type, items))  # C speed: most values hold numbers only, or strings only
+                if not any(issubclass(t, _NESTED) or issubclass(t, (str, bytes)) for t in kinds):
+                    memo[key] = (x, min(len(items), cap))
+                    stack.pop()
+                    continue
+                if all(issubclass(t, (str, bytes)) for t in kinds):
+                    memo[key] = (x, min(len(items) + (sum(map(len, items)) >> 3), cap))
+                    stack.pop()
+                    continue
+                open_.add(key)
+                work += len(items)
+                kids = [c for c in items if isinstance(c, _NESTED) and id(c) not in open_
+                        and (memo.get(id(c)) or (None,))[0] is not c]
+                if kids:
+                    stack.extend(kids)
+                    continue
+            size = 0
+            for c in items:
+                if isinstance(c, _NESTED):
+                    hit = memo.get(id(c))
+                    size += hit[1] if hit is not None and hit[0] is c else 1  # a cycle (YAML anchors) counts once
+                elif isinstance(c, (str, bytes)):
+                    size += 1 + (len(c) >> 3)
+                else:
+                    size += 1
+                if size > cap:
+                    size = cap
+                    break
+            memo[key] = (x, size)
+            open_.discard(key)
+            stack.pop()
+        run.spend(work >> 6)
+        return memo[id(value)][1]
 
     def _getattr(self, run, obj, name):
         if name.startswith("_"):
@@ -930,22 +1025,35 @@ class Evaluator:
         kind = f"type '{obj.__name__}'" if isinstance(obj, type) else f"'{type(obj).__name__}' objects"
         run.refuse(f"attribute '{name}' of {kind} is not allowed")
 
+    def _screen(self, run, fn, v):
+        """An argument of a call. A callable becomes a `Passed` (or is refused): whoever calls it later,
+        C code included (map, filter, sorted(key=), min/max(key=), a nested map), goes through `_invoke`."""
+        if type(v) is Passed:
+            return v
+        if not self.is_allowed(v, run.extra):
+            # map/filter/sorted(key=)/max(key=)...: an allowed function must not call a non-allowed one for us
+            run.refuse(f"passing '{_describe(v)}' to '{_describe(fn)}' is not allowed")
+        return Passed(v, run)
+
     def _invoke(self, run, fn, args, kwargs):
+        if type(fn) is Passed:
+            fn = fn._fn
         if not self.is_allowed(fn, run.extra):
             if not callable(fn):
                 raise TypeError(f"'{type(fn).__name__}' object is not callable")
             run.refuse(f"call of '{_describe(fn)}' is not allowed")
         key = id(fn)
         if key not in _CHEAP:
+            args = [self._screen(run, fn, v) if callable(v) else v for v in args]
+            if kwargs:
+                kwargs = {k: self._screen(run, fn, v) if callable(v) else v for k, v in kwargs.items()}
             for v in list(args) + list(kwargs.values()):
-                if callable(v) and not self.is_allowed(v, run.extra):
-                    # map/filter/sorted(key=)/max(key=)...: an allowed function must not call a
-                    # non-allowed one for us
-                    run.refuse(f"passing '{_describe(v)}' to '{_describe(fn)}' is not allowed")
                 if isinstance(v, range):
                     run.tick(_range_len(v))
                 elif isinstance(v, _SIZED):  # e.g. sorted() of a 10M-character string
                     run.tick(len(v))
+        elif any(type(v) is Passed for v in args):  # isinstance(x, t) with t a passed type: the type itself
+            args = [v._fn if type(v) is Passed and isinstance(v._fn, type) else v for v in args]
         values = list(args) + list(kwargs.values())  # str.find on a 1 MB string in a loop, divmod of big ints
         owner = getattr(fn, "__self__", None) if type(fn) is BuiltinFunctionType else None
         run.spend(sum(_weight(v) for v in values) + _weight(owner) + _int_work(values))
@@ -1069,16 +1177,18 @@ def evaluate_substitution(s: str, context: dict, *, functions: dict | None = Non
         return convert_value(value, "auto")
 
     def dirname():
-        filename = context["filename"]
+        filename = context.get("filename")
         if not filename:
             raise SubstitutionException("Cannot substitute $(dirname),no file/directory information available.")
-        return os.path.abspath(os.path.dirname(filename))
+        # stock returns the runner's absolute path; "." names the same folder for everything that resolves a
+        # relative name (include, load_yaml), relative to the current file, and tells nothing about the runner
+        return "."
 
     funcs = {"arg": arg, "dirname": dirname}
     funcs.update(default_substitution_functions() if functions is None else functions)
 
-    if s.find("__") >= 0:
-        raise SubstitutionException("$(eval ...) may not contain double underscore expressions")
+    # no textual '__' test (stock's): '_' '_class_' '_' spells one around it. The parsed tree is checked
+    # (names and attributes starting with '_' are refused) and str.format fields are guarded on every call.
 
     def builtin(name):
         try:

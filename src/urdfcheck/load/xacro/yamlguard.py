@@ -57,6 +57,7 @@ def check_yaml_text(text: str, name: str = "YAML") -> None:
 
 
 def check_yaml_file(path: str) -> None:
-    with open(path, "rb") as f:
-        data = f.read(MAX_BYTES + 1)
+    from urdfcheck.core.safeio import read_file
+
+    data = read_file(path, MAX_BYTES)  # a regular file only: a committed FIFO must not block
     check_yaml_text(data.decode("utf-8", "replace"), path)

@@ -35,6 +35,15 @@ def principal_moments(inertia) -> tuple[float, float, float]:
     inertia = tuple(inertia)
     if inertia[1] == 0.0 and inertia[2] == 0.0 and inertia[4] == 0.0:
         return tuple(sorted((inertia[0], inertia[3], inertia[5])))  # type: ignore[return-value]
+    big = max(abs(v) for v in inertia)
+    if not math.isfinite(big):
+        return (math.nan, math.nan, math.nan)
+    # Jacobi squares the entries: ixy="1e200" overflowed (OverflowError from **). Work on the tensor scaled by a
+    # power of two (exact), and scale the moments back (they may then be inf: `finite_moments` says so)
+    exp = math.frexp(big)[1]
+    scaled = principal_moments(tuple(math.ldexp(v, -exp) for v in inertia)) if exp else None
+    if scaled is not None:
+        return tuple(_ldexp(m, exp) for m in scaled)  # type: ignore[return-value]
     a = tensor(inertia)
     for _ in range(50):
         off = a[0][1] ** 2 + a[0][2] ** 2 + a[1][2] ** 2
@@ -57,6 +66,24 @@ def principal_moments(inertia) -> tuple[float, float, float]:
                 a[p][k] = c * apk - s * aqk
                 a[q][k] = s * apk + c * aqk
     return tuple(sorted((a[0][0], a[1][1], a[2][2])))  # type: ignore[return-value]
+
+
+def _ldexp(x: float, exp: int) -> float:
+    try:
+        return math.ldexp(x, exp)
+    except OverflowError:
+        return math.copysign(math.inf, x)
+
+
+def finite_moments(moments) -> bool:
+    return all(math.isfinite(m) for m in moments)
+
+
+def _too_large(link, inertial) -> Problem:
+    big = max((abs(v) for v in inertial.inertia), default=0.0)
+    return Problem(f"inertia tensor of link {link.name!r} cannot be judged: its entries (up to {_fmt(big)} kg m²) are "
+                   "so large that its principal moments overflow double precision; no rigid body has this inertia "
+                   "(check the units)", at=inertial.inertia_loc or inertial)
 
 
 def _unreadable_locs(model) -> set:
@@ -141,6 +168,9 @@ def inertia_not_positive_definite(model, ctx):
     rtol = float(ctx.options.get("rtol", PSD_RTOL))
     allow_singular = bool(ctx.options.get("allow_singular", True))
     for link, inertial, moments, atol in _tensors(model, ctx):
+        if not finite_moments(moments):
+            yield _too_large(link, inertial)
+            continue
         lo, hi = moments[0], moments[2]
         scale = max(abs(hi), abs(lo))
         if scale <= atol:
@@ -163,6 +193,8 @@ def inertia_not_positive_definite(model, ctx):
 def inertia_triangle_inequality(model, ctx):
     rtol = float(ctx.options.get("rtol", 1e-4))
     for link, inertial, (a, b, c), atol in _tensors(model, ctx):
+        if not finite_moments((a, b, c)):
+            continue  # I003's finding
         if c <= atol or a < -max(PSD_RTOL * c, atol):
             continue  # zero tensor or not positive semi-definite: I003's finding
         if a + b >= c - max(rtol * c, atol):

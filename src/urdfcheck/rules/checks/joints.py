@@ -63,6 +63,7 @@ def unknown_joint_type(model, ctx):
 @check("J002")
 def missing_limit(model, ctx):
     unreadable = _unreadable(model)
+    v12 = model.version >= (1, 2)
     for j in model.joint_list:
         if j.type not in POSITION_LIMITED:
             continue
@@ -75,6 +76,13 @@ def missing_limit(model, ctx):
         missing = [k for k in ("lower", "upper") if getattr(j.limit, k) is None]
         if missing and j.limit.loc not in unreadable:
             what = "neither lower nor upper" if len(missing) == 2 else f"no {missing[0]}"
+            if v12:  # urdfdom 6.0 joint.cpp parseJointLimits
+                yield Problem(
+                    f"the <limit> of {j.type} joint {_q(j.name)} gives {what}: in URDF 1.2 urdfdom refuses the "
+                    f"model ('joint [{j.name}]: revolute and prismatic joints must have both lower and upper "
+                    f"position limits specified in URDF version 1.2 or later')",
+                    at=j.limit)
+                continue
             yield Problem(
                 f"the <limit> of {j.type} joint {_q(j.name)} gives {what}: urdfdom silently uses 0 "
                 f"(range [{_num(j.limit.lower or 0.0)}, {_num(j.limit.upper or 0.0)}]), and joint_state_publisher "
@@ -91,11 +99,17 @@ def inverted_limits(model, ctx):
         lo, up = j.limit.lower, j.limit.upper
         eff_lo = 0.0 if lo is None else lo
         eff_up = 0.0 if up is None else up
+        if model.version >= (1, 2) and (lo is None or up is None):
+            continue  # J002: urdfdom refuses the model
         if eff_lo > eff_up:
             given = "" if lo is not None and up is not None else " (a missing bound counts as 0 in urdfdom)"
+            effect = ("no position satisfies both, so MoveIt considers every state of this joint out of bounds"
+                      if model.version < (1, 2) else
+                      f"in URDF 1.2 urdfdom refuses the model ('joint [{j.name}]: upper position limit ... cannot "
+                      f"be smaller than lower position limit')")
             yield Problem(
-                f"joint {_q(j.name)} has lower limit {_num(eff_lo)} above upper limit {_num(eff_up)}{given}: no "
-                f"position satisfies both, so MoveIt considers every state of this joint out of bounds",
+                f"joint {_q(j.name)} has lower limit {_num(eff_lo)} above upper limit {_num(eff_up)}{given}: "
+                f"{effect}",
                 at=j.limit)
         elif lo is not None and up is not None and lo == up:
             yield Problem(
@@ -106,12 +120,24 @@ def inverted_limits(model, ctx):
 
 @check("J004")
 def non_positive_effort_or_velocity(model, ctx):
+    # joints the model gives an actuator (<transmission>, <ros2_control>); effort="0" on any other joint is the
+    # convention for an un-actuated one (Drake: "<effort>0</effort> for un-actuated joints"; a passive spring
+    # such as the Create 3 wheel drop), so its zero limits are not reported
+    actuated = {i.name for t in model.transmissions for i in t.joints} | \
+        {h.name for r in model.ros2_control for h in r.joints}
     for j in model.joint_list:
         if j.type not in MOVABLE_TYPES or j.limit is None:
             continue
+        passive = j.limit.effort == 0 and j.name not in actuated
         for key in ("effort", "velocity"):
             v = getattr(j.limit, key)
-            if v is None or v > 0:
+            if v is None or v > 0 or (v == 0 and passive):
+                continue
+            if v < 0 and model.version >= (1, 2):  # urdfdom 6.0 joint.cpp parseJointLimits
+                yield Problem(
+                    f"joint {_q(j.name)} has {key} limit {_num(v)}: in URDF 1.2 urdfdom refuses the model "
+                    f"('joint [{j.name}]: {key} value ({_num(v)}) is negative')",
+                    at=j.limit, severity=Severity.ERROR)
                 continue
             if v < 0:
                 effect = (f"Pinocchio refuses the model ('Some components of min_{key} are greater than "
@@ -123,6 +149,33 @@ def non_positive_effort_or_velocity(model, ctx):
             yield Problem(
                 f"joint {_q(j.name)} has {key} limit {_num(v)}: urdfdom accepts it, but {effect}",
                 at=j.limit)
+
+
+@check("J012")
+def limit_derivatives(model, ctx):
+    """URDF 1.2 acceleration, deceleration and jerk limits (urdfdom 6.0 joint.cpp parseJointLimits)."""
+    if model.version < (1, 2):
+        return  # not read (U008)
+    for j in model.joint_list:
+        lim = j.limit
+        if lim is None:
+            continue
+        for key in ("acceleration", "deceleration", "jerk"):
+            v = getattr(lim, key)
+            if v is None or v > 0:
+                continue
+            if v < 0:
+                yield Problem(
+                    f"joint {_q(j.name)} has {key} limit {_num(v)}: urdfdom refuses the model ('joint [{j.name}]: "
+                    f"{key} value ({_num(v)}) is negative'), so robot_state_publisher does not start",
+                    at=lim)
+            else:
+                inherited = (" (and, with no deceleration given, the deceleration limit too: urdfdom copies the "
+                             "acceleration limit)" if key == "acceleration" and lim.deceleration is None else "")
+                yield Problem(
+                    f"joint {_q(j.name)} has {key} limit 0{inherited}: urdfdom accepts it, but a controller that "
+                    f"honours it can never change the joint's speed; leave the attribute out for no limit",
+                    at=lim, severity=Severity.WARNING)
 
 
 @check("J005")

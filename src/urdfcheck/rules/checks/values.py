@@ -1,11 +1,113 @@
-"""U rules: what the model builder could not read (reported where it was written)."""
+"""U rules: what the model builder could not read (reported where it was written), the declared URDF version
+against the target distribution's urdfdom, and quaternion origins (URDF 1.1)."""
 from __future__ import annotations
 
-from urdfcheck.core.findings import Problem
+import math
+import os
+from pathlib import Path
+
+from urdfcheck.core.findings import Problem, Severity
+from urdfcheck.model import grammar as G
 from urdfcheck.rules.catalogue import check
 
 
-@check("U001", "U002", "U003", "U004", "U005", "U006")
+@check("U001", "U002", "U003", "U004", "U005", "U006", "U008", "U009")
 def unreadable_values(model, ctx):
     for issue in model.issues:
         yield Problem(issue.message, at=issue.loc, code=issue.code)
+
+
+# --- U007: the declared URDF version ----------------------------------------------------------------------------
+def target_of(model, ctx) -> tuple[G.Target, str]:
+    """The target distribution and why: the config/command line (`target`), else what the enclosing package
+    tells (a catkin package is ROS 1, i.e. Noetic), else the newest."""
+    # the request's merged target (flag over config) when the engine hands it over, else the config's key
+    name = getattr(ctx, "target", None) or getattr(getattr(ctx, "config", None), "target", None)
+    if name in G.TARGETS:
+        return G.TARGETS[name], "configured target"
+    if _catkin_package(model.source):
+        return G.TARGETS["noetic"], "the enclosing package.xml builds with catkin (ROS 1)"
+    return G.TARGETS[G.NEWEST_TARGET], "the newest distribution (no target configured)"
+
+
+_CATKIN: dict[str, bool] = {}
+
+
+def _catkin_package(source: str) -> bool:
+    if not source or source.startswith("<"):
+        return False
+    from urdfcheck.load.packages import enclosing_package
+
+    d = enclosing_package(Path(os.path.abspath(source)).parent)
+    if d is None:
+        return False
+    key = str(d)
+    if key not in _CATKIN:
+        try:
+            from urdfcheck.core.safeio import read_file  # a regular file only: a FIFO must not block
+
+            head = read_file(d / "package.xml", 65536)
+        except OSError:
+            head = b""
+        _CATKIN[key] = b"<buildtool_depend>catkin</buildtool_depend>" in head.replace(b" ", b"")
+    return _CATKIN[key]
+
+
+@check("U007")
+def urdf_version(model, ctx):
+    raw = model.declared_version
+    if raw is None:
+        return  # URDF 1.0, read by every urdfdom
+    version, error = G.parse_version(raw)
+    where = f'<robot version="{raw}">'
+    if error:
+        yield Problem(f"{where}: urdfdom refuses the model (\"{error}\"), so robot_state_publisher does not start; "
+                      f"write version=\"1.0\" (or leave it out)", at=model)
+        return
+    if version not in G.VERSIONS:
+        yield Problem(f"{where}: no URDF version {G.version_text(version)} exists; urdfdom refuses the model "
+                      f"(6.0: \"{G.supported_message(G.NEWEST)}\"; before 5.1: \"{G.supported_message(G.V1_0)}\"), "
+                      f"so robot_state_publisher does not start", at=model)
+        return
+    target, why = target_of(model, ctx)
+    if version > target.newest:
+        need = "5.1" if version == G.V1_1 else "6.0"
+        yield Problem(f"{where} needs urdfdom >= {need} (ROS 2 Rolling), but {target.name} ships urdfdom "
+                      f"{target.urdfdom}, which refuses the model (\"{G.supported_message(target.newest)}\"): "
+                      f"robot_state_publisher does not start (target {target.name}: {why}); write the model as "
+                      f"URDF {G.version_text(target.newest)} (rpy instead of quat_xyzw, no acceleration/jerk "
+                      f"limits) or set the target to rolling", at=model)
+
+
+# --- U010: quaternions ----------------------------------------------------------------------------------------------
+def _origins(model):
+    for j in model.joint_list:
+        yield j.origin
+    for link in model.link_list:
+        if link.inertial is not None:
+            yield link.inertial.origin
+        for s in link.visuals:
+            yield s.origin
+        for s in link.collisions:
+            yield s.origin
+
+
+@check("U010")
+def quaternion_not_unit(model, ctx):
+    if model.version < G.V1_1:
+        return  # no quaternion is read (U008 says so)
+    tol = float(ctx.options.get("tolerance", 1e-6)) if ctx is not None else 1e-6
+    for o in _origins(model):
+        q = o.quat
+        if q is None or o.loc is None:
+            continue
+        norm = math.sqrt(sum(v * v for v in q))
+        text = " ".join(f"{v:g}" for v in q)
+        if norm == 0.0:
+            yield Problem(f"quat_xyzw=\"{text}\" is the zero quaternion, which is no rotation: urdfdom silently "
+                          f"reads it as the identity", at=o.loc, severity=Severity.ERROR)
+        elif abs(norm - 1.0) > tol:
+            unit = " ".join(f"{v / norm:.9g}" for v in q)
+            yield Problem(f"quat_xyzw=\"{text}\" has length {norm:.6g}, not 1: urdfdom divides it by its length "
+                          f"and uses {unit}; write that (a typo in one component changes the rotation without a "
+                          f"word)", at=o.loc)

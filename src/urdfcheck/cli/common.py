@@ -1,0 +1,70 @@
+"""What every subcommand shares: exit codes, the usage error, load options and printing findings.
+
+`cli.main` (lint, expand, rules) and `cli.publish` (tf, publish, tree, verify) both import this module and
+never each other's internals (main only calls `publish.add_parsers`).
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+
+from urdfcheck.pipeline.request import UsageError  # noqa: F401  (the one usage error: API and CLI)
+
+EXIT_CLEAN, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
+
+EPILOG = """exit codes:
+  0  no findings at or above --fail-on
+  1  findings at or above --fail-on (a malformed or hostile model is a finding too)
+  2  unusable invocation: missing path, bad flag, unknown rule code, invalid config file; or an internal error
+"""
+
+
+def kv(sep: str, what: str):
+    """argparse type for NAME<sep>VALUE."""
+
+    def parse(text: str):
+        if sep not in text:
+            raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
+        k, v = text.split(sep, 1)
+        if not k:
+            raise argparse.ArgumentTypeError(f"expected {what}, got {text!r}")
+        return k, v
+
+    return parse
+
+
+def add_load_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--arg", dest="args", action="append", default=[], type=kv(":=", "NAME:=VALUE"),
+                   metavar="NAME:=VALUE", help="xacro argument (repeatable)")
+    p.add_argument("--package", dest="packages", action="append", default=[], type=kv("=", "NAME=PATH"),
+                   metavar="NAME=PATH", help="where a ROS package lives, for $(find) and package:// (repeatable)")
+    p.add_argument("--trusted", action="store_true", default=None,
+                   help="evaluate xacro with stock Python eval and allow $(env): only for your own files")
+    p.add_argument("--allow-env", action="append", default=[], metavar="VAR",
+                   help="environment variable that $(env)/$(optenv) may read in the sandbox (repeatable)")
+    p.add_argument("--timeout", type=float, default=20.0, metavar="SECONDS",
+                   help="wall-clock limit for one xacro expansion (default 20)")
+    p.add_argument("--max-elements", type=int, default=None, metavar="N",
+                   help="xacro elements one expansion may evaluate (default 20000; 400000 with --trusted); "
+                        "a macro bomb stops here")
+    p.add_argument("--budget", type=float, default=None, metavar="SECONDS",
+                   help="wall-clock budget for the whole run, all models and variants (default 300, or "
+                        "URDFCHECK_RUN_BUDGET); what it leaves unlinted is an X017 finding")
+
+
+def load_kwargs(ns) -> dict:
+    """The loader's keyword arguments from the load options (expand, tf, publish, tree, verify)."""
+    return dict(packages=dict(ns.packages), trusted=bool(ns.trusted), allow_env=tuple(ns.allow_env),
+                timeout=ns.timeout, max_elements=ns.max_elements)
+
+
+def print_findings(findings, stream=None) -> None:
+    """Loader findings on stderr, one line each (commands that print a model, not a report)."""
+    from urdfcheck.core.findings import clean_text
+
+    for f in findings:
+        print(f"{clean_text(str(f.location), 4096)}: {f.code} {clean_text(f.message)}", file=stream or sys.stderr)
+
+
+def usage_message(command: str, error: Exception) -> str:
+    return f"urdfcheck {command}: error: {error}"

@@ -1,0 +1,98 @@
+"""`urdfcheck lint` (and both pre-commit hooks): parsed flags -> `LintRequest` -> `run` -> reports -> exit code.
+
+The flags become request fields here and nowhere else; a flag not given is None, so the config decides.
+"""
+from __future__ import annotations
+
+import os
+import sys
+
+from urdfcheck.pipeline.request import LintRequest, UsageError, make_request
+
+# parsed documents a one-shot process keeps until it exits (run.lint_targets: `retain`)
+_UNTIL_EXIT: list = []
+
+
+def request_from_flags(ns) -> LintRequest:
+    def flat(groups):
+        return [c for g in groups or () for c in g]
+
+    return make_request(
+        ns.paths, args=dict(ns.args), packages=dict(ns.packages),
+        select=flat(ns.select) or None, ignore=flat(ns.ignore), fail_on=ns.fail_on,
+        trusted=True if ns.trusted else None, allow_env=tuple(ns.allow_env), timeout=ns.timeout,
+        max_elements=ns.max_elements, config=ns.config, use_config=not ns.no_config,
+        root=getattr(ns, "root", None), baseline=None if ns.write_baseline else ns.baseline,
+        budget=getattr(ns, "budget", None), target=getattr(ns, "target", None))
+
+
+def run(ns, usage_error=UsageError) -> int:
+    """`usage_error`: raised (with the message) for an unusable invocation; UsageError by default."""
+    from urdfcheck.pipeline import run as pipeline
+
+    try:
+        request = request_from_flags(ns)
+        if getattr(ns, "list", False):
+            return _list(request)
+        result = pipeline.run(request, retain=_UNTIL_EXIT if getattr(ns, "one_shot", False) else None)
+    except UsageError as e:
+        if usage_error is UsageError:
+            raise
+        raise usage_error(str(e)) from None
+
+    if ns.write_baseline:
+        from urdfcheck.pipeline import baseline
+
+        baseline.write(ns.write_baseline, result.findings)
+        print(f"wrote {len(result.findings)} findings to {ns.write_baseline}", file=sys.stderr)
+        return 0
+
+    from urdfcheck.report import render
+
+    colour = ns.color == "always" or (ns.color == "auto" and ns.output is None and sys.stdout.isatty()
+                                      and not os.environ.get("NO_COLOR"))
+    text = render(ns.format, result, colour=colour, fail_on=result.fail_on)
+    if ns.output:
+        _write(ns.output, text, usage_error)
+    else:
+        sys.stdout.write(text)
+    for fmt, path in ns.report:
+        try:
+            extra = render(fmt, result, colour=False, fail_on=result.fail_on)
+        except ValueError as e:
+            raise usage_error(str(e)) from None
+        _write(path, extra, usage_error)
+    return 1 if result.failed() else 0
+
+
+def _list(request: LintRequest) -> int:
+    """`--list`: the plan, one line per target (model, variant, xacro args, config), then the deployments."""
+    from urdfcheck.core.findings import clean_text
+    from urdfcheck.pipeline.plan import plan
+
+    targets = plan(request)
+    if not targets:
+        raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
+    for t in targets:
+        args = " ".join(f"{k}:={v}" for k, v in sorted(t.args.items()))
+        cfg = getattr(t.settings.config, "path", None) if t.settings is not None else None
+        line = request.shown(t.path) + (f" [{t.variant}]" if t.variant else "") + (f" {args}" if args else "")
+        print(clean_text(line + (f"  (config {request.shown(cfg)})" if cfg else ""), 4096))
+    deployments = [t.deployment for t in targets if t.deployment is not None]
+    if deployments:
+        from urdfcheck.pipeline.deployments import describe
+
+        here = os.getcwd().rstrip(os.sep) + os.sep
+        print()
+        for line in describe(deployments).splitlines():  # its locations: relative, like every report's
+            print(clean_text(line.replace(here, ""), 4096))
+    print(f"{len(targets)} target(s)")
+    return 0
+
+
+def _write(path: str, text: str, usage_error) -> None:
+    try:
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+    except OSError as e:
+        raise usage_error(f"cannot write {path}: {e.strerror}") from None

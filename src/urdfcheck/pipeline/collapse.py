@@ -1,0 +1,113 @@
+"""One finding per problem: the same problem seen in several variants or models is reported once.
+
+A problem written in a shared xacro macro shows up once per model and variant that expands it, and once
+per call of the macro, each time naming that expansion's links ('fer_link8', 'fp3_link8'). Findings with the
+same code, severity and source position (file, line, column) whose messages agree once quoted names are set
+aside are one problem: the first is kept and `Finding.where` lists every model/variant it applies to (with
+the message there when it reads differently). The reports print one line for it; JSON keeps the list.
+"""
+from __future__ import annotations
+
+import re
+
+from urdfcheck.core.findings import Finding, Place
+
+_QUOTED = re.compile(r"'[^']*'|\"[^\"]*\"")
+_HINT = re.compile(r" \(did you mean [^)]*\)")
+
+
+def _shape(message: str) -> str:
+    """The message with quoted names (and name suggestions) set aside: what stays equal across macro
+    expansions."""
+    return _QUOTED.sub("'…'", _HINT.sub("", message))
+
+
+def collapse(findings: list[Finding]) -> list[Finding]:
+    """Merge findings that are the same problem (see the module doc); sorted like `Finding.sort_key`."""
+    groups: dict[tuple, list[Finding]] = {}
+    seen: dict[tuple, int] = {}  # (key, place) -> instances of that shape already met in that model/variant
+    exact: set[tuple] = set()
+    for f in findings:
+        loc = f.location
+        if loc.line is None:
+            # a finding with no line is about a whole file: only identical messages are the same problem
+            key = (f.code, f.severity, loc.file, None, None, f.message)
+        else:
+            key = (f.code, f.severity, loc.file, loc.line, loc.column, _shape(f.message))
+        place = f.places()[0][:2]
+        if (key, place, f.message, loc.via) in exact:
+            continue  # the very same finding again (same macro call chain)
+        exact.add((key, place, f.message, loc.via))
+        # two instances in one model (a macro called for the left and the right wheel) are two findings; the
+        # k-th instance of each model/variant joins the k-th of the others
+        k = seen.get((key, place), 0)
+        seen[(key, place)] = k + 1
+        groups.setdefault(key + (k,), []).append(f)
+    out = []
+    for members in groups.values():
+        out.append(members[0] if len(members) == 1 and not members[0].where else _merge(members))
+    return sorted(out, key=Finding.sort_key)
+
+
+def _merge(members: list[Finding]) -> Finding:
+    first = members[0]
+    places: dict[tuple[str, str, str], None] = {}  # ordered set
+    for f in members:
+        for p in f.places():
+            msg = p.message or f.message
+            places.setdefault((p.model, p.variant, "" if msg == first.message else msg), None)
+    where = tuple(Place(m, v, msg) for m, v, msg in places)
+    if len(where) == 1:
+        return first._replace(where=())
+    return first._replace(model=where[0].model, variant=where[0].variant, where=where)
+
+
+def _short(label: str) -> str:
+    """A variant label for one line: a launch file path (a deployment's label) by its file name."""
+    head, sep, rest = label.partition(" ")
+    return head.rsplit("/", 1)[-1] + sep + rest if "/" in head else label
+
+
+def describe(f: Finding, totals: dict[str, int] | None = None, limit: int = 3, every: bool = False) -> str:
+    """Where a finding applies, for one line of a report: "" (one place), "variant: a=true",
+    "in 12 of 16 variants: a=true, b=false, …", "in 3 models: x.urdf, y.urdf, …"; nothing when it applies to
+    every variant of its model, unless `every` ("in all 16 variants"). `totals`: model -> number of variants linted."""
+    places = f.places()
+    parts = []
+    models = list(dict.fromkeys(p.model for p in places))
+    if len(models) > 1:
+        names = [m.rsplit("/", 1)[-1] for m in models]
+        shown = ", ".join(names[:limit]) + (", …" if len(names) > limit else "")
+        parts.append(f"in {len(models)} models: {shown}")
+        # and in which of their variants, unless in all of them
+        per_model = {m: {p.variant for p in places if p.model == m} for m in models}
+        if any(v != {""} and len(v) < (totals or {}).get(m, len(v) + 1) for m, v in per_model.items()):
+            variants = list(dict.fromkeys(_short(p.variant) for p in places if p.variant))
+            shown = ", ".join(variants[:limit]) + (", …" if len(variants) > limit else "")
+            parts.append(f"variant{'s' if len(variants) > 1 else ''} {shown}")
+    else:
+        variants = list(dict.fromkeys(_short(p.variant) for p in places if p.variant))
+        total = (totals or {}).get(models[0] if models else "", 0)
+        if len(variants) == 1 and total != 1:
+            parts.append(f"variant {variants[0]}")
+        elif len(variants) > 1 and not (total and len(variants) >= total):
+            shown = ", ".join(variants[:limit]) + (", …" if len(variants) > limit else "")
+            of = f" of {total}" if total else ""
+            parts.append(f"in {len(variants)}{of} variants: {shown}")
+        elif len(variants) > 1 and every:  # a report that shows it once, under one variant, says so
+            parts.append(f"in all {len(variants)} variants")
+    return "; ".join(parts)
+
+
+def variant_totals(targets) -> dict[str, int]:
+    """model display path -> how many variants of it were linted (for "in 3 of 4 variants")."""
+    from urdfcheck.load.loader import display
+
+    out: dict[str, int] = {}
+    for t in targets:
+        try:
+            shown = display(t.path)
+        except (OSError, ValueError):
+            shown = str(t.path)
+        out[shown] = out.get(shown, 0) + 1
+    return out

@@ -1,0 +1,756 @@
+"""Deployments: how the launch files of a workspace run each robot.
+
+A deployment is one robot_state_publisher started by a launch file, and what runs beside it: the model it
+publishes (file and xacro arguments, read from `Command(['xacro ', path, ' a:=', v])`, `ParameterValue`,
+`$(command xacro ...)`, `<param command=...>`, `xacro.process_file`, `open(path).read()`), its namespace and
+frame_prefix, the controller manager's parameter files and the spawned controllers, joint state publishers,
+static transforms and localization nodes (robot_localization, AMCL, slam_toolbox, Nav2) with their parameter
+files. Launch files are read, never run (`contracts.launch`, `contracts.pylaunch`).
+
+`find_deployments(root)` reads every launch file below `root` (ROS 2 Python, XML, YAML; ROS 1 XML). Launch
+files that no other file includes are the roots; each root is followed into its includes with the arguments it
+passes (packages resolve among the workspace's package.xml files first). A robot_state_publisher that no root
+reaches makes its own file a root. Launch arguments declared with `choices` (and, for a model path chosen at
+launch time, the files that match it) give variants, one deployment each; identical deployments are kept once.
+`Deployment.consumers()` builds the `contracts.consumers.Consumers` the contract (C) and TF (T) checks read.
+"""
+from __future__ import annotations
+
+import glob
+import os
+import re
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+
+from urdfcheck.core.findings import Location
+from urdfcheck.core.records import Record
+
+MAX_VARIANTS = 24  # launch-argument assignments tried per root launch file
+MAX_MODEL_FILES = 8  # files one model path chosen at launch time may match
+MAX_TREE_FILES = 60
+MAX_DEPTH = 8
+LOCALIZATION_PACKAGES = ("robot_localization", "nav2_amcl", "amcl", "slam_toolbox", "nav2_bringup",
+                         "nav2_controller", "nav2_planner", "nav2_bt_navigator", "nav2_map_server")
+_CONTROLLER_EXES = ("ros2_control_node", "spawner", "spawner.py", "controller_manager")
+# nodes whose parameters are not a custom driver's (their kinds are read elsewhere, or say nothing of the model)
+KNOWN_PACKAGES = {"robot_state_publisher", "joint_state_publisher", "joint_state_publisher_gui", "controller_manager",
+                  "tf", "tf2_ros", "rviz", "rviz2", "xacro", "rqt_robot_steering", "teleop_twist_keyboard",
+                  "teleop_twist_joy", "joy", "joy_linux", "twist_mux", "rosbridge_server", "foxglove_bridge",
+                  "topic_tools", "image_transport", *LOCALIZATION_PACKAGES}
+
+
+def _show(path: str) -> str:
+    from urdfcheck.load.loader import display
+
+    return display(path)
+
+
+class Deployment(Record):
+    # model: the model file (None: the launch file's model was not understood; see notes)
+    # how: "xacro" (expanded with args) or "file" (read as is)
+    # args: xacro arguments the launch file passes (literal ones); dropped_args: those decided at launch time
+    # variant: the launch-argument choice this deployment comes from ("" for the defaults)
+    # launch: the launch file that defines the deployment (the root of its include chain); rsp: the node
+    # chain: the include sites from the root down to the file that starts robot_state_publisher
+    # controller_files / localization_files: parameter files (source paths); spawned: (controller, Location)
+    # joint_state: (what, Location); static_tfs: launch.StaticTF; infos: every LaunchInfo of the chain
+    # driver_nodes: (LaunchNode, [parameter files]) of nodes of no known kind: custom drivers, read by key shape
+    _fields = ('model', 'how', 'args', 'variant', 'namespace', 'frame_prefix', 'launch', 'rsp', 'chain',
+               'controller_files', 'localization_files', 'spawned', 'joint_state', 'static_tfs', 'infos',
+               'notes', 'dropped_args', 'driver_nodes')
+
+    def __init__(self, model, how="xacro", args=None, variant="", namespace="/", frame_prefix=None,
+                 launch: Location | None = None, rsp: Location | None = None, chain=(), controller_files=(),
+                 localization_files=(), spawned=(), joint_state=(), static_tfs=(), infos=(), notes=(),
+                 dropped_args=(), driver_nodes=()):
+        self.model = model
+        self.driver_nodes = list(driver_nodes)
+        self.how = how
+        self.args = dict(args or {})
+        self.variant = variant
+        self.namespace = namespace
+        self.frame_prefix = frame_prefix
+        self.launch = launch
+        self.rsp = rsp
+        self.chain = tuple(chain)
+        self.controller_files = list(controller_files)
+        self.localization_files = list(localization_files)
+        self.spawned = list(spawned)
+        self.joint_state = list(joint_state)
+        self.static_tfs = list(static_tfs)
+        self.infos = list(infos)
+        self.notes = list(notes)
+        self.dropped_args = list(dropped_args)
+
+    @property
+    def label(self) -> str:
+        """How findings name the deployment: the defining launch file, and the variant."""
+        where = _show(self.launch.file) if self.launch is not None else "?"
+        return where + (f" [{self.variant}]" if self.variant else "")
+
+    def key(self) -> tuple:
+        """Identity: the same model with the same arguments, started the same way by the same launch file
+        (variants that change nothing collapse; another launch file is another deployment: what runs
+        beside the robot differs, as between a bringup and a simulation launch file)."""
+        return (self.launch.file if self.launch is not None else None, self.model,
+                tuple(sorted(self.args.items())), self.namespace, self.frame_prefix)
+
+    def _spawned_broadcasters(self, out) -> None:
+        """A spawned joint_state_broadcaster that no parameter file read here declares (its type is then set
+        where the launch files cannot see: a Gazebo ros2_control plugin's <parameters>) is still a joint
+        state source for every hardware joint: typed from its name, noted as inferred."""
+        from urdfcheck.contracts.controllers import JSB, Controller, finish_controller
+
+        names = {c.name for c in out.controllers}
+        for name, loc in self.spawned:
+            if name in names or name.split("/")[-1] != "joint_state_broadcaster":
+                continue
+            names.add(name)
+            c = Controller(name=name, node="/" + name, type="joint_state_broadcaster/JointStateBroadcaster",
+                           type_loc=loc, loc=loc, kind=JSB, ros=2, file=loc.file, params={})
+            finish_controller(c, names)
+            out.controllers.controllers[c.node] = c
+            out.notes.append((f"controller {name} is spawned here and taken to be a joint_state_broadcaster "
+                              "(its parameter file is not among the files read)", loc))
+
+    def consumers(self):
+        """The contract checks' view of this deployment (read on each call; cheap, files are small)."""
+        from urdfcheck.contracts.consumers import Consumers, _Reader
+        from urdfcheck.contracts.controllers import read_controllers, spawner_types
+        from urdfcheck.contracts.localization import localization_from_params
+
+        out = Consumers(origin="deployment")
+        r = _Reader()
+        pfs = [pf for pf in (r.params(p, out.errors) for p in self.controller_files) if pf is not None]
+        out.controllers = read_controllers(pfs, spawner_types(self.infos))  # types set in launch files too
+        out.notes.extend(out.controllers.notes)
+        for c in out.controllers:
+            out.notes.extend(c.notes)
+        self._spawned_broadcasters(out)
+        lpfs = [pf for pf in (r.params(p, out.errors) for p in self.localization_files) if pf is not None]
+        out.localization = localization_from_params(lpfs)
+        out.drivers = infer_drivers(self.driver_nodes, r)
+        out.launch = list(self.infos)
+        out.frame_prefix = self.frame_prefix or ""
+        out.notes.extend(self.notes)
+        if len(out.controllers) and any(li.param_sets for li in out.launch):
+            from urdfcheck.contracts.launchparams import apply_launch_params
+
+            out.notes.extend(apply_launch_params(out.controllers, out.launch, lambda f: r.params(f, []), {}))
+        out.files = {"controllers": list(self.controller_files), "localization": list(self.localization_files),
+                     "launch": [li.path for li in self.infos],
+                     "drivers": sorted({f for _, files in self.driver_nodes for f in files})}
+        return out
+
+
+# --- the workspace's launch files --------------------------------------------------------------------------
+def _is_launch(name: str) -> bool:
+    from urdfcheck.contracts.discover import LAUNCH_SUFFIXES
+
+    low = name.lower()
+    return low.endswith(LAUNCH_SUFFIXES) or low.endswith("_launch.py")
+
+
+class _Workspace:
+    def __init__(self, root: str, resolver=None, packages: Mapping[str, str] | None = None):
+        from urdfcheck.load.packages import workspace_packages
+
+        self.root = os.path.abspath(root)
+        self.resolver = resolver
+        self.explicit = {k: os.path.abspath(v) for k, v in (packages or {}).items()}
+        self.packages = workspace_packages(self.root)
+        self.folders = sorted({str(p) for dirs in self.packages.values() for p in dirs} | set(self.explicit.values()),
+                              key=len, reverse=True)
+        self._parsed: dict[str, object] = {}
+        self.raw: dict[str, bytes] = {}  # launch file bytes, as read
+        self.found: list[str] = []  # package folders the resolver found outside the root
+        self.notes: list[tuple[str, Location]] = []
+
+    def find(self, name: str, near: str) -> str | None:
+        from urdfcheck.load.packages import nearest
+
+        if name in self.explicit:
+            return self.explicit[name]
+        dirs = self.packages.get(name)
+        if dirs:
+            return str(nearest(dirs, Path(near)))
+        if self.resolver is not None:
+            hit = self.resolver.find(name)
+            if hit is None:
+                return None
+            if str(hit) not in self.found:  # a package found outside the root: its files may be read too
+                self.found.append(str(hit))
+                self.folders = sorted(set(self.folders) | {str(hit)}, key=len, reverse=True)
+            return str(hit)
+        return None
+
+    def package_map(self, near: str) -> dict[str, str]:
+        from urdfcheck.load.packages import nearest
+
+        out = {k: str(nearest(v, Path(near))) for k, v in self.packages.items()}
+        out.update(self.explicit)
+        return out
+
+    def inside(self, path: str) -> bool:
+        real = os.path.realpath(path)
+        roots = [os.path.realpath(p) for p in (self.root, *self.explicit.values(), *self.found)]
+        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
+
+    def locate(self, path: str | None) -> str | None:
+        """`path` if it is a file; else the source-layout file an install-layout path names
+        (`share/P/urdf/x` written as `$(find P)/urdf/x` may be `P/description/urdf/x`), when unique."""
+        if not path or "\x00" in path:
+            return None
+        path = os.path.normpath(path)
+        if os.path.isfile(path):
+            return path if self.inside(path) else None
+        for folder in self.folders:
+            if path.startswith(folder.rstrip(os.sep) + os.sep):
+                rel = os.path.relpath(path, folder)
+                for pat in (os.path.join(folder, "*", rel), os.path.join(folder, "*", "*", rel)):
+                    hits = [h for h in glob.glob(glob.escape(folder) + pat[len(folder):]) if os.path.isfile(h)]
+                    if len(hits) == 1:
+                        return hits[0]
+                    if hits:
+                        return None
+                return None
+        return None
+
+    def match(self, pattern: str) -> list[str]:
+        """Files matching a path with pieces decided at launch time (UNKNOWN), in the source layout too."""
+        pat = glob.escape(pattern).replace("\x00", "*")
+        hits = [h for h in sorted(glob.glob(pat)) if os.path.isfile(h)]
+        if not hits:
+            for folder in self.folders:
+                if pattern.startswith(folder.rstrip(os.sep) + os.sep):
+                    rel = pat[len(glob.escape(folder)):].lstrip(os.sep) if pat.startswith(glob.escape(folder)) else None
+                    if rel is None:
+                        break
+                    base = glob.escape(folder)
+                    for extra in ("*", os.path.join("*", "*")):
+                        hits = [h for h in sorted(glob.glob(os.path.join(base, extra, rel))) if os.path.isfile(h)]
+                        if hits:
+                            break
+                    break
+        return [h for h in hits if self.inside(h)][:MAX_MODEL_FILES]
+
+    def inactive_includes(self, path: str) -> list[str]:
+        """Files a Python launch file includes under a condition that is false with its defaults."""
+        import ast
+
+        from urdfcheck.contracts import pylaunch
+
+        tree = self._parsed.get(path)
+        if not isinstance(tree, ast.AST):
+            return []
+        return pylaunch.inactive_include_files(path, tree, lambda name: self.find(name, path))
+
+    def read(self, path: str, args: Mapping[str, str | None] | None):
+        """LaunchInfo for `path` with `args`, or a ConsumerError."""
+        import ast
+
+        from urdfcheck.contracts import pylaunch
+        from urdfcheck.contracts.common import ConsumerError, read_capped
+        from urdfcheck.contracts.launch import MAX_BYTES, launch_format, parse_launch
+
+        got = self._parsed.get(path)
+        if got is None:
+            try:
+                data = read_capped(path, MAX_BYTES, "launch file")
+                self.raw[path] = data
+                if launch_format(path) == "py":
+                    try:
+                        got = ast.parse(data.decode("utf-8-sig"), filename=path)
+                    except (SyntaxError, ValueError, UnicodeDecodeError, RecursionError, MemoryError):
+                        got = ConsumerError("Python launch file not readable", Location(path))
+                else:
+                    got = data
+            except ConsumerError as e:
+                got = e
+            self._parsed[path] = got
+        if isinstance(got, ConsumerError):
+            return got
+        try:
+            if isinstance(got, bytes):
+                return parse_launch(got, path, args=args, packages=self.package_map(path))
+            return pylaunch.read(path, got, args, lambda name: self.find(name, path))
+        except ConsumerError as e:
+            return e
+        except (RecursionError, MemoryError, ValueError):
+            return ConsumerError("launch file not understood", Location(path))
+
+
+def launch_files(root: str) -> list[str]:
+    from urdfcheck.contracts.discover import _walk
+
+    return [os.path.join(d, f) for d, f in _walk(os.path.abspath(root), 20_000) if _is_launch(f)]
+
+
+# --- trees of included launch files -------------------------------------------------------------------------
+class _Tree:
+    def __init__(self):
+        self.infos: list = []  # LaunchInfo
+        self.chains: dict[int, tuple] = {}  # id(info) -> include Locations from the root
+        self.notes: list[tuple[str, Location]] = []
+        self.files: set[str] = set()
+
+
+def _walk_tree(ws: _Workspace, root: str, args: Mapping[str, str | None]) -> _Tree:
+    from urdfcheck.contracts.common import ConsumerError
+
+    tree = _Tree()
+    queue = [(root, dict(args), (), 0)]
+    while queue and len(tree.files) < MAX_TREE_FILES:
+        path, a, chain, depth = queue.pop(0)
+        real = os.path.realpath(path)
+        if real in tree.files:
+            continue
+        tree.files.add(real)
+        info = ws.read(path, a)
+        if isinstance(info, ConsumerError):
+            tree.notes.append((f"launch file not read: {info.message}", info.location))
+            continue
+        tree.infos.append(info)
+        tree.chains[id(info)] = chain
+        for inc in info.includes:
+            target = ws.locate(inc.file) if inc.file else None
+            if target is None:
+                why = "its file name is decided at launch time" if not inc.file else \
+                    f"{_show(inc.file)} is not in the workspace"
+                tree.notes.append((f"include not followed: {why}", inc.loc))
+                continue
+            if depth + 1 > MAX_DEPTH:
+                tree.notes.append(("include not followed: too deeply nested", inc.loc))
+                continue
+            if inc.condition:
+                tree.notes.append((f"include followed although it runs only under a condition ({inc.condition})",
+                                   inc.loc))
+            queue.append((target, dict(inc.args), chain + (inc.loc,), depth + 1))
+    return tree
+
+
+def _choice_dims(tree: _Tree, overrides: Mapping[str, str | None]) -> dict[str, tuple]:
+    """Launch arguments declared with `choices` that no including file sets, in the order seen."""
+    passed: set[str] = set()
+    for info in tree.infos:
+        for inc in info.includes:
+            passed.update(k for k, v in inc.args.items())
+    dims: dict[str, tuple] = {}
+    for info in tree.infos:
+        is_root = not tree.chains.get(id(info))
+        for name, d in getattr(info, "declared", {}).items():
+            if d.choices and name not in overrides and (is_root or name not in passed) and name not in dims:
+                dims[name] = d.choices
+    return dims
+
+
+def _required(tree: _Tree) -> set[str]:
+    return {n for info in tree.infos for n, d in getattr(info, "declared", {}).items() if d.default is None}
+
+
+# --- deployments of one tree --------------------------------------------------------------------------------
+def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[Deployment]:
+    from urdfcheck.contracts.pylaunch import UNKNOWN
+
+    rsps = [(info, sp) for info in tree.infos for sp in info.state_publishers]
+    out = []
+    for info, sp in rsps:
+        # several robot_state_publishers in one tree (a robot and its dock, two robots): each takes the nodes
+        # of its own namespace; spawned controllers, joint state publishers and static transforms are shared
+        ctrl, loc_files, spawned, js, tfs, notes, drivers = _beside(ws, tree.infos,
+                                                                    sp.namespace if len(rsps) > 1 else None)
+        notes = list(tree.notes) + notes
+        chain = tree.chains.get(id(info), ())
+        common = dict(namespace=sp.namespace, frame_prefix=sp.frame_prefix, launch=Location(root), rsp=sp.loc,
+                      chain=chain, controller_files=ctrl, localization_files=loc_files, spawned=spawned,
+                      joint_state=js, static_tfs=tfs, infos=tree.infos, variant=variant, driver_nodes=drivers)
+        ref = sp.description
+        if ref is None and sp.description_key:  # ROS 1: the parameter an included launch file writes
+            ref = next((i.descriptions[sp.description_key] for i in tree.infos
+                        if sp.description_key in getattr(i, "descriptions", {})), None)
+        if ref is None:
+            out.append(Deployment(None, notes=notes + [("the model robot_state_publisher gets is not understood",
+                                                         sp.loc)], **common))
+            continue
+        if UNKNOWN in (ref.path or ""):
+            files = ws.match(ref.path)
+            picked = [(f, f"model={os.path.basename(f)}") for f in files]
+            if not picked:
+                notes.append((f"model path {ref.path.replace(UNKNOWN, '*')} is decided at launch time and "
+                               "matches no file", ref.loc))
+        else:
+            f = ws.locate(ref.path)
+            picked = [(f, "")] if f else []
+            if not picked:
+                notes.append((f"model file {_show(ref.path)} not found in the workspace", ref.loc))
+        if not picked:
+            out.append(Deployment(None, notes=notes, **common))
+            continue
+        args, dropped = {}, []
+        for k, v in ref.args:
+            if UNKNOWN in v:
+                dropped.append(k)
+                continue
+            if os.path.isabs(v) and not os.path.exists(v) and ws.inside(v):
+                v = ws.locate(v) or v  # a parameter file named in the install layout
+            args[k] = v
+        if dropped:
+            notes.append((f"xacro argument(s) {', '.join(dropped)} are decided at launch time; the model's "
+                          "defaults are used", ref.loc))
+        if not ctrl and picked:
+            # the controller manager is the simulator's plugin: its parameter file is named in the model
+            files, unknown = plugin_parameter_files(ws, picked[0][0])
+            if len(files) == 1:
+                ctrl = [files[0]]
+                common["controller_files"] = ctrl
+                notes.append((f"controllers read from {_show(files[0])}, which the model's Gazebo ros2_control "
+                              "plugin loads", sp.loc))
+            elif files or unknown:
+                notes.append(("the model's Gazebo ros2_control plugins load "
+                              f"{', '.join([_show(f) for f in files] + unknown)}: which one runs is decided by "
+                              "xacro arguments; not read", sp.loc))
+        for f, label in picked:
+            c = dict(common)
+            c["variant"] = ",".join(x for x in (variant, label) if x)
+            out.append(Deployment(f, ref.how, args, notes=list(notes), dropped_args=dropped, **c))
+    return out
+
+
+def _beside(ws: _Workspace, infos, namespace: str | None):
+    """Controller and localization parameter files, spawned controllers, joint state sources and static
+    transforms of the nodes in `infos` (in `namespace` when given)."""
+    ctrl, loc_files, spawned, js, tfs, notes, drivers = [], [], [], [], [], [], []
+
+    def add(files, path, where):
+        got = ws.locate(path)
+        if got is None:
+            notes.append((f"parameter file {_show(path) if path else '?'} not found in the workspace", where))
+        elif got not in files:
+            files.append(got)
+
+    for info in infos:
+        spawner_locs = set()
+        for n in info.nodes:
+            if namespace is not None and n.namespace != namespace:
+                continue
+            if n.package == "controller_manager" and n.executable in _CONTROLLER_EXES:
+                spawner_locs.add(n.loc)
+                for f in n.param_files:
+                    add(ctrl, f, n.loc)
+            elif n.package in LOCALIZATION_PACKAGES or n.package.startswith("nav2_"):
+                for f in n.param_files:
+                    add(loc_files, f, n.loc)
+            elif n.package and n.package not in KNOWN_PACKAGES and not n.package.startswith(("rviz", "gazebo", "ros_gz",
+                                                                                          "ros_ign", "moveit")):
+                files: list = []
+                for f in n.param_files:
+                    add(files, f, n.loc)
+                if files or n.params:
+                    drivers.append((n, files))
+        for f, where in info.param_files:
+            if where in spawner_locs:
+                add(ctrl, f, where)
+        for item in info.param_sets:
+            f = getattr(item, "file", None)
+            if f:
+                add(ctrl, f, item.loc)
+        spawned.extend(info.spawned)
+        js.extend((j.package, j.loc) for j in info.joint_state_publishers)
+        js.extend((name, where) for name, where in info.spawned if "joint_state" in name)
+        tfs.extend(info.static_tfs)
+    return ctrl, loc_files, spawned, js, tfs, notes, drivers
+
+
+_PLUGIN = re.compile(r"""<plugin\b[^>]*filename\s*=\s*["'][^"']*ros2_control[^"']*["'][^>]*>(.*?)</plugin>""", re.S)
+_PARAMS = re.compile(r"<parameters>\s*([^<]+?)\s*</parameters>")
+_FIND = re.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)(/[^$]*)$")
+
+
+def plugin_parameter_files(ws: _Workspace, model: str, max_files: int = 200) -> tuple[list[str], list[str]]:
+    """Parameter files the model's Gazebo ros2_control plugins load (`<parameters>$(find pkg)/x.yaml`), read
+    as text through the model's literal includes: (files found, references not literal)."""
+    from urdfcheck.load.packages import _XINCLUDE, _literal_include
+
+    found, unknown, queue, seen = [], [], [os.path.abspath(model)], set()
+    while queue and len(seen) < max_files:
+        path = queue.pop(0)
+        if path in seen:
+            continue
+        seen.add(path)
+        try:
+            from urdfcheck.core.safeio import read_file  # a regular file only: a FIFO must not block
+
+            text = read_file(path, 4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
+        except OSError:
+            continue
+        for block in _PLUGIN.finditer(text):
+            for m in _PARAMS.finditer(block.group(1)):
+                ref = m.group(1).strip()
+                hit = _FIND.match(ref)
+                root = ws.find(hit.group(1), model) if hit else None
+                got = ws.locate(root + hit.group(2)) if root else None
+                if got is None:
+                    unknown.append(ref)
+                elif got not in found:
+                    found.append(got)
+        for m in _XINCLUDE.finditer(text):
+            target = _literal_include(m.group(2).strip(), path, lambda n: ws.find(n, model))
+            if target is not None:
+                queue.append(target)
+    return found, unknown
+
+
+# --- entry point --------------------------------------------------------------------------------------------
+def find_deployments(root: str | os.PathLike, resolver=None, *, packages: Mapping[str, str] | None = None,
+                     files: Iterable[str] | None = None) -> list[Deployment]:
+    """Every deployment the launch files below `root` define (see the module docstring). `resolver` (a
+    `load.packages.Resolver`) finds packages outside the workspace; `packages` maps names explicitly;
+    `files` limits the launch files read (default: all below `root`). Never raises on bad input."""
+    ws = _Workspace(str(root), resolver, packages)
+    paths = sorted(files) if files is not None else launch_files(ws.root)
+    # roots: launch files that no other launch file of the workspace includes, or names in an include that
+    # runs only under a condition (bringup's custom_robot.launch.py: an alternative, not a deployment)
+    included: set[str] = set()
+    starts_rsp: set[str] = set()
+    infos = {p: ws.read(p, {}) for p in paths}
+    for p, info in infos.items():
+        if getattr(info, "state_publishers", None):
+            starts_rsp.add(os.path.realpath(p))
+        for inc in getattr(info, "includes", ()):
+            target = ws.locate(inc.file) if inc.file else None
+            if target is not None:
+                included.add(os.path.realpath(target))
+        for f in ws.inactive_includes(p):
+            target = ws.locate(f)
+            if target is not None:
+                included.add(os.path.realpath(target))
+    roots = [p for p in paths if os.path.realpath(p) not in included]
+    out: list[Deployment] = []
+    seen: dict[tuple, Deployment] = {}
+    reached: set[str] = set()
+    # then an included file that starts robot_state_publisher itself, when no root reaches it (an include
+    # hidden in an OpaqueFunction loop, a file name decided at launch time)
+    later = [p for p in paths if os.path.realpath(p) in included and os.path.realpath(p) in starts_rsp]
+    for rootfile in roots + later:
+        if os.path.realpath(rootfile) in reached:
+            continue
+        for dep, tree in _root_deployments(ws, rootfile):
+            reached.update(f for f in tree.files)
+            k = dep.key()
+            if dep.model is not None and k in seen:
+                continue
+            seen[k] = dep
+            out.append(dep)
+    return out
+
+
+def _root_deployments(ws: _Workspace, rootfile: str):
+    base = _walk_tree(ws, rootfile, {})
+    if not any(info.state_publishers for info in base.infos):
+        return
+    dims = _choice_dims(base, {})
+    required = _required(base) & set(dims)
+    assignments: list[tuple[str, dict]] = []
+    if not required:
+        assignments.append(("", {}))
+    fixed = {n: dims[n][0] for n in required}
+    for name, choices in dims.items():
+        for c in dict.fromkeys(choices, None) if len({x.lower() for x in choices}) == len(choices) else \
+                {x.lower(): x for x in reversed(choices)}.values():  # True/true/False/false: two variants
+            a = {**fixed, name: c}
+            label = ",".join(f"{k}={v}" for k, v in a.items())
+            if label not in [x for x, _ in assignments]:
+                assignments.append((label, a))
+    for label, a in assignments[:MAX_VARIANTS]:
+        tree = base if not a else _walk_tree(ws, rootfile, a)
+        for dep in _deployments(ws, rootfile, tree, label):
+            yield dep, tree
+
+
+def describe(deployments: list[Deployment]) -> str:
+    """The deployments as `urdfcheck lint --list` shows them."""
+    if not deployments:
+        return "no deployments found (no launch file starts robot_state_publisher)\n"
+    lines = []
+    for d in deployments:
+        lines.append(d.label)
+        if d.model is None:
+            lines.append("  model: not understood")
+        else:
+            args = " ".join(f"{k}:={v}" for k, v in sorted(d.args.items()))
+            lines.append(f"  model: {_show(d.model)}" + (f" {args}" if args else ""))
+        if d.dropped_args:
+            lines.append(f"  arguments decided at launch time: {', '.join(d.dropped_args)}")
+        lines.append(f"  robot_state_publisher: {d.rsp}  namespace {d.namespace}"
+                     + (f"  frame_prefix {d.frame_prefix!r}" if d.frame_prefix else ""))
+        for loc in d.chain:
+            lines.append(f"  via include at {loc}")
+        if d.controller_files:
+            lines.append("  controllers: " + ", ".join(_show(f) for f in d.controller_files))
+        if d.spawned:
+            lines.append("  spawned: " + ", ".join(dict.fromkeys(n for n, _ in d.spawned)))
+        if d.joint_state:
+            lines.append("  joint states: " + ", ".join(dict.fromkeys(n for n, _ in d.joint_state)))
+        if d.static_tfs:
+            lines.append("  static transforms: " + ", ".join(f"{t.parent}->{t.child}" for t in d.static_tfs))
+        if d.localization_files:
+            lines.append("  localization: " + ", ".join(_show(f) for f in d.localization_files))
+        for msg, loc in d.notes:
+            lines.append(f"  note: {msg} ({loc})")
+    n = sum(1 for d in deployments if d.model is not None)
+    lines.append(f"{len(deployments)} deployment(s), {n} with a model")
+    return "\n".join(lines) + "\n"
+
+
+# --- a zero-config plan of a whole workspace ----------------------------------------------------------------
+class Planned(Record):
+    """One model to lint: `deployment` is set when a launch file defines it (args from the launch file)."""
+
+    _fields = ('path', 'args', 'variant', 'deployment', 'packages')
+
+    def __init__(self, path: str, args: dict, variant: str, deployment: Deployment | None, packages: dict):
+        self.path, self.args, self.variant, self.deployment, self.packages = path, args, variant, deployment, packages
+
+
+class WorkspacePlan(Record):
+    # models: Planned, deployments first; deployments: all found (with or without a model)
+    # library_packages: package folders holding xacro libraries and no model of their own (an info line)
+    # unplanned_models: models a deployment covers, so not linted alone with their defaults
+    _fields = ('root', 'models', 'deployments', 'library_packages', 'unplanned_models')
+
+    def __init__(self, root, models, deployments, library_packages, unplanned_models):
+        self.root, self.models, self.deployments = root, models, deployments
+        self.library_packages, self.unplanned_models = library_packages, unplanned_models
+
+
+def plan_workspace(root: str | os.PathLike, *, packages: Mapping[str, str] | None = None, trusted: bool = False,
+                   auto_variants: bool = True) -> WorkspacePlan:
+    """Zero config for a named folder: every package below it; each deployment's model with the launch
+    file's arguments; every other entry model of every package alone (with its boolean-argument variants).
+    A model that a deployment loads is linted through its deployments only: its launch file gives the
+    arguments it needs (a model linted with its defaults alone may not expand at all)."""
+    from urdfcheck.contracts.discover import discover
+    from urdfcheck.load.packages import workspace_map, workspace_packages
+
+    root = os.path.abspath(root)
+    explicit = dict(packages or {})
+    deps = find_deployments(root, packages=explicit)
+
+    def pk(near: str) -> dict:
+        return {**workspace_map(root, near=near), **explicit}
+
+    models: list[Planned] = []
+    covered: set[str] = set()
+    for d in deps:
+        if d.model is None:
+            continue
+        covered.add(os.path.realpath(d.model))
+        models.append(Planned(d.model, dict(d.args), d.label, d, pk(d.model)))
+    folders = sorted({str(p) for dirs in workspace_packages(root).values() for p in dirs})
+    outer = [f for f in folders if not any(f != o and f.startswith(o.rstrip(os.sep) + os.sep) for o in folders)]
+    libs, skipped, seen = [], [], set()
+    for folder in outer or [root]:
+        found = discover(folder, trusted=trusted)
+        if not found.models and found.libraries:
+            libs.append(folder)
+        for m in found.models:
+            real = os.path.realpath(m)
+            if real in seen:
+                continue
+            seen.add(real)
+            if real in covered:
+                skipped.append(m)
+                continue
+            variants = [("", {})]
+            if auto_variants and m.endswith(".xacro"):
+                from urdfcheck.pipeline.config import auto_variants as boolean_variants
+
+                variants = boolean_variants(m, {})
+            for name, vargs in variants:
+                models.append(Planned(m, dict(vargs), name, None, pk(m)))
+    return WorkspacePlan(root, models, deps, libs, skipped)
+
+
+# --- custom drivers, read by the shape of their keys ---------------------------------------------------------
+_JOINT_KEY = re.compile(r"(^|[._])(\w*_)?joints?$|_wheel_names$|_joint_names$")
+_FRAME_KEY = re.compile(r"_frame(_id)?$|^frame_id$")
+_GEOMETRY = ("wheel_separation", "track_width", "wheel_radius")
+
+
+def infer_drivers(driver_nodes, reader) -> list:
+    """A `controllers.Driver` per node of no known kind whose parameters (inline, and from the parameter files
+    it is given) have keys shaped like joint names (*_joint, *_joints, *_wheel_names), frame ids (*_frame,
+    *_frame_id) or wheel geometry (wheel_separation / track_width, wheel_radius with left and right wheel
+    names). The meaning is inferred from the key, so the checks report these as warnings (`inferred`)."""
+    from urdfcheck.contracts.common import Value
+    from urdfcheck.contracts.controllers import Driver, DriveSpec, JointUse
+
+    out = []
+    for node, files in driver_nodes:
+        name = f"{node.name or node.executable or node.package} (inferred from {node.package})"
+        params: dict[str, Value] = {}
+        for f in files:
+            pf = reader.params(f, [])
+            if pf is None:
+                continue
+            mine = [n for key, n in pf.nodes.items()
+                    if key.rstrip("/").split("/")[-1] in (node.name, node.executable, "**") or len(pf.nodes) == 1]
+            for n in mine:
+                params.update(n.params)
+        params.update({k: v for k, v in node.params.items() if v.value is not None and not k.startswith("\x00")})
+        joints, left, right, frames = [], [], [], []
+        for key, v in sorted(params.items()):
+            leaf = key.split(".")[-1]
+            vals = v.value if isinstance(v.value, list) else [v.value]
+            if not all(isinstance(x, str) and x and "$(" not in x and "\x00" not in x for x in vals):
+                continue
+            if _JOINT_KEY.search(leaf):
+                role = "left_wheel" if leaf.startswith("left") and "wheel" in leaf else \
+                    "right_wheel" if leaf.startswith("right") and "wheel" in leaf else "joint"
+                uses = [JointUse(x, v.item_loc(i) if isinstance(v.value, list) else v.loc, name, role=role)
+                        for i, x in enumerate(vals)]
+                (left if role == "left_wheel" else right if role == "right_wheel" else joints).extend(uses)
+            elif _FRAME_KEY.search(leaf) and not isinstance(v.value, list):
+                frames.append(Value(v.value.strip().lstrip("/"), v.loc))
+        if not (joints or left or right or frames):
+            continue
+        drv = Driver(name, files[0] if files else node.loc.file, node.loc, tuple(left + right + joints),
+                     frames=tuple(frames))
+        geo = {k.split(".")[-1]: v for k, v in params.items() if k.split(".")[-1] in _GEOMETRY}
+        if left and right and (geo.get("wheel_separation") or geo.get("track_width") or geo.get("wheel_radius")):
+            drv.drive = DriveSpec(owner=name, loc=node.loc, left=tuple(left), right=tuple(right),
+                                  left_loc=left[0].loc, right_loc=right[0].loc,
+                                  wheel_separation=geo.get("wheel_separation") or geo.get("track_width"),
+                                  wheel_radius=geo.get("wheel_radius"))
+        drv.inferred = True
+        out.append(drv)
+    return out
+
+
+def robots_including(library: str | os.PathLike, plan: WorkspacePlan) -> list[Planned]:
+    """The planned models (deployments and entry models) of a workspace that include `library` through
+    their literal includes: what the per-file pre-commit hook lints when it is given a library file."""
+    from urdfcheck.load.packages import included_files
+
+    target = os.path.realpath(library)
+    out, closures = [], {}
+    for m in plan.models:
+        key = os.path.realpath(m.path)
+        if key not in closures:
+            closures[key] = included_files(m.path, lambda n, pk=m.packages: pk.get(n))
+        if target in closures[key] and key != target:
+            out.append(m)
+    return out
+
+
+def unresolved_packages(plan: WorkspacePlan) -> dict[str, list[tuple[str, int]]]:
+    """Every package the planned models reference and the workspace cannot resolve, once each, with the
+    places that reference it (load.packages.missing_packages over all models of the plan)."""
+    from urdfcheck.load.packages import missing_packages
+
+    out: dict[str, list[tuple[str, int]]] = {}
+    for m in plan.models:
+        for name, places in missing_packages([m.path], lambda n, pk=m.packages: pk.get(n)).items():
+            have = out.setdefault(name, [])
+            have.extend(p for p in places if p not in have)
+    return out
