@@ -344,12 +344,21 @@ def test_collapse_across_models_modulo_the_prefix():
     (one,) = out
     assert describe(one) == "in 3 models: fer.xacro, fr3.xacro, fp3.xacro"
     assert one.where[1] == Place("fr3.xacro", "", "joint 'fr3_hand' names parent 'fr3_link8'")
+    # urdfdom's own words, quoted in the message, name them in brackets
+    (one,) = collapse([f("joint 'a_j' ('parent link [a_l8] of joint [a_j] not found')", model="a.xacro"),
+                       f("joint 'b_j' (did you mean 'b_x'?) ('parent link [b_l8] of joint [b_j] not found')",
+                         model="b.xacro")])
+    assert describe(one) == "in 2 models: a.xacro, b.xacro"
 
 
-def test_collapse_keeps_two_instances_in_one_model_and_different_problems():
+def test_collapse_merges_instances_in_one_model_but_not_different_problems():
     left = f("inertia of 'left_wheel' is bad", via=(Location("robot.xacro", 55),))
     right = f("inertia of 'right_wheel' is bad", via=(Location("robot.xacro", 56),))
-    assert len(collapse([left, right])) == 2  # two macro calls, two wheels
+    (one,) = collapse([left, right])  # two macro calls, one line to fix
+    assert one.message == left.message and describe(one) == "also 'right_wheel'"
+    many = collapse([f(f"link 'link{i}' is defined again", variant="no_prefix=true") for i in range(10)])
+    assert len(many) == 1 and describe(many[0], {"m.xacro": 4}).startswith(
+        "also 'link1', 'link2', 'link3' and 6 more; variant no_prefix=true")
     assert len(collapse([f("effort limit 0"), f("velocity limit 0")])) == 2  # different text: different problems
     assert len(collapse([f(code="S003"), f(code="S004")])) == 2
 

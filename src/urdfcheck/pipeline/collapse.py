@@ -5,6 +5,10 @@ per call of the macro, each time naming that expansion's links ('fer_link8', 'fp
 same code, severity and source position (file, line, column) whose messages agree once quoted names are set
 aside are one problem: the first is kept and `Finding.where` lists every model/variant it applies to (with
 the message there when it reads differently). The reports print one line for it; JSON keeps the list.
+
+Instances inside one model (a wheel macro called for the left and the right wheel, an arm macro expanded
+for two arms) are one problem as well: one edit at that line fixes them all, so they are one line, naming
+the other instances ("also 'right_wheel_link'").
 """
 from __future__ import annotations
 
@@ -12,20 +16,24 @@ import re
 
 from urdfcheck.core.findings import Finding, Place
 
-_QUOTED = re.compile(r"'[^']*'|\"[^\"]*\"")
+# a quoted name: no blank inside, so that "('link 'x' is not unique')" (urdfdom's words quoted) pairs up right
+_QUOTED = re.compile(r"'[^'\s]*'|\"[^\"\s]*\"")
 _HINT = re.compile(r" \(did you mean [^)]*\)")
+
+
+# names as urdfdom's messages quote them: "parent link [fer_link8] of joint [fer_hand_joint] not found"
+_BRACKETED = re.compile(r"\[[^\]\s]*\]")
 
 
 def _shape(message: str) -> str:
     """The message with quoted names (and name suggestions) set aside: what stays equal across macro
     expansions."""
-    return _QUOTED.sub("'…'", _HINT.sub("", message))
+    return _BRACKETED.sub("[…]", _QUOTED.sub("'…'", _HINT.sub("", message)))
 
 
 def collapse(findings: list[Finding]) -> list[Finding]:
     """Merge findings that are the same problem (see the module doc); sorted like `Finding.sort_key`."""
     groups: dict[tuple, list[Finding]] = {}
-    seen: dict[tuple, int] = {}  # (key, place) -> instances of that shape already met in that model/variant
     exact: set[tuple] = set()
     for f in findings:
         loc = f.location
@@ -38,11 +46,7 @@ def collapse(findings: list[Finding]) -> list[Finding]:
         if (key, place, f.message, loc.via) in exact:
             continue  # the very same finding again (same macro call chain)
         exact.add((key, place, f.message, loc.via))
-        # two instances in one model (a macro called for the left and the right wheel) are two findings; the
-        # k-th instance of each model/variant joins the k-th of the others
-        k = seen.get((key, place), 0)
-        seen[(key, place)] = k + 1
-        groups.setdefault(key + (k,), []).append(f)
+        groups.setdefault(key, []).append(f)
     out = []
     for members in groups.values():
         out.append(members[0] if len(members) == 1 and not members[0].where else _merge(members))
@@ -68,12 +72,33 @@ def _short(label: str) -> str:
     return head.rsplit("/", 1)[-1] + sep + rest if "/" in head else label
 
 
+def _first_name(message: str) -> str | None:
+    m = _QUOTED.search(message)
+    return m.group(0) if m else None
+
+
+def instances(f: Finding, limit: int = 3) -> str:
+    """The other instances of a problem in the model/variant the finding is shown under: "also 'right_wheel'"."""
+    places = f.places()
+    first = places[0]
+    own = _first_name(f.message)
+    names = []
+    for p in places[1:]:
+        if (p.model, p.variant) == (first.model, first.variant) and p.message:
+            name = _first_name(p.message)
+            if name and name != own and name not in names:
+                names.append(name)
+    if not names:
+        return ""
+    return "also " + ", ".join(names[:limit]) + (f" and {len(names) - limit} more" if len(names) > limit else "")
+
+
 def describe(f: Finding, totals: dict[str, int] | None = None, limit: int = 3, every: bool = False) -> str:
     """Where a finding applies, for one line of a report: "" (one place), "variant: a=true",
     "in 12 of 16 variants: a=true, b=false, …", "in 3 models: x.urdf, y.urdf, …"; nothing when it applies to
     every variant of its model, unless `every` ("in all 16 variants"). `totals`: model -> number of variants linted."""
     places = f.places()
-    parts = []
+    parts = [s] if (s := instances(f, limit)) else []
     models = list(dict.fromkeys(p.model for p in places))
     if len(models) > 1:
         names = [m.rsplit("/", 1)[-1] for m in models]

@@ -7,6 +7,12 @@ _COLOURS = {Severity.ERROR: "\x1b[31m", Severity.WARNING: "\x1b[33m", Severity.I
 _BOLD, _DIM, _RESET = "\x1b[1m", "\x1b[2m", "\x1b[0m"
 
 
+def _short(loc) -> str:
+    """`file:line` by the file's name (the full path is in the finding's own line or the JSON)."""
+    name = clean_text(loc.file).rsplit("/", 1)[-1]
+    return f"{name}:{loc.line}" if loc.line else name
+
+
 def render(result, colour: bool = False, **_) -> str:
     def c(code, text):
         return f"{code}{text}{_RESET}" if colour else text
@@ -27,14 +33,16 @@ def render(result, colour: bool = False, **_) -> str:
         tag = f"{f.code}"
         where_ = describe(f, totals)
         extra = f" [{clean_text(where_)}]" if where_ else ""
+        # one line per problem: the macro call chain and related places go at its end, by file name (JSON and
+        # SARIF carry the full paths); a problem found in several models/variants has several chains: none shown
+        tail = ""
+        if loc.via and len(f.places()) == 1:
+            tail += "  (via " + " < ".join(_short(v) for v in loc.via) + ")"
+        related = [r for r in f.related if (r.file, r.line) != (loc.file, loc.line)]
+        if related:
+            tail += "  (see also " + ", ".join(_short(r) for r in related) + ")"
         lines.append(f"{where}  {c(_COLOURS[f.severity], tag)}  {c(_DIM, str(f.severity))}  "
-                     f"{clean_text(f.message)}{extra}")
-        if len(f.places()) > 1:
-            continue  # found in several models/variants: one line (their macro call chains differ; JSON has them)
-        for v in loc.via:
-            lines.append(c(_DIM, f"    via macro call at {clean_text(str(v))}"))
-        for r in f.related:
-            lines.append(c(_DIM, f"    see also {clean_text(str(r))}"))
+                     f"{clean_text(f.message)}{extra}{c(_DIM, tail)}")
     counts = {s: sum(1 for f in result.findings if f.severity == s) for s in Severity}
     n_models = len(result.targets)
     if result.findings:
