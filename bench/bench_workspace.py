@@ -3,9 +3,9 @@
     python bench/bench_workspace.py [ROOT] [--table]
 
 ROOT defaults to the corpus (../shared/corpus). The workspace is planned the way zero config plans it
-(pipeline/deployments.plan_workspace: deployments from launch files with their arguments, every other entry
-model with its boolean variants), then linted in one process (`--lint-only` runs just that part: the timed
-command). The peer is the xacro CLI run once per planned model and argument set, with $(find) answered from
+(pipeline.plan, as `urdfcheck lint` run there with no flags: deployments found once for the whole tree,
+with the launch files' arguments; every other entry model with its boolean variants), then linted in one
+process (`--lint-only` runs just that part: the timed command). The peer is the xacro CLI run once per planned model and argument set, with $(find) answered from
 the same package map, one process after another. `--table` prints per repository: robots (models planned),
 deployments (with a model / all), and what was not understood.
 """
@@ -30,15 +30,13 @@ DEFAULT_ROOT = REPO.parent / "shared" / "corpus"
 def lint_workspace(root: str) -> dict:
     """Plan and lint; returns a summary (per repository) as JSON-able data."""
     from urdfcheck.core.findings import Severity
-    from urdfcheck.pipeline.deployments import plan_workspace
-    from urdfcheck.pipeline.plan import Later, Target
     from urdfcheck.pipeline.run import lint_targets
     from urdfcheck.rules import engine
 
-    plan = plan_workspace(root)
-    targets = [Target(Path(m.path), m.args, m.variant,
-                      Later(m.deployment.consumers) if m.deployment is not None else None, m.packages,
-                      None, m.deployment) for m in plan.models]
+    plan = _plan(root)
+    targets = list(plan.models)
+    for t in targets:
+        t.settings = None  # linted with the selection below
     result = lint_targets(targets, engine.Selection(ignore=("G001",)))  # meshes are absent from the corpus
     by_repo: dict = defaultdict(lambda: {"models": set(), "targets": 0, "deployments": 0, "with_model": 0,
                                          "loaded": 0, "codes": Counter(), "not_understood": []})
@@ -75,6 +73,22 @@ def lint_workspace(root: str) -> dict:
     return out
 
 
+class _Plan:
+    def __init__(self, models, deployments):
+        self.models, self.deployments = models, deployments
+
+
+def _plan(root: str) -> _Plan:
+    """What `urdfcheck lint` run in `root` with no flags plans (pipeline.plan): the targets, and every
+    deployment found (with a model or not)."""
+    from urdfcheck.pipeline.plan import plan
+    from urdfcheck.pipeline.request import make_request
+
+    targets = plan(make_request([root]))
+    deps = list({id(t.deployment): t.deployment for t in targets if t.deployment is not None}.values())
+    return _Plan(list(targets), deps + list(targets.not_understood))
+
+
 def _cpu() -> float:
     r = resource.getrusage(resource.RUSAGE_CHILDREN)
     return r.ru_utime + r.ru_stime
@@ -82,15 +96,14 @@ def _cpu() -> float:
 
 def stock_xacro_times(root: str) -> tuple[float, int, float]:
     """Sequential wall time (and CPU time) of the xacro CLI once per planned model and argument set."""
-    from urdfcheck.pipeline.deployments import plan_workspace
-
-    plan = plan_workspace(root)
+    os.chdir(root)
+    plan = _plan(root)
     total, n, cpu0 = 0.0, 0, _cpu()
     for m in plan.models:
         code = ("import sys, xacro, xacro.substitution_args as s;"
                 f"pk={m.packages!r};"
                 "s._eval_find=lambda p: pk[p];"
-                f"sys.argv=['xacro', {m.path!r}] + {[f'{k}:={v}' for k, v in m.args.items()]!r}; xacro.main()")
+                f"sys.argv=['xacro', {str(m.path)!r}] + {[f'{k}:={v}' for k, v in m.args.items()]!r}; xacro.main()")
         t0 = time.perf_counter()
         subprocess.run([PY, "-c", code], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                        stderr=subprocess.DEVNULL, cwd=root)

@@ -139,7 +139,8 @@ def test_deployment_from_an_included_python_launch_file(tmp_path, monkeypatch):
     assert small.label == "src/deploy/nested/bot_bringup/launch/bringup.launch.py"
     text = describe(deps)
     assert "model: src/bot/bot_description/urdf/large/bot.urdf.xacro wheel_sep:=0.5" in text
-    assert "spawned: diff_cont, joint_broad" in text
+    assert ("spawned: diff_cont (diff_drive_controller/DiffDriveController), "
+            "joint_broad (joint_state_broadcaster/JointStateBroadcaster)") in text
 
 
 def test_contract_checks_run_on_the_deployment_model(tmp_path, monkeypatch):
@@ -387,3 +388,20 @@ def launch_setup(context, *args):
     assert [n for n, _ in dep.spawned] == ["joint_state_broadcaster", "arm_controller", "spare_controller"]
     spawners = [n for n in dep.infos[0].nodes if n.executable == "spawner"]
     assert [n.args.count("--inactive") for n in spawners] == [0, 1]
+
+
+def test_lint_list_shows_each_deployment_once_with_controllers_and_publishers(tmp_path, monkeypatch, capsys):
+    from urdfcheck.cli import main as cli
+
+    workspace(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["lint", "--list", "src"]) == 0
+    out = capsys.readouterr().out
+    assert not (tmp_path / "PWNED").exists()
+    # found once for the named folder: the bringup file is the root, the description file it includes is not
+    assert out.count("\nsrc/deploy/nested/bot_bringup/launch/bringup.launch.py\n") == 1
+    assert "\nsrc/bot/bot_description/launch/description.launch.py" not in out
+    assert "spawned: diff_cont (diff_drive_controller/DiffDriveController)" in out
+    assert "publishers: robot_state_publisher" in out and "static transforms: base_link->laser" in out
+    assert "localization: ekf" in out
+    assert "2 deployment(s), 2 with a model" in out

@@ -4,7 +4,8 @@ from pathlib import Path
 
 import pytest
 
-from urdfcheck.load import loader, worker
+from urdfcheck.core import worker
+from urdfcheck.load import loader
 from urdfcheck.pipeline.run import entry_models
 from urdfcheck.load.packages import Resolver
 

@@ -14,7 +14,8 @@ import importlib  # noqa: E402
 
 import pytest  # noqa: E402
 
-from urdfcheck.load import loader, worker  # noqa: E402
+from urdfcheck.core import worker  # noqa: E402
+from urdfcheck.load import loader  # noqa: E402
 
 lint = importlib.import_module("urdfcheck.pipeline.run")  # the package's `lint` attribute is the API function
 

@@ -114,3 +114,180 @@ def test_the_working_directory_is_the_workspace_of_last_resort(tmp_path, monkeyp
     assert Resolver(near=entry).find("base_description") == deep
     exp = loader.expand(entry)
     assert exp.root is not None and not exp.findings
+
+
+# --- planning a named folder (issue 13): deployments once per named root -----------------------------------
+NAMED_ROBOT = f"""<?xml version="1.0"?>
+<robot name="$(arg name)" {XACRO}>
+  <xacro:arg name="name" default="bot"/>
+  <xacro:include filename="$(find arm_description)/urdf/parts.xacro"/>
+  <xacro:parts/>
+</robot>
+"""  # like ur.urdf.xacro: `$(arg name)` before its declaration; `xacro robot.urdf.xacro` alone fails
+
+PARTS = f"""<robot {XACRO}>
+  <xacro:macro name="parts">
+    <link name="base_link"/>
+    <link name="tool"/>
+    <joint name="j1" type="revolute"><parent link="base_link"/><child link="tool"/><axis xyz="0 0 1"/>
+      <limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  </xacro:macro>
+</robot>
+"""
+
+ARM_LAUNCH = """
+from launch import LaunchDescription
+from launch.substitutions import Command, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    xacro_file = PathJoinSubstitution([FindPackageShare('arm_description'), 'urdf', 'robot.urdf.xacro'])
+    description = {'robot_description': Command(['xacro ', xacro_file, ' name:=arm'])}
+    return LaunchDescription([
+        Node(package='robot_state_publisher', executable='robot_state_publisher', parameters=[description]),
+        Node(package='controller_manager', executable='spawner', arguments=['joint_state_broadcaster']),
+    ])
+"""
+
+
+def arm_workspace(tmp_path: Path) -> Path:
+    """src/arm_description (the model, a macro library) and src/arm_bringup (the launch file passing name)."""
+    d = pkg(tmp_path / "src" / "arm_description", "arm_description")
+    write(d / "urdf" / "robot.urdf.xacro", NAMED_ROBOT)
+    write(d / "urdf" / "parts.xacro", PARTS)
+    b = pkg(tmp_path / "src" / "arm_bringup", "arm_bringup")
+    write(b / "launch" / "arm.launch.py", ARM_LAUNCH)
+    return tmp_path / "src"
+
+
+def _plan(paths, here=None):
+    from urdfcheck.pipeline.plan import plan
+    from urdfcheck.pipeline.request import make_request
+
+    return plan(make_request([str(p) for p in paths]), here=str(here) if here else None)
+
+
+def test_a_model_another_package_deploys_is_linted_through_that_deployment_only(tmp_path, monkeypatch):
+    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.pipeline.run import run
+
+    src = arm_workspace(tmp_path)
+    monkeypatch.chdir(tmp_path)
+    targets = _plan([src])
+    robot = os.path.realpath(src / "arm_description" / "urdf" / "robot.urdf.xacro")
+    mine = [t for t in targets if os.path.realpath(t.path) == robot]
+    assert mine and all(t.deployment is not None for t in mine)  # never alone with its defaults
+    assert [t.args for t in mine] == [{"name": "arm"}]
+    assert mine[0].variant == "src/arm_bringup/launch/arm.launch.py"
+    result = run(make_request([str(src)]))
+    codes = [f.code for f in result.findings]
+    assert "X010" not in codes and "S011" not in codes, result.findings
+    assert all(f.variant.endswith("arm.launch.py") for f in result.findings)  # each names its launch file
+    # the documented exception to "a run from above = the union of per-package runs": from inside its own
+    # package the model has no deployment, so it is linted alone (and fails as `xacro` does)
+    alone = run(make_request([str(src / "arm_description")]))
+    assert "X010" in [f.code for f in alone.findings]
+
+
+def test_the_text_report_names_the_launch_file_once(tmp_path, monkeypatch, capsys):
+    from urdfcheck.cli import main as cli
+
+    src = arm_workspace(tmp_path)
+    write(src / "arm_description" / "urdf" / "parts.xacro", PARTS.replace('<link name="tool"/>', '<link name="tool"/>\n'
+                                                                         '    <link name="stray"/>'))
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["lint", "src"]) == 1
+    out = capsys.readouterr().out
+    lines = [ln for ln in out.splitlines() if "stray" in ln]
+    assert lines and all(ln.count("arm.launch.py") == 1 for ln in lines), out
+    assert "in 1 model (1 from launch-file deployment)." in out  # the summary says where the model came from
+
+
+def test_a_package_config_still_applies_to_its_package(tmp_path, monkeypatch):
+    src = arm_workspace(tmp_path)
+    other = pkg(src / "other_description", "other_description")
+    write(other / "urdf" / "o.urdf", '<robot name="o"><link name="base_link"/></robot>')
+    write(other / "urdfcheck.yaml", "ignore: [F002]\n")
+    monkeypatch.chdir(tmp_path)
+    targets = _plan([src])
+    cfg = {os.path.basename(str(t.path)): getattr(t.settings.config, "path", None) for t in targets}
+    assert cfg["o.urdf"] == str(other / "urdfcheck.yaml")
+    assert cfg["robot.urdf.xacro"] is None
+    assert any(t.deployment is not None for t in targets)
+
+
+def test_a_package_of_xacro_libraries_only_is_an_info_line_and_exit_0(tmp_path, monkeypatch, capsys):
+    from urdfcheck.cli import main as cli
+
+    lib = pkg(tmp_path / "components", "components")
+    write(lib / "urdf" / "sensor.urdf.xacro", f'<robot {XACRO}><xacro:macro name="sensor" params="parent">'
+                                                f'<link name="s"/></xacro:macro></robot>')
+    write(lib / "urdf" / "props.xacro", f'<robot {XACRO}><xacro:property name="r" value="1"/></robot>')
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["lint", "components"]) == 0
+    captured = capsys.readouterr()
+    assert "xacro libraries only" in captured.err and "S011" not in captured.out
+    assert cli.main(["lint", "--list", "components"]) == 0
+    (tmp_path / "nothing_here").mkdir()
+    assert cli.main(["lint", "nothing_here"]) == 2  # an empty folder is still "no model found"
+
+
+def test_the_per_file_hook_given_a_library_lints_the_robots_that_include_it(tmp_path, monkeypatch):
+    src = arm_workspace(tmp_path)
+    other = pkg(src / "other_description", "other_description")
+    write(other / "urdf" / "o.urdf", '<robot name="o"><link name="base_link"/></robot>')
+    monkeypatch.chdir(tmp_path)  # pre-commit runs the hook from the repository root, with file names
+    targets = _plan([src / "arm_description" / "urdf" / "parts.xacro"], here=tmp_path)
+    assert [os.path.basename(str(t.path)) for t in targets] == ["robot.urdf.xacro"]
+    assert targets[0].deployment is not None and targets[0].args == {"name": "arm"}  # through its deployment
+    unused = write(src / "arm_description" / "urdf" / "unused.xacro",
+                   f'<robot {XACRO}><xacro:macro name="u"><link name="u"/></xacro:macro></robot>')
+    got = _plan([unused], here=tmp_path)
+    assert list(got) == [] and any("not linted alone" in i for i in got.infos)
+
+
+def test_each_missing_package_is_one_finding_with_every_place(tmp_path, monkeypatch):
+    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.pipeline.run import run
+
+    d = pkg(tmp_path / "desc", "desc")
+    write(d / "urdf" / "parts.xacro", f'<robot {XACRO}>\n<xacro:include filename="$(find gone_a)/a.xacro"/>\n'
+                                      '<xacro:include filename="$(find gone_b)/b.xacro"/>\n</robot>\n')
+    for name in ("one", "two"):
+        write(d / "urdf" / f"{name}.urdf.xacro",
+              f'<robot name="{name}" {XACRO}>\n<xacro:arg name="fast" default="false"/>\n'
+              '<xacro:include filename="$(find gone_a)/x.xacro"/>\n'
+              '<xacro:include filename="$(find desc)/urdf/parts.xacro"/>\n<link name="base_link"/>\n</robot>\n')
+    monkeypatch.chdir(tmp_path)
+    result = run(make_request(["desc"]))
+    x013 = [f for f in result.findings if f.code == "X013"]
+    assert sorted(f.message.split("'")[1] for f in x013) == ["gone_a", "gone_b"]  # gone_b too, in one run
+    a = next(f for f in x013 if "'gone_a'" in f.message)
+    places = [(a.location.file, a.location.line)] + [(r.file, r.line) for r in a.related]
+    assert {(os.path.basename(f), ln) for f, ln in places} == {("one.urdf.xacro", 3), ("two.urdf.xacro", 3),
+                                                               ("parts.xacro", 2)}
+
+
+def test_srdf_files_are_never_models(tmp_path):
+    from urdfcheck.pipeline.request import UsageError
+
+    d = pkg(tmp_path / "moveit_config", "moveit_config")
+    write(d / "config" / "arm.srdf", '<robot name="a"><group name="arm"><chain base_link="a" tip_link="b"/></group>'
+                                     '</robot>')
+    write(d / "config" / "arm.srdf.xacro", f'<robot name="a" {XACRO}><group name="arm"/></robot>')
+    write(d / "config" / "semantic.xacro", f'<robot name="a" {XACRO}><group name="arm"><joint name="j"/></group>'
+                                           '<disable_collisions link1="a" link2="b" reason="Adjacent"/></robot>')
+    write(d / "config" / "groups_only.xacro", f'<robot name="a" {XACRO}><group name="arm"/></robot>')
+    write(d / "config" / "groups_and_include.xacro",  # groups, an include (of more groups), no <link>
+          f'<robot name="a" {XACRO}><xacro:include filename="$(find moveit_config)/config/more.xacro"/>'
+          '<group name="arm"><joint name="j"/></group></robot>')
+    write(d / "urdf" / "robot.urdf", '<robot name="r"><link name="base_link"/></robot>')
+    assert [os.path.basename(m) for m in discover(d).models] == ["robot.urdf"]
+    import pytest
+
+    got = _plan([d / "config" / "arm.srdf.xacro"])  # named (the per-file hook passes every *.xacro): skipped
+    assert list(got) == [] and "SRDF" in got.infos[0]
+    with pytest.raises(UsageError):
+        _plan([d / "config" / "arm.srdf"])

@@ -276,7 +276,7 @@ def arena(tmp_path, monkeypatch, tmp_path_factory):
 
 def stock_xacro(path: Path, cwd: Path) -> str:
     """Expand with stock xacro (its own eval, no confinement). Returns the XML or the error text."""
-    from urdfcheck.load import worker
+    from urdfcheck.core import worker
 
     def run():
         import xacro

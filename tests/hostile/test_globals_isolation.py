@@ -5,7 +5,8 @@ import math
 
 from conftest import run_cli
 from hostile_arena import arena, line_of  # noqa: F401 (fixture)
-from urdfcheck.load import loader, worker
+from urdfcheck.core import worker
+from urdfcheck.load import loader
 
 REAL = f"pi_{math.pi}_{math.pi}_{math.cos(math.pi)}"
 

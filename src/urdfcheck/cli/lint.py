@@ -43,11 +43,15 @@ def run(ns, usage_error=UsageError) -> int:
     if ns.write_baseline:
         from urdfcheck.pipeline import baseline
 
-        baseline.write(ns.write_baseline, result.findings)
-        print(f"wrote {len(result.findings)} findings to {ns.write_baseline}", file=sys.stderr)
+        baseline.write(ns.write_baseline, result.raw())
+        print(f"wrote {len(result.raw())} findings to {ns.write_baseline}", file=sys.stderr)
         return 0
 
+    from urdfcheck.core.findings import clean_text
     from urdfcheck.report import render
+
+    for line in getattr(result, "infos", ()):  # on stderr: the report formats stay as they are
+        print(f"urdfcheck: info: {clean_text(line, 4096)}", file=sys.stderr)
 
     colour = ns.color == "always" or (ns.color == "auto" and ns.output is None and sys.stdout.isatty()
                                       and not os.environ.get("NO_COLOR"))
@@ -71,14 +75,17 @@ def _list(request: LintRequest) -> int:
     from urdfcheck.pipeline.plan import plan
 
     targets = plan(request)
-    if not targets:
+    if not targets and not targets.infos:
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
+    for line in targets.infos:
+        print(clean_text(f"info: {line}", 4096))
     for t in targets:
         args = " ".join(f"{k}:={v}" for k, v in sorted(t.args.items()))
         cfg = getattr(t.settings.config, "path", None) if t.settings is not None else None
         line = request.shown(t.path) + (f" [{t.variant}]" if t.variant else "") + (f" {args}" if args else "")
         print(clean_text(line + (f"  (config {request.shown(cfg)})" if cfg else ""), 4096))
-    deployments = [t.deployment for t in targets if t.deployment is not None]
+    deployments = list({id(t.deployment): t.deployment for t in targets if t.deployment is not None}.values())
+    deployments += getattr(targets, "not_understood", [])
     if deployments:
         from urdfcheck.pipeline.deployments import describe
 

@@ -72,6 +72,9 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     lint.add_argument("--color", choices=["auto", "always", "never"], default="auto")
     lint.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
     lint.add_argument("--no-config", action="store_true", help="ignore config files")
+    lint.add_argument("--target", choices=["noetic", "humble", "jazzy", "kilted", "rolling"], default=None,
+                      help="ROS distribution whose urdfdom must read the models (URDF versions, U007); default: "
+                           "the config's target, else noetic for a catkin package, else rolling")
     lint.add_argument("--list", action="store_true",
                       help="print what would be linted (models, variants, deployments from launch files) and exit")
     lint.add_argument("--root", metavar="DIR",

@@ -121,7 +121,7 @@ def _definitions(kids, depth: int) -> set[str] | None:
     return found
 
 
-_SRDF = re.compile(r"<\s*(?:disable_collisions|group_state|virtual_joint|end_effector|passive_joint)\b")
+_SRDF = re.compile(r"<\s*(?:disable_collisions|group|group_state|virtual_joint|end_effector|passive_joint)\b")
 
 
 def _no_links(text: str) -> bool:
@@ -131,7 +131,8 @@ def _no_links(text: str) -> bool:
 
 
 def _is_srdf(text: str) -> bool:
-    """MoveIt SRDF written as xacro (root <robot> too): SRDF elements and no <link> of its own."""
+    """MoveIt SRDF written as xacro (root <robot> too): SRDF elements (<group>, <disable_collisions>, ...)
+    and no <link> of its own. Never a URDF model (`*.srdf.xacro` is skipped by name already)."""
     return bool(_SRDF.search(text)) and not re.search(r"<\s*link\b", text)
 
 

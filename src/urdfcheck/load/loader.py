@@ -269,7 +269,7 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
 
 
 def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None, grace=None):
-    from urdfcheck.load import worker
+    from urdfcheck.core import worker
     from urdfcheck.load.xacro import expand as xexpand
 
     opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
@@ -281,7 +281,7 @@ def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, ma
 
 
 def _finish_xacro(out: Expanded, res, budget_cut: bool = False) -> None:
-    from urdfcheck.load import worker
+    from urdfcheck.core import worker
 
     if isinstance(res, worker.Failure):
         if res.kind == "timeout" and budget_cut:

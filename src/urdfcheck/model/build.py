@@ -14,7 +14,6 @@ import re
 from collections.abc import Callable
 from math import isfinite
 from types import MappingProxyType
-from typing import NamedTuple
 
 from lxml import etree
 
@@ -52,13 +51,16 @@ _SHAPE_SINCE = {tag: G.GRAMMAR[tag].since for tag in G.SHAPES}
 _new = tuple.__new__  # parts filled in field order, without NamedTuple's keyword handling (half the cost)
 
 
-class _Reading(NamedTuple):
+class _Reading:
     """An element's attributes as one URDF version reads them (for the messages off the good path)."""
 
-    tag: str
-    attrs: tuple[G.Attr, ...]  # the attributes this version reads, grammar order (the readers' indexes)
-    known: frozenset  # their names + the source marker
-    later: dict  # attribute -> Attr, for the ones a newer URDF version introduced
+    __slots__ = ("tag", "attrs", "known", "later")
+
+    def __init__(self, tag: str, attrs: tuple, known: frozenset, later: dict):
+        self.tag = tag
+        self.attrs = attrs  # the attributes this version reads, grammar order (the readers' indexes)
+        self.known = known  # their names + the source marker
+        self.later = later  # attribute -> Attr, for the ones a newer URDF version introduced
 
 
 def _reading(tag: str, version: G.Version) -> _Reading:

@@ -11,8 +11,6 @@ Versions follow urdfdom: 1.0 (every urdfdom), 1.1 (urdfdom 5.1: `quat_xyzw` on <
 """
 from __future__ import annotations
 
-from typing import NamedTuple
-
 Version = tuple  # (major, minor)
 V1_0: Version = (1, 0)
 V1_1: Version = (1, 1)
@@ -29,22 +27,41 @@ VECTOR = "vector"  # `size` finite numbers separated by white space
 SRC_ATTR = "__ucsrc"  # the xacro source marker (load.xacro.expand.SRC_ATTR); ours, allowed on every element
 
 
-class Attr(NamedTuple):
-    name: str
-    kind: str
-    size: int = 1  # values of a VECTOR
-    required: bool = False
-    default: object = None  # the value when absent (or unreadable)
-    since: Version = V1_0
-    optional_since: Version | None = None  # required only in versions before this one
+class Attr:
+    """One attribute of a URDF element. (Plain classes here, not NamedTuples: this module is imported by every
+    lint run, and each NamedTuple class costs a fraction of a millisecond to create.)"""
+
+    __slots__ = ("name", "kind", "size", "required", "default", "since", "optional_since")
+
+    def __init__(self, name: str, kind: str, size: int = 1, required: bool = False, default: object = None,
+                 since: Version = V1_0, optional_since: Version | None = None):
+        self.name = name
+        self.kind = kind
+        self.size = size  # values of a VECTOR
+        self.required = required
+        self.default = default  # the value when absent (or unreadable)
+        self.since = since  # the URDF version that introduced it
+        self.optional_since = optional_since  # required only in versions before this one
+
+    def __repr__(self) -> str:
+        return f"Attr({self.name!r}, {self.kind!r})"
 
 
-class Element(NamedTuple):
-    tag: str
-    attrs: tuple[Attr, ...] = ()
-    children: tuple[str, ...] = ()  # grammar elements allowed inside
-    since: Version = V1_0
-    exclusive: tuple[tuple[str, ...], ...] = ()  # attributes that must not be given together (U009)
+class Element:
+    """A URDF element: its attributes, the child elements it may hold, since when it exists."""
+
+    __slots__ = ("tag", "attrs", "children", "since", "exclusive")
+
+    def __init__(self, tag: str, attrs: tuple[Attr, ...] = (), children: tuple[str, ...] = (),
+                 since: Version = V1_0, exclusive: tuple[tuple[str, ...], ...] = ()):
+        self.tag = tag
+        self.attrs = attrs
+        self.children = children  # grammar elements allowed inside
+        self.since = since
+        self.exclusive = exclusive  # attributes that must not be given together (U009)
+
+    def __repr__(self) -> str:
+        return f"Element({self.tag!r})"
 
 
 ZERO = (0.0, 0.0, 0.0)
@@ -178,10 +195,16 @@ def supported_message(newest: Version) -> str:
 
 
 # --- which URDF versions a ROS distribution reads ----------------------------------------------------------------
-class Target(NamedTuple):
-    name: str
-    urdfdom: str  # the urdfdom release it ships
-    newest: Version  # the newest URDF version that urdfdom reads
+class Target:
+    __slots__ = ("name", "urdfdom", "newest")
+
+    def __init__(self, name: str, urdfdom: str, newest: Version):
+        self.name = name
+        self.urdfdom = urdfdom  # the urdfdom release it ships
+        self.newest = newest  # the newest URDF version that urdfdom reads
+
+    def __repr__(self) -> str:
+        return f"Target({self.name!r}, urdfdom {self.urdfdom})"
 
 
 # ROS 1 Noetic: urdfdom 1.0.4; Humble 3.0.2; Jazzy 4.0.x; Kilted 5.0.0: all read URDF 1.0 only ("Invalid 'version'

@@ -6,8 +6,9 @@ Only plain Python here (no numpy) so that `lint` stays fast; poses are composed 
 """
 from __future__ import annotations
 
+from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Mapping, NamedTuple
+from typing import NamedTuple
 
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import FrozenRecord

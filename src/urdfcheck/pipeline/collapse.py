@@ -121,7 +121,15 @@ def describe(f: Finding, totals: dict[str, int] | None = None, limit: int = 3, e
             parts.append(f"in {len(variants)}{of} variants: {shown}")
         elif len(variants) > 1 and every:  # a report that shows it once, under one variant, says so
             parts.append(f"in all {len(variants)} variants")
+        else:  # shown in every variant: a deployment's launch file is still named (issue 13), short
+            launch = [v for v in variants if _LAUNCH.search(v)]
+            if launch:
+                shown = ", ".join(launch[:limit]) + (", …" if len(launch) > limit else "")
+                parts.append(f"from {shown}" if len(launch) == 1 else f"from {len(launch)} launch files: {shown}")
     return "; ".join(parts)
+
+
+_LAUNCH = re.compile(r"(\.launch(\.py|\.xml|\.ya?ml)?|_launch\.py)( \[|$)")
 
 
 def variant_totals(targets) -> dict[str, int]:

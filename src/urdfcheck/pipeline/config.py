@@ -41,6 +41,7 @@ rules: {C010: {tolerance: 0.002}, F002: {expected: [base_link, base_footprint]}}
 trusted: false                            # stock xacro evaluation (only for your own files)
 allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read
 max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
+target: humble                            # ROS distribution whose urdfdom must read the model (--target)
 ```
 
 `[tool.urdfcheck]` in pyproject.toml takes the same keys (`[[tool.urdfcheck.models]]` for the list).
@@ -120,7 +121,7 @@ class ModelConfig(FrozenRecord):
 class Config(FrozenRecord):
     # path: the config file
     # root: its folder; relative paths start here
-    _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore', 'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs')
+    _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore', 'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target')
 
     def __init__(self, path: str,
                  root: str,
@@ -137,7 +138,8 @@ class Config(FrozenRecord):
                  trusted: bool = False,
                  allow_env: tuple[str, ...] = (),
                  max_elements: int | None = None,
-                 locs: Mapping[tuple, Location] | None = None):
+                 locs: Mapping[tuple, Location] | None = None,
+                 target: str | None = None):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
         d["root"] = root
@@ -156,6 +158,7 @@ class Config(FrozenRecord):
         d["allow_env"] = allow_env
         d["max_elements"] = max_elements
         d["locs"] = _ro({}) if locs is None else locs
+        d["target"] = target  # issue 14: noetic | humble | jazzy | kilted | rolling (model.grammar.TARGETS)
 
     def loc(self, *path) -> Location:
         """Where a key was written (the file when unknown)."""
@@ -429,6 +432,7 @@ def load_config(path: str | os.PathLike) -> Config:
         ignore=tuple(data.get("ignore") or ()), fail_on=fail_on, severity=_ro(severity), rules=_ro(rules),
         trusted=bool(data.get("trusted", False)), allow_env=tuple(data.get("allow_env") or ()),
         max_elements=int(data["max_elements"]) if data.get("max_elements") is not None else None, locs=_ro(locs),
+        target=str(data["target"]) if data.get("target") else None,
     )
 
 

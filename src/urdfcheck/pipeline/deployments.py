@@ -585,21 +585,39 @@ def describe(deployments: list[Deployment]) -> str:
                      + (f"  frame_prefix {d.frame_prefix!r}" if d.frame_prefix else ""))
         for loc in d.chain:
             lines.append(f"  via include at {loc}")
+        types, nodes = _read_back(d)
         if d.controller_files:
-            lines.append("  controllers: " + ", ".join(_show(f) for f in d.controller_files))
+            lines.append("  controller files: " + ", ".join(_show(f) for f in d.controller_files))
         if d.spawned:
-            lines.append("  spawned: " + ", ".join(dict.fromkeys(n for n, _ in d.spawned)))
-        if d.joint_state:
-            lines.append("  joint states: " + ", ".join(dict.fromkeys(n for n, _ in d.joint_state)))
+            lines.append("  spawned: " + ", ".join(
+                n + (f" ({types[n]})" if types.get(n) else " (type not found)")
+                for n in dict.fromkeys(n for n, _ in d.spawned)))
+        declared = [n for n in types if n not in {x for x, _ in d.spawned}]
+        if declared:
+            lines.append("  declared, not spawned here: " + ", ".join(f"{n} ({types[n]})" for n in declared))
+        lines.append("  publishers: robot_state_publisher" + "".join(
+            f", {n}" for n in dict.fromkeys(n for n, _ in d.joint_state)))
         if d.static_tfs:
             lines.append("  static transforms: " + ", ".join(f"{t.parent}->{t.child}" for t in d.static_tfs))
-        if d.localization_files:
-            lines.append("  localization: " + ", ".join(_show(f) for f in d.localization_files))
-        for msg, loc in d.notes:
+        if d.localization_files or nodes:
+            lines.append("  localization: " + ", ".join(
+                [f"{kind} {node}" for kind, node in nodes] + [_show(f) for f in d.localization_files]))
+        for msg, loc in dict.fromkeys(d.notes):
             lines.append(f"  note: {msg} ({loc})")
     n = sum(1 for d in deployments if d.model is not None)
     lines.append(f"{len(deployments)} deployment(s), {n} with a model")
     return "\n".join(lines) + "\n"
+
+
+def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str]]]:
+    """The controllers (name -> type) and localization nodes (kind, node) the deployment's files declare,
+    for `describe` (an unreadable file is reported by the lint run, not here)."""
+    try:
+        c = d.consumers()
+    except Exception:  # noqa: BLE001 - a listing never fails on a file the lint run reports
+        return {}, []
+    types = {ctl.name: ctl.type or "" for ctl in c.controllers}
+    return types, [(n.kind, n.node) for n in c.localization]
 
 
 # --- a zero-config plan of a whole workspace ----------------------------------------------------------------

@@ -7,10 +7,15 @@ each package from inside it. A folder without config is planned package by packa
 package.xml discovered on its own), for the same reason.
 
 A config with `models:` names the entry models and their consumers; each model's consumers are read once,
-on first use (`Later`), and shared by its variants. Without config, each package's launch files that start
+on first use (`Later`), and shared by its variants. Without config, the launch files that start
 robot_state_publisher give deployments (`pipeline.deployments`: the model with the launch file's xacro
-arguments and the consumers beside it); the package's other entry models are discovered and linted with their
-boolean variants.
+arguments and the consumers beside it). They are found once per folder the user names, not per package: a
+bringup package's launch file that loads another package's model is a deployment of that model, and a model
+that any deployment of the named tree loads is linted through its deployments only (its launch files give the
+arguments it needs). The one exception to "the union of per-package runs": such a model, linted from inside
+its own package, is linted alone. Other entry models are discovered and linted with their boolean variants;
+a package of xacro libraries only is an info line (`TargetList.infos`), and a library is linted through the
+robots that include it, never alone.
 """
 from __future__ import annotations
 
@@ -80,6 +85,27 @@ class Target(Record):
         self._contracts = value
 
 
+class TargetList(list):
+    """The planned targets, and the planner's info lines (a package of xacro libraries only, a library file
+    that no robot includes): said once, not findings, and not a reason to fail."""
+
+    def __init__(self, targets=(), infos=()):
+        super().__init__(targets)
+        self.infos = list(infos)
+        self.not_understood = []  # deployments whose model was not understood (no target; `--list`)
+
+
+class _Named(Record):
+    """The deployments of one folder the user named, found once for the whole tree.
+    deployments: those with a model, minus those defined in a folder whose config declares its models;
+    covered: the models (realpath) they load, which are then not linted alone."""
+
+    _fields = ('root', 'deployments', 'covered')
+
+    def __init__(self, root: str, deployments: list, covered: set):
+        self.root, self.deployments, self.covered = root, deployments, covered
+
+
 class Planner:
     """Plans one request; reads each config file once."""
 
@@ -88,6 +114,10 @@ class Planner:
         self.here = here or "."  # the folder a request without paths names (`urdfcheck lint` run there)
         self._configs: dict[str, object] = {}
         self._settings: dict[str | None, Settings] = {}
+        self._named: dict[str, _Named] = {}
+        self._robots: dict[str, list[Target]] = {}  # workspace folder -> its robots (a library's includers)
+        self.infos: list[str] = []
+        self.not_understood: list = []  # deployments whose model was not understood (`--list` shows them)
 
     # --- configs ----------------------------------------------------------------------------------
     def config(self, path: str | None):
@@ -121,18 +151,20 @@ class Planner:
         return self.config(find_config(path))
 
     # --- planning ---------------------------------------------------------------------------------
-    def plan(self) -> list[Target]:
+    def plan(self) -> TargetList:
         req = self.request
         paths = list(req.paths)
         if not paths:
             cfg = self.nearest(os.path.abspath(self.here))
             if cfg is not None and cfg.models:
-                return _unique(self.declared(cfg, None))
+                return TargetList(_unique(self.declared(cfg, None)), self.infos)
             paths = [self.here]  # the package here (a workspace config above it applies to it, not all of it)
         out: list[Target] = []
         for raw in paths:
             out.extend(self.path_targets(raw))
-        return _unique(out)
+        got = TargetList(_unique(out), dict.fromkeys(self.infos))
+        got.not_understood = list(self.not_understood)
+        return got
 
     def path_targets(self, raw: str) -> list[Target]:
         cfg = self.nearest(raw)
@@ -146,6 +178,9 @@ class Planner:
                 return self.declared(cfg, [raw])
             if _is_launch(raw):
                 return self.launch_targets(raw, settings)
+            if raw.lower().endswith(".srdf.xacro"):  # the per-file hook passes every *.xacro: not an error
+                self.infos.append(f"{self.request.shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
+                return []
             if raw.lower().endswith(NOT_MODELS):
                 raise UsageError(f"{raw} is not a URDF or xacro model (name the model, its package, or a "
                                  "launch file that starts robot_state_publisher)")
@@ -155,22 +190,27 @@ class Planner:
         nested = [] if (self.request.config is not None or not self.request.use_config) else \
             [c for c in walk.configs if cfg is None or os.path.dirname(c) != cfg.root]
         nested_roots = [os.path.dirname(c) for c in nested]
-        out = self.scope(cfg, raw, walk, exclude=nested_roots)
+        # the deployments of the whole named tree, once; a folder whose config declares its models keeps them
+        declaring = [self.config(c).root for c in nested if self.config(c).models]
+        if cfg is not None and _models_at(cfg, raw):
+            declaring.append(os.path.abspath(raw))
+        named = self.named(raw, settings, skip=declaring)
+        out = self.scope(cfg, raw, walk, exclude=nested_roots, named=named)
         for c in nested:
             sub = self.config(c)
             deeper = [r for r in nested_roots if _below(r, sub.root) and r != sub.root]
             if sub.models:
                 out.extend(t for t in self.declared(sub, None) if not _under_any(str(t.path), deeper))
             else:
-                out.extend(self.scope(sub, sub.root, _walk(sub.root), exclude=deeper))
+                out.extend(self.scope(sub, sub.root, _walk(sub.root), exclude=deeper, named=named))
         return out
 
-    def scope(self, cfg, folder: str, walk, exclude: list[str]) -> list[Target]:
+    def scope(self, cfg, folder: str, walk, exclude: list[str], named: _Named | None = None) -> list[Target]:
         """The models of `folder` under one config (or none): declared ones, else discovered."""
         settings = self.settings(cfg)
         if cfg is not None and _models_at(cfg, folder):
             return [t for t in self.declared(cfg, [folder]) if not _under_any(str(t.path), exclude)]
-        return [t for t in self.discovered(folder, walk, settings, exclude) if not _under_any(str(t.path), exclude)]
+        return self.discovered(folder, walk, settings, exclude, named)
 
     def declared(self, cfg, paths) -> list[Target]:
         """The config's models (at or below `paths` when given); paths no model covers: discovered."""
@@ -194,49 +234,69 @@ class Planner:
                        else self.discovered(raw, _walk(raw), settings))
         return out
 
-    def discovered(self, folder: str, walk, settings: Settings, exclude=()) -> list[Target]:
-        """Zero-config: the entry models of each package below `folder`, each package discovered on its own
-        (as from inside it); `folder` itself when it is inside a package or holds none."""
+    def discovered(self, folder: str, walk, settings: Settings, exclude=(), named: _Named | None = None
+                   ) -> list[Target]:
+        """Zero-config: the deployments whose launch file is below `folder` (found once for the named
+        tree, `named`), then the entry models of each package below `folder` that no deployment of the named
+        tree loads, each package discovered on its own; `folder` itself when it is inside a package or holds
+        none. A package of xacro libraries only gives an info line."""
         from urdfcheck.contracts.discover import discover
         from urdfcheck.load.packages import enclosing_package
 
+        if named is None:
+            named = self.named(folder, settings)
+        out: list[Target] = []
+        for d in named.deployments:
+            if _below(d.launch.file, folder) and not _under_any(d.launch.file, exclude):
+                out.append(self.deployed(d, named.root, settings))
         inside = enclosing_package(Path(os.path.abspath(folder))) is not None
         roots = [folder] if inside or not walk.packages else \
             [p for p in walk.packages if not _under_any(p, exclude)]  # a package with its own config: its own
-        out: list[Target] = []
         for root in roots:
-            deployed = self.deployments(root, settings)
-            out.extend(deployed)
-            covered = {os.path.realpath(t.path) for t in deployed}
-            for entry in discover(root, trusted=settings.trusted).models:
-                if os.path.realpath(entry) not in covered:  # a deployment gives the args it needs
-                    out.extend(self.variants(Path(entry), settings))
+            found = discover(root, trusted=settings.trusted)
+            if not found.models and found.libraries and not any(_below(t.path, root) for t in out):
+                self.infos.append(f"{self.request.shown(root)}: xacro libraries only (macros, properties): "
+                                  "linted through the robots that include them")
+            for entry in found.models:
+                if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
+                    out.extend(self.variants(Path(entry), settings, named.root))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
             for entry in discover(folder, trusted=settings.trusted).models:
-                if not _under_any(entry, pk):
-                    out.extend(self.variants(Path(entry), settings))
-        return out
+                if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
+                    out.extend(self.variants(Path(entry), settings, named.root))
+        return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
+
+    def named(self, root: str, settings: Settings, skip=()) -> _Named:
+        """The deployments of a named folder, found once (`skip`: folders whose config declares the models)."""
+        key = os.path.abspath(root)
+        if key not in self._named:
+            deps = [d for d in self.find(key, settings) if not _under_any(d.launch.file, skip)]
+            self._named[key] = _Named(key, deps, {os.path.realpath(d.model) for d in deps})
+        return self._named[key]
+
+    def find(self, root: str, settings: Settings, files=None) -> list:
+        """The deployments with a model that the launch files below `root` (or `files`) define."""
+        from urdfcheck.load.packages import Resolver
+        from urdfcheck.pipeline.deployments import find_deployments
+
+        resolver = Resolver(dict(settings.packages), near=Path(root), workspace=root)
+        found = find_deployments(root, resolver, packages=dict(settings.packages), files=files)
+        self.not_understood.extend(d for d in found if d.model is None and d not in self.not_understood)
+        return [d for d in found if d.model is not None and d.launch is not None and not _is_srdf_name(d.model)]
+
+    def deployed(self, d, root: str, settings: Settings) -> Target:
+        """A deployment's target: the launch file's xacro arguments, its controllers and localization as the
+        consumers, every package of the named tree resolvable (a sibling repository's description)."""
+        t = self.target(Path(d.model), dict(d.args), d.label, Later(d.consumers), settings,
+                        _packages(root, d.model, settings))
+        t.deployment = d
+        return t
 
     def deployments(self, root: str, settings: Settings, files=None) -> list[Target]:
-        """The models the launch files of one package start robot_state_publisher with
-        (pipeline/deployments.py): the launch file's xacro arguments, its controllers and localization as
-        the consumers. Per package, so a workspace run is the union of its packages' runs."""
-        try:
-            from urdfcheck.pipeline.deployments import find_deployments
-        except ImportError:  # pragma: no cover - the module is part of the package
-            return []
-        from urdfcheck.load.packages import Resolver
-
-        resolver = Resolver(dict(settings.packages), near=Path(os.path.abspath(root)))
-        out = []
-        for d in find_deployments(root, resolver, packages=dict(settings.packages), files=files):
-            if d.model is None:
-                continue
-            t = self.target(Path(d.model), dict(d.args), d.label, Later(d.consumers), settings)
-            t.deployment = d
-            out.append(t)
-        return out
+        """The deployments the launch files below `root` (or just `files`) define, as targets."""
+        root = os.path.abspath(root)
+        return [self.deployed(d, root, settings) for d in self.find(root, settings, files)]
 
     def launch_targets(self, path: str, settings: Settings) -> list[Target]:
         """A launch file named explicitly: the models it starts robot_state_publisher with."""
@@ -251,36 +311,86 @@ class Planner:
 
     def file_targets(self, path: Path, settings: Settings) -> list[Target]:
         """An explicitly named file. A xacro library (macros only, or included by another file of its
-        package) is no robot by itself: lint the package's entry models instead, which expand it (what a
-        per-file pre-commit hook needs)."""
+        package) is no robot by itself: lint the robots of its workspace (the working directory when the
+        file is below it, else its package) that include it, as they are planned from there (deployments
+        too): what the per-file pre-commit hook needs. A library no robot includes is an info line."""
         if path.name.endswith(".xacro"):
             from urdfcheck.contracts.discover import discover
             from urdfcheck.load.packages import enclosing_package
 
-            pkg = enclosing_package(Path(os.path.abspath(path)).parent)
-            if pkg is not None:
-                found = discover(pkg)
-                if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and found.models:
-                    return [self.target(Path(m), {}, "", None, settings) for m in found.models]
+            folder = Path(os.path.abspath(path)).parent
+            pkg = enclosing_package(folder)
+            found = discover(pkg or folder, trusted=settings.trusted)
+            if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
+                robots = self.robots_including(str(path), str(pkg or folder), settings)
+                if not robots:
+                    self.infos.append(f"{self.request.shown(str(path))}: a xacro library that no robot of "
+                                      "its workspace includes: not linted alone")
+                return robots
         return [self.target(path, {}, "", None, settings)]
 
-    def variants(self, entry: Path, settings: Settings) -> list[Target]:
+    def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
+        """The targets of the library's workspace whose model includes it (literal includes, read as text)."""
+        from urdfcheck.load.packages import included_files
+
+        here = os.path.abspath(self.here)
+        ws = here if _below(library, here) else os.path.abspath(pkg)
+        if ws not in self._robots:
+            sub = Planner(self.request, self.here)  # the workspace as `urdfcheck lint` there plans it
+            sub._configs, sub._settings = self._configs, self._settings
+            self._robots[ws] = [t for t in sub.path_targets(ws)]
+            self._closures = getattr(self, "_closures", {})
+        real, out = os.path.realpath(library), []
+        for t in self._robots[ws]:
+            key = (os.path.realpath(t.path), tuple(sorted(t.packages.items())))
+            if key not in self._closures:
+                self._closures[key] = included_files(t.path, lambda n, pk=t.packages: pk.get(n))
+            if real in self._closures[key] and os.path.realpath(t.path) != real:
+                out.append(t)
+        return out
+
+    def variants(self, entry: Path, settings: Settings, root: str | None = None) -> list[Target]:
         """Each combination of the boolean xacro:args the request does not fix (bounded; named)."""
+        packages = _packages(root, str(entry), settings) if root is not None else None
         if not entry.name.endswith(".xacro"):
-            return [self.target(entry, {}, "", None, settings)]
+            return [self.target(entry, {}, "", None, settings, packages)]
         from urdfcheck.pipeline.config import auto_variants
 
-        return [self.target(entry, vargs, name, None, settings)
+        return [self.target(entry, vargs, name, None, settings, packages)
                 for name, vargs in auto_variants(str(entry), dict(self.request.args))]
 
-    def target(self, path: Path, args: dict, variant: str, consumers, settings: Settings) -> Target:
-        return Target(path, {**args, **dict(self.request.args)}, variant, consumers, dict(settings.packages),
-                      settings)
+    def target(self, path: Path, args: dict, variant: str, consumers, settings: Settings,
+               packages: dict | None = None) -> Target:
+        return Target(path, {**args, **dict(self.request.args)}, variant, consumers,
+                      dict(settings.packages) if packages is None else packages, settings)
 
 
-def plan(request: LintRequest, here: str | None = None) -> list[Target]:
+def plan(request: LintRequest, here: str | None = None) -> TargetList:
     """`here`: the folder a request without paths lints, as if run there (default: the working directory)."""
     return Planner(request, here).plan()
+
+
+def _packages(root: str, model: str, settings: Settings) -> dict:
+    """Every package of the named tree (the copy nearest the model on a duplicate name), then the explicit
+    ones: a model resolves its sibling repositories' packages whatever the working directory."""
+    from urdfcheck.load.packages import workspace_map
+
+    return {**workspace_map(root, near=model), **dict(settings.packages)}
+
+
+def _robot_file(path) -> bool:
+    """A regular file whose root element is <robot>: a library only then (an empty file, a FIFO or a file of
+    another root is linted, and the loader says what is wrong with it)."""
+    from urdfcheck.contracts.discover import _read_head, _root_tag
+
+    if not os.path.isfile(path):
+        return False
+    tag = _root_tag(_read_head(str(path)))
+    return tag is not None and tag.split(":")[-1] == "robot"
+
+
+def _is_srdf_name(path: str) -> bool:
+    return path.lower().endswith((".srdf", ".srdf.xacro"))
 
 
 def _is_launch(path: str) -> bool:

@@ -160,6 +160,11 @@ def make_request(paths=(), **options) -> LintRequest:
                 "target"):
         if options.get(key) is not None:
             kw[key] = options[key]
+    if kw.get("target") is not None:
+        from urdfcheck.model.grammar import TARGETS
+
+        if kw["target"] not in TARGETS:
+            raise UsageError(f"unknown target {kw['target']!r} (use one of {', '.join(TARGETS)})")
     if kw.get("root"):
         if not os.path.isdir(kw["root"]):
             raise UsageError(f"--root: no such folder: {kw['root']}")

@@ -26,6 +26,7 @@ class Result(Record):
     # fail_on: the level at which the run fails (flags, else the config, else warning)
     # root: reports show paths relative to this folder ("" = the working directory)
     _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
+    infos: tuple = ()  # the planner's info lines (a package of xacro libraries only): not findings
 
     def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
                  by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
@@ -35,6 +36,11 @@ class Result(Record):
         self.by_target = [[] for _ in targets] if by_target is None else by_target
         self.fail_on = fail_on
         self.root = root
+
+    def raw(self) -> list[Finding]:
+        """Every finding before duplicates were collapsed: what a baseline counts, so that a new call of a
+        macro with a known problem is new."""
+        return [f for fs in self.by_target for f in fs]
 
     def worst(self) -> Severity | None:
         return max((f.severity for f in self.findings), default=None)
@@ -60,9 +66,16 @@ class Result(Record):
 def run(request: LintRequest, *, retain: list | None = None) -> Result:
     """Plan, lint, finish. Raises UsageError when there is nothing to lint or an input is unusable."""
     targets = plan(request)
+    infos = list(getattr(targets, "infos", ()))
     if not targets:
+        if infos:  # xacro libraries only: nothing to lint alone, not an unusable invocation
+            result = Result([], [], fail_on=request.fail_on or Severity.WARNING)
+            result.infos = infos
+            return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    result.infos = infos
+    _missing_packages_once(result)
     if request.fail_on is not None:
         result.fail_on = request.fail_on
     elif targets[0].settings is not None:
@@ -71,7 +84,7 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
         from urdfcheck.pipeline import baseline
 
         try:
-            result.findings = baseline.filter_new(request.baseline, result.findings)
+            result.findings = _dedupe(baseline.filter_new(request.baseline, result.raw()))
         except (OSError, ValueError) as e:
             raise UsageError(f"cannot read baseline {request.baseline}: {e}") from None
     if request.root and os.path.abspath(request.root) != os.getcwd():
@@ -97,7 +110,7 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
     model = load.build_model(exp)
     if model is not None:
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=t.contracts,
-                             variant=t.variant)
+                             variant=t.variant, target=t.settings.target if t.settings is not None else None)
         findings.extend(engine.run_checks(model, ctx))
         if yaml is not None:
             yaml.read(ctx.contracts, selection)
@@ -210,6 +223,66 @@ def _dedupe(findings: list[Finding]) -> list[Finding]:
     from urdfcheck.pipeline.collapse import collapse
 
     return collapse(findings)
+
+
+_MISSING = None
+
+
+def _missing_packages_once(result: Result) -> None:
+    """One X013 per package the run cannot resolve, naming every place that references it (the first is the
+    finding's location, the others its related locations), instead of one per model and variant. An
+    expansion stops at its first unknown package; the models that hit one are read as text through their
+    literal includes (`load.packages.missing_packages`), so every missing package is listed in one run."""
+    import re
+
+    global _MISSING
+    if not any(f.code == "X013" for f in result.findings):
+        return
+    from urdfcheck.load.packages import Resolver, missing_packages
+
+    _MISSING = _MISSING or re.compile(r"package '([A-Za-z0-9_]+)' not found")
+    template: dict[str, Finding] = {}
+    places: dict[str, list[tuple[str, int]]] = {}
+    variants: dict[str, list] = {}  # package -> the (model, variant) places the loader stopped at it
+    for t, found in zip(result.targets, result.by_target):
+        hits = [f for f in found if f.code == "X013"]
+        if not hits:
+            continue
+        names = {m.group(1) for f in hits if (m := _MISSING.search(f.message))}
+        if not names:
+            continue
+        find = Resolver(dict(t.packages), near=Path(os.path.abspath(t.path))).find
+        missing = missing_packages([str(t.path)], find)
+        for f in hits:
+            m = _MISSING.search(f.message)
+            if m:
+                template.setdefault(m.group(1), f)
+                seen_in = variants.setdefault(m.group(1), [])
+                seen_in.extend(p for p in f.places() if p not in seen_in)
+                missing.setdefault(m.group(1), []).insert(0, (f.location.file, f.location.line or 0))
+        for name, where in missing.items():
+            have = places.setdefault(name, [])
+            known = {(os.path.abspath(f), ln) for f, ln in have}
+            for f, ln in where:
+                if (os.path.abspath(f), ln) not in known:
+                    known.add((os.path.abspath(f), ln))
+                    have.append((load.display(f), ln))  # as the loader's findings show paths
+            if name not in template and hits:
+                template[name] = hits[0]
+    if not places:
+        return
+    merged = []
+    for name, where in places.items():
+        base = template[name]
+        first = Location(where[0][0], where[0][1] or None)
+        rest = tuple(Location(f, ln or None) for f, ln in where[1:])
+        n = len(where)
+        msg = (f"package {name!r} not found (pass --package {name}=PATH)"
+               + (f"; referenced in {n} places" if n > 1 else ""))
+        seen_in = variants.get(name, [])
+        merged.append(base._replace(message=msg, location=first, related=rest,
+                                    where=tuple(seen_in) if len(seen_in) > 1 else ()))
+    result.findings = sorted([f for f in result.findings if f.code != "X013"] + merged, key=Finding.sort_key)
 
 
 def _rebase(result: Result, root: str) -> None:

@@ -19,8 +19,8 @@ messages value for value.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 from urdfcheck.core import geometry
 from urdfcheck.publisher.messages import Stamp, Transform

@@ -46,20 +46,23 @@ class Context(Record):
     # config: config.Config or None
     # contracts: the consumers read for this model (controllers, launch files...)
     # options: the running rule's options (catalogue defaults + config)
-    _fields = ('selection', 'expanded', 'config', 'contracts', 'variant', 'options')
+    # target: the ROS distribution the model is checked for (flag over config; None: the checks decide, U007)
+    _fields = ('selection', 'expanded', 'config', 'contracts', 'variant', 'options', 'target')
 
     def __init__(self, selection: Selection | None = None,
                  expanded: object = None,
                  config: object = None,
                  contracts: object = None,
                  variant: str = "",
-                 options: dict | None = None):
+                 options: dict | None = None,
+                 target: str | None = None):
         self.selection = Selection() if selection is None else selection
         self.expanded = expanded
         self.config = config
         self.contracts = contracts
         self.variant = variant
         self.options = {} if options is None else options
+        self.target = target
 
     @property
     def resolver(self):

@@ -14,7 +14,8 @@ per link, relative to the root of the link's TF tree (a floating joint, which ro
 publishes, starts a new tree). Where the tools genuinely disagree the affected links are left out of that
 comparison and the disagreement is reported as a :class:`Delta` (finding V002) instead.
 
-Pinocchio and yourdfpy run in forked children with an address-space limit and a timeout, so a crash, an
+Pinocchio and yourdfpy run in urdfcheck's sandboxed worker (``urdfcheck.core.worker``: forked children with an
+address-space limit, CPU and wall-clock limits and a scrubbed environment), so a crash, an
 out-of-memory or a hang is reported as that peer's result ("crashed", "out of memory", "timed out") and never
 as a pass. Their C-level stdout/stderr is captured and returned. Models above the size caps (DoF, chain
 depth) are refused for Pinocchio, whose URDF parser recurses per link (it overflows the C stack on chains of a
@@ -28,12 +29,6 @@ kinematics, not that cache.
 from __future__ import annotations
 
 import math
-import os
-import pickle
-import select
-import signal
-import sys
-import tempfile
 import time
 from dataclasses import dataclass, field
 
@@ -321,232 +316,47 @@ def _yourdfpy_mimic_deltas(model, tree):
 
 
 # --- forked peers ---------------------------------------------------------------------------------------------
-def _vm_size() -> int:
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith("VmSize:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    return 0
+# The peers run in the one sandboxed worker (urdfcheck.core.worker), with its limits; what verify adds are
+# options of it: the child imports its library before the job arrives, and reports progress.
+PRELOAD = {"pinocchio": ("numpy", "pinocchio"), "yourdfpy": ("numpy", "yourdfpy")}
 
 
-class _Child:
-    """A forked child that preloads modules, waits for its job, then runs fn(progress, *args).
+def _limits(timeout: float, memory: int | None):
+    from urdfcheck.core import worker
 
-    The job travels through a temp file (the parent never blocks on a child that is still importing);
-    result and output (C-level stdout/stderr, dup2'ed) go to temp files; progress comes through a pipe.
-    """
+    # result: pose arrays whose size verify chose itself (configurations x links), so no cap
+    return worker.Limits(memory=memory, timeout=timeout, result=None)
 
-    def __init__(self, name: str, fn, timeout: float, memory: int | None, preload=()):
-        self.name = name
-        self.timeout = timeout
-        self.started = time.monotonic()
-        self.sent = False
-        self.job_file = tempfile.TemporaryFile()
-        self.result_file = tempfile.TemporaryFile()
-        self.output_file = tempfile.TemporaryFile()
-        self.prog_r, prog_w = os.pipe()
-        go_r, self.go_w = os.pipe()
-        sys.stdout.flush()
-        sys.stderr.flush()
-        pid = os.fork()
-        if pid == 0:  # child
-            code = 0
-            try:
-                os.close(self.prog_r)
-                os.close(self.go_w)
-                out_fd = self.output_file.fileno()
-                os.dup2(out_fd, 1)
-                os.dup2(out_fd, 2)
-                sys.stdout = sys.stderr = open(2, "w", closefd=False)  # Python-level writes too
-                import faulthandler
 
-                if faulthandler.is_enabled():  # it would write to an inherited descriptor, not ours
-                    faulthandler.disable()
-                import resource
+def _peer(name: str, timeout: float, memory: int | None, preload=()):
+    from urdfcheck.core import worker
 
-                resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-                if memory:
-                    limit = _vm_size() + int(memory)
-                    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
-                for module in preload:  # while the parent loads the model
-                    try:
-                        __import__(module)
-                    except BaseException:
-                        pass
-                if not os.read(go_r, 1):  # cancelled
-                    os._exit(0)
-                self.job_file.seek(0)
-                args = pickle.load(self.job_file)
-                last = [0.0]
-
-                def progress(done, total):
-                    now = time.monotonic()
-                    if now - last[0] < 0.1 and done < total:
-                        return
-                    last[0] = now
-                    try:
-                        os.write(prog_w, f"{done} {total}\n".encode())
-                    except OSError:
-                        pass
-
-                try:
-                    payload = ("ok", fn(progress, *args))
-                except MemoryError:
-                    payload = ("memory", "out of memory")
-                except RecursionError:
-                    payload = ("error", "recursion too deep")
-                except BaseException as e:
-                    payload = ("error", f"{type(e).__name__}: {e}")
-                try:
-                    data = pickle.dumps(payload, protocol=pickle.HIGHEST_PROTOCOL)
-                except MemoryError:
-                    data = pickle.dumps(("memory", "out of memory (result)"))
-                self.result_file.write(data)
-                self.result_file.flush()
-                for stream in (sys.stdout, sys.stderr):
-                    try:
-                        stream.flush()
-                    except Exception:
-                        pass
-            except BaseException:
-                code = 70
-            finally:
-                os._exit(code)
-        os.close(prog_w)
-        os.close(go_r)
-        self.pid = pid
-        self.status = None
-        self.killed = False
-        self.progress = (0, 0)
-
-    def send(self, *args) -> None:
-        pickle.dump(args, self.job_file, protocol=pickle.HIGHEST_PROTOCOL)
-        self.job_file.flush()
-        os.write(self.go_w, b"1")
-        os.close(self.go_w)
-        self.sent = True
-        self.started = time.monotonic()
-
-    def cancel(self) -> None:
-        """Stop a child that was never given its job."""
-        if not self.sent:
-            try:
-                os.close(self.go_w)
-            except OSError:
-                pass
-        try:
-            os.kill(self.pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
-        try:
-            os.waitpid(self.pid, 0)
-        except ChildProcessError:
-            pass
-        for f in (self.job_file, self.result_file, self.output_file):
-            f.close()
-        try:
-            os.close(self.prog_r)
-        except OSError:
-            pass
-
-    def poll(self) -> bool:
-        if self.status is not None:
-            return True
-        pid, status = os.waitpid(self.pid, os.WNOHANG)
-        if pid:
-            self.status = status
-            self.finished = time.monotonic()
-            return True
-        if time.monotonic() - self.started > self.timeout:
-            try:
-                os.kill(self.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
-            self.killed = True
-            _, self.status = os.waitpid(self.pid, 0)
-            self.finished = time.monotonic()
-            return True
-        return False
-
-    def read_progress(self) -> bool:
-        """Read progress lines; False at end of file."""
-        try:
-            data = os.read(self.prog_r, 65536)
-        except OSError:
-            return False
-        if not data:
-            return False
-        lines = data.decode(errors="replace").strip().splitlines()
-        if lines:
-            try:
-                a, b = lines[-1].split()
-                self.progress = (int(a), int(b))
-            except ValueError:
-                pass
-        return True
-
-    def outcome(self):
-        """(kind, value, output, seconds): kind ok/memory/error/timeout/crashed."""
-        self.job_file.close()
-        self.output_file.seek(0)
-        output = self.output_file.read(256 * 1024).decode("utf-8", "replace")
-        self.output_file.close()
-        try:
-            os.close(self.prog_r)
-        except OSError:
-            pass
-        elapsed = getattr(self, "finished", time.monotonic()) - self.started
-        if self.killed:
-            self.result_file.close()
-            return "timeout", f"did not finish within {self.timeout:g} s", output, elapsed
-        st = self.status
-        if os.WIFSIGNALED(st):
-            sig = os.WTERMSIG(st)
-            self.result_file.close()
-            signame = signal.Signals(sig).name if sig in signal.Signals._value2member_map_ else str(sig)
-            if "bad_alloc" in output or "MemoryError" in output:
-                return "memory", f"killed by {signame} after a failed allocation", output, elapsed
-            if sig == signal.SIGKILL:
-                return "crashed", "killed by SIGKILL (the kernel's out-of-memory killer?)", output, elapsed
-            return "crashed", f"killed by {signame}", output, elapsed
-        self.result_file.seek(0)
-        data = self.result_file.read()
-        self.result_file.close()
-        try:
-            kind, value = pickle.loads(data)
-        except Exception:
-            return "crashed", f"exited with status {os.WEXITSTATUS(st)} and no result", output, elapsed
-        return kind, value, output, elapsed
+    fn = {"pinocchio": _pinocchio_job, "yourdfpy": _yourdfpy_job}[name]  # looked up now: tests swap them
+    return worker.prepare(fn, limits=_limits(timeout, memory), preload=preload, progress=True, name=name)
 
 
 def _wait(children, progress):
-    pending = list(children)
-    open_fds = {c.prog_r: c for c in children}
-    while pending:
-        try:
-            ready, _, _ = select.select(list(open_fds), [], [], 0.05) if open_fds else ([], [], [])
-        except (OSError, ValueError):
-            ready = []
-        if not open_fds:
-            time.sleep(0.02)
-        for fd in ready:
-            c = open_fds[fd]
-            if not c.read_progress():
-                del open_fds[fd]
-            elif progress and c.progress[1]:
-                progress(c.name, *c.progress)
-        for c in list(pending):
-            if c.poll():
-                pending.remove(c)
-                open_fds.pop(c.prog_r, None)
-                if progress:
-                    progress(c.name, 1, 1)
+    from urdfcheck.core import worker
+
+    def moved(job):
+        if progress and job.progress[1]:
+            progress(job.name, *job.progress)
+
+    def done(job):
+        if progress:
+            progress(job.name, 1, 1)
+
+    worker.wait(children, on_progress=moved, on_done=done)
 
 
-PRELOAD = {"pinocchio": ("numpy", "pinocchio"), "yourdfpy": ("numpy", "yourdfpy")}
+def _outcome(job):
+    """(kind, value, output, seconds): kind ok/memory/error/timeout/crashed/output."""
+    from urdfcheck.core import worker
+
+    res = job.result()
+    if isinstance(res, worker.Failure):
+        return res.kind, res.message, res.stderr, job.seconds
+    return "ok", res, job.stderr, job.seconds
 
 
 def prestart(peers=("pinocchio", "yourdfpy"), *, timeout: float = DEFAULT_TIMEOUT,
@@ -554,11 +364,10 @@ def prestart(peers=("pinocchio", "yourdfpy"), *, timeout: float = DEFAULT_TIMEOU
     """Fork the peer processes early so that they import their libraries while the caller loads the model.
 
     Pass the result to ``verify(..., workers=...)``; call ``cancel(workers)`` if verify is not reached."""
-    jobs = {"pinocchio": _pinocchio_job, "yourdfpy": _yourdfpy_job}
     out = {}
     for name in ("yourdfpy", "pinocchio"):  # the slowest first
         if name in peers and _available(name):
-            out[name] = _Child(name, jobs[name], timeout, memory, PRELOAD[name])
+            out[name] = _peer(name, timeout, memory, PRELOAD[name])
     return out
 
 
@@ -570,8 +379,8 @@ def cancel(workers: dict | None) -> None:
 
 
 def _status_of(kind: str) -> str:
-    return {"memory": "out of memory", "timeout": "timed out", "crashed": "crashed", "error": "error"}.get(kind,
-                                                                                                         kind)
+    return {"memory": "out of memory", "timeout": "timed out", "crashed": "crashed", "error": "error",
+            "output": "error"}.get(kind, kind)
 
 
 def _pinocchio_job(progress, xml: str, links: list, values: dict, n: int):
@@ -860,7 +669,7 @@ def _verify(model, n, seed, tolerance, xml, peers, yourdfpy_samples, timeout, me
             m = n if not yourdfpy_samples or yourdfpy_samples >= n else int(yourdfpy_samples)
             ysel = np.linspace(0, n - 1, m).astype(int) if m < n else np.arange(n)
             yvalues = {k: v[ysel] for k, v in values.items()}
-            c = workers.pop("yourdfpy", None) or _Child("yourdfpy", _yourdfpy_job, timeout, memory)
+            c = workers.pop("yourdfpy", None) or _peer("yourdfpy", timeout, memory)
             c.send(peer_xml, links, yvalues, len(ysel))
             children.append(c)
 
@@ -881,7 +690,7 @@ def _verify(model, n, seed, tolerance, xml, peers, yourdfpy_samples, timeout, me
             pre.append(PeerResult("pinocchio", "refused", f"model too large for a safe run: {dof} DoF "
                                   f"(cap {max_dof}), chain depth {depth} (cap {max_depth})", tolerance=tolerance))
         else:
-            c = workers.pop("pinocchio", None) or _Child("pinocchio", _pinocchio_job, timeout, memory)
+            c = workers.pop("pinocchio", None) or _peer("pinocchio", timeout, memory)
             c.send(peer_xml, links, values, n)
             children.append(c)
     try:
@@ -900,7 +709,7 @@ def _verify(model, n, seed, tolerance, xml, peers, yourdfpy_samples, timeout, me
             c.cancel()
         raise
     for c in children:
-        kind, value, output, elapsed = c.outcome()
+        kind, value, output, elapsed = _outcome(c)
         if kind != "ok":
             pr = PeerResult(c.name, _status_of(kind), clean_text(value), tolerance=tolerance)
             pr.stderr, pr.seconds = output, elapsed

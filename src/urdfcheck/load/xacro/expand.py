@@ -1,7 +1,7 @@
 """Run the PyPI xacro package as a library, with source markers and (by default) the sandbox.
 
 This module patches xacro's module globals, so it must only run inside a throw-away worker process
-(see worker.py): the parent never executes xacro code, so nothing leaks from one file to the next.
+(see core/worker.py): the parent never executes xacro code, so nothing leaks from one file to the next.
 
 Source map: every element read from a file gets an attribute `__ucsrc="F:L"` (file index, line).
 When an element is first evaluated, the macro call sites active at that moment are appended
@@ -444,6 +444,27 @@ def _is_refused(e) -> bool:
     return type(e).__name__ == "Refused" and type(e).__module__.endswith("safeeval")
 
 
+# stock xacro's create_global_symbols: the bare helpers (load_yaml, abs_filename, dotify) warn with this text
+DEPRECATED_BARE = "Using {name}() directly is deprecated. Use {ns}.{name}() instead."
+
+
+def _deprecated_as_stock(xacro, symbols, name: str, confined):
+    """`confined` under the bare name, warning as stock's bare name does (issue 15: replacing stock's wrapper
+    lost the warning). Only where this xacro deprecates the bare name, i.e. it is not the xacro.NAME helper."""
+    ns = symbols.get("xacro")
+    stock = symbols.get(name)
+    if stock is None or not isinstance(ns, dict) or stock is dict.get(ns, name):
+        return confined
+    message = DEPRECATED_BARE.format(name=name, ns="xacro")
+
+    def deprecated(*args, **kwargs):
+        xacro.warning(message)  # collected at the element being evaluated, like every xacro warning
+        return confined(*args, **kwargs)
+
+    deprecated.__name__ = deprecated.__qualname__ = name
+    return deprecated
+
+
 def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
     import functools
 
@@ -488,8 +509,8 @@ def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
         return filename_spec
 
     symbols = xacro._global_symbols
-    symbols["load_yaml"] = confined_load_yaml
-    symbols["abs_filename"] = confined_abs_filename
+    symbols["load_yaml"] = _deprecated_as_stock(xacro, symbols, "load_yaml", confined_load_yaml)
+    symbols["abs_filename"] = _deprecated_as_stock(xacro, symbols, "abs_filename", confined_abs_filename)
     if "xacro" in symbols:
         dict.__setitem__(symbols["xacro"], "load_yaml", confined_load_yaml)
         dict.__setitem__(symbols["xacro"], "abs_filename", confined_abs_filename)
