@@ -138,7 +138,8 @@ def test_deployment_from_an_included_python_launch_file(tmp_path, monkeypatch):
     assert [(t.parent, t.child) for t in small.static_tfs] == [("base_link", "laser")]
     assert small.label == "src/deploy/nested/bot_bringup/launch/bringup.launch.py"
     text = describe(deps)
-    assert "model: src/bot/bot_description/urdf/large/bot.urdf.xacro wheel_sep:=0.5" in text
+    assert small.chosen_args() == {"wheel_sep": "0.5"}  # passed by the including file: not a launch default
+    assert "  model: src/bot/bot_description/urdf/large/bot.urdf.xacro\n    wheel_sep:=0.5\n" in text
     assert ("spawned: diff_cont (diff_drive_controller/DiffDriveController), "
             "joint_broad (joint_state_broadcaster/JointStateBroadcaster)") in text
 
@@ -405,3 +406,53 @@ def test_lint_list_shows_each_deployment_once_with_controllers_and_publishers(tm
     assert "publishers: robot_state_publisher" in out and "static transforms: base_link->laser" in out
     assert "localization: ekf" in out
     assert "2 deployment(s), 2 with a model" in out
+
+
+def test_list_counts_arguments_equal_to_launch_defaults_and_shows_paths_relative(tmp_path, monkeypatch):
+    """The description package's own launch file, alone: wheel_sep is its declared default (counted, not
+    listed); a xacro argument naming a file below the working directory is shown relative."""
+    root = workspace(tmp_path)
+    launch = root / "src" / "bot" / "bot_description" / "launch" / "description.launch.py"
+    launch.write_text(DESCRIPTION_LAUNCH.replace(
+        "' wheel_sep:=',", "' limits:=', PathJoinSubstitution([FindPackageShare('bot_description'), 'config', "
+                           "'limits.yaml']), ' wheel_sep:=',"))
+    write(root / "src" / "bot" / "bot_description" / "config" / "limits.yaml", "a: 1\n")
+    monkeypatch.chdir(tmp_path)
+    deps = find_deployments(root / "src" / "bot")
+    small = deps[0]
+    assert small.args["wheel_sep"] == "0.4" and small.chosen_args() == {
+        "limits": str(root / "src" / "bot" / "bot_description" / "config" / "limits.yaml")}
+    text = describe(deps)
+    assert "model: src/bot/bot_description/urdf/small/bot.urdf.xacro (+1 xacro argument(s) equal to launch " \
+           "defaults)\n    limits:=src/bot/bot_description/config/limits.yaml\n" in text
+    assert "wheel_sep:=" not in text and str(tmp_path) not in text
+
+    import contextlib
+    import io
+
+    from urdfcheck.cli import main as cli
+
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        assert cli.main(["lint", "--list", "src/bot"]) == 0
+    out = buf.getvalue()
+    assert str(tmp_path) not in out, out
+    first = out.splitlines()[0]  # the target line: model, launch file, the choices (files below)
+    assert first == ("src/bot/bot_description/urdf/small/bot.urdf.xacro "
+                     "[src/bot/bot_description/launch/description.launch.py] (+2 more)"), out
+    with contextlib.redirect_stdout(io.StringIO()) as buf2:
+        assert cli.main(["lint", "--list", "--root", "src", "src/bot"]) == 0
+    assert buf2.getvalue().splitlines()[0] == ("bot/bot_description/urdf/small/bot.urdf.xacro "
+                                               "[bot/bot_description/launch/description.launch.py] (+2 more)")
+    assert "    limits:=bot/bot_description/config/limits.yaml\n" in buf2.getvalue()
+    # every report: the JSON models' variant (the launch file) and arguments, relative to --root too
+    import json
+
+    with contextlib.redirect_stdout(io.StringIO()) as buf3:
+        cli.main(["lint", "--format", "json", "--root", "src", "src/bot"])
+    got = json.loads(buf3.getvalue())
+    assert str(tmp_path) not in buf3.getvalue()
+    assert {m["variant"] for m in got["models"]} == {"bot/bot_description/launch/description.launch.py",
+                                                     "bot/bot_description/launch/description.launch.py [model=large]"}
+    assert {m["args"]["limits"] for m in got["models"]} == {"bot/bot_description/config/limits.yaml"}
+    assert all(p["variant"].startswith("bot/") for f in got["findings"] for p in f.get("where", ()))

@@ -66,3 +66,97 @@ def test_no_module_imports_a_higher_layer():
             if other is not None and RANK[other] > RANK[own]:
                 bad.append(f"src/urdfcheck/{rel}:{line}: {own} imports {module} ({other} is a higher layer)")
     assert not bad, "\n".join(bad)
+
+
+def _module_name(path: Path) -> str:
+    parts = ["urdfcheck", *path.relative_to(SRC).with_suffix("").parts]
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _import_graph() -> dict[str, dict[str, int]]:
+    """module -> {imported urdfcheck module: line}, module-level and function-local imports alike (a
+    function-local import that closes a cycle still ties the two modules together)."""
+    paths = {_module_name(p): p for p in sorted(SRC.rglob("*.py"))}
+    graph: dict[str, dict[str, int]] = {}
+    for name, path in paths.items():
+        out: dict[str, int] = {}
+        tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
+        for node in ast.walk(tree):
+            targets = []
+            if isinstance(node, ast.Import):
+                targets = [a.name for a in node.names if a.name in paths]
+            elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+                for a in node.names:  # `from urdfcheck.contracts import pylaunch` imports the sub-module
+                    sub = f"{node.module}.{a.name}"
+                    targets.append(sub if sub in paths else node.module)
+            for t in targets:
+                if t in paths and t != name:
+                    out.setdefault(t, node.lineno)
+        graph[name] = out
+    return graph
+
+
+def _cycles(graph: dict[str, dict[str, int]]) -> list[list[str]]:
+    """The strongly connected components of more than one module (Tarjan, iterative)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    out: list[list[str]] = []
+    for start in graph:
+        if start in index:
+            continue
+        work = [(start, iter(graph[start]))]
+        index[start] = low[start] = len(index)
+        stack.append(start)
+        on.add(start)
+        while work:
+            v, it = work[-1]
+            w = next(it, None)
+            if w is not None:
+                if w not in index:
+                    index[w] = low[w] = len(index)
+                    stack.append(w)
+                    on.add(w)
+                    work.append((w, iter(graph[w])))
+                elif w in on:
+                    low[v] = min(low[v], index[w])
+                continue
+            work.pop()
+            if work:
+                low[work[-1][0]] = min(low[work[-1][0]], low[v])
+            if low[v] == index[v]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on.discard(w)
+                    comp.append(w)
+                    if w == v:
+                        break
+                if len(comp) > 1:
+                    out.append(sorted(comp))
+    return out
+
+
+def test_no_import_cycles():
+    """No module imports (even inside a function) a module that imports it back, directly or through others:
+    a shared piece belongs in a lower module both import."""
+    graph = _import_graph()
+    bad = []
+    for comp in _cycles(graph):
+        members = set(comp)
+        edges = [f"  {a} -> {b} (line {line})" for a in comp for b, line in sorted(graph[a].items()) if b in members]
+        bad.append("cycle: " + " <-> ".join(comp) + "\n" + "\n".join(edges))
+    assert not bad, "\n".join(bad)
+
+
+def test_cycle_check_sees_function_local_imports():
+    """The check above is not vacuous: a two-module cycle closed by an import inside a function is found."""
+    graph = {"urdfcheck.a": {"urdfcheck.b": 1}, "urdfcheck.b": {"urdfcheck.a": 9}, "urdfcheck.c": {"urdfcheck.a": 2}}
+    assert _cycles(graph) == [["urdfcheck.a", "urdfcheck.b"]]
+    assert _cycles({"urdfcheck.a": {"urdfcheck.b": 1}, "urdfcheck.b": {}}) == []
+    tree_graph = _import_graph()
+    # the real graph holds function-level edges too (plan.py imports deployments only inside a method)
+    local = [(a, b) for a, deps in tree_graph.items() for b in deps
+             if a == "urdfcheck.pipeline.plan" and b == "urdfcheck.pipeline.deployments"]
+    assert local, "pipeline.plan imports pipeline.deployments inside a function; the graph must see it"

@@ -94,7 +94,8 @@ def test_agrees_with_jsonschema_on_generated_configs(doc):
 
 def test_generated_configs_reach_both_answers():
     # the property above is only worth something if the strategy yields valid and invalid documents
-    settings_ = settings(max_examples=400, database=None, phases=[Phase.generate])  # no shrinking: any will do
+    # derandomized: the same examples every run, so the test cannot flake; no shrinking: any will do
+    settings_ = settings(max_examples=2000, database=None, derandomize=True, phases=[Phase.generate])
     for wanted in (True, False):
         doc = find(instance(SCHEMA), lambda d, w=wanted: verdict(d, SCHEMA) is w and isinstance(d, dict) and "models" in d,
                    settings=settings_)

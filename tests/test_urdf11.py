@@ -525,3 +525,21 @@ def test_target_config_key(tmp_path):
     code, out, err = run_cli(["lint", "--format", "json", str(tmp_path / "r.urdf")], cwd=tmp_path)
     assert code == 1, err
     assert [f["code"] for f in json.loads(out)["findings"]] == ["U007"]
+
+
+@needs_urdfdom6
+@pytest.mark.parametrize("version,limit,code", [
+    ("1.2", 'upper="1" effort="1" velocity="1"', "J002"),
+    ("1.2", 'lower="1" upper="-1" effort="1" velocity="1"', "J003"),
+    ("1.2", 'lower="-1" upper="1" effort="-1" velocity="1"', "J004"),
+    ("1.2", 'lower="-1" upper="1" velocity="-2"', "J004"),
+    ("1.1", 'lower="-1" upper="1" velocity="1"', "U006"),
+    ("1.2", 'lower="-1" upper="1"', None),
+    ("1.0", 'upper="1" effort="1" velocity="1"', None),
+])
+def test_1_2_limit_errors_match_urdfdom(version, limit, code, tmp_path):
+    xml = robot(version, 'xyz="0 0 0.1"', limit)
+    ok, out = _urdfdom_accepts(xml, tmp_path)
+    assert ok is (code is None), out
+    errors = sorted(c for c, fs in codes(xml, tmp_path).items() if any(f["severity"] == "error" for f in fs))
+    assert errors == ([code] if code else []), errors

@@ -98,3 +98,19 @@ def test_a_prepared_job_that_hangs_times_out_and_is_reaped():
     assert isinstance(res, worker.Failure) and res.kind == "timeout"
     with pytest.raises(ChildProcessError):
         os.waitpid(pid, os.WNOHANG)
+
+
+def test_a_parent_under_ulimit_still_gets_working_children():
+    # the allowance on top of the inherited address space, or the CPU limit, may exceed the user's own hard
+    # limits (ulimit -v / -t): the child is held to the lower one instead of failing to start
+    import subprocess
+
+    code = ("import resource\n"
+            "resource.setrlimit(resource.RLIMIT_AS, (3 * 1024**3, 3 * 1024**3))\n"
+            "resource.setrlimit(resource.RLIMIT_CPU, (500, 500))\n"
+            "from urdfcheck.core import worker\n"
+            "print(worker.run(sum, [1, 2], memory=4 * 1024**3, timeout=1000))\n")
+    src = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "src")
+    env = dict(os.environ, PYTHONPATH=src + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=60)
+    assert proc.returncode == 0 and proc.stdout.strip() == "3", proc.stdout + proc.stderr

@@ -70,29 +70,40 @@ def run(ns, usage_error=UsageError) -> int:
 
 
 def _list(request: LintRequest) -> int:
-    """`--list`: the plan, one line per target (model, variant, xacro args, config), then the deployments."""
+    """`--list`: the plan, one line per target, then the deployments. Paths below the working directory
+    (or --root) are relative, arguments' values included. A target from a launch file shows the xacro
+    arguments that tell it apart, files aside (the deployment below lists them; arguments equal to a launch
+    argument's default are only counted)."""
     from urdfcheck.core.findings import clean_text
+    from urdfcheck.pipeline.deployments import describe, show_args
     from urdfcheck.pipeline.plan import plan
 
     targets = plan(request)
     if not targets and not targets.infos:
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
+    base = os.path.abspath(request.root or os.getcwd()).rstrip(os.sep) + os.sep
+
+    def out(text: str) -> None:  # locations inside notes are absolute: relative, like every report's
+        print(clean_text(text.replace(base, ""), 4096))
+
     for line in targets.infos:
-        print(clean_text(f"info: {line}", 4096))
+        out(f"info: {line}")
     for t in targets:
-        args = " ".join(f"{k}:={v}" for k, v in sorted(t.args.items()))
+        d = t.deployment
+        if d is not None:  # the launch file's choices (files: in the deployment below), what the request adds
+            args = show_args({**d.chosen_args(), **dict(request.args)}, request.shown,
+                             len({**d.args, **dict(request.args)}), files=False)
+        else:
+            args = show_args(t.args, request.shown)
         cfg = getattr(t.settings.config, "path", None) if t.settings is not None else None
-        line = request.shown(t.path) + (f" [{t.variant}]" if t.variant else "") + (f" {args}" if args else "")
-        print(clean_text(line + (f"  (config {request.shown(cfg)})" if cfg else ""), 4096))
+        out(request.shown(t.path) + (f" [{t.variant}]" if t.variant else "") + args
+            + (f"  (config {request.shown(cfg)})" if cfg else ""))
     deployments = list({id(t.deployment): t.deployment for t in targets if t.deployment is not None}.values())
     deployments += getattr(targets, "not_understood", [])
     if deployments:
-        from urdfcheck.pipeline.deployments import describe
-
-        here = os.getcwd().rstrip(os.sep) + os.sep
         print()
-        for line in describe(deployments).splitlines():  # its locations: relative, like every report's
-            print(clean_text(line.replace(here, ""), 4096))
+        for line in describe(deployments, request.shown).splitlines():
+            out(line)
     print(f"{len(targets)} target(s)")
     return 0
 

@@ -236,6 +236,24 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     return out
 
 
+def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None = None, config=None) -> Consumers:
+    """Zero config (or a config with no entry for this model): the consumers beside the model
+    (`discover_consumers`; none outside a ROS package), with the config's frames and TF owners, which a
+    config names for every model. Discovery is best effort: a failure gives no consumers, never an error."""
+    try:
+        found = discover_consumers(entry, model, packages=packages)
+    except Exception:  # noqa: BLE001 - discovery is best effort; never break the checks
+        found = None
+    c = found or Consumers(origin="none")
+    if config is not None:
+        c.frames = {**c.frames, **dict(getattr(config, "frames", {}) or {})}
+        owners = dict(getattr(config, "tf_owners", {}) or {})
+        if owners and not c.tf_owners:
+            c.tf_owners = claims_from_owners(owners, dict(getattr(config, "tf_owner_locs", {}) or {}),
+                                             Location(getattr(config, "path", "<config>")))
+    return c
+
+
 def _launch_typed(out: Consumers, pfs: list) -> None:
     """Controllers whose type a launch file gives (`spawner NAME -t TYPE`) and whose parameter file does not:
     read the parameter files again with those types (issue 15: such a diff drive was never checked)."""

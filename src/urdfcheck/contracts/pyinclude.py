@@ -10,10 +10,11 @@ from __future__ import annotations
 
 import ast
 import os
-from typing import Callable
+from collections.abc import Callable
 
-from urdfcheck.core.findings import Location
 from urdfcheck.contracts.common import as_bool
+from urdfcheck.contracts.launchinfo import Include
+from urdfcheck.core.findings import Location
 
 _SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAMLLaunchDescriptionSource",
             "AnyLaunchDescriptionSource", "FrontendLaunchDescriptionSource"}
@@ -158,10 +159,8 @@ def _arguments(node: ast.AST | None, paths: _Paths) -> dict[str, str | None]:
 
 def find_includes(tree: ast.AST, path: str, literal: Callable, find_package: Callable[[str], str | None],
                   inherited: dict | None = None) -> list:
-    """The includes of a Python launch file, as `launch.Include` records, in source order. `inherited`: the
+    """The includes of a Python launch file, as `launchinfo.Include` records, in source order. `inherited`: the
     launch configurations the including file knows, which ROS 2 passes on to every included file."""
-    from urdfcheck.contracts.launch import Include
-
     paths = _Paths(tree, path, literal, find_package)
     calls = sorted((n for n in ast.walk(tree) if isinstance(n, ast.Call) and _callee(n) == "IncludeLaunchDescription"),
                    key=lambda c: (c.lineno, c.col_offset))

@@ -19,9 +19,17 @@ from collections.abc import Callable, Mapping
 from typing import Any, NamedTuple
 
 from urdfcheck.contracts.common import Value, as_bool
+from urdfcheck.contracts.launchinfo import (  # noqa: F401 - UNKNOWN, ModelRef, command_model: read here too
+    UNKNOWN,
+    Include,
+    LaunchInfo,
+    LaunchNode,
+    ModelRef,
+    command_model,
+    record_node,
+)
 from urdfcheck.core.findings import Location
 
-UNKNOWN = "\x00"  # a piece of a string decided at launch time
 _MAX_DEPTH = 40
 _MAX_STEPS = 50_000
 _MAX_LEN = 64 * 1024
@@ -53,15 +61,6 @@ class MoveItBuilder(NamedTuple):
     package: str
     file_path: str | None
     mappings: dict
-
-
-class ModelRef(NamedTuple):
-    """The model a robot_state_publisher gets: `path` (may hold UNKNOWN pieces), xacro `args` (values may hold
-    UNKNOWN), `how`: "xacro" (expanded) or "file" (read as is)."""
-    path: str
-    args: tuple  # ((name, value), ...)
-    how: str
-    loc: Location
 
 
 class Declared(NamedTuple):
@@ -501,30 +500,6 @@ def model_ref(value: Any, loc: Location) -> ModelRef | None:
     return None
 
 
-def command_model(text: str, loc: Location) -> ModelRef | None:
-    """`xacro FILE a:=b ...` (or `cat FILE`) -> ModelRef. Tokens are split on whitespace (launch joins the
-    pieces and the shell splits them; quoting in robot descriptions is rare)."""
-    toks = text.replace("'", " ").replace('"', " ").split()
-    if not toks:
-        return None
-    exe = os.path.basename(toks[0])
-    if exe in ("xacro", "xacro.py"):
-        path, args = None, []
-        for t in toks[1:]:
-            if ":=" in t:
-                k, _, v = t.partition(":=")
-                if k and not k.startswith("_"):
-                    args.append((k, v))
-            elif t.startswith("-"):
-                continue
-            elif path is None:
-                path = t
-        return ModelRef(path, tuple(args), "xacro", loc) if path else None
-    if exe == "cat" and len(toks) == 2:
-        return ModelRef(toks[1], (), "file", loc)
-    return None
-
-
 def node_values(r: PyLaunch, call: ast.Call) -> dict:
     """package, executable, name, namespace, arguments (list or None), params (name -> Value; a model ref
     for robot_description), param files."""
@@ -662,8 +637,6 @@ def read(path: str, tree: ast.AST, args: Mapping[str, str | None] | None,
          find_package: Callable[[str], str | None]):
     """A `launch.LaunchInfo` of a Python launch file for one argument set (includes carry their arguments;
     robot_state_publishers carry their model)."""
-    from urdfcheck.contracts.launch import Include, LaunchInfo
-
     r = PyLaunch(path, tree, args, find_package)
     info = LaunchInfo(path, "ros2-py")
     info.declared = r.declared()
@@ -682,8 +655,6 @@ def read(path: str, tree: ast.AST, args: Mapping[str, str | None] | None,
 
 
 def _read_node(r: PyLaunch, info, call: ast.Call, pushed: dict) -> None:
-    from urdfcheck.contracts.launch import LaunchNode, _record_node
-
     active, cond = r.condition(call)
     if not active:
         return
@@ -698,7 +669,7 @@ def _read_node(r: PyLaunch, info, call: ast.Call, pushed: dict) -> None:
             v["params"]["robot_description"] = Value(ModelRef(first, (), how, r.loc(call)), r.loc(call))
     node = LaunchNode(v["package"], v["executable"], v["name"], ns, v["args"], r.loc(call), v["params"],
                       v["files"], cond)
-    _record_node(info, node, 2)
+    record_node(info, node, 2)
 
 
 def _python_expression(text: str) -> Any:

@@ -32,20 +32,16 @@ _RULES = (
 
 
 def _may_have_consumers(model, ctx) -> bool:
-    known = getattr(ctx, "_uc_has_consumers", None)
-    if known is None:
-        from pathlib import Path
+    """Consumers given (the planner's, `pipeline.plan.Target.consumers`), a config, or a model inside a ROS
+    package (a context made by hand: the consumers beside it are looked for)."""
+    if getattr(ctx, "contracts", None) is not None or getattr(ctx, "config", None) is not None:
+        return True
+    entry = getattr(getattr(ctx, "expanded", None), "entry", None) or model.source
+    from pathlib import Path
 
-        from urdfcheck.load.packages import enclosing_package
+    from urdfcheck.load.packages import enclosing_package
 
-        entry = getattr(getattr(ctx, "expanded", None), "entry", None) or model.source
-        known = (getattr(ctx, "contracts", None) is not None or getattr(ctx, "config", None) is not None
-                 or enclosing_package(Path(entry).resolve()) is not None)
-        try:
-            ctx._uc_has_consumers = known
-        except AttributeError:
-            pass
-    return known
+    return enclosing_package(Path(entry).resolve()) is not None  # a few stat calls; not kept on the context
 
 
 MODEL_ONLY = {"C004", "C006"}  # read only the URDF's own <ros2_control> blocks

@@ -1,8 +1,10 @@
-"""Contract (C) and TF-ownership (T) checks (implementations; registered in checks.py).
+"""Contract (C) and TF-ownership (T) checks (implementations; registered lazily by `contracts.registry`).
 
-The consumers come from `ctx.contracts` (a `contracts.consumers.Consumers`, read by `config.Config.targets`);
-when the engine gives none, they are discovered next to the model (`discover_consumers`: the enclosing
-ROS package's config/ and launch/ files) and stored back on the context for the other checks.
+The consumers come from `ctx.contracts` (a `contracts.consumers.Consumers`), which the planner gives every
+target (`pipeline.plan`): a config's declared consumers, a launch file's deployment, or, with zero config,
+those beside the model (`consumers.consumers_near`: the enclosing ROS package's config/ and launch/ files),
+computed once per target when its model is built. Options come from the engine (`ctx.options`, catalogue
+defaults filled in). The checks never change the context.
 """
 from __future__ import annotations
 
@@ -11,52 +13,27 @@ import re
 from typing import Iterator
 
 from urdfcheck.core.findings import Location, Problem, closest
-from urdfcheck.contracts.consumers import Consumers, discover_consumers
+from urdfcheck.contracts.consumers import Consumers, consumers_near
 from urdfcheck.contracts.controllers import JSB, JSC
-from urdfcheck.contracts.graph import PublisherInfo, TFGraph, add_declared, claims_from_localization, claims_from_model, claims_from_odom, claims_from_owners, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents, not_one_tree, prefix_collisions, static_and_dynamic
-from urdfcheck.contracts.wheels import DEFAULT_ANGLE_TOLERANCE, DEFAULT_TOLERANCE, check_drive
+from urdfcheck.contracts.graph import PublisherInfo, TFGraph, add_declared, claims_from_localization, claims_from_model, claims_from_odom, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents, not_one_tree, prefix_collisions, static_and_dynamic
+from urdfcheck.contracts.wheels import check_drive
 
 _UNRESOLVED = re.compile(r"\$\(|\$\{")
 
 
 # --- context helpers ---------------------------------------------------------------------------------------
 def consumers(model, ctx) -> Consumers:
+    """The consumers the planner gave this target (`pipeline.plan.Target.consumers`). A context made by hand
+    without them (tests, scripts calling the engine directly) gets those beside the model, computed here
+    each time and never written back: a check context is not changed by the checks."""
     c = getattr(ctx, "contracts", None)
     if isinstance(c, Consumers):
         return c
     exp = getattr(ctx, "expanded", None)
-    entry = getattr(exp, "entry", None) or model.source
-    packages = {}
     resolver = getattr(exp, "resolver", None)
-    if resolver is not None:
-        packages = {k: str(v) for k, v in getattr(resolver, "explicit", {}).items()}
-    found = None
-    try:
-        found = discover_consumers(entry, model, packages=packages)
-    except Exception:  # noqa: BLE001 - discovery is best effort; never break the other checks
-        found = None
-    c = found or Consumers(origin="none")
-    cfg = getattr(ctx, "config", None)
-    if cfg is not None:  # a config without an entry for this model still names frames and TF owners
-        c.frames = {**c.frames, **dict(getattr(cfg, "frames", {}) or {})}
-        owners = dict(getattr(cfg, "tf_owners", {}) or {})
-        if owners and not c.tf_owners:
-            c.tf_owners = claims_from_owners(owners, dict(getattr(cfg, "tf_owner_locs", {}) or {}),
-                                             Location(getattr(cfg, "path", "<config>")))
-    try:
-        ctx.contracts = c
-    except AttributeError:
-        pass
-    return c
-
-
-def _opt(ctx, name: str, default):
-    opts = getattr(ctx, "options", None) or {}
-    v = opts.get(name, default)
-    try:
-        return type(default)(v)
-    except (TypeError, ValueError):
-        return default
+    packages = {k: str(v) for k, v in getattr(resolver, "explicit", {}).items()} if resolver is not None else {}
+    return consumers_near(getattr(exp, "entry", None) or model.source, model, packages=packages,
+                          config=getattr(ctx, "config", None))
 
 
 def _suggest(name: str, options) -> str:
@@ -364,8 +341,8 @@ def _drives(c: Consumers):
 
 def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
     c = consumers(model, ctx)
-    tol = _opt(ctx, "tolerance", DEFAULT_TOLERANCE)
-    ang = _opt(ctx, "angle_tolerance", DEFAULT_ANGLE_TOLERANCE)
+    tol = float(ctx.options["tolerance"])  # typed and defaulted by the catalogue (rules/C010.yaml ...)
+    ang = float(ctx.options["angle_tolerance"])
     prefix = c.rsp_prefix
     inferred = {d.name for d in c.drivers if _inferred(d)}
     for drive, base in _drives(c):

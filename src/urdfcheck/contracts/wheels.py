@@ -35,8 +35,6 @@ from urdfcheck.core.findings import Location, Severity
 from urdfcheck.contracts.controllers import DriveSpec, JointUse, number, number_text
 from urdfcheck.core.records import FrozenRecord, Record
 
-DEFAULT_TOLERANCE = 1e-3  # m
-DEFAULT_ANGLE_TOLERANCE = 1e-3  # rad
 MIN_FORWARD_SIGN = 0.5  # |mean left a_y + mean right a_y| below this: mixed axis signs, turning sense undefined
 
 
@@ -155,8 +153,15 @@ def _base_frame(model, poses, drive: DriveSpec, base: str | None) -> str | None:
     return None
 
 
-def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, tolerance: float = DEFAULT_TOLERANCE,
-                angle_tolerance: float = DEFAULT_ANGLE_TOLERANCE) -> DriveReport:
+def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, tolerance: float | None = None,
+                angle_tolerance: float | None = None) -> DriveReport:
+    """`tolerance` (m) and `angle_tolerance` (rad): the C010-C014 options; None: their catalogue defaults."""
+    if tolerance is None or angle_tolerance is None:
+        from urdfcheck.rules.catalogue import options_for
+
+        opts = options_for(("C010",))
+        tolerance = opts["tolerance"] if tolerance is None else tolerance
+        angle_tolerance = opts["angle_tolerance"] if angle_tolerance is None else angle_tolerance
     poses = model.world_poses()
     base = _base_frame(model, poses, drive, base_frame)
     rep = DriveReport(drive, base or "")

@@ -84,6 +84,17 @@ def quat_matrix(x: float, y: float, z: float, w: float) -> tuple:
     )
 
 
+def matrix_from_tq(t, q) -> Mat:
+    """4x4 from a translation and a quaternion (x, y, z, w)."""
+    r = quat_matrix(*q)
+    return (
+        (r[0][0], r[0][1], r[0][2], float(t[0])),
+        (r[1][0], r[1][1], r[1][2], float(t[1])),
+        (r[2][0], r[2][1], r[2][2], float(t[2])),
+        (0.0, 0.0, 0.0, 1.0),
+    )
+
+
 def origin_quaternion(pose) -> tuple[float, float, float, float]:
     """The rotation urdfdom holds for an <origin>: quat_xyzw normalised when the model's URDF version read
     one (the builder leaves `quat` None otherwise), else setFromRPY(rpy)."""

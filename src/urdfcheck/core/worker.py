@@ -125,7 +125,7 @@ def _limit_memory(memory: int | None) -> None:
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
     if memory:
         limit = _vm_size() + int(memory)
-        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+        _lower(resource.RLIMIT_AS, limit, limit)
 
 
 def _limit_cpu(timeout: float | None) -> None:
@@ -134,7 +134,17 @@ def _limit_cpu(timeout: float | None) -> None:
 
     if timeout:
         secs = int(_cpu_used() + timeout) + 1
-        resource.setrlimit(resource.RLIMIT_CPU, (secs, secs + 1))
+        _lower(resource.RLIMIT_CPU, secs, secs + 1)
+
+
+def _lower(which, soft: int, hard: int) -> None:
+    """Set a limit, never above the one the user already set (ulimit): raising a hard limit fails."""
+    import resource
+
+    _, cur = resource.getrlimit(which)
+    if cur != resource.RLIM_INFINITY:
+        soft, hard = min(soft, cur), min(hard, cur)
+    resource.setrlimit(which, (soft, hard))
 
 
 def _resolve(limits, timeout, memory, env_keep, scrub_env) -> Limits:

@@ -3,6 +3,10 @@
 lxml with entity resolution, DTD loading and network off. Constructs that parsers disagree on (a DOCTYPE,
 entity declarations, processing instructions, trailing content) are refused as findings instead of being
 "recovered" differently by each consumer.
+
+Namespaces are read as urdfdom (TinyXML2, namespace-unaware) reads them: elements in a default namespace get
+their local names, and an undeclared prefix (Drake's `drake:...`) is accepted, the name keeping its prefix;
+each is an X005 warning where yourdfpy, urdf_parser_py or xacro read it differently.
 """
 from __future__ import annotations
 
@@ -19,6 +23,11 @@ _LIMIT_ERRORS = ("Excessive depth", "too long", "Huge input lookup", "huge text 
 _DECL = re.compile(rb"^(\xef\xbb\xbf)?\s*<\?xml(\s[^?]*)?\?>")
 _DECL_ATTR = re.compile(rb"([A-Za-z_:][-\w.:]*)\s*=\s*[\"']([^\"']*)[\"']")
 _SPACE = re.compile(rb"\s*")
+_DEFAULT_NS = re.compile(rb"xmlns\s*=")  # a literal start: a fast scan of large files
+_UNDECLARED = re.compile(r"Namespace prefix (\S+) (?:for \S+ )?on \S+ is not defined\s*")
+_NS_UNDEFINED = etree.ErrorTypes.NS_ERR_UNDEFINED_NAMESPACE
+_NCNAME = re.compile(r"[A-Za-z_][\w.-]*", re.ASCII)
+_START_NAME = re.compile(rb"<[^\s/>!?]+")
 _DOCTYPE_MSG = ("DOCTYPE declarations are not allowed in robot descriptions "
                 "(entities expand differently in each ROS parser)")
 
@@ -38,8 +47,9 @@ class XmlRefused(Exception):
         self.issue = issue
 
 
-def _parser() -> etree.XMLParser:
+def _parser(recover: bool = False) -> etree.XMLParser:
     return etree.XMLParser(
+        recover=recover,
         resolve_entities=False,
         no_network=True,
         load_dtd=False,
@@ -125,7 +135,12 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
     if at is not None:  # refuse before libxml2 reads entity declarations (amplification, external ones)
         raise XmlRefused(XmlIssue("X002", _DOCTYPE_MSG, _line_of(data, at)))
     try:
-        root = etree.fromstring(data, _parser())
+        parser = _parser()
+        try:
+            root = etree.fromstring(data, parser)
+        except etree.XMLSyntaxError as e:
+            root, ns_warnings = _undeclared_prefixes(data, e, parser.error_log)
+            warnings = warnings + ns_warnings
     except etree.XMLSyntaxError as e:
         line, col = (e.position if e.position else (e.lineno, None))
         msg = str(e.msg if hasattr(e, "msg") and e.msg else e)
@@ -151,7 +166,109 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
             raise XmlRefused(XmlIssue("X002", f"processing instruction <?{sib.target}?> after the root element",
                                       sib.sourceline))
     _check_shape(root, data)
+    if _DEFAULT_NS.search(data):
+        warnings = warnings + _drop_default_namespace(root)
     return root, warnings
+
+
+def _undeclared_prefixes(data: bytes, err: etree.XMLSyntaxError, log) -> tuple[etree._Element, list[XmlIssue]]:
+    """Read a document whose only fault is an undeclared namespace prefix (`<drake:joint_lower_limit>`,
+    `drake:foo="..."` with no xmlns:drake) as the namespace-unaware consumers do: urdfdom and MuJoCo (TinyXML2)
+    and Drake read `drake:foo` as a plain name. libxml2 reports these in its NAMESPACE domain and builds the
+    tree anyway (the document stays well-formed), but lxml raises. Re-raises `err` for anything else.
+
+    Only NS_ERR_UNDEFINED_NAMESPACE is accepted, and not on its word: after a namespace error libxml2 leaves
+    some fatal errors unlogged (content after the root element), so the document is first parsed again, strictly
+    and with the same hardening, with the prefixes declared on its root element (inserted on the same line:
+    line numbers unchanged); any error there is reported as usual. The tree returned is libxml2's recovered one,
+    whose names keep their prefix ("drake:foo") as TinyXML2 reads them."""
+    prefixes: dict[str, int | None] = {}
+    at = _root_name_end(data)
+    for _ in range(8):  # libxml2 logs at most 100 errors: a prefix first used later shows up in the next pass
+        _add_undeclared(prefixes, log, err)
+        if at is None:
+            raise err
+        decl = "".join(f' xmlns:{p}="urn:urdfcheck:undeclared:{p}"' for p in prefixes).encode("ascii")
+        parser = _parser()
+        try:
+            etree.fromstring(data[:at] + decl + data[at:], parser)  # raises what a strict parser finds besides
+            break
+        except etree.XMLSyntaxError as e:
+            err, log = e, parser.error_log
+    else:
+        raise err
+    parser = _parser(recover=True)
+    root = etree.fromstring(data, parser)
+    if root is None or any(e.type != _NS_UNDEFINED for e in parser.error_log):
+        raise err
+    return root, [XmlIssue("X005", f"namespace prefix {p!r} is used but never declared (no xmlns:{p}=\"...\"): "
+                                   "urdfdom, MuJoCo and Drake read it as part of the name, but xacro, urdf_parser_py "
+                                   "and other standards-conforming XML parsers reject the file", line)
+                  for p, line in prefixes.items()]
+
+
+def _add_undeclared(prefixes: dict, log, err: etree.XMLSyntaxError) -> None:
+    """Prefixes named by undeclared-prefix errors in `log` (the first line of each); raises for any other error."""
+    for entry in log:
+        if entry.domain != etree.ErrorDomains.NAMESPACE:  # the first real error is the one to report
+            raise etree.XMLSyntaxError(entry.message, entry.type, entry.line, entry.column) from None
+        m = _UNDECLARED.fullmatch(entry.message or "") if entry.type == _NS_UNDEFINED else None
+        if m is None or not _NCNAME.fullmatch(m.group(1)) or m.group(1) in ("xml", "xmlns"):
+            raise err
+        prefixes.setdefault(m.group(1), entry.line or None)
+    if not log:
+        raise err
+
+
+def _root_name_end(data: bytes, max_items: int = 1000) -> int | None:
+    """Offset just after the root element's name in its start tag: past a BOM, spaces, comments and PIs (the
+    XML declaration is one; a DOCTYPE was refused before)."""
+    i = 3 if data.startswith(b"\xef\xbb\xbf") else 0
+    for _ in range(max_items):
+        i = _SPACE.match(data, i).end()
+        end = b"?>" if data.startswith(b"<?", i) else b"-->" if data.startswith(b"<!--", i) else None
+        if end is None:
+            m = _START_NAME.match(data, i)
+            return m.end() if m else None
+        j = data.find(end, i + 2)
+        if j < 0:
+            return None
+        i = j + len(end)
+    return None
+
+
+def _drop_default_namespace(root: etree._Element) -> list[XmlIssue]:
+    """Give elements in a default namespace (`<robot xmlns="http://...">`) their local names, as urdfdom and
+    MuJoCo (TinyXML2, namespace-unaware) see them, so the model is checked like those consumers read it.
+    yourdfpy and urdf_parser_py match elements by qualified tag: a namespaced <robot> reads as a robot with no
+    links or joints, a namespaced <link> is skipped (a warning). Inside <gazebo>, <transmission> and
+    <ros2_control> blocks their readers (TinyXML2 again) ignore namespaces: no warning."""
+    out, seen = [], set()
+    for el in root.iter():
+        tag = el.tag
+        if not (isinstance(tag, str) and tag[:1] == "{" and el.prefix is None):
+            continue
+        uri, _, local = tag[1:].partition("}")
+        el.tag = local
+        if uri in seen or _in_block(el):
+            continue
+        seen.add(uri)
+        if el is root:
+            what = "yourdfpy and urdf_parser_py then find no links or joints"
+        else:
+            what = f"yourdfpy and urdf_parser_py skip this <{local}>"
+        out.append(XmlIssue("X005", f"<{local}> is in the XML namespace {uri!r} (xmlns=\"...\"): urdfdom, "
+                                    f"Pinocchio and MuJoCo ignore namespaces, but {what}; remove the xmlns "
+                                    "attribute", el.sourceline))
+    etree.cleanup_namespaces(root)
+    return out
+
+
+def _in_block(el: etree._Element) -> bool:
+    return any(a.tag in _BLOCKS for a in el.iterancestors()) or el.tag in _BLOCKS
+
+
+_BLOCKS = frozenset(("gazebo", "transmission", "ros2_control"))
 
 
 def _check_shape(root: etree._Element, data: bytes) -> None:

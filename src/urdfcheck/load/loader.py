@@ -22,7 +22,7 @@ XACRO_MEMORY = 2 * 1024**3
 
 # Severity of load findings; the catalogue may override the names but these codes are fixed here
 # because loading happens before any rule runs.
-_LOAD_SEVERITY = {"X003": Severity.WARNING, "X016": Severity.WARNING}
+_LOAD_SEVERITY = {"X003": Severity.WARNING, "X005": Severity.WARNING, "X016": Severity.WARNING}
 
 
 def display(path: str | os.PathLike) -> str:

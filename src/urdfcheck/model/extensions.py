@@ -6,6 +6,9 @@ not reported as unknown (U002/U003); a near miss of one still is (`<dynamcis>` i
 Names a later URDF version defines (`<limit acceleration>`, URDF 1.2) are not extensions: model/grammar.py
 knows them, by version (U008).
 
+A consumer may also own a prefix (`drake:` for Drake): any element or attribute named `drake:...`, written
+without an xmlns:drake declaration, is its extension (parent "*", name "drake:*" in the registry).
+
 Read lazily, once: a model with no unknown names never loads it.
 """
 from __future__ import annotations
@@ -34,13 +37,20 @@ def registry() -> dict[tuple[str, str, str], Extension]:
             for parent, names in (entry.get(kind) or {}).items():
                 for name in names:
                     out.setdefault((kind[:-1], str(parent), str(name)), ext)
+        for prefix in entry.get("prefixes") or ():
+            for kind in ("element", "attribute"):
+                out.setdefault((kind, "*", f"{prefix}:*"), ext)
     return out
 
 
 def known(kind: str, parent: str, name: str) -> Extension | None:
     """The extension that defines `name` as a child element (kind "element") or attribute (kind "attribute")
     of the URDF element `parent`, if any."""
-    return registry().get((kind, parent, name))
+    reg = registry()
+    found = reg.get((kind, parent, name))
+    if found is None and ":" in name:  # drake:foo with no xmlns:drake declared (core/xmlfront.py keeps the name)
+        found = reg.get((kind, "*", name.split(":", 1)[0] + ":*"))
+    return found
 
 
 def names(kind: str, parent: str) -> set[str]:

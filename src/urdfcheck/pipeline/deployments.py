@@ -13,6 +13,8 @@ passes (packages resolve among the workspace's package.xml files first). A robot
 reaches makes its own file a root. Launch arguments declared with `choices` (and, for a model path chosen at
 launch time, the files that match it) give variants, one deployment each; identical deployments are kept once.
 `Deployment.consumers()` builds the `contracts.consumers.Consumers` the contract (C) and TF (T) checks read.
+This module only reads launch files: which targets a request lints, deployments included, is decided by
+`pipeline.plan` alone.
 """
 from __future__ import annotations
 
@@ -87,6 +89,16 @@ class Deployment(Record):
         """How findings name the deployment: the defining launch file, and the variant."""
         where = _show(self.launch.file) if self.launch is not None else "?"
         return where + (f" [{self.variant}]" if self.variant else "")
+
+    def chosen_args(self) -> dict:
+        """The xacro arguments a reader needs to tell this deployment apart: those whose value is not the
+        default a launch file of the chain declares for a launch argument of that name (the variant's choice,
+        what an including file passes, literals written into the command)."""
+        defaults: dict[str, set] = {}
+        for info in self.infos:
+            for name, d in getattr(info, "declared", {}).items():
+                defaults.setdefault(name, set()).add(d.default)
+        return {k: v for k, v in self.args.items() if v not in defaults.get(k, ())}
 
     def key(self) -> tuple:
         """Identity: the same model with the same arguments, started the same way by the same launch file
@@ -567,27 +579,39 @@ def _root_deployments(ws: _Workspace, rootfile: str):
             yield dep, tree
 
 
-def describe(deployments: list[Deployment]) -> str:
-    """The deployments as `urdfcheck lint --list` shows them."""
+def describe(deployments: list[Deployment], show=None) -> str:
+    """The deployments as `urdfcheck lint --list` shows them. `show`: how a path is printed (default:
+    relative to the working directory when below it); xacro arguments equal to a launch default are counted,
+    not listed (`Deployment.chosen_args`)."""
+    if show is None:
+        show = _show
+
+    def at(loc) -> str:
+        return str(loc._replace(file=show(loc.file))) if loc is not None and loc.file else str(loc)
+
     if not deployments:
         return "no deployments found (no launch file starts robot_state_publisher)\n"
     lines = []
     for d in deployments:
-        lines.append(d.label)
+        where = show(d.launch.file) if d.launch is not None else "?"
+        lines.append(where + (f" [{d.variant}]" if d.variant else ""))
         if d.model is None:
             lines.append("  model: not understood")
         else:
-            args = " ".join(f"{k}:={v}" for k, v in sorted(d.args.items()))
-            lines.append(f"  model: {_show(d.model)}" + (f" {args}" if args else ""))
+            chosen = d.chosen_args()
+            hidden = len(d.args) - len(chosen)
+            lines.append(f"  model: {show(d.model)}" + (f" (+{hidden} xacro argument(s) equal to launch defaults)"
+                                                          if hidden else ""))
+            lines.extend(f"    {k}:={show(v) if os.path.isabs(v) else v}" for k, v in sorted(chosen.items()))
         if d.dropped_args:
             lines.append(f"  arguments decided at launch time: {', '.join(d.dropped_args)}")
-        lines.append(f"  robot_state_publisher: {d.rsp}  namespace {d.namespace}"
+        lines.append(f"  robot_state_publisher: {at(d.rsp)}  namespace {d.namespace}"
                      + (f"  frame_prefix {d.frame_prefix!r}" if d.frame_prefix else ""))
         for loc in d.chain:
-            lines.append(f"  via include at {loc}")
+            lines.append(f"  via include at {at(loc)}")
         types, nodes = _read_back(d)
         if d.controller_files:
-            lines.append("  controller files: " + ", ".join(_show(f) for f in d.controller_files))
+            lines.append("  controller files: " + ", ".join(show(f) for f in d.controller_files))
         if d.spawned:
             lines.append("  spawned: " + ", ".join(
                 n + (f" ({types[n]})" if types.get(n) else " (type not found)")
@@ -601,12 +625,22 @@ def describe(deployments: list[Deployment]) -> str:
             lines.append("  static transforms: " + ", ".join(f"{t.parent}->{t.child}" for t in d.static_tfs))
         if d.localization_files or nodes:
             lines.append("  localization: " + ", ".join(
-                [f"{kind} {node}" for kind, node in nodes] + [_show(f) for f in d.localization_files]))
+                [f"{kind} {node}" for kind, node in nodes] + [show(f) for f in d.localization_files]))
         for msg, loc in dict.fromkeys(d.notes):
-            lines.append(f"  note: {msg} ({loc})")
+            lines.append(f"  note: {msg} ({at(loc)})")
     n = sum(1 for d in deployments if d.model is not None)
     lines.append(f"{len(deployments)} deployment(s), {n} with a model")
     return "\n".join(lines) + "\n"
+
+
+def show_args(args: Mapping[str, str], show, total: int | None = None, files: bool = True) -> str:
+    """` a:=1 b:=path` (absolute paths printed with `show`; left out with files=False), then how many of
+    `total` arguments were left out."""
+    shown = {k: (show(v) if os.path.isabs(v) else v) for k, v in sorted(args.items())
+             if files or not os.path.isabs(v)}
+    text = "".join(f" {k}:={v}" for k, v in shown.items())
+    hidden = (len(args) if total is None else total) - len(shown)
+    return text + (f" (+{hidden} more)" if hidden > 0 else "")
 
 
 def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str]]]:
@@ -618,75 +652,6 @@ def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str]]]:
         return {}, []
     types = {ctl.name: ctl.type or "" for ctl in c.controllers}
     return types, [(n.kind, n.node) for n in c.localization]
-
-
-# --- a zero-config plan of a whole workspace ----------------------------------------------------------------
-class Planned(Record):
-    """One model to lint: `deployment` is set when a launch file defines it (args from the launch file)."""
-
-    _fields = ('path', 'args', 'variant', 'deployment', 'packages')
-
-    def __init__(self, path: str, args: dict, variant: str, deployment: Deployment | None, packages: dict):
-        self.path, self.args, self.variant, self.deployment, self.packages = path, args, variant, deployment, packages
-
-
-class WorkspacePlan(Record):
-    # models: Planned, deployments first; deployments: all found (with or without a model)
-    # library_packages: package folders holding xacro libraries and no model of their own (an info line)
-    # unplanned_models: models a deployment covers, so not linted alone with their defaults
-    _fields = ('root', 'models', 'deployments', 'library_packages', 'unplanned_models')
-
-    def __init__(self, root, models, deployments, library_packages, unplanned_models):
-        self.root, self.models, self.deployments = root, models, deployments
-        self.library_packages, self.unplanned_models = library_packages, unplanned_models
-
-
-def plan_workspace(root: str | os.PathLike, *, packages: Mapping[str, str] | None = None, trusted: bool = False,
-                   auto_variants: bool = True) -> WorkspacePlan:
-    """Zero config for a named folder: every package below it; each deployment's model with the launch
-    file's arguments; every other entry model of every package alone (with its boolean-argument variants).
-    A model that a deployment loads is linted through its deployments only: its launch file gives the
-    arguments it needs (a model linted with its defaults alone may not expand at all)."""
-    from urdfcheck.contracts.discover import discover
-    from urdfcheck.load.packages import workspace_map, workspace_packages
-
-    root = os.path.abspath(root)
-    explicit = dict(packages or {})
-    deps = find_deployments(root, packages=explicit)
-
-    def pk(near: str) -> dict:
-        return {**workspace_map(root, near=near), **explicit}
-
-    models: list[Planned] = []
-    covered: set[str] = set()
-    for d in deps:
-        if d.model is None:
-            continue
-        covered.add(os.path.realpath(d.model))
-        models.append(Planned(d.model, dict(d.args), d.label, d, pk(d.model)))
-    folders = sorted({str(p) for dirs in workspace_packages(root).values() for p in dirs})
-    outer = [f for f in folders if not any(f != o and f.startswith(o.rstrip(os.sep) + os.sep) for o in folders)]
-    libs, skipped, seen = [], [], set()
-    for folder in outer or [root]:
-        found = discover(folder, trusted=trusted)
-        if not found.models and found.libraries:
-            libs.append(folder)
-        for m in found.models:
-            real = os.path.realpath(m)
-            if real in seen:
-                continue
-            seen.add(real)
-            if real in covered:
-                skipped.append(m)
-                continue
-            variants = [("", {})]
-            if auto_variants and m.endswith(".xacro"):
-                from urdfcheck.pipeline.config import auto_variants as boolean_variants
-
-                variants = boolean_variants(m, {})
-            for name, vargs in variants:
-                models.append(Planned(m, dict(vargs), name, None, pk(m)))
-    return WorkspacePlan(root, models, deps, libs, skipped)
 
 
 # --- custom drivers, read by the shape of their keys ---------------------------------------------------------
@@ -742,33 +707,4 @@ def infer_drivers(driver_nodes, reader) -> list:
                                   wheel_radius=geo.get("wheel_radius"))
         drv.inferred = True
         out.append(drv)
-    return out
-
-
-def robots_including(library: str | os.PathLike, plan: WorkspacePlan) -> list[Planned]:
-    """The planned models (deployments and entry models) of a workspace that include `library` through
-    their literal includes: what the per-file pre-commit hook lints when it is given a library file."""
-    from urdfcheck.load.packages import included_files
-
-    target = os.path.realpath(library)
-    out, closures = [], {}
-    for m in plan.models:
-        key = os.path.realpath(m.path)
-        if key not in closures:
-            closures[key] = included_files(m.path, lambda n, pk=m.packages: pk.get(n))
-        if target in closures[key] and key != target:
-            out.append(m)
-    return out
-
-
-def unresolved_packages(plan: WorkspacePlan) -> dict[str, list[tuple[str, int]]]:
-    """Every package the planned models reference and the workspace cannot resolve, once each, with the
-    places that reference it (load.packages.missing_packages over all models of the plan)."""
-    from urdfcheck.load.packages import missing_packages
-
-    out: dict[str, list[tuple[str, int]]] = {}
-    for m in plan.models:
-        for name, places in missing_packages([m.path], lambda n, pk=m.packages: pk.get(n)).items():
-            have = out.setdefault(name, [])
-            have.extend(p for p in places if p not in have)
     return out

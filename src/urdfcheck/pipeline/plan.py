@@ -53,8 +53,9 @@ class Later:
 class Target(Record):
     """One model to lint: an entry file with one xacro argument set.
 
-    contracts: the consumers (contracts.consumers.Consumers) of this model, a `Later`, or None (the contract
-    checks then look next to the model). settings: the request as it applies here (its config file);
+    contracts: the consumers (contracts.consumers.Consumers) of this model, a `Later`, or None: zero config,
+    found beside the model by `consumers()` once the model is built, and kept here (the checks never look
+    for them, nor change their context). settings: the request as it applies here (its config file);
     None for targets made by hand (tests), which `run.lint_targets` lints with its own arguments.
     deployment: the launch file that starts this model (label and defining Location), when planned from one."""
 
@@ -83,6 +84,28 @@ class Target(Record):
     @contracts.setter
     def contracts(self, value) -> None:
         self._contracts = value
+
+    def consumers(self, model, exp=None, config=None):
+        """The consumers the checks of this target read, computed once. Planned ones (a config's models, a
+        launch file's deployment) as planned; otherwise, inside a ROS package or under a config, those beside
+        the model (`contracts.consumers.consumers_near`: the package's config/ and launch/ files; in a
+        package of several models, the parameter files that name one of this model's joints, which is why
+        they wait for the model), kept on the target. None: the model has no consumers to compare with."""
+        c = self.contracts
+        if c is not None:
+            return c
+        entry = getattr(exp, "entry", None) or getattr(model, "source", None) or str(self.path)
+        from urdfcheck.load.packages import enclosing_package
+
+        if config is None and enclosing_package(Path(entry).resolve()) is None:
+            return None  # (the contract readers are not even imported)
+        from urdfcheck.contracts.consumers import consumers_near
+
+        resolver = getattr(exp, "resolver", None)
+        packages = {k: str(v) for k, v in getattr(resolver, "explicit", {}).items()} if resolver is not None \
+            else dict(self.packages)
+        self._contracts = consumers_near(entry, model, packages=packages, config=config)
+        return self._contracts
 
 
 class TargetList(list):
@@ -116,6 +139,7 @@ class Planner:
         self._settings: dict[str | None, Settings] = {}
         self._named: dict[str, _Named] = {}
         self._robots: dict[str, list[Target]] = {}  # workspace folder -> its robots (a library's includers)
+        self._closures: dict[tuple, set] = {}  # (model, packages) -> the files it includes literally
         self.infos: list[str] = []
         self.not_understood: list = []  # deployments whose model was not understood (`--list` shows them)
 
@@ -288,7 +312,8 @@ class Planner:
     def deployed(self, d, root: str, settings: Settings) -> Target:
         """A deployment's target: the launch file's xacro arguments, its controllers and localization as the
         consumers, every package of the named tree resolvable (a sibling repository's description)."""
-        t = self.target(Path(d.model), dict(d.args), d.label, Later(d.consumers), settings,
+        label = self.request.shown(d.launch.file) + (f" [{d.variant}]" if d.variant else "")  # like every path
+        t = self.target(Path(d.model), dict(d.args), label, Later(d.consumers), settings,
                         _packages(root, d.model, settings))
         t.deployment = d
         return t
@@ -338,8 +363,7 @@ class Planner:
         if ws not in self._robots:
             sub = Planner(self.request, self.here)  # the workspace as `urdfcheck lint` there plans it
             sub._configs, sub._settings = self._configs, self._settings
-            self._robots[ws] = [t for t in sub.path_targets(ws)]
-            self._closures = getattr(self, "_closures", {})
+            self._robots[ws] = list(sub.path_targets(ws))
         real, out = os.path.realpath(library), []
         for t in self._robots[ws]:
             key = (os.path.realpath(t.path), tuple(sorted(t.packages.items())))

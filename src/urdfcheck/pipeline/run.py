@@ -109,11 +109,12 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
     findings = list(exp.findings)
     model = load.build_model(exp)
     if model is not None:
-        ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=t.contracts,
+        contracts = t.consumers(model, exp, config)  # planned, or found beside the model: once per target
+        ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
                              variant=t.variant, target=t.settings.target if t.settings is not None else None)
         findings.extend(engine.run_checks(model, ctx))
         if yaml is not None:
-            yaml.read(ctx.contracts, selection)
+            yaml.read(contracts, selection)
     return engine.finish(findings, selection, exp.suppressions, model=exp.entry, variant=t.variant,
                          yaml_used=yaml.used if yaml is not None else None), model
 

@@ -35,6 +35,7 @@ NAN = float("nan")
 # quaternion in one place, core.geometry.origin_quaternion
 quat_from_rpy = geometry.quat_from_rpy
 rot_from_quat = geometry.quat_matrix
+matrix_from_tq = geometry.matrix_from_tq
 
 
 def kdl_sign(x: float, y: float, z: float, w: float) -> tuple[float, float, float, float]:
@@ -70,16 +71,6 @@ def quat_from_matrix(m) -> tuple[float, float, float, float]:
     if s == 0.0 or s != s:
         return (NAN, NAN, NAN, NAN)
     return ((m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s)
-
-
-def matrix_from_tq(t, q) -> tuple:
-    r = rot_from_quat(*q)
-    return (
-        (r[0][0], r[0][1], r[0][2], float(t[0])),
-        (r[1][0], r[1][1], r[1][2], float(t[1])),
-        (r[2][0], r[2][1], r[2][2], float(t[2])),
-        (0.0, 0.0, 0.0, 1.0),
-    )
 
 
 def rpy_from_matrix(m) -> tuple[float, float, float]:

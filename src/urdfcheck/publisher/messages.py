@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 from typing import NamedTuple, Sequence
 
+from urdfcheck.core import geometry
+
 NS = 1_000_000_000
 
 
@@ -104,9 +106,7 @@ class Transform(NamedTuple):
 
     def matrix(self) -> tuple:
         """4x4 nested tuples."""
-        from urdfcheck.publisher.kinematics import matrix_from_tq
-
-        return matrix_from_tq(self.translation, self.rotation)
+        return geometry.matrix_from_tq(self.translation, self.rotation)
 
     def as_dict(self) -> dict:
         return {

@@ -31,7 +31,8 @@ def as_dict(result) -> dict:
         "schema_version": SCHEMA_VERSION,
         "tool": {"name": "urdfcheck", "version": __version__},
         "models": [{"path": clean_text(_shown(result, t.path), 4096), "variant": clean_text(t.variant),
-                    "args": {k: clean_text(v) for k, v in sorted(t.args.items())}} for t in result.targets],
+                    "args": {k: clean_text(_shown(result, v) if str(v).startswith("/") else v)  # a file: relative
+                             for k, v in sorted(t.args.items())}} for t in result.targets],
         "summary": counts,
         "findings": [
             {

@@ -73,6 +73,34 @@ def option_ok(spec: OptionSpec, value) -> bool:
     return ok and (spec.minimum is None or not number(value) or value >= spec.minimum)
 
 
+def options_for(codes, given=None, cat=None) -> dict:
+    """A check's options: every option its codes declare in the catalogue (rules/*.yaml `options:`), at
+    its declared default, then the values `given` (code -> {option: value}, a Selection's options) sets for
+    those codes, checked against the declared type. The one place defaults come from: a check reads
+    `ctx.options[name]` and never has its own fallback. A value of the wrong type or an undeclared option
+    raises ValueError (R001 for that rule; configs and requests are checked earlier, this catches a
+    hand-made Selection)."""
+    cat = catalogue() if cat is None else cat
+    out: dict = {}
+    specs: dict = {}
+    for code in codes:
+        info = cat.get(code)
+        for name, default in (info.options if info else {}).items():
+            if name not in out:
+                out[name] = list(default) if isinstance(default, list) else default  # a check may not share it
+                specs[name] = info.option_specs.get(name)
+    for code in codes:
+        for name, value in dict((given or {}).get(code, {})).items():
+            spec = specs.get(name)
+            if spec is None:
+                raise ValueError(f"{code} has no option {name!r} (options: {', '.join(specs) or 'none'})")
+            if not option_ok(spec, value):
+                raise ValueError(f"option {code}.{name} must be {spec.type}"
+                                 + (f" >= {spec.minimum}" if spec.minimum is not None else "") + f", got {value!r}")
+            out[name] = value
+    return out
+
+
 class RuleInfo(NamedTuple):
     code: str
     name: str

@@ -96,11 +96,8 @@ def _run_checks(model, ctx: Context) -> list[Finding]:
         codes = [c for c in fn.codes if ctx.selection.enabled(c)]
         if not codes:
             continue
-        first = cat.get(codes[0])
-        opts = dict(first.options) if first else {}
-        opts.update(ctx.selection.options.get(codes[0], {}))
-        ctx.options = opts
         try:
+            ctx.options = rulebook.options_for(fn.codes, ctx.selection.options, cat)
             for p in fn(model, ctx) or ():
                 f = _finding(p, fn, model, ctx, cat)
                 if f is not None:

@@ -47,7 +47,11 @@ def check_yaml_text(text: str, name: str = "YAML") -> None:
                     raise YamlRefused(f"{name} nests deeper than {MAX_DEPTH} levels")
             elif isinstance(ev, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
                 depth -= 1
-    except yaml.YAMLError:
+    except yaml.YAMLError as e:
+        # libyaml >= 0.2.6 stops at its own depth limit with a scanner error; PyYAML's pure-Python loader, which
+        # xacro uses, has no such limit and would recurse until RecursionError
+        if "nesting depth" in str(e):
+            raise YamlRefused(f"{name} nests deeper than {MAX_DEPTH} levels") from None
         return  # a syntax error: xacro's loader reports it
     if "&" not in text:
         return

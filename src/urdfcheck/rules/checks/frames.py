@@ -4,10 +4,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from urdfcheck.core.findings import Problem
-from urdfcheck.rules.catalogue import check
-
-DEFAULT_LOCALIZATION = ("map", "odom")
-DEFAULT_ROOTS = ("base_link", "base_footprint", "world")
+from urdfcheck.rules.catalogue import check, options_for
 
 
 def _frame_setting(frames, key: str):
@@ -23,8 +20,9 @@ def _frame_setting(frames, key: str):
 
 
 def localization_frames(ctx) -> dict[str, str]:
-    """frame name -> its REP-105 role ('map' or 'odom'); config frames override the rule's option."""
-    names = ctx.options.get("frames", DEFAULT_LOCALIZATION) or ()
+    """frame name -> its REP-105 role ('map' or 'odom'); config frames override F001's option (F002 asks
+    too: F001's option, as configured, whichever rule runs)."""
+    names = options_for(("F001",), ctx.selection.options)["frames"]
     out = {str(n).lstrip("/"): str(n).lstrip("/") for n in names}
     frames = getattr(ctx.config, "frames", None) if ctx is not None else None
     if frames is not None:
@@ -94,7 +92,7 @@ def unexpected_root_name(model, ctx):
     root = model.root
     if root is None:
         return
-    expected = [str(n) for n in (ctx.options.get("expected", DEFAULT_ROOTS) or ())]
+    expected = [str(n) for n in ctx.options["expected"]]
     frames = getattr(ctx.config, "frames", None)
     base = _frame_setting(frames, "base") if frames is not None else None
     if base and base not in expected:

@@ -60,7 +60,7 @@ def _case_hint(path: Path, listing: dict) -> str:
 @check("G001")
 def mesh_not_found(model, ctx):
     """One finding per unique mesh URI (at its first use; the other uses are related locations)."""
-    ignore = [str(p) for p in ctx.options.get("ignore", []) or []]
+    ignore = [str(p) for p in ctx.options["ignore"]]
     resolver = _resolver(model, ctx)
     base = _base_dir(model, ctx)
     uses: dict[str, list] = {}  # uri -> [(link, shape)], in document order

@@ -9,12 +9,10 @@ import functools
 import math
 
 from urdfcheck.core.findings import Problem
-from urdfcheck.rules.catalogue import check
+from urdfcheck.rules.catalogue import check, options_for
 
 _UNREADABLE = ("U004", "U005", "U006")
-PSD_RTOL = 1e-5  # a principal moment below -PSD_RTOL * largest moment is negative, not rounding
-ATOL = 1e-12  # kg m^2: moments this small are zero (exporters write 1e-35 or 1e-20 for "nothing")
-MIN_MASS = 1e-3  # kg: lighter links are placeholders ("1e-6 kg" frames); their tensors do not matter
+# thresholds are rule options (rules/I003.yaml, I004.yaml: rtol, atol, min_mass), defaulted by the catalogue
 
 
 def _fmt(x: float, scale: float = 0.0) -> str:
@@ -99,8 +97,8 @@ def _inertials(model):
 
 def _tensors(model, ctx):
     """(link, inertial, ascending principal moments, atol) for the tensors I003/I004 judge."""
-    atol = float(ctx.options.get("atol", ATOL))
-    min_mass = float(ctx.options.get("min_mass", MIN_MASS))
+    atol = float(ctx.options["atol"])
+    min_mass = float(ctx.options["min_mass"])
     unreadable = _unreadable_locs(model)
     for link in model.link_list:
         inertial = link.inertial
@@ -165,8 +163,8 @@ def non_positive_mass(model, ctx):
 
 @check("I003")
 def inertia_not_positive_definite(model, ctx):
-    rtol = float(ctx.options.get("rtol", PSD_RTOL))
-    allow_singular = bool(ctx.options.get("allow_singular", True))
+    rtol = float(ctx.options["rtol"])
+    allow_singular = bool(ctx.options["allow_singular"])
     for link, inertial, moments, atol in _tensors(model, ctx):
         if not finite_moments(moments):
             yield _too_large(link, inertial)
@@ -191,11 +189,12 @@ def inertia_not_positive_definite(model, ctx):
 
 @check("I004")
 def inertia_triangle_inequality(model, ctx):
-    rtol = float(ctx.options.get("rtol", 1e-4))
+    rtol = float(ctx.options["rtol"])
+    i003_rtol = float(options_for(("I003",), ctx.selection.options)["rtol"])  # what I003 reports, skipped here
     for link, inertial, (a, b, c), atol in _tensors(model, ctx):
         if not finite_moments((a, b, c)):
             continue  # I003's finding
-        if c <= atol or a < -max(PSD_RTOL * c, atol):
+        if c <= atol or a < -max(i003_rtol * c, atol):
             continue  # zero tensor or not positive semi-definite: I003's finding
         if a + b >= c - max(rtol * c, atol):
             continue

@@ -209,13 +209,7 @@ def zero_axis(model, ctx):
 
 @check("J007")
 def non_unit_axis(model, ctx):
-    raw = ctx.options.get("tolerance", 1e-6)
-    try:
-        tol = float(raw)
-    except (TypeError, ValueError):
-        raise ValueError(f"option 'tolerance' must be a number, got {raw!r}") from None
-    if not tol >= 0:
-        raise ValueError(f"option 'tolerance' must be a non-negative number, got {raw!r}")
+    tol = float(ctx.options["tolerance"])  # typed and defaulted by the catalogue (rules/J007.yaml)
     for j in model.joint_list:
         if j.type not in AXIS_TYPES or j.axis_loc is None:
             continue

@@ -24,7 +24,7 @@ def target_of(model, ctx) -> tuple[G.Target, str]:
     # the request's merged target (flag over config) when the engine hands it over, else the config's key
     name = getattr(ctx, "target", None) or getattr(getattr(ctx, "config", None), "target", None)
     if name in G.TARGETS:
-        return G.TARGETS[name], "configured target"
+        return G.TARGETS[name], "the configured target (--target or the config key)"
     if _catkin_package(model.source):
         return G.TARGETS["noetic"], "the enclosing package.xml builds with catkin (ROS 1)"
     return G.TARGETS[G.NEWEST_TARGET], "the newest distribution (no target configured)"
@@ -96,7 +96,7 @@ def _origins(model):
 def quaternion_not_unit(model, ctx):
     if model.version < G.V1_1:
         return  # no quaternion is read (U008 says so)
-    tol = float(ctx.options.get("tolerance", 1e-6)) if ctx is not None else 1e-6
+    tol = float(ctx.options["tolerance"])  # typed and defaulted by the catalogue (rules/U010.yaml)
     for o in _origins(model):
         q = o.quat
         if q is None or o.loc is None:
