@@ -5,9 +5,9 @@
 ROOT defaults to the corpus (../shared/corpus). The workspace is planned the way zero config plans it
 (pipeline.plan, as `urdfcheck lint` run there with no flags: deployments found once for the whole tree,
 with the launch files' arguments; every other entry model with its boolean variants), then linted in one
-process (`--lint-only` runs just that part: the timed command). The peer is the xacro CLI run once per planned model and argument set, with $(find) answered from
-the same package map, one process after another. `--table` prints per repository: robots (models planned),
-deployments (with a model / all), and what was not understood.
+process (`--lint-only` runs just that part: the timed command). The peer is the xacro CLI run once per planned
+model and argument set, with $(find) answered from the same package map, one process after another. `--table`
+prints per repository: robots (models planned), deployments (with a model / all), and what was not understood.
 """
 from __future__ import annotations
 

@@ -192,7 +192,8 @@ def make_corpus(dest: Path) -> int:
         for f in sorted(base.rglob("*")):
             name = f.name
             kind = ("xacro" if name.endswith(".xacro") else "urdf" if name.endswith(".urdf")
-                    else "yaml" if name.endswith((".yaml", ".yml")) else "launch" if name.endswith((".launch.xml", ".launch"))
+                    else "yaml" if name.endswith((".yaml", ".yml"))
+                    else "launch" if name.endswith((".launch.xml", ".launch"))
                     else None)
             if kind is None or not f.is_file() or f.stat().st_size > 65536:
                 continue
@@ -252,16 +253,17 @@ def main(argv: list[str]) -> int:
 
     with atheris.instrument_imports(include=["urdfcheck"]):
         import urdfcheck.cli.main  # noqa: F401
-        import urdfcheck.model.build  # noqa: F401
         import urdfcheck.core.xmlfront  # noqa: F401
         import urdfcheck.load.loader  # noqa: F401
-        import urdfcheck.pipeline.run  # noqa: F401
         import urdfcheck.load.xacro.expand  # noqa: F401
         import urdfcheck.load.xacro.safeeval  # noqa: F401
+        import urdfcheck.model.build  # noqa: F401
+        import urdfcheck.pipeline.run  # noqa: F401
         import urdfcheck.report  # noqa: F401
         for mod in ("urdfcheck.contracts.discover", "urdfcheck.contracts.consumers", "urdfcheck.contracts.launch",
                     "urdfcheck.contracts.yamlsrc", "urdfcheck.contracts.controllers", "urdfcheck.rules.engine",
-                    "urdfcheck.rules.checks.structure", "urdfcheck.rules.checks.joints", "urdfcheck.rules.checks.geometry",
+                    "urdfcheck.rules.checks.structure", "urdfcheck.rules.checks.joints",
+                    "urdfcheck.rules.checks.geometry",
                     "urdfcheck.rules.checks.inertial", "urdfcheck.rules.checks.frames", "urdfcheck.rules.checks.values",
                     "urdfcheck.report.text", "urdfcheck.report.jsonout", "urdfcheck.report.sarif",
                     "urdfcheck.report.junit", "urdfcheck.report.github", "urdfcheck.report.markdown"):

@@ -1,11 +1,11 @@
 """Baselines: --write-baseline records findings without line numbers; --baseline fails only on new ones."""
 import json
 
-from urdfcheck.report import baseline
-from urdfcheck.core.findings import Finding, Location, Severity
-
 from conftest import run_cli
 from samples import MACROS
+
+from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.report import baseline
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>

@@ -2,11 +2,10 @@
 import re
 
 import pytest
-
-from urdfcheck.rules import catalogue as rulebook
-from urdfcheck.core.findings import Severity
-
 from conftest import example_args, lint_json, write_example
+
+from urdfcheck.core.findings import Severity
+from urdfcheck.rules import catalogue as rulebook
 
 CATALOGUE = rulebook.catalogue()
 WITH_EXAMPLES = sorted(c for c, r in CATALOGUE.items() if r.examples)

@@ -8,8 +8,8 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 import pytest  # noqa: E402
 
-from urdfcheck.pipeline.config import ConfigError, auto_variants, boolean_args, find_config, load_config  # noqa: E402
 from urdfcheck.core.findings import Severity  # noqa: E402
+from urdfcheck.pipeline.config import ConfigError, auto_variants, boolean_args, find_config, load_config  # noqa: E402
 
 URDF = '<robot name="r"><link name="base_link"/></robot>\n'
 XACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -149,7 +149,8 @@ controllers = ["config/ctrl.yaml"]
 
 
 def test_pyproject_errors_name_the_line(tmp_path):
-    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\n\n[tool.urdfcheck]\nselect = ["S"]\nfail_on = "sometimes"\n')
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\n\n'
+                                             '[tool.urdfcheck]\nselect = ["S"]\nfail_on = "sometimes"\n')
     with pytest.raises(ConfigError) as e:
         load_config(tmp_path / "pyproject.toml")
     assert "fail_on" in str(e.value) and e.value.location.line == 6
@@ -197,8 +198,8 @@ def test_bad_yaml_and_bombs(tmp_path):
     with pytest.raises(ConfigError) as e:
         load_config(tmp_path / "urdfcheck.yaml")
     assert e.value.location.line is not None
-    bomb = ['a: &a [x,x,x,x,x,x,x,x,x,x]'] + [f"{chr(98 + i)}: &{chr(98 + i)} [" + ",".join([f"*{chr(97 + i)}"] * 10) + "]"
-                                            for i in range(7)]
+    bomb = ['a: &a [x,x,x,x,x,x,x,x,x,x]'] + [
+        f"{chr(98 + i)}: &{chr(98 + i)} [" + ",".join([f"*{chr(97 + i)}"] * 10) + "]" for i in range(7)]
     (tmp_path / "urdfcheck.yaml").write_text("\n".join(bomb) + "\n")
     with pytest.raises(ConfigError, match="bomb|alias"):
         load_config(tmp_path / "urdfcheck.yaml")
@@ -215,7 +216,8 @@ def test_boolean_args_and_auto_variants(tmp_path):
     names = [n for n, _ in auto_variants(str(f), {})]
     # named by what differs from the defaults (issue 15: short, readable labels)
     assert names == ["defaults", "use_lidar=true", "use_camera=false", "use_camera=false,use_lidar=true"]
-    assert [a for _, a in auto_variants(str(f), {"use_lidar": "true"})] == [{"use_camera": "true"}, {"use_camera": "false"}]
+    assert ([a for _, a in auto_variants(str(f), {"use_lidar": "true"})]
+            == [{"use_camera": "true"}, {"use_camera": "false"}])
     many = "".join(f'<xacro:arg name="a{i}" default="false"/>' for i in range(6))
     g = tmp_path / "many.xacro"
     g.write_text(f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro">{many}</robot>')

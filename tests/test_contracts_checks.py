@@ -7,15 +7,15 @@ SRC = Path(__file__).resolve().parent.parent / "src"
 if str(SRC) not in sys.path:  # runnable without an editable install
     sys.path.insert(0, str(SRC))
 
-from urdfcheck.rules import engine  # noqa: E402
-from urdfcheck.model.build import model_from_string  # noqa: E402
+from conftest import run_cli  # noqa: E402
+
 from urdfcheck.contracts.consumers import Consumers, consumers_for_model, discover_consumers  # noqa: E402
 from urdfcheck.contracts.controllers import read_controllers  # noqa: E402
 from urdfcheck.contracts.launch import parse_launch  # noqa: E402
 from urdfcheck.contracts.params import parse_params  # noqa: E402
 from urdfcheck.core.findings import Severity  # noqa: E402
-
-from conftest import run_cli  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
+from urdfcheck.rules import engine  # noqa: E402
 
 DDC = "ros-controls+ros_controllers/diff_drive_controller"
 
@@ -36,7 +36,8 @@ def robot(extra="", left=None, right=None):
 <robot name="bot">
   <link name="base_link"/>{left or wheel("left", 0.2)}{right or wheel("right", -0.2)}
   <link name="laser_link"/>
-  <joint name="laser_joint" type="fixed"><parent link="base_link"/><child link="laser_link"/><origin xyz="0.2 0 0.1"/></joint>
+  <joint name="laser_joint" type="fixed"><parent link="base_link"/><child link="laser_link"/>\
+<origin xyz="0.2 0 0.1"/></joint>
 {extra}</robot>
 """
 
@@ -85,7 +86,8 @@ def codes(findings):
 # --- through the engine -----------------------------------------------------------------------------------------
 def test_consistent_deployment_is_clean():
     launch = ('<launch><node pkg="robot_state_publisher" exec="robot_state_publisher"/>'
-              '<node pkg="tf2_ros" exec="static_transform_publisher" args="--frame-id map --child-frame-id odom"/></launch>')
+              '<node pkg="tf2_ros" exec="static_transform_publisher" args="--frame-id map --child-frame-id odom"/>'
+              '</launch>')
     fs = run(robot(R2C), ctrl=ctrl_text(), launch=launch)
     assert fs == [], [(f.code, f.message) for f in fs]
 
@@ -106,7 +108,8 @@ def test_fixed_wheel():
 
 def test_interfaces_and_ros2_control_blocks():
     position_only = R2C.replace('<command_interface name="velocity"/><state_interface name="position"/></joint>\n'
-                                '    <joint name="right', '<command_interface name="position"/></joint>\n    <joint name="right', 1)
+                                '    <joint name="right',
+                                '<command_interface name="position"/></joint>\n    <joint name="right', 1)
     fs = run(robot(position_only), ctrl=ctrl_text())
     c5 = [f for f in fs if f.code == "C005"]
     assert len(c5) == 2 and {"'velocity'" in f.message or "'position' state" in f.message for f in c5} == {True}
@@ -152,7 +155,8 @@ def test_wheel_rules_use_rule_options():
 def test_unknown_frame():
     (f,) = [f for f in run(robot(), ctrl=ctrl_text(base="base_footprint")) if f.code == "C020"]
     assert "base_footprint" in f.message and f.location.line == 12
-    launch = '<launch><node pkg="tf2_ros" exec="static_transform_publisher" args="0 0 0 0 0 0 base_footprint base_link"/></launch>'
+    launch = ('<launch><node pkg="tf2_ros" exec="static_transform_publisher" '
+              'args="0 0 0 0 0 0 base_footprint base_link"/></launch>')
     assert "C020" not in codes(run(robot(), ctrl=ctrl_text(base="base_footprint"), launch=launch))
 
 
@@ -182,8 +186,10 @@ def test_odometry_twice():
 
 
 def test_odometry_to_a_non_root_link():
-    footprint = robot().replace('<link name="base_link"/>', '<link name="base_footprint"/><link name="base_link"/>'
-                                '<joint name="fp" type="fixed"><parent link="base_footprint"/><child link="base_link"/></joint>')
+    footprint = robot().replace('<link name="base_link"/>',
+                                '<link name="base_footprint"/><link name="base_link"/>'
+                                '<joint name="fp" type="fixed"><parent link="base_footprint"/>'
+                                '<child link="base_link"/></joint>')
     (f,) = [f for f in run(footprint, ctrl=ctrl_text()) if f.code == "T003"]
     assert "publish odometry to base_footprint" in f.message
     assert codes([f for f in run(footprint, ctrl=ctrl_text()) if f.code.startswith("T")]) == ["T003"]
@@ -238,7 +244,8 @@ models:
 def test_zero_config_discovery(tmp_path):
     write_pkg(tmp_path, robot(R2C), {"config/controllers.yaml": ctrl_text(sep=0.5)})
     code, fs = lint(tmp_path, "--no-config", "urdf/bot.urdf")
-    assert [(f["code"], Path(f["location"]["file"]).name) for f in fs if f["code"][0] in "CT"] == [("C010", "controllers.yaml")]
+    assert ([(f["code"], Path(f["location"]["file"]).name) for f in fs if f["code"][0] in "CT"]
+            == [("C010", "controllers.yaml")])
     (tmp_path / "config" / "controllers.yaml").write_text("a: [1,\n")
     code, fs = lint(tmp_path, "--no-config", "urdf/bot.urdf")
     assert [(f["code"], f["location"]["line"]) for f in fs if f["code"][0] in "CT"] == [("C007", 2)]

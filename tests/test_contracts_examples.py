@@ -16,16 +16,15 @@ if str(SRC) not in sys.path:  # runnable without an editable install
     sys.path.insert(0, str(SRC))
 
 import pytest  # noqa: E402
+from conftest import REPO, lint_json, run_cli  # noqa: E402
+from test_examples import BROKEN, actual, lint_package, read_expected_full  # noqa: E402
 
-from urdfcheck.model.build import model_from_string  # noqa: E402
 from urdfcheck.contracts.common import Value  # noqa: E402
 from urdfcheck.contracts.controllers import DriveSpec, JointUse  # noqa: E402
 from urdfcheck.contracts.launch import ParamSet, RosparamLoad, parse_launch  # noqa: E402
 from urdfcheck.contracts.wheels import check_drive  # noqa: E402
 from urdfcheck.core.findings import Location  # noqa: E402
-
-from conftest import REPO, lint_json, run_cli  # noqa: E402
-from test_examples import BROKEN, actual, lint_package, read_expected_full  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
 
 AGV = REPO / "examples" / "agv"
 CONTRACT_PACKAGES = sorted(p.parent.name for pat in ("contract_*/EXPECTED", "variant_*/EXPECTED")
@@ -70,10 +69,10 @@ def test_agv_zero_config_is_clean():
 
 
 def test_agv_config_reaches_every_consumer():
-    from urdfcheck.pipeline.config import load_config
     from urdfcheck.contracts.consumers import consumers_for_model
     from urdfcheck.contracts.rules_impl import _graph
     from urdfcheck.load.loader import load_model
+    from urdfcheck.pipeline.config import load_config
 
     cfg = load_config(AGV / "urdfcheck.yaml")
     assert [Path(m.path).name for m in cfg.models] == ["agv.urdf.xacro", "agv.urdf"]

@@ -34,7 +34,8 @@ def tf_tuple(t):
     # ROS 2 flag form; --ros-args tail ignored
     ("--x 1 --yaw 0.5 --frame-id map --child-frame-id odom --ros-args -r __node:=x", 2, "tf2_ros",
      ("map", "odom", (1, 0, 0), (0, 0, 0.5))),
-    ("--qz 0.7071068 --qw 0.7071068 --frame-id a --child-frame-id b", 2, "tf2_ros", ("a", "b", (0, 0, 0), (0, 0, 1.5708))),
+    ("--qz 0.7071068 --qw 0.7071068 --frame-id a --child-frame-id b", 2, "tf2_ros",
+     ("a", "b", (0, 0, 0), (0, 0, 1.5708))),
 ])
 def test_static_tf_argument_forms(tokens, ros, pkg, expected):
     parent, child, xyz, rpy = parse_static_tf_args(tokens.split(), ros, pkg)
@@ -67,7 +68,8 @@ ROS1 = """<launch>
   </node>
   <node pkg="joint_state_publisher" type="joint_state_publisher" name="jsp"/>
   <rosparam command="load" file="$(find my_pkg)/config/controllers.yaml"/>
-  <node pkg="controller_manager" type="spawner" name="sp" args="--timeout 5 diff_drive_controller joint_state_controller"/>
+  <node pkg="controller_manager" type="spawner" name="sp" \
+args="--timeout 5 diff_drive_controller joint_state_controller"/>
 </launch>
 """
 

@@ -8,7 +8,17 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 import pytest  # noqa: E402
 
-from urdfcheck.contracts.controllers import DIFF_DRIVE, FORWARD, JSB, JSC, JTC, DriverSpec, load_controllers, read_controllers, read_driver
+from urdfcheck.contracts.controllers import (  # noqa: E402
+    DIFF_DRIVE,
+    FORWARD,
+    JSB,
+    JSC,
+    JTC,
+    DriverSpec,
+    load_controllers,
+    read_controllers,
+    read_driver,
+)
 from urdfcheck.contracts.discover import discover  # noqa: E402
 from urdfcheck.contracts.localization import localization_from_params  # noqa: E402
 from urdfcheck.contracts.params import parse_params, read_params  # noqa: E402
@@ -86,14 +96,17 @@ def test_wildcard_templates_apply_to_concrete_nodes(corpus):
     assert not errs
     fwd = cs.controllers["/rrbot_1/forward_position_controller"]
     assert fwd.kind == FORWARD
-    assert [(u.joint, u.command) for u in fwd.joints] == [("rrbot_1_joint1", ("position",)), ("rrbot_1_joint2", ("position",))]
+    assert [(u.joint, u.command) for u in fwd.joints] == [("rrbot_1_joint1", ("position",)),
+                                                          ("rrbot_1_joint2", ("position",))]
     assert "/rrbot_2/position_trajectory_controller" in cs.controllers
 
 
 def test_chained_controllers_resolve_to_joints(corpus):
-    cs, _ = load_controllers([corpus / "ros-controls+ros2_control_demos/example_16/bringup/config/diffbot_chained_controllers.yaml"])
+    cs, _ = load_controllers([corpus / "ros-controls+ros2_control_demos/example_16/bringup/config/"
+                                       "diffbot_chained_controllers.yaml"])
     dd = cs.by_name("diffbot_base_controller")
-    assert [(u.joint, u.via, u.command) for u in dd.drive.left] == [("left_wheel_joint", "pid_controller_left_wheel_joint", ())]
+    assert ([(u.joint, u.via, u.command) for u in dd.drive.left]
+            == [("left_wheel_joint", "pid_controller_left_wheel_joint", ())])
 
 
 def test_every_corpus_controller_file_reads(corpus):
@@ -113,10 +126,12 @@ def test_every_corpus_controller_file_reads(corpus):
 # --- ROS 1 controllers ---------------------------------------------------------------------------------------
 def test_ros1_diff_drive_files_merge_in_order(corpus):
     d = corpus / DDC
-    cs = read_controllers([read_params(d / "diffbot_controllers.yaml"), read_params(d / "diffbot_left_right_multipliers.yaml")])
+    cs = read_controllers([read_params(d / "diffbot_controllers.yaml"),
+                           read_params(d / "diffbot_left_right_multipliers.yaml")])
     c = cs.by_name("diffbot_controller")
     assert c.ros == 1 and c.kind == DIFF_DRIVE
-    assert [u.joint for u in c.drive.left] == ["wheel_0_joint"] and [u.joint for u in c.drive.right] == ["wheel_1_joint"]
+    assert ([u.joint for u in c.drive.left] == ["wheel_0_joint"]
+            and [u.joint for u in c.drive.right] == ["wheel_1_joint"])
     assert c.drive.from_urdf and c.drive.wheel_separation is None
     assert c.drive.left_radius_multiplier.value == 1.4
     assert c.drive.separation_multiplier.value == 2.3
@@ -151,9 +166,10 @@ def test_custom_driver_by_key_paths(tmp_path):
     f = tmp_path / "drv.yaml"
     f.write_text("left_wheel_joint: lw\nright_wheel_joint: rw\nwheel_separation: 0.5\nwheel_radius: 0.1\n"
                  "imu_frame_id: imu_link\npublish_odom_tf: true\n")
-    drv = read_driver(DriverSpec(str(f), joints=("left_wheel_joint", "right_wheel_joint"), left_wheels=("left_wheel_joint",),
-                                 right_wheels=("right_wheel_joint",), wheel_separation="wheel_separation",
-                                 wheel_radius="wheel_radius", frames=("imu_frame_id", "gps_frame_id"), odom_tf="publish_odom_tf"))
+    drv = read_driver(DriverSpec(str(f), joints=("left_wheel_joint", "right_wheel_joint"),
+                                 left_wheels=("left_wheel_joint",), right_wheels=("right_wheel_joint",),
+                                 wheel_separation="wheel_separation", wheel_radius="wheel_radius",
+                                 frames=("imu_frame_id", "gps_frame_id"), odom_tf="publish_odom_tf"))
     assert [u.joint for u in drv.joints] == ["lw", "rw"]
     assert drv.drive.separation == 0.5 and drv.drive.radius("right") == 0.1
     assert [v.value for v in drv.frames] == ["imu_link"]
@@ -218,8 +234,10 @@ def test_discovery_of_a_package(tmp_path):
         '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
         '  <xacro:include filename="$(find pkg)/urdf/inc/parts.xacro"/>\n'
         '  <xacro:include filename="lib.xacro"/>\n  <link name="base_link"/>\n</robot>\n')
-    (tmp_path / "urdf" / "inc" / "parts.xacro").write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="x"/></robot>')
-    (tmp_path / "urdf" / "lib.xacro").write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="y"/></robot>')
+    (tmp_path / "urdf" / "inc" / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="x"/></robot>')
+    (tmp_path / "urdf" / "lib.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="y"/></robot>')
     (tmp_path / "urdf" / "macros_only.xacro").write_text(
         '<?xml version="1.0"?>\n<!-- <robot> in a comment -->\n<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
         '<xacro:macro name="m" params=""><link name="z"/></xacro:macro></robot>')
@@ -235,7 +253,8 @@ def test_discovery_of_a_package(tmp_path):
     assert rel(d.models) == ["urdf/plain.urdf", "urdf/robot.urdf.xacro"]
     assert rel(d.params) == ["config/c.yaml"]
     assert rel(d.launch) == ["launch/a.launch.py", "launch/b.launch.xml"]
-    assert set(rel(d.libraries)) == {"urdf/inc/parts.xacro", "urdf/lib.xacro", "urdf/macros_only.xacro", "urdf/notrobot.xacro"}
+    assert set(rel(d.libraries)) == {"urdf/inc/parts.xacro", "urdf/lib.xacro", "urdf/macros_only.xacro",
+                                     "urdf/notrobot.xacro"}
 
 
 def test_discovery_on_corpus(corpus):

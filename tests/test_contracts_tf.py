@@ -6,9 +6,25 @@ SRC = Path(__file__).resolve().parent.parent / "src"
 if str(SRC) not in sys.path:  # runnable without an editable install
     sys.path.insert(0, str(SRC))
 
-from urdfcheck.model.build import model_from_string  # noqa: E402
-from urdfcheck.contracts.graph import DYNAMIC, STATIC, PublisherInfo, TFClaim, TFGraph, analyze, claims_from_model, claims_from_owners, cycles, duplicate_owners, multiple_parents, not_one_tree, parse_edge, prefix_collisions, static_and_dynamic
+from urdfcheck.contracts.graph import (  # noqa: E402
+    DYNAMIC,
+    STATIC,
+    PublisherInfo,
+    TFClaim,
+    TFGraph,
+    analyze,
+    claims_from_model,
+    claims_from_owners,
+    cycles,
+    duplicate_owners,
+    multiple_parents,
+    not_one_tree,
+    parse_edge,
+    prefix_collisions,
+    static_and_dynamic,
+)
 from urdfcheck.core.findings import Location  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
 
 MODEL = """<robot name="r">
   <link name="base_link"/><link name="wheel"/><link name="laser"/><link name="float"/><link name="slider"/>
@@ -50,8 +66,10 @@ def test_duplicate_owner_even_with_equal_values():
 
 
 def test_two_odometry_publishers():
-    g = TFGraph().extend([claim("odom", "base_link", "diff_drive_controller", DYNAMIC, 3, "ctrl.yaml", "controller"),
-                          claim("odom", "base_link", "robot_localization (ekf) /ekf", DYNAMIC, 9, "ekf.yaml", "localization")])
+    g = TFGraph().extend([
+        claim("odom", "base_link", "diff_drive_controller", DYNAMIC, 3, "ctrl.yaml", "controller"),
+        claim("odom", "base_link", "robot_localization (ekf) /ekf", DYNAMIC, 9, "ekf.yaml", "localization"),
+    ])
     (p,) = duplicate_owners(g)
     assert p.at == Location("ctrl.yaml", 3) and p.related == (Location("ekf.yaml", 9),)
 
@@ -109,7 +127,8 @@ def test_declared_owners():
     assert parse_edge("/map->/odom") == ("map", "odom")
     assert parse_edge("map") is None
     owners = claims_from_owners({"map->odom": "amcl"}, {"map->odom": Location("urdfcheck.yaml", 4)})
-    g = TFGraph().extend(owners + [claim("map", "odom", "robot_localization (ekf) /ekf", DYNAMIC, source="localization")])
+    g = TFGraph().extend(owners + [claim("map", "odom", "robot_localization (ekf) /ekf", DYNAMIC,
+                                         source="localization")])
     (p,) = duplicate_owners(g)
     assert "amcl" in p.message and Location("urdfcheck.yaml", 4) in {c.loc for c in p.claims}
 

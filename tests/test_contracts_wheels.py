@@ -8,12 +8,12 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 import pytest  # noqa: E402
 
-from urdfcheck.model.build import model_from_string  # noqa: E402
-from urdfcheck.contracts.controllers import DriveSpec, JointUse, read_controllers  # noqa: E402
 from urdfcheck.contracts.common import Value  # noqa: E402
+from urdfcheck.contracts.controllers import DriveSpec, JointUse, read_controllers  # noqa: E402
 from urdfcheck.contracts.params import parse_params  # noqa: E402
 from urdfcheck.contracts.wheels import check_drive  # noqa: E402
 from urdfcheck.core.findings import Location, Severity  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
 
 
 def wheel(name, xyz, rpy, axis, shape='<cylinder radius="0.1" length="0.05"/>', shape_rpy="0 0 0", kind="continuous"):

@@ -14,7 +14,6 @@ from urdfcheck.contracts.params import lookup, node_key_matches, parse_params, r
 from urdfcheck.contracts.yamlsrc import load_yaml, parse_yaml  # noqa: E402
 
 
-
 # --- yamlsrc -------------------------------------------------------------------------------------------------
 def test_values_and_locations():
     doc = parse_yaml("a:\n  b: [1, 2.5, x]\n  c: {d: true}\n", "f.yaml")
@@ -40,7 +39,8 @@ def test_duplicate_node_keys_merge_like_rcl():
 
 
 def test_unknown_and_python_tags_are_plain_text():
-    doc = parse_yaml("a: !!python/object/apply:os.system [echo hi]\nb: !custom 3\nc: !!python/name:os.system x\n", "t.yaml")
+    doc = parse_yaml("a: !!python/object/apply:os.system [echo hi]\nb: !custom 3\nc: !!python/name:os.system x\n",
+                     "t.yaml")
     assert doc.data["a"] == ["echo hi"]
     assert doc.data["b"] == "3"
     assert doc.data["c"] == "x"
@@ -156,9 +156,11 @@ def test_top_level_must_be_a_mapping():
 
 
 def test_every_corpus_parameter_file_reads(corpus):
-    files = sorted(p for d in ("ros-controls+ros2_control_demos", "ros-controls+ros_controllers", "ROBOTIS-GIT+turtlebot3")
+    files = sorted(p for d in ("ros-controls+ros2_control_demos", "ros-controls+ros_controllers",
+                               "ROBOTIS-GIT+turtlebot3")
                    for p in (corpus / d).rglob("*.yaml")
-                   if any(part in ("config", "param", "params", "test") for part in p.parts) and p.name != "rosdoc.yaml")
+                   if any(part in ("config", "param", "params", "test") for part in p.parts)
+                   and p.name != "rosdoc.yaml")
     assert len(files) > 40
     for f in files:
         read_params(f)  # must not raise

@@ -16,10 +16,9 @@ import re
 from pathlib import Path
 
 import pytest
+from conftest import CORPUS, REPO, lint_json
 
 from urdfcheck.pipeline.run import entry_models
-
-from conftest import CORPUS, REPO, lint_json
 
 _SANDBOX = ("X010", "X011")
 

@@ -13,10 +13,9 @@ from collections import Counter
 from pathlib import Path
 
 import pytest
+from conftest import REPO, lint_json, run_cli
 
 from urdfcheck.rules import catalogue as rulebook
-
-from conftest import REPO, lint_json, run_cli
 
 BROKEN = REPO / "examples" / "broken"
 PACKAGES = sorted(p.parent.name for p in BROKEN.glob("*/EXPECTED")) if BROKEN.is_dir() else []

@@ -30,11 +30,10 @@ import pytest
 hypothesis = pytest.importorskip("hypothesis")
 jsonschema = pytest.importorskip("jsonschema")
 yaml = pytest.importorskip("yaml")
+from conftest import REPO, run_cli  # noqa: E402
 from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 from lxml import etree  # noqa: E402
-
-from conftest import REPO, run_cli  # noqa: E402
 
 AGV = REPO / "examples" / "agv"
 SCHEMA = json.loads((REPO / "src" / "urdfcheck" / "schemas" / "report.schema.json").read_text())

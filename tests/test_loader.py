@@ -2,11 +2,10 @@
 import textwrap
 
 import pytest
+from conftest import lint_json, run_cli
 
 from urdfcheck.load import loader
 from urdfcheck.model.build import model_from_string
-
-from conftest import lint_json, run_cli
 
 XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
 
@@ -129,6 +128,18 @@ def test_xacro_error_is_a_located_finding_not_a_crash(tmp_path):
     assert exp.root is None
     (f,) = [f for f in exp.findings if f.code == "X010"]
     assert f.location.line == 3 and "undefined_thing" in f.message
+
+
+def test_a_required_argument_nobody_sets_names_the_argument_and_the_fix(tmp_path):
+    # xacro says "Undefined substitution argument name" for an argument called `name`: unreadable as it stands
+    entry = write(tmp_path, "r.urdf.xacro", f"""
+        <robot name="$(arg name)" {XACRO_NS}>
+          <link name="base_link"/>
+        </robot>
+        """)
+    (f,) = [f for f in loader.expand(entry).findings if f.code == "X010"]
+    assert "argument 'name' has no default" in f.message and "--arg name:=" in f.message
+    assert loader.load_model(entry, {"name": "ur5"}).name == "ur5"
 
 
 def test_unresolved_package_is_x013(tmp_path):

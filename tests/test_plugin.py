@@ -3,9 +3,9 @@ import os
 from pathlib import Path
 
 import pytest
+from samples import BAD, GOOD
 
 import urdfcheck
-from samples import BAD, GOOD
 
 pytest_plugins = ["pytester"]
 

@@ -15,7 +15,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from conftest import lint_json, run_cli  # noqa: E402
 
 from urdfcheck.core.findings import Finding, Location, Place, Severity  # noqa: E402
-from urdfcheck.pipeline.collapse import collapse, describe  # noqa: E402
+from urdfcheck.pipeline.collapse import chains, collapse, describe  # noqa: E402
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="3"><name>{name}</name><version>0.1.0</version><description>d</description>
@@ -361,6 +361,14 @@ def test_collapse_merges_instances_in_one_model_but_not_different_problems():
         "also 'link1', 'link2', 'link3' and 6 more; variant no_prefix=true")
     assert len(collapse([f("effort limit 0"), f("velocity limit 0")])) == 2  # different text: different problems
     assert len(collapse([f(code="S003"), f(code="S004")])) == 2
+    assert chains(one) == [(Location("robot.xacro", 55),), (Location("robot.xacro", 56),)]
+
+
+def test_text_line_of_merged_instances_lists_each_macro_call(tmp_path):
+    # the line to fix is the macro's; the calls say which wheels it hits (both must stay visible after merging)
+    _, out, _ = run_cli(["lint", "--no-config", Path(__file__).resolve().parents[1] / "examples/broken/xacro_macro"])
+    (line,) = [x for x in out.splitlines() if " I004 " in x]
+    assert line.endswith("(via agv.urdf.xacro:55; agv.urdf.xacro:56)") and "also 'right_wheel_link'" in line
 
 
 def multi_variant_package(tmp_path) -> Path:

@@ -5,7 +5,14 @@ from pathlib import Path
 import pytest
 
 from urdfcheck.model.build import model_from_string
-from urdfcheck.publisher import JointState, StatePublisher, TransformLookupError, configuration_joints, link_poses, lookup
+from urdfcheck.publisher import (
+    JointState,
+    StatePublisher,
+    TransformLookupError,
+    configuration_joints,
+    link_poses,
+    lookup,
+)
 
 EPS = 0.01  # the C++ tests' tolerance
 

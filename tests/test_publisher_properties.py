@@ -26,8 +26,8 @@ hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from urdfcheck.model.build import model_from_string  # noqa: E402
 from urdfcheck.core.geometry import pose_matrix  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
 from urdfcheck.publisher import JointState, StatePublisher  # noqa: E402
 
 MOVABLE = ("revolute", "continuous", "prismatic")

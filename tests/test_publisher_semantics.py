@@ -4,7 +4,17 @@ import math
 import pytest
 
 from urdfcheck.model.build import model_from_string
-from urdfcheck.publisher import ROS1, ROS2, JointState, JointStateError, Stamp, StatePublisher, TransformLookupError, lookup, lookup_matrix
+from urdfcheck.publisher import (
+    ROS1,
+    ROS2,
+    JointState,
+    JointStateError,
+    Stamp,
+    StatePublisher,
+    TransformLookupError,
+    lookup,
+    lookup_matrix,
+)
 from urdfcheck.publisher.kinematics import kdl_sign, quat_from_matrix, rot_from_quat
 
 ARM = """<robot name="arm">

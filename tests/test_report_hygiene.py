@@ -5,15 +5,15 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
+from conftest import run_cli
 
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 
-from conftest import run_cli
-
 FORMATS = ["text", "json", "sarif", "junit", "github", "markdown"]
-EVIL = "x\n::error file=pwned.py,line=1::owned\r\n##[error]vso ##vso[task.setvariable]1 \x1b[31mred\x1b[0m\x07 `|<img src=x>@team"
+EVIL = ("x\n::error file=pwned.py,line=1::owned\r\n##[error]vso ##vso[task.setvariable]1 "
+        "\x1b[31mred\x1b[0m\x07 `|<img src=x>@team")
 # XML cannot carry ESC, but a file name can; a link name can carry newlines (character references)
 EVIL_FILE = "evil\x1b[31m\n::error::name.urdf"
 MODEL = """<robot name="r">

@@ -2,13 +2,13 @@
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from urdfcheck.rules import catalogue as rulebook
+from conftest import run_cli
+from samples import BAD, GOOD
+
 from urdfcheck.core.findings import Finding, Location, Place, Severity
 from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
-
-from conftest import run_cli
-from samples import BAD, GOOD
+from urdfcheck.rules import catalogue as rulebook
 
 FAMILIES = sorted({r.family for r in rulebook.catalogue().values()})
 

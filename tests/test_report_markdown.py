@@ -2,12 +2,12 @@
 import re
 from pathlib import Path
 
-from urdfcheck.core.findings import Finding, Place, Location, Severity
+from conftest import run_cli
+
+from urdfcheck.core.findings import Finding, Location, Place, Severity
 from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 from urdfcheck.report.markdown import MAX_CHARS, md, mermaid
-
-from conftest import run_cli
 
 ARM = """<robot name="r">
   <link name="base_link"/>

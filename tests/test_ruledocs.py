@@ -3,10 +3,10 @@ import json
 import re
 
 import pytest
-
-from urdfcheck.rules import catalogue as rulebook, docs as ruledocs
-
 from conftest import REPO, run_cli
+
+from urdfcheck.rules import catalogue as rulebook
+from urdfcheck.rules import docs as ruledocs
 
 CATALOGUE = rulebook.catalogue()
 REGENERATE = "PYTHONPATH=src python3 -m urdfcheck rules --format markdown > docs/rules.md"

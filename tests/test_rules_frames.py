@@ -3,9 +3,9 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
-from urdfcheck.rules import engine
-from urdfcheck.model.build import model_from_string
 from urdfcheck.core.findings import Severity
+from urdfcheck.model.build import model_from_string
+from urdfcheck.rules import engine
 
 
 def run(xml: str, select=("F",), options=None, config=None):

@@ -7,10 +7,10 @@ import random
 
 import pytest
 
-from urdfcheck.rules import engine
-from urdfcheck.model.build import model_from_string
-from urdfcheck.rules.checks.inertial import principal_moments
 from urdfcheck.core.findings import Severity
+from urdfcheck.model.build import model_from_string
+from urdfcheck.rules import engine
+from urdfcheck.rules.checks.inertial import principal_moments
 
 
 def run(xml: str, select=("I",), options=None):

@@ -6,7 +6,6 @@ import json
 import textwrap
 
 import pytest
-
 from conftest import lint_json, run_cli
 
 

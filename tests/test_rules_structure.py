@@ -11,7 +11,6 @@ import subprocess
 import textwrap
 
 import pytest
-
 from conftest import lint_json
 
 CHECK_URDF = shutil.which("check_urdf") or "/usr/bin/check_urdf"

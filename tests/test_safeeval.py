@@ -10,7 +10,15 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from xacro import substitution_args as subst
 
-from urdfcheck.load.xacro.safeeval import Evaluator, Limits, Passed, Refused, default_evaluator, evaluate_substitution, validate
+from urdfcheck.load.xacro.safeeval import (
+    Evaluator,
+    Limits,
+    Passed,
+    Refused,
+    default_evaluator,
+    evaluate_substitution,
+    validate,
+)
 
 # ----------------------------------------------------------------------------------------------
 # Differential test against eval()

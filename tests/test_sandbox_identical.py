@@ -3,13 +3,12 @@ import os
 from pathlib import Path
 
 import pytest
+from conftest import CORPUS, REPO
 
 from urdfcheck.core import worker
 from urdfcheck.load import loader
-from urdfcheck.pipeline.run import entry_models
 from urdfcheck.load.packages import Resolver
-
-from conftest import CORPUS, REPO
+from urdfcheck.pipeline.run import entry_models
 
 # Arguments some corpus models need (as their launch files pass them).
 ARGS = {

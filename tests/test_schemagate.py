@@ -97,7 +97,8 @@ def test_generated_configs_reach_both_answers():
     # derandomized: the same examples every run, so the test cannot flake; no shrinking: any will do
     settings_ = settings(max_examples=2000, database=None, derandomize=True, phases=[Phase.generate])
     for wanted in (True, False):
-        doc = find(instance(SCHEMA), lambda d, w=wanted: verdict(d, SCHEMA) is w and isinstance(d, dict) and "models" in d,
+        doc = find(instance(SCHEMA),
+                   lambda d, w=wanted: verdict(d, SCHEMA) is w and isinstance(d, dict) and "models" in d,
                    settings=settings_)
         assert agree(doc) is wanted
 

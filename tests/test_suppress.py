@@ -3,12 +3,11 @@ import json
 import os
 
 import pytest
+from conftest import run_cli
 
-from urdfcheck.rules import engine
 from urdfcheck.core import suppress
 from urdfcheck.core.findings import Finding, Location, Severity
-
-from conftest import run_cli
+from urdfcheck.rules import engine
 
 
 def lint(tmp_path, name, text, *extra):
@@ -184,7 +183,8 @@ def test_scan_yaml_comments():
 
 
 def test_scan_yaml_block_rules():
-    text = "a:\n  # urdfcheck: ignore[C001]\n  b:\n    c: 1\n\n    d: 2\n  e: 3\n# urdfcheck: ignore[C002]\nseq:\n- x\n- y\nz: 1\n"
+    text = ("a:\n  # urdfcheck: ignore[C001]\n  b:\n    c: 1\n\n    d: 2\n  e: 3\n"
+            "# urdfcheck: ignore[C002]\nseq:\n- x\n- y\nz: 1\n")
     got = suppress.scan_yaml_comments(text)
     assert got == [(3, 6, ("C001",), 2), (9, 11, ("C002",), 8)]
     assert suppress.scan_yaml_comments("# urdfcheck: ignore[C001]\n") == []  # nothing follows

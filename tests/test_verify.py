@@ -1,4 +1,5 @@
-"""urdfcheck.verify.compare: publisher vs Pinocchio / yourdfpy, deltas, and peers that crash, run out of memory or hang."""
+"""urdfcheck.verify.compare: publisher vs Pinocchio / yourdfpy, deltas, and peers that crash, run out of memory
+or hang."""
 import math
 import os
 import signal
@@ -8,11 +9,11 @@ import pytest
 
 np = pytest.importorskip("numpy")
 
-from urdfcheck.verify import compare as V  # noqa: E402
-from urdfcheck.model.build import model_from_string  # noqa: E402
-from urdfcheck.core.findings import Severity  # noqa: E402
-
 from conftest import run_cli  # noqa: E402
+
+from urdfcheck.core.findings import Severity  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
+from urdfcheck.verify import compare as V  # noqa: E402
 
 pytest.importorskip("pinocchio")
 

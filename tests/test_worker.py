@@ -134,8 +134,8 @@ def test_retain_keeps_each_parsed_document_and_changes_no_finding(tmp_path):
 def test_only_the_console_entry_pauses_the_collector_and_keeps_documents(tmp_path):
     import gc
 
-    from urdfcheck.cli import main as cli
     from urdfcheck.cli import lint as runlint
+    from urdfcheck.cli import main as cli
 
     p = _targets(tmp_path, 1)[0].path
     before = len(runlint._UNTIL_EXIT)

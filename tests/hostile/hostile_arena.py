@@ -35,7 +35,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
-
 from conftest import run_cli
 
 DATA = Path(__file__).resolve().parent / "data"

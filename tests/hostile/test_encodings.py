@@ -3,7 +3,6 @@
 urdfdom (TinyXML2) reads UTF-8 only: every such model is an X001 finding that names the encoding; a UTF-8 byte-order
 mark is read on, with an X003 warning."""
 import pytest
-
 from hostile_arena import arena  # noqa: F401 (fixture)
 
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'

@@ -1,7 +1,6 @@
 """Attack: `$(env VAR)`, `$(optenv VAR)`, `$(cwd)` (and env() inside `$(eval)`) copy the CI runner's secrets
 and paths into the model, and from there into reports and artefacts."""
 import pytest
-
 from hostile_arena import CANARY_ENV, CANARY_VAR, arena, formats, line_of, stock_xacro  # noqa: F401 (fixture)
 
 

@@ -3,7 +3,6 @@ a loop over a big operand (`s.find` on a 1 MB string, `divmod` of 100 000-bit in
 strings) costs far more than its iteration count says, and macros repeat expressions. One budget per expansion
 charges iterations *and* the size of the operands touched."""
 import pytest
-
 from hostile_arena import arena  # noqa: F401 (fixture)
 
 LOOPS = [

@@ -8,7 +8,6 @@ import os
 import signal
 
 import pytest
-
 from hostile_arena import arena, line_of  # noqa: F401 (fixture)
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs named pipes")
@@ -65,7 +64,8 @@ def test_fifo_include_is_a_finding_at_the_include(arena):
 def test_fifo_load_yaml_is_a_finding(arena):
     fifo(arena, "config/pipe.yaml")
     entry = arena.write("urdf/y.urdf.xacro", f'<robot name="v" {NS}>\n  <link name="a"/>\n'
-                                             '  <link name="${xacro.load_yaml(\'../config/pipe.yaml\').x}"/>\n</robot>\n')
+                                             '  <link name="${xacro.load_yaml(\'../config/pipe.yaml\').x}"/>\n'
+                                             '</robot>\n')
     r = arena.lint(entry)
     f = r.find("X010", entry.name, 3)
     assert "not a regular file" in f["message"]

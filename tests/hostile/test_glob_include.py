@@ -3,7 +3,6 @@ written, walking the runner's file system, and the refusal of the first match na
 Here the folder a pattern starts from must lie inside the package roots (nothing outside is listed), every match too,
 and refusals name the pattern as written, relative, never an absolute path."""
 import pytest
-
 from hostile_arena import arena, line_of  # noqa: F401 (fixture)
 
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
@@ -36,10 +35,11 @@ def test_glob_include_inside_the_package_works(arena):
 
 def test_abs_filename_hands_out_no_runner_path(arena):
     arena.write("urdf/cfg.yaml", "name: from_yaml\n")
-    entry = arena.write("urdf/p.urdf.xacro", f'<robot name="v" {NS}>\n  <link name="a"/>\n'
-                                             '  <link name="${xacro.abs_filename(\'cfg.yaml\')}"/>\n'
-                                             '  <link name="${xacro.load_yaml(xacro.abs_filename(\'cfg.yaml\')).name}"/>\n'
-                                             '</robot>\n')
+    entry = arena.write("urdf/p.urdf.xacro",
+                        f'<robot name="v" {NS}>\n  <link name="a"/>\n'
+                        '  <link name="${xacro.abs_filename(\'cfg.yaml\')}"/>\n'
+                        '  <link name="${xacro.load_yaml(xacro.abs_filename(\'cfg.yaml\')).name}"/>\n'
+                        '</robot>\n')
     for target in (entry, str(entry)):  # a relative and an absolute entry path
         r = arena.lint(target, extra=["--select", "X,S001"])
         assert str(arena.root) not in r.out

@@ -5,6 +5,7 @@ import math
 
 from conftest import run_cli
 from hostile_arena import arena, line_of  # noqa: F401 (fixture)
+
 from urdfcheck.core import worker
 from urdfcheck.load import loader
 

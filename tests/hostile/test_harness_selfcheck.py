@@ -2,7 +2,6 @@
 eval, no confinement: for one's own files only) the payloads run, and the checks that guard every attack test
 must fail loudly."""
 import pytest
-
 from hostile_arena import arena  # noqa: F401 (fixture)
 
 

@@ -23,7 +23,8 @@ def test_doubling_variables_are_evaluated_once_and_capped():
 
 def test_the_step_budget_ends_any_evaluation():
     # many distinct variables, each used once: the budget, not the depth, ends it
-    text = "\n".join(f'v{i} = "a"' for i in range(30_000)) + "\nx = [" + ", ".join(f"v{i}" for i in range(30_000)) + "]\n"
+    text = ("\n".join(f'v{i} = "a"' for i in range(30_000))
+            + "\nx = [" + ", ".join(f"v{i}" for i in range(30_000)) + "]\n")
     paths = pyinclude._Paths(ast.parse(text), "/tmp/l.launch.py", lambda n: (None, False), lambda p: None)
     assert paths.text(ast.parse("x", mode="eval").body) is None
     assert paths.steps <= pyinclude._MAX_STEPS + 2

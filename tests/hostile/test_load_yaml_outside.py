@@ -1,6 +1,5 @@
 """Attack: `xacro.load_yaml('/etc/passwd')` or with `../` reads files outside the package into the model."""
 import pytest
-
 from hostile_arena import CANARY_FILE, PASSWD_MARK, arena, formats, line_of, stock_xacro  # noqa: F401 (fixture)
 
 

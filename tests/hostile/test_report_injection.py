@@ -7,7 +7,6 @@ import json
 import re
 
 import pytest
-
 from hostile_arena import arena, formats, line_of  # noqa: F401 (fixture)
 
 OUR_ANNOTATION = re.compile(r"^::(error|warning|notice) file=[^:\n]*(,line=\d+)?(,col=\d+)?,title=[^:\n]*::[^\n]*$")

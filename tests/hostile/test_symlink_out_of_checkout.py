@@ -7,7 +7,6 @@ import json
 import os
 
 import pytest
-
 from conftest import run_cli
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "symlink"), reason="needs symbolic links")

@@ -3,7 +3,6 @@
 empty robot, Pinocchio/TinyXML do not expand entities), so the linter and the robot could see different
 documents: urdfcheck refuses any DOCTYPE, in a .urdf, in a .xacro and in a file a xacro includes."""
 import pytest
-
 from hostile_arena import arena, formats, line_of  # noqa: F401 (fixture)
 
 

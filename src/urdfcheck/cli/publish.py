@@ -168,7 +168,7 @@ def cmd_tf(ns) -> int:
     try:
         m = lookup_matrix(model, ns.source, ns.target, joints, default=0.0 if ns.zero_missing else None)
     except TransformLookupError as e:
-        raise _Usage(clean_text(str(e)))
+        raise _Usage(clean_text(str(e))) from None
     t = [m[0][3], m[1][3], m[2][3]]
     q = list(quat_from_matrix(m))
     rpy = list(rpy_from_matrix(m))

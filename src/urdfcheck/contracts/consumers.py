@@ -10,16 +10,16 @@ Reading never raises: unreadable files become `errors` (`ConsumerError`, reporte
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Mapping
 
-from urdfcheck.core.findings import Location
 from urdfcheck.contracts.common import ConsumerError
 from urdfcheck.contracts.controllers import ControllerSet, Driver, read_controllers, read_driver
 from urdfcheck.contracts.graph import TFClaim, claims_from_owners
 from urdfcheck.contracts.launch import LaunchInfo, read_launch
 from urdfcheck.contracts.localization import LocalizationNode, localization_from_params
 from urdfcheck.contracts.params import ParamFile, read_params
+from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 
 DEFAULT_FRAMES = {"map": "map", "odom": "odom", "base": "base_link"}
@@ -32,7 +32,8 @@ class Consumers(Record):
     # notes: (message, Location)
     # origin: "config" or "discovered"
     # files: kind -> [paths read]
-    _fields = ('controllers', 'drivers', 'launch', 'localization', 'tf_owners', 'frames', 'frame_prefix', 'errors', 'notes', 'origin', 'files')
+    _fields = ('controllers', 'drivers', 'launch', 'localization', 'tf_owners', 'frames', 'frame_prefix', 'errors',
+               'notes', 'origin', 'files')
 
     def __init__(self, controllers: ControllerSet | None = None,
                  drivers: list[Driver] | None = None,

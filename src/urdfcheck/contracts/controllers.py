@@ -30,11 +30,12 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Iterable, Mapping, Sequence, NamedTuple
+from collections.abc import Iterable, Mapping, Sequence
+from typing import NamedTuple
 
-from urdfcheck.core.findings import Location
 from urdfcheck.contracts.common import ConsumerError, Value, as_bool, as_float, as_str_list
 from urdfcheck.contracts.params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
+from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 
 # --- controller kinds --------------------------------------------------------------------------------
@@ -56,7 +57,9 @@ _ROS2_TYPES = {
     "velocity_controllers/JointGroupVelocityController": GROUP,
     "effort_controllers/JointGroupEffortController": GROUP,
 }
-_GROUP_INTERFACE = {"position_controllers": "position", "velocity_controllers": "velocity", "effort_controllers": "effort"}
+_GROUP_INTERFACE = {
+    "position_controllers": "position", "velocity_controllers": "velocity", "effort_controllers": "effort",
+}
 _ROS1_JOINT_PACKAGES = ("position_controllers", "velocity_controllers", "effort_controllers", "pos_vel_controllers",
                         "pos_vel_acc_controllers", "joint_trajectory_controller", "forward_command_controller")
 _FRAME_PARAMS = ("frame_id", "sensor_frame_id")  # broadcasters (force/torque, IMU) stamp their messages with these
@@ -180,7 +183,8 @@ class Controller(Record):
     # state_joints: explicit state-source joints (JSB `joints`)
     # frames: frame ids the controller stamps data with / expects in the tree
     # notes: (message, Location)
-    _fields = ('name', 'node', 'type', 'type_loc', 'loc', 'kind', 'ros', 'file', 'params', 'joints', 'broadcasts_all', 'state_joints', 'drive', 'odom_tf', 'frames', 'notes')
+    _fields = ('name', 'node', 'type', 'type_loc', 'loc', 'kind', 'ros', 'file', 'params', 'joints', 'broadcasts_all',
+               'state_joints', 'drive', 'odom_tf', 'frames', 'notes')
 
     def __init__(self, name: str,
                  node: str,
@@ -292,7 +296,7 @@ class _Reader:
         files = [f for f in self.files if f.dialect == "ros2"]
         nodes = merge_nodes(files)
         declared: dict[str, tuple[str, Value]] = {}  # node key -> (type, type Value)
-        for key, node in nodes.items():
+        for node in nodes.values():
             manager_like = "controller_manager" in node.basename or "update_rate" in node.params
             for pname, v in node.params.items():
                 head, dot, tail = pname.rpartition(".")
@@ -423,7 +427,8 @@ def _finish(c: Controller, names_set: set[str]) -> None:
             st_l = st[0] if st else []
         else:
             pkg = c.type.partition("/")[0]
-            cmd_l = [] if pkg == "joint_trajectory_controller" else [_GROUP_INTERFACE.get(pkg, "")] if pkg in _GROUP_INTERFACE else []
+            cmd_l = ([] if pkg == "joint_trajectory_controller"
+                     else [_GROUP_INTERFACE.get(pkg, "")] if pkg in _GROUP_INTERFACE else [])
             st_l = []
         if joints:
             c.joints = _joint_uses(joints[0], joints[1], c.name, names_set, cmd_l, st_l)

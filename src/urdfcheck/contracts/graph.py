@@ -19,7 +19,8 @@ layer turns them into T001..T006.
 """
 from __future__ import annotations
 
-from typing import Iterable, Mapping, Sequence, NamedTuple
+from collections.abc import Iterable, Mapping, Sequence
+from typing import NamedTuple
 
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
@@ -86,7 +87,7 @@ class TFGraph(Record):
             self._seen.add(c)
             self.claims.append(c)
 
-    def extend(self, claims: Iterable[TFClaim]) -> "TFGraph":
+    def extend(self, claims: Iterable[TFClaim]) -> TFGraph:
         for c in claims:
             self.add(c)
         return self
@@ -363,7 +364,8 @@ def not_one_tree(g: TFGraph, frames: Mapping[str, str] | None = None, at: Locati
         hint = (f"; nothing publishes {o} -> {root_of(b)} (the odometry source: a drive controller with "
                 f"enable_odom_tf, robot_localization, or a driver)")
     elif m in frames_set and o in frames_set and root_of(m) != root_of(o):
-        hint = f"; nothing publishes {m} -> {root_of(o)} (localization: AMCL, SLAM or robot_localization with world_frame={m})"
+        hint = (f"; nothing publishes {m} -> {root_of(o)} (localization: AMCL, SLAM or robot_localization with "
+                f"world_frame={m})")
     elif m in frames_set and b in frames_set and root_of(m) != root_of(b) and o not in frames_set:
         hint = f"; nothing connects {m} to {root_of(b)} (expected {m} -> {o} -> {b})"
     main = max(roots, key=size)
@@ -404,6 +406,7 @@ def prefix_collisions(publishers: Sequence[PublisherInfo]) -> list[TFProblem]:
     return out
 
 
-def analyze(g: TFGraph, frames: Mapping[str, str] | None = None, publishers: Sequence[PublisherInfo] = ()) -> list[TFProblem]:
+def analyze(g: TFGraph, frames: Mapping[str, str] | None = None,
+            publishers: Sequence[PublisherInfo] = ()) -> list[TFProblem]:
     return (duplicate_owners(g) + static_and_dynamic(g) + multiple_parents(g) + cycles(g)
             + not_one_tree(g, frames) + prefix_collisions(publishers))

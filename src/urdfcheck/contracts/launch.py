@@ -13,8 +13,8 @@ What is reported (`LaunchInfo`):
 * `state_publishers`: robot_state_publisher nodes with their literal `frame_prefix` (ROS 2) / `tf_prefix` (ROS 1).
 * `joint_state_publishers`: joint_state_publisher(_gui) nodes (a joint state source for every joint).
 * `nodes`: every node found, `spawned` controllers (controller_manager spawner arguments), `param_files`,
-  `includes` (followed by `consumers` for configured launch files) and `notes` for what was skipped (non-literal values, unknown
-  substitutions, conditions that could not be decided).
+  `includes` (followed by `consumers` for configured launch files) and `notes` for what was skipped (non-literal
+  values, unknown substitutions, conditions that could not be decided).
 * ROS 1 XML only, outside `<node>`: `param_sets`, the parameter server writes in document order, each either a
   literal `ParamSet` (`<param name=... value=...>`, inline `<rosparam>` YAML, names resolved against the
   enclosing `<group ns>`) or a `RosparamLoad` (`<rosparam command="load" file=... ns=...>`, read later by
@@ -686,7 +686,8 @@ class _PyReader:
                 v, ok = self.literal(cond_node.args[0])
                 b = as_bool(v) if ok else None
                 if b is not None:
-                    decided = b if self._callee(cond_node) == "IfCondition" else (not b if self._callee(cond_node) == "UnlessCondition" else None)
+                    callee = self._callee(cond_node)
+                    decided = b if callee == "IfCondition" else (not b if callee == "UnlessCondition" else None)
             if decided is False:
                 return
             if decided is None:
@@ -751,12 +752,14 @@ def parse_launch(data: bytes | str, path: str, *, args: Mapping[str, str] | None
         except SyntaxError as e:
             raise ConsumerError(f"Python syntax error: {e.msg}", Location(path, e.lineno, e.offset)) from None
         except (RecursionError, MemoryError, ValueError):
-            raise ConsumerError("Python launch file nested too deeply or otherwise unparsable; refused", Location(path)) from None
+            raise ConsumerError("Python launch file nested too deeply or otherwise unparsable; refused",
+                                Location(path)) from None
         return _PyReader(path, tree, args, packages).run()
     if fmt == "xml":
         root = _xml_root(raw, path)
         return _XmlReader(path, root, args, packages).run()
-    raise ConsumerError("unknown launch file type (expected .launch, .launch.xml, .launch.py, .launch.yaml)", Location(path))
+    raise ConsumerError("unknown launch file type (expected .launch, .launch.xml, .launch.py, .launch.yaml)",
+                        Location(path))
 
 
 def read_launch(path: str | os.PathLike, *, args: Mapping[str, str] | None = None,

@@ -5,6 +5,7 @@ them (no import cycle between the readers).
 """
 from __future__ import annotations
 
+import ast
 import math
 import os
 from collections.abc import Mapping
@@ -16,6 +17,25 @@ from urdfcheck.core.findings import Location
 from urdfcheck.core.records import FrozenRecord, Record
 
 UNKNOWN = "\x00"  # a piece of a string decided at launch time
+
+
+def callee(call: ast.Call) -> str:
+    """The called name of a Python launch file's call: `Node(...)` and `launch_ros.actions.Node(...)` -> Node."""
+    f = call.func
+    return f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
+
+
+def dotted(node: ast.AST) -> str:
+    """`a.b.c` of an attribute chain ("" parts where it is not plain names)."""
+    parts = []
+    while isinstance(node, ast.Attribute):
+        parts.append(node.attr)
+        node = node.value
+    if isinstance(node, ast.Name):
+        parts.append(node.id)
+    return ".".join(reversed(parts))
+
+
 class ModelRef(NamedTuple):
     """The model a robot_state_publisher gets: `path` (may hold UNKNOWN pieces), xacro `args` (values may hold
     UNKNOWN), `how`: "xacro" (expanded) or "file" (read as is)."""

@@ -22,8 +22,8 @@ custom drivers (their key paths are read from their file only).
 from __future__ import annotations
 
 import os
+from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
-from typing import Callable, Iterable, Mapping
 
 from urdfcheck.contracts.common import Value
 from urdfcheck.contracts.controllers import Controller, ControllerSet, finish_controller

@@ -13,11 +13,12 @@ input such as `odom0`/`imu0`; AMCL: `global_frame_id` with `odom_frame_id`, or a
 from __future__ import annotations
 
 import re
-from typing import Iterable, NamedTuple
+from collections.abc import Iterable
+from typing import NamedTuple
 
-from urdfcheck.core.findings import Location
 from urdfcheck.contracts.common import Value, as_bool
 from urdfcheck.contracts.params import NodeParams, ParamFile
+from urdfcheck.core.findings import Location
 
 _RL_INPUT = re.compile(r"^(odom|imu|pose|twist)\d+$")
 

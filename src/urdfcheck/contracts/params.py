@@ -20,12 +20,12 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Iterable
+from collections.abc import Iterable
 
-from urdfcheck.core.findings import Location
 from urdfcheck.contracts.common import ConsumerError, Value
-from urdfcheck.core.records import Record
 from urdfcheck.contracts.yamlsrc import MAX_BYTES, YamlDoc, load_yaml, parse_yaml
+from urdfcheck.core.findings import Location
+from urdfcheck.core.records import Record
 
 ROS2_KEY = "ros__parameters"
 

@@ -14,6 +14,8 @@ from collections.abc import Callable
 
 from urdfcheck.contracts.common import as_bool
 from urdfcheck.contracts.launchinfo import Include
+from urdfcheck.contracts.launchinfo import callee as _callee
+from urdfcheck.contracts.launchinfo import dotted as _dotted
 from urdfcheck.core.findings import Location
 
 _SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAMLLaunchDescriptionSource",
@@ -21,21 +23,6 @@ _SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAML
 _MAX_DEPTH = 20
 _MAX_STEPS = 20_000  # node evaluations per file: variables built from each other must not explode
 _MAX_LEN = 4096  # characters of one path or argument
-
-
-def _callee(call: ast.Call) -> str:
-    f = call.func
-    return f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
-
-
-def _dotted(node: ast.AST) -> str:
-    parts = []
-    while isinstance(node, ast.Attribute):
-        parts.append(node.attr)
-        node = node.value
-    if isinstance(node, ast.Name):
-        parts.append(node.id)
-    return ".".join(reversed(parts))
 
 
 class _Paths:

@@ -28,6 +28,8 @@ from urdfcheck.contracts.launchinfo import (  # noqa: F401 - UNKNOWN, ModelRef, 
     command_model,
     record_node,
 )
+from urdfcheck.contracts.launchinfo import callee as _callee
+from urdfcheck.contracts.launchinfo import dotted as _dotted
 from urdfcheck.core.findings import Location
 
 _MAX_DEPTH = 40
@@ -86,21 +88,6 @@ def _index(tree: ast.AST) -> dict:
                 if inner is not n and isinstance(inner, ast.Call):
                     out["^"][id(inner)] = n
     return out
-
-
-def _callee(call: ast.Call) -> str:
-    f = call.func
-    return f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
-
-
-def _dotted(node: ast.AST) -> str:
-    parts = []
-    while isinstance(node, ast.Attribute):
-        parts.append(node.attr)
-        node = node.value
-    if isinstance(node, ast.Name):
-        parts.append(node.id)
-    return ".".join(reversed(parts))
 
 
 def text_of(v: Any) -> str:

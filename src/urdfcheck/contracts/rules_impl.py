@@ -10,13 +10,27 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Iterator
+from collections.abc import Iterator
 
-from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.contracts.consumers import Consumers, consumers_near
 from urdfcheck.contracts.controllers import JSB, JSC
-from urdfcheck.contracts.graph import PublisherInfo, TFGraph, add_declared, claims_from_localization, claims_from_model, claims_from_odom, claims_from_static_tfs, cycles, duplicate_owners, multiple_parents, not_one_tree, prefix_collisions, static_and_dynamic
+from urdfcheck.contracts.graph import (
+    PublisherInfo,
+    TFGraph,
+    add_declared,
+    claims_from_localization,
+    claims_from_model,
+    claims_from_odom,
+    claims_from_static_tfs,
+    cycles,
+    duplicate_owners,
+    multiple_parents,
+    not_one_tree,
+    prefix_collisions,
+    static_and_dynamic,
+)
 from urdfcheck.contracts.wheels import check_drive
+from urdfcheck.core.findings import Location, Problem, closest
 
 _UNRESOLVED = re.compile(r"\$\(|\$\{")
 
@@ -245,7 +259,8 @@ def ros2_control_joint_invalid(model, ctx) -> Iterator[Problem]:
             if _unresolved(h.name):
                 continue
             if j is None:
-                hint = f"; {h.name!r} is a link, not a joint" if h.name in model.links else _suggest(h.name, model.joints)
+                hint = (f"; {h.name!r} is a link, not a joint" if h.name in model.links
+                        else _suggest(h.name, model.joints))
                 yield Problem(f"<ros2_control name={r.name!r}> declares joint {h.name!r}, which the model does not "
                               f"have{hint}", at=h)
             elif not j.movable:

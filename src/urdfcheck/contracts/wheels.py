@@ -30,9 +30,9 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+from urdfcheck.contracts.controllers import DriveSpec, JointUse, number, number_text
 from urdfcheck.core import geometry as G
 from urdfcheck.core.findings import Location, Severity
-from urdfcheck.contracts.controllers import DriveSpec, JointUse, number, number_text
 from urdfcheck.core.records import FrozenRecord, Record
 
 MIN_FORWARD_SIGN = 0.5  # |mean left a_y + mean right a_y| below this: mixed axis signs, turning sense undefined
@@ -75,7 +75,8 @@ class DriveReport(Record):
     # sides_swapped: the left wheels' mean y is below the right wheels' (REP-103 y points left)
     # forward_sign: sum of the mean wheel-axis y per side: > 0 positive rotation drives +x
     # turn_reversed: commanded yaw and physical yaw have opposite signs (C014)
-    _fields = ('drive', 'base_frame', 'wheels', 'measured_separation', 'urdf_distance', 'expected_separation', 'sides_swapped', 'forward_sign', 'turn_reversed', 'problems_', 'notes')
+    _fields = ('drive', 'base_frame', 'wheels', 'measured_separation', 'urdf_distance', 'expected_separation',
+               'sides_swapped', 'forward_sign', 'turn_reversed', 'problems_', 'notes')
 
     def __init__(self, drive: DriveSpec,
                  base_frame: str,
@@ -173,8 +174,10 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
         msg = (f"{drive.owner} has {nl} left and {nr} right wheel joint(s)"
                + (f"; with no {side_empty} wheels the controller refuses to start" if empty else
                   "; a differential drive expects the same number on each side"))
-        at = drive.left_loc if nl == 0 else drive.right_loc if nr == 0 else (drive.left_loc if nl < nr else drive.right_loc)
-        rep.problems_.append(WheelProblem("C013", msg, at, (drive.right_loc if at == drive.left_loc else drive.left_loc,),
+        at = (drive.left_loc if nl == 0 else drive.right_loc if nr == 0
+              else (drive.left_loc if nl < nr else drive.right_loc))
+        other = drive.right_loc if at == drive.left_loc else drive.left_loc
+        rep.problems_.append(WheelProblem("C013", msg, at, (other,),
                                           Severity.ERROR if empty else None, {"left": nl, "right": nr}))
     if base is None:
         rep.notes.append(("no wheel joint of the drive is in the model; geometry not compared", drive.loc))

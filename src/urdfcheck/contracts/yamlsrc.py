@@ -19,13 +19,14 @@ from __future__ import annotations
 
 import os
 import re
-from typing import Any, Iterator
+from collections.abc import Iterator
+from typing import Any
 
 import yaml
 from yaml.constructor import SafeConstructor
 
-from urdfcheck.core.findings import Location
 from urdfcheck.contracts.common import ConsumerError
+from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 
 MAX_BYTES = 2 * 1024 * 1024
@@ -155,13 +156,15 @@ class _Builder:
     def build(self, node, path: tuple, depth: int = 0):
         self._tick(node)
         if depth > MAX_DEPTH:
-            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", _mark_loc(self.file, node.start_mark))
+            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused",
+                                _mark_loc(self.file, node.start_mark))
         self.value_locs[path] = _mark_loc(self.file, node.start_mark)
         if isinstance(node, yaml.ScalarNode):
             return self.scalar(node)
         key = id(node)
         if key in self._stack:
-            raise ConsumerError("YAML alias refers to itself (recursive structure); refused", _mark_loc(self.file, node.start_mark))
+            raise ConsumerError("YAML alias refers to itself (recursive structure); refused",
+                                _mark_loc(self.file, node.start_mark))
         self._stack.add(key)
         try:
             if isinstance(node, yaml.SequenceNode):
@@ -200,7 +203,8 @@ class _Builder:
             if k in out:
                 if isinstance(out[k], dict) and isinstance(vnode, yaml.MappingNode):
                     # rcl reads parameter files event by event: a repeated node key adds to the node
-                    self.notes.append((f"duplicate key {k!r}; the two mappings are merged", _mark_loc(self.file, knode.start_mark)))
+                    self.notes.append((f"duplicate key {k!r}; the two mappings are merged",
+                                       _mark_loc(self.file, knode.start_mark)))
                     self._tick(vnode)
                     self.key_locs[path + (k,)] = _mark_loc(self.file, knode.start_mark)
                     _deep_update(out[k], self.mapping(vnode, path + (k,), depth + 1))
@@ -217,10 +221,12 @@ class _Builder:
             for src in sources:
                 self._tick(src)
                 if not isinstance(src, yaml.MappingNode):
-                    raise ConsumerError("merge key '<<' needs a mapping or a list of mappings", _mark_loc(self.file, src.start_mark))
+                    raise ConsumerError("merge key '<<' needs a mapping or a list of mappings",
+                                        _mark_loc(self.file, src.start_mark))
                 key = id(src)
                 if key in self._stack:
-                    raise ConsumerError("YAML alias refers to itself (recursive structure); refused", _mark_loc(self.file, src.start_mark))
+                    raise ConsumerError("YAML alias refers to itself (recursive structure); refused",
+                                        _mark_loc(self.file, src.start_mark))
                 self._stack.add(key)
                 try:
                     self.mapping(src, path, depth + 1, out)

@@ -12,7 +12,7 @@ class Severity(enum.IntEnum):
     ERROR = 3
 
     @classmethod
-    def parse(cls, text: str) -> "Severity":
+    def parse(cls, text: str) -> Severity:
         try:
             return cls[text.strip().upper()]
         except KeyError:
@@ -28,7 +28,7 @@ class Location(NamedTuple):
     file: str
     line: int | None = None
     column: int | None = None
-    via: tuple["Location", ...] = ()
+    via: tuple[Location, ...] = ()
 
     def __str__(self) -> str:
         out = self.file
@@ -46,6 +46,7 @@ class Place(NamedTuple):
     model: str
     variant: str = ""
     message: str = ""
+    via: tuple = ()  # the macro call chain of this instance (Location.via), when it has one
 
 
 class Finding(NamedTuple):

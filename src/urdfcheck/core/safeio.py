@@ -75,9 +75,11 @@ def read_text(path, limit: int, errors: str = "replace") -> str:
 # --- encodings ---------------------------------------------------------------------------------------------------
 # urdfdom (TinyXML2) reads UTF-8 only; xacro's expat would take UTF-16 with a byte-order mark. A model in any other
 # encoding is reported (X001), never silently skipped or read as garbage.
-_BOMS = ((b"\x00\x00\xfe\xff", "utf-32-be", "UTF-32 (big-endian)"), (b"\xff\xfe\x00\x00", "utf-32-le", "UTF-32 (little-endian)"),
+_BOMS = ((b"\x00\x00\xfe\xff", "utf-32-be", "UTF-32 (big-endian)"),
+         (b"\xff\xfe\x00\x00", "utf-32-le", "UTF-32 (little-endian)"),
          (b"\xfe\xff", "utf-16-be", "UTF-16 (big-endian)"), (b"\xff\xfe", "utf-16-le", "UTF-16 (little-endian)"))
-_NUL_PATTERNS = ((b"\x00\x00\x00<", "utf-32-be", "UTF-32 (big-endian)"), (b"<\x00\x00\x00", "utf-32-le", "UTF-32 (little-endian)"),
+_NUL_PATTERNS = ((b"\x00\x00\x00<", "utf-32-be", "UTF-32 (big-endian)"),
+                 (b"<\x00\x00\x00", "utf-32-le", "UTF-32 (little-endian)"),
                  (b"\x00<", "utf-16-be", "UTF-16 (big-endian)"), (b"<\x00", "utf-16-le", "UTF-16 (little-endian)"))
 UTF8_BOM = b"\xef\xbb\xbf"
 

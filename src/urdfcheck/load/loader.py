@@ -10,11 +10,11 @@ from pathlib import Path
 
 from urdfcheck.core import xmlfront
 from urdfcheck.core.findings import Finding, Location, Severity
-from urdfcheck.load.packages import Resolver
 from urdfcheck.core.records import Record
-from urdfcheck.core.suppress import Suppression
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
+from urdfcheck.core.suppress import Suppression
 from urdfcheck.load import budget
+from urdfcheck.load.packages import Resolver
 
 MAX_BYTES = xmlfront.MAX_BYTES
 XACRO_TIMEOUT = 20.0
@@ -51,7 +51,8 @@ class Expanded(Record):
     # root: lxml root element of the (expanded) document
     # files: display paths, index = marker file index
     # text: expanded XML with markers (xacro only)
-    _fields = ('entry', 'xacro', 'root', 'files', 'findings', 'suppressions', 'declared_args', 'args', 'text', 'resolver', '_cache')
+    _fields = ('entry', 'xacro', 'root', 'files', 'findings', 'suppressions', 'declared_args', 'args', 'text',
+               'resolver', '_cache')
 
     def __init__(self, entry: str,
                  xacro: bool,

@@ -2,8 +2,8 @@
 
 One chain, first hit wins: explicit mappings (`--package NAME=PATH`, config), the ament index under
 AMENT_PREFIX_PATH, ROS_PACKAGE_PATH, the package that encloses the input, then a scan for package.xml
-files around the input (the enclosing workspace). The resolver also knows the roots that files may be read from (the sandbox confines includes,
-YAML and meshes to them).
+files around the input (the enclosing workspace). The resolver also knows the roots that files may be read from
+(the sandbox confines includes, YAML and meshes to them).
 """
 from __future__ import annotations
 
@@ -316,19 +316,7 @@ def missing_packages(entries, find) -> dict[str, list[tuple[str, int]]]:
             known[name] = find(name)
         return known[name]
 
-    queue = [os.path.abspath(e) for e in entries]
-    seen: set[str] = set()
-    while queue and len(seen) < MAX_REF_FILES:
-        path = queue.pop(0)
-        if path in seen:
-            continue
-        seen.add(path)
-        try:
-            from urdfcheck.core.safeio import read_file
-
-            text = read_file(path, MAX_REF_BYTES)[:MAX_REF_BYTES].decode("utf-8", "replace")
-        except OSError:
-            continue
+    for path, text in literal_includes(entries, lookup):
         for m in _PKG_REF.finditer(text):
             name = m.group(1) or m.group(2)
             if lookup(name) is None:
@@ -336,10 +324,6 @@ def missing_packages(entries, find) -> dict[str, list[tuple[str, int]]]:
                 where = (path, text.count("\n", 0, m.start()) + 1)
                 if where not in places:
                     places.append(where)
-        for m in _XINCLUDE.finditer(text):
-            target = _literal_include(m.group(2).strip(), path, lookup)
-            if target is not None and target not in seen:
-                queue.append(target)
     return missing
 
 
@@ -361,23 +345,30 @@ def _literal_include(ref: str, includer: str, lookup) -> str | None:
     return os.path.abspath(os.path.join(os.path.dirname(includer), ref))
 
 
-def included_files(entry, find, max_files: int = MAX_REF_FILES) -> set[str]:
-    """The files a model reads through its literal includes (itself included), read as text: what a
-    library file's robots are found by."""
-    queue, seen = [os.path.abspath(entry)], set()
+def literal_includes(entries, find, max_files: int = MAX_REF_FILES):
+    """(path, text) of `entries` and of every file they include through a literal `xacro:include` (a literal
+    name or `$(find known_package)/literal`), breadth first, each once, read as text without expanding: what
+    the unresolved packages, a library's robots and a model's Gazebo parameter files are found from."""
+    from urdfcheck.core.safeio import read_file  # a regular file only: a FIFO must not block
+
+    queue, seen = [os.path.abspath(e) for e in entries], set()
     while queue and len(seen) < max_files:
         path = queue.pop(0)
         if path in seen:
             continue
         seen.add(path)
         try:
-            from urdfcheck.core.safeio import read_file
-
             text = read_file(path, MAX_REF_BYTES)[:MAX_REF_BYTES].decode("utf-8", "replace")
         except OSError:
             continue
+        yield path, text
         for m in _XINCLUDE.finditer(text):
             target = _literal_include(m.group(2).strip(), path, find)
             if target is not None and target not in seen:
                 queue.append(target)
-    return {os.path.realpath(p) for p in seen}
+
+
+def included_files(entry, find, max_files: int = MAX_REF_FILES) -> set[str]:
+    """The files a model reads through its literal includes (itself included): what a library file's robots
+    are found by."""
+    return {os.path.realpath(path) for path, _ in literal_includes([entry], find, max_files)}

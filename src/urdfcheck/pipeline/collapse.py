@@ -55,15 +55,26 @@ def collapse(findings: list[Finding]) -> list[Finding]:
 
 def _merge(members: list[Finding]) -> Finding:
     first = members[0]
-    places: dict[tuple[str, str, str], None] = {}  # ordered set
+    places: dict[tuple[str, str, str], tuple] = {}  # ordered: place -> its call chain
     for f in members:
         for p in f.places():
             msg = p.message or f.message
-            places.setdefault((p.model, p.variant, "" if msg == first.message else msg), None)
-    where = tuple(Place(m, v, msg) for m, v, msg in places)
+            places.setdefault((p.model, p.variant, "" if msg == first.message else msg), p.via or f.location.via)
+    where = tuple(Place(m, v, msg, via) for (m, v, msg), via in places.items())
     if len(where) == 1:
         return first._replace(where=())
     return first._replace(model=where[0].model, variant=where[0].variant, where=where)
+
+
+def chains(f: Finding) -> list[tuple]:
+    """The distinct macro call chains of a problem's instances in the model/variant it is shown under (a wheel
+    macro called for each wheel: one chain per call), the finding's own first."""
+    first = f.places()[0]
+    out = [f.location.via] if f.location.via else []
+    for p in f.places()[1:]:
+        if (p.model, p.variant) == (first.model, first.variant) and p.via and p.via not in out:
+            out.append(p.via)
+    return out
 
 
 def _short(label: str) -> str:

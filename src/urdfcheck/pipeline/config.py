@@ -52,9 +52,10 @@ import itertools
 import json
 import os
 import re
+from collections.abc import Mapping
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any, Mapping
+from typing import Any
 
 from urdfcheck.core.findings import Location, Severity
 from urdfcheck.core.records import FrozenRecord
@@ -84,7 +85,8 @@ class ModelConfig(FrozenRecord):
     # path: absolute
     # variants: "auto", a mapping, or None
     # drivers: contracts.controllers.DriverSpec, one per declared custom driver
-    _fields = ('path', 'loc', 'args', 'variants', 'controllers', 'drivers', 'launch', 'launch_args', 'localization', 'frame_prefix')
+    _fields = ('path', 'loc', 'args', 'variants', 'controllers', 'drivers', 'launch', 'launch_args', 'localization',
+               'frame_prefix')
 
     def __init__(self, path: str,
                  loc: Location,
@@ -121,7 +123,8 @@ class ModelConfig(FrozenRecord):
 class Config(FrozenRecord):
     # path: the config file
     # root: its folder; relative paths start here
-    _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore', 'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target')
+    _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore',
+               'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target')
 
     def __init__(self, path: str,
                  root: str,
@@ -219,7 +222,7 @@ def _read_yaml(path: str):
 def _toml_locator(path: str, text: str):
     """Best-effort line numbers for [tool.urdfcheck] keys (tomllib gives none)."""
     lines = text.splitlines()
-    header = next((i for i, l in enumerate(lines) if re.match(r"^\s*\[\s*tool\.urdfcheck\s*\]", l)), None)
+    header = next((i for i, line in enumerate(lines) if re.match(r"^\s*\[\s*tool\.urdfcheck\s*\]", line)), None)
 
     def find(*keypath) -> Location:
         if not keypath:
@@ -227,8 +230,8 @@ def _toml_locator(path: str, text: str):
         key = str(keypath[0])
         pat_table = re.compile(r"^\s*\[\[?\s*tool\.urdfcheck\." + re.escape(key) + r"\b")
         pat_key = re.compile(r"^\s*[\"']?" + re.escape(key) + r"[\"']?\s*=")
-        for i, l in enumerate(lines):
-            if pat_table.match(l):
+        for i, line in enumerate(lines):
+            if pat_table.match(line):
                 return Location(path, i + 1)
         start = header if header is not None else 0
         for i in range(start, len(lines)):
@@ -404,7 +407,8 @@ def load_config(path: str | os.PathLike) -> Config:
             ))
         models.append(ModelConfig(
             path=mp, loc=val_loc("models", i, "path"), args=_ro(_str_args(m.get("args"))), variants=variants,
-            controllers=tuple(resolve(p, "models", i, "controllers", k) for k, p in enumerate(m.get("controllers") or [])),
+            controllers=tuple(resolve(p, "models", i, "controllers", k)
+                              for k, p in enumerate(m.get("controllers") or [])),
             drivers=tuple(drivers),
             launch=tuple(resolve(p, "models", i, "launch", k) for k, p in enumerate(m.get("launch") or [])),
             launch_args=_ro(_str_args(m.get("launch_args"))),

@@ -481,20 +481,10 @@ _FIND = re.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)(/[^$]*)$
 def plugin_parameter_files(ws: _Workspace, model: str, max_files: int = 200) -> tuple[list[str], list[str]]:
     """Parameter files the model's Gazebo ros2_control plugins load (`<parameters>$(find pkg)/x.yaml`), read
     as text through the model's literal includes: (files found, references not literal)."""
-    from urdfcheck.load.packages import _XINCLUDE, _literal_include
+    from urdfcheck.load.packages import literal_includes
 
-    found, unknown, queue, seen = [], [], [os.path.abspath(model)], set()
-    while queue and len(seen) < max_files:
-        path = queue.pop(0)
-        if path in seen:
-            continue
-        seen.add(path)
-        try:
-            from urdfcheck.core.safeio import read_file  # a regular file only: a FIFO must not block
-
-            text = read_file(path, 4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
-        except OSError:
-            continue
+    found, unknown = [], []
+    for _path, text in literal_includes([model], lambda n: ws.find(n, model), max_files):
         for block in _PLUGIN.finditer(text):
             for m in _PARAMS.finditer(block.group(1)):
                 ref = m.group(1).strip()
@@ -505,10 +495,6 @@ def plugin_parameter_files(ws: _Workspace, model: str, max_files: int = 200) -> 
                     unknown.append(ref)
                 elif got not in found:
                     found.append(got)
-        for m in _XINCLUDE.finditer(text):
-            target = _literal_include(m.group(2).strip(), path, lambda n: ws.find(n, model))
-            if target is not None:
-                queue.append(target)
     return found, unknown
 
 

@@ -136,6 +136,6 @@ def _ref(inst, value, schema, root) -> bool:
 
 _KEYWORDS = {
     "type": _type, "properties": _properties, "additionalProperties": _additional, "required": _required,
-    "propertyNames": _property_names, "items": _items, "pattern": _pattern, "minLength": _min_length, "minimum": _minimum,
-    "enum": _enum, "const": _const, "oneOf": _one_of, "$ref": _ref,
+    "propertyNames": _property_names, "items": _items, "pattern": _pattern, "minLength": _min_length,
+    "minimum": _minimum, "enum": _enum, "const": _const, "oneOf": _one_of, "$ref": _ref,
 }

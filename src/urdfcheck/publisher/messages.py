@@ -8,7 +8,8 @@ via :func:`stamp_from_ns`. Internally every time is an integer number of nanosec
 from __future__ import annotations
 
 import math
-from typing import NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import NamedTuple
 
 from urdfcheck.core import geometry
 
@@ -69,7 +70,7 @@ class JointState(NamedTuple):
         return to_ns(self.stamp)
 
     @classmethod
-    def from_dict(cls, d: dict) -> "JointState":
+    def from_dict(cls, d: dict) -> JointState:
         """From the JSON/YAML shape used by ``urdfcheck publish`` (and by ``ros2 topic echo``).
 
         Keys: ``name``/``names``, ``position``/``positions``, and ``stamp`` or ``header: {stamp: ...}``.

@@ -17,7 +17,7 @@ def render(result, colour: bool = False, **_) -> str:
     def c(code, text):
         return f"{code}{text}{_RESET}" if colour else text
 
-    from urdfcheck.pipeline.collapse import describe, variant_totals
+    from urdfcheck.pipeline.collapse import chains, describe, variant_totals
 
     totals = variant_totals(result.targets)
     lines = []
@@ -33,11 +33,15 @@ def render(result, colour: bool = False, **_) -> str:
         tag = f"{f.code}"
         where_ = describe(f, totals)
         extra = f" [{clean_text(where_)}]" if where_ else ""
-        # one line per problem: the macro call chain and related places go at its end, by file name (JSON and
-        # SARIF carry the full paths); a problem found in several models/variants has several chains: none shown
+        # one line per problem: the macro call chains and related places go at its end, by file name (JSON and
+        # SARIF carry the full paths); the calls of one model's instances are listed ("via a:55; a:56"), the
+        # chains of other models and variants are not (too many to be useful on one line)
         tail = ""
-        if loc.via and len(f.places()) == 1:
-            tail += "  (via " + " < ".join(_short(v) for v in loc.via) + ")"
+        paths = chains(f)
+        if paths:
+            shown = [" < ".join(_short(v) for v in chain) for chain in paths[:3]]
+            more = f"; {len(paths) - 3} more" if len(paths) > 3 else ""
+            tail += "  (via " + "; ".join(shown) + more + ")"
         related = [r for r in f.related if (r.file, r.line) != (loc.file, loc.line)]
         if related:
             tail += "  (see also " + ", ".join(_short(r) for r in related) + ")"

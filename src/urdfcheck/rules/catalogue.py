@@ -8,8 +8,9 @@ from __future__ import annotations
 import functools
 import importlib
 import pkgutil
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable, NamedTuple
+from typing import NamedTuple
 
 from urdfcheck.core.findings import Severity
 
@@ -165,7 +166,7 @@ def write_index(folder: Path | None = None) -> Path:
     return path
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def catalogue() -> dict[str, RuleInfo]:
     import json
 
@@ -210,7 +211,7 @@ def _info(data: dict, path: str) -> RuleInfo:
     )
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def load_checks() -> dict[str, Callable]:
     for pkg_name in _CHECK_PACKAGES:
         try:

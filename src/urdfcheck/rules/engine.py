@@ -8,10 +8,10 @@ from __future__ import annotations
 import os
 
 from urdfcheck.core import nogc
-from urdfcheck.rules import catalogue as rulebook
 from urdfcheck.core.findings import Finding, Location, Problem, Severity, clean_text
 from urdfcheck.core.records import Record
 from urdfcheck.core.suppress import is_yaml, yaml_suppressions
+from urdfcheck.rules import catalogue as rulebook
 
 
 class Selection(Record):
@@ -151,7 +151,8 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
                 if yaml_used is not None:  # absolute, like the consumer files `unused_yaml` is given
                     yaml_used.add((os.path.abspath(f.location.file), hit))
                 continue
-        kept.append(Finding(f.code, sev, f.message.replace(here, ""), _shown(f.location), f.name or (info.name if info else ""),
+        kept.append(Finding(f.code, sev, f.message.replace(here, ""), _shown(f.location),
+                            f.name or (info.name if info else ""),
                             tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant))
     if selection.enabled("R002"):
         for i, s in enumerate(suppressions):

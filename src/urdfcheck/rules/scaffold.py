@@ -1,8 +1,8 @@
 """Start a new rule: `python -m urdfcheck.rules.scaffold J013 joint-name-too-long --module joints`.
 
 Writes the catalogue entry `rules/J013.yaml` (every required field; its failing example does not fail yet, so
-tests/test_catalogue.py stays red until the rule and its examples are written) and appends a check function that yields nothing to
-`src/urdfcheck/rules/checks/<module>.py`. Refuses to overwrite an existing entry or a registered code.
+tests/test_catalogue.py stays red until the rule and its examples are written) and appends a check function that
+yields nothing to `src/urdfcheck/rules/checks/<module>.py`. Refuses to overwrite an existing entry or a registered code.
 """
 from __future__ import annotations
 

@@ -253,7 +253,7 @@ def expand(path: str, opts: Options) -> dict:
             data = read_file(full, MAX_FILE_BYTES)
         except OSError as e:
             xacro.filestack.pop()  # as stock xacro does: the missing file is not "the current file"
-            raise xacro.XacroException(f"{e.strerror}: {shown(filename, quote=False)}", exc=e)
+            raise xacro.XacroException(f"{e.strerror}: {shown(filename, quote=False)}", exc=e) from e
         if len(data) > MAX_FILE_BYTES:
             raise Refusal("X012", f"{shown(filename)} is larger than {MAX_FILE_BYTES} bytes")
         idx = state.index(os.path.normpath(full))
@@ -406,6 +406,11 @@ def _describe(e: BaseException, xacro) -> dict:
     msg = _text(e)
     if type(e).__name__ == "ExpatError":
         msg = f"XML parsing error: {msg}"
+    elif msg.startswith("Undefined substitution argument "):
+        # xacro's words name the argument without quotes ("... argument name"): say what is missing and who sets it
+        arg = msg[len("Undefined substitution argument "):].strip()
+        msg = (f"xacro argument '{arg}' has no default and nothing sets it (no launch file found that runs this "
+               f"model with it): set it with --arg {arg}:=... or in the model's args: in urdfcheck.yaml")
     macros = [m.body.getAttribute("name") for m in reversed(xacro.macrostack or []) if m.body is not None]
     if macros:
         msg += " (in macro " + " <- ".join(macros) + ")"
@@ -468,11 +473,9 @@ def _deprecated_as_stock(xacro, symbols, name: str, confined):
 def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
     import functools
 
-    from urdfcheck.load.xacro import safeeval
-
     import yaml
 
-    from urdfcheck.load.xacro import yamlguard
+    from urdfcheck.load.xacro import safeeval, yamlguard
 
     def confined_load_yaml(filename):
         # stock load_yaml, reading the file once: a regular file only (a committed FIFO would block), capped,

@@ -404,7 +404,8 @@ def _m_format(run, template, args, kwargs):
         run.refuse(reason)
     if nested:  # a width taken from an argument: bound the integers, and the widths spelt in strings ('>999999999')
         for v in list(args) + list(kwargs.values()):
-            if (isinstance(v, int) and v > run.limits.max_len) or (isinstance(v, str) and _digits_reason(v, run.limits)):
+            if ((isinstance(v, int) and v > run.limits.max_len)
+                    or (isinstance(v, str) and _digits_reason(v, run.limits))):
                 run.refuse("format width taken from an argument is too large")
     return args
 
