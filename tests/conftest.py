@@ -40,10 +40,23 @@ def run_cli(args, cwd=None):
     return code, out.getvalue(), err.getvalue()
 
 
-def lint_json(args, cwd=None):
+def lint_json(args, cwd=None, flat=True):
+    """The JSON report. `flat`: the same problem at other lines of a file (`also`, one finding in the report)
+    is listed as one finding per line, as the rules found it: what rule tests check."""
     code, out, err = run_cli(["lint", "--format", "json", "--no-config", *args], cwd=cwd)
     assert code in (0, 1), (code, err)
-    return code, json.loads(out)
+    report = json.loads(out)
+    if flat:
+        report["findings"] = flatten(report["findings"])
+    return code, report
+
+
+def flatten(findings: list[dict]) -> list[dict]:
+    out = []
+    for f in findings:
+        out.append({k: v for k, v in f.items() if k != "also"})
+        out.extend({**out[-1], "location": a["location"], "message": a["message"]} for a in f.get("also", ()))
+    return out
 
 
 def write_example(example: dict, folder: Path) -> Path:

@@ -7,7 +7,7 @@ SRC = Path(__file__).resolve().parent.parent / "src"
 if str(SRC) not in sys.path:  # runnable without an editable install
     sys.path.insert(0, str(SRC))
 
-from conftest import run_cli  # noqa: E402
+from conftest import flatten, run_cli  # noqa: E402
 
 from urdfcheck.contracts.consumers import Consumers, consumers_for_model, discover_consumers  # noqa: E402
 from urdfcheck.contracts.controllers import read_controllers  # noqa: E402
@@ -209,7 +209,7 @@ def write_pkg(root: Path, urdf: str, files: dict) -> None:
 def lint(cwd, *args):
     code, out, err = run_cli(["lint", "--format", "json", *args], cwd=cwd)
     assert code in (0, 1), err
-    return code, json.loads(out)["findings"]
+    return code, flatten(json.loads(out)["findings"])
 
 
 def test_config_with_custom_driver(tmp_path):

@@ -16,7 +16,7 @@ if str(SRC) not in sys.path:  # runnable without an editable install
     sys.path.insert(0, str(SRC))
 
 import pytest  # noqa: E402
-from conftest import REPO, lint_json, run_cli  # noqa: E402
+from conftest import REPO, flatten, lint_json, run_cli  # noqa: E402
 from test_examples import BROKEN, actual, lint_package, read_expected_full  # noqa: E402
 
 from urdfcheck.contracts.common import Value  # noqa: E402
@@ -36,7 +36,9 @@ def lint_cfg(args, cwd=REPO):
     """The CLI with config discovery (no --no-config); (exit code, json report)."""
     code, out, err = run_cli(["lint", "--format", "json", *[str(a) for a in args]], cwd=cwd)
     assert code in (0, 1), (code, err)
-    return code, json.loads(out)
+    report = json.loads(out)
+    report["findings"] = flatten(report["findings"])  # one per line, as the rules found them
+    return code, report
 
 
 def summary(report):

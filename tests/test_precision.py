@@ -447,3 +447,32 @@ def test_a_xacro_that_can_produce_no_link_is_a_fragment(tmp_path):
     _, report = lint_json([pkg])
     assert [Path(m["path"]).name for m in report["models"]] == ["bot.urdf.xacro"]
     assert codes(report, "S011") == []
+
+
+def test_the_same_problem_at_several_lines_of_a_file_is_one_line(tmp_path):
+    # ANYmal names twelve joints like their links; fanuc leaves six effort limits at 0: one line each, every
+    # place kept (JSON `also`, SARIF related locations)
+    joints = "".join(f'<link name="l{i}"/><joint name="l{i}" type="fixed"><parent link="base_link"/>'
+                     f'<child link="l{i}"/></joint>\n' for i in range(1, 6))
+    urdf = write(tmp_path, {"robot.urdf": f'<robot name="r">\n<link name="base_link"/>\n{joints}</robot>\n'})
+    path = urdf / "robot.urdf"
+    _, out, _ = run_cli(["lint", "--no-config", "--select", "S010", path])
+    (line,) = [x for x in out.splitlines() if " S010 " in x]
+    assert line.split()[0].endswith("robot.urdf:3")
+    assert "also 'l2', 'l3', 'l4' and 1 more at lines 4, 5, 6, …" in line
+    _, report = lint_json(["--select", "S010", path], flat=False)
+    (f,) = report["findings"]
+    assert [a["location"]["line"] for a in f["also"]] == [4, 5, 6, 7]
+    assert [a["message"].split("'")[1] for a in f["also"]] == ["l2", "l3", "l4", "l5"]
+    _, sarif, _ = run_cli(["lint", "--no-config", "--select", "S010", "--format", "sarif", path])
+    (res,) = json.loads(sarif)["runs"][0]["results"]
+    assert [r["physicalLocation"]["region"]["startLine"] for r in res["relatedLocations"]][-4:] == [4, 5, 6, 7]
+
+
+def test_different_models_or_variants_at_other_lines_stay_apart():
+    a = f("joint 'a' has effort limit 0")._replace(location=Location("m.urdf", 3))
+    b = f("joint 'b' has effort limit 0")._replace(location=Location("m.urdf", 4))
+    (one,) = collapse([a, b])
+    assert [x.location.line for x in one.also] == [4] and describe(one) == "also 'b' at line 4"
+    c = b._replace(variant="use_arm=true")  # found in another variant only: its own line, with its label
+    assert len(collapse([a, c])) == 2

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
-from conftest import run_cli
+from conftest import flatten, run_cli
 
 DATA = Path(__file__).resolve().parent / "data"
 # wall-clock bound for one whole CLI call on hostile input (URDFCHECK_HOSTILE_TIME_BOUND for slow boxes)
@@ -150,7 +150,8 @@ class Outcome:
 
     @property
     def findings(self) -> list[dict]:
-        return (self.report or {}).get("findings", [])
+        # one finding per line, as the rules found them
+        return flatten((self.report or {}).get("findings", []))
 
     def codes(self) -> list[str]:
         return [f["code"] for f in self.findings]

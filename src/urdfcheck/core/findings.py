@@ -49,6 +49,13 @@ class Place(NamedTuple):
     via: tuple = ()  # the macro call chain of this instance (Location.via), when it has one
 
 
+class Also(NamedTuple):
+    """Another line of the same file where the same problem is written again (pipeline/collapse.py)."""
+
+    location: Location
+    message: str
+
+
 class Finding(NamedTuple):
     code: str
     severity: Severity
@@ -61,6 +68,9 @@ class Finding(NamedTuple):
     # every model/variant the same problem was found in, when several (pipeline/collapse.py); () means just
     # `model`/`variant` above, which are always the first of them
     where: tuple[Place, ...] = ()
+    # the same problem at other lines of the same file, in the same models/variants (twelve joints named like
+    # their links, six joints with effort 0): one line in the reports, each place kept here
+    also: tuple[Also, ...] = ()
 
     def places(self) -> tuple[Place, ...]:
         return self.where or (Place(self.model, self.variant),)

@@ -9,12 +9,17 @@ the message there when it reads differently). The reports print one line for it;
 Instances inside one model (a wheel macro called for the left and the right wheel, an arm macro expanded
 for two arms) are one problem as well: one edit at that line fixes them all, so they are one line, naming
 the other instances ("also 'right_wheel_link'").
+
+The same problem written again at other lines of the same file, in exactly the same models and variants
+(twelve joints named like their links, six joints with effort limit 0, an unknown element repeated in every
+joint) is one line too: the first place, then "also 'LF_HFE', … at lines 687, 763, …"; `Finding.also` keeps
+each place (JSON `also`, SARIF related locations).
 """
 from __future__ import annotations
 
 import re
 
-from urdfcheck.core.findings import Finding, Place
+from urdfcheck.core.findings import Also, Finding, Place
 
 # a quoted name: no blank inside, so that "('link 'x' is not unique')" (urdfdom's words quoted) pairs up right
 _QUOTED = re.compile(r"'[^'\s]*'|\"[^\"\s]*\"")
@@ -50,7 +55,23 @@ def collapse(findings: list[Finding]) -> list[Finding]:
     out = []
     for members in groups.values():
         out.append(members[0] if len(members) == 1 and not members[0].where else _merge(members))
-    return sorted(out, key=Finding.sort_key)
+    return sorted(_across_lines(out), key=Finding.sort_key)
+
+
+def _across_lines(findings: list[Finding]) -> list[Finding]:
+    """Merge the same problem at several lines of one file (see the module doc); the first line leads."""
+    groups: dict[tuple, list[Finding]] = {}
+    for f in sorted(findings, key=Finding.sort_key):
+        loc = f.location
+        if loc.line is None:
+            groups[(id(f),)] = [f]
+            continue
+        places = frozenset((p.model, p.variant) for p in f.places())
+        groups.setdefault((f.code, f.severity, loc.file, _shape(f.message), places), []).append(f)
+    out = []
+    for first, *rest in groups.values():
+        out.append(first._replace(also=tuple(Also(g.location, g.message) for g in rest)) if rest else first)
+    return out
 
 
 def _merge(members: list[Finding]) -> Finding:
@@ -104,12 +125,30 @@ def instances(f: Finding, limit: int = 3) -> str:
     return "also " + ", ".join(names[:limit]) + (f" and {len(names) - limit} more" if len(names) > limit else "")
 
 
+def elsewhere(f: Finding, limit: int = 3) -> str:
+    """The other lines of the file with the same problem: "also 'LF_HFE', 'LF_KFE' and 9 more at lines 687,
+    763, …" (names as the messages quote them, when they do)."""
+    if not f.also:
+        return ""
+    own = _first_name(f.message)
+    names = []
+    for a in f.also:
+        name = _first_name(a.message)
+        if name and name != own and name not in names:
+            names.append(name)
+    lines = [str(a.location.line) for a in f.also]
+    shown_lines = ", ".join(lines[:limit]) + (", …" if len(lines) > limit else "")
+    head = "also " + (", ".join(names[:limit]) + (f" and {len(names) - limit} more" if len(names) > limit else "")
+                      + " " if names else "")
+    return f"{head}at line{'s' if len(lines) > 1 else ''} {shown_lines}"
+
+
 def describe(f: Finding, totals: dict[str, int] | None = None, limit: int = 3, every: bool = False) -> str:
     """Where a finding applies, for one line of a report: "" (one place), "variant: a=true",
     "in 12 of 16 variants: a=true, b=false, …", "in 3 models: x.urdf, y.urdf, …"; nothing when it applies to
     every variant of its model, unless `every` ("in all 16 variants"). `totals`: model -> number of variants linted."""
     places = f.places()
-    parts = [s] if (s := instances(f, limit)) else []
+    parts = [s for s in (instances(f, limit), elsewhere(f, limit)) if s]
     models = list(dict.fromkeys(p.model for p in places))
     if len(models) > 1:
         names = [m.rsplit("/", 1)[-1] for m in models]

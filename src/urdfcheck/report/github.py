@@ -40,6 +40,7 @@ def command(f, totals: dict | None = None) -> str:
         lines[0] += f" [{clean_text(where)}]"
     lines += [f"via macro call at {clean_text(str(v), 4096)}" for v in f.location.via]
     lines += [f"see also {clean_text(str(r), 4096)}" for r in f.related]
+    lines += [f"also at {clean_text(str(a.location), 4096)}" for a in f.also]
     return f"::{COMMANDS[f.severity]} {','.join(props)}::{escape_data(chr(10).join(lines))}"
 
 

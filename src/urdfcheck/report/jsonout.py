@@ -47,6 +47,9 @@ def as_dict(result) -> dict:
                 # every model/variant the same problem was found in (one entry when just `model`/`variant`)
                 "where": [{"model": clean_text(p.model, 4096), "variant": clean_text(p.variant),
                            **({"message": clean_text(p.message)} if p.message else {})} for p in f.places()],
+                # the same problem at other lines of the file (one finding, each place kept)
+                **({"also": [{"location": location(a.location), "message": clean_text(a.message)}
+                             for a in f.also]} if f.also else {}),
             }
             for f in result.findings
         ],

@@ -78,6 +78,8 @@ def finding_line(f, totals: dict | None = None) -> str:
         out += f"\n    via macro call at {x(str(v))}"
     for r in f.related:
         out += f"\n    see also {x(str(r))}"
+    for a in f.also:
+        out += f"\n    also at {x(str(a.location))}: {x(a.message)}"
     return out
 
 

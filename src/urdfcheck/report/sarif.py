@@ -122,6 +122,9 @@ def as_dict(result) -> dict:
         for r in f.related:
             related.append({"id": len(related) + 1, "physicalLocation": physical(r),
                             "message": {"text": "related location"}})
+        for a in f.also:
+            related.append({"id": len(related) + 1, "physicalLocation": physical(a.location),
+                            "message": {"text": "the same problem again: " + clean_text(a.message)}})
         item = {
             "ruleId": f.code,
             "ruleIndex": index[f.code],

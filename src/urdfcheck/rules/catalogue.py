@@ -245,6 +245,9 @@ def unknown_codes(patterns) -> list[str]:
     A pattern is valid when it is ALL, a rule code, or a prefix of at least one rule code."""
     from urdfcheck.core.findings import closest
 
+    patterns = list(patterns or ())
+    if not patterns:  # the catalogue is read later, while the first expansion runs in its worker
+        return []
     codes = sorted(set(catalogue()) | set(CHECKS))
     out = []
     for p in patterns:
