@@ -476,3 +476,18 @@ def test_different_models_or_variants_at_other_lines_stay_apart():
     assert [x.location.line for x in one.also] == [4] and describe(one) == "also 'b' at line 4"
     c = b._replace(variant="use_arm=true")  # found in another variant only: its own line, with its label
     assert len(collapse([a, c])) == 2
+
+
+def test_models_with_the_same_file_name_are_told_apart():
+    a = f(model="moveit/panda_description/urdf/panda.urdf.xacro")
+    b = f(model="moveit/panda_moveit_config/config/panda.urdf.xacro")
+    (one,) = collapse([a, b])
+    assert describe(one) == "in 2 models: urdf/panda.urdf.xacro, config/panda.urdf.xacro"
+
+
+def test_a_missing_file_named_without_quotes_is_the_same_problem_in_each_variant():
+    # the UR driver's launch files offer robot types whose visual_parameters.yaml the description lacks:
+    # the same line fails in five variants, each naming its own file
+    msgs = [f"No such file or directory: ur/config/{t}/visual_parameters.yaml" for t in ("ur12e", "ur15")]
+    (one,) = collapse([f(m, code="X010", variant=v) for m, v in zip(msgs, ("ur12e.launch.py", "ur15.launch.py"))])
+    assert [p.message or one.message for p in one.places()] == msgs

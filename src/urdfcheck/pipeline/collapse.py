@@ -28,12 +28,14 @@ _HINT = re.compile(r" \(did you mean [^)]*\)")
 
 # names as urdfdom's messages quote them: "parent link [fer_link8] of joint [fer_hand_joint] not found"
 _BRACKETED = re.compile(r"\[[^\]\s]*\]")
+# a file path written without quotes ("file not found (pkg/meshes/a.dae)", "No such file or directory: x/y.yaml")
+_PATH = re.compile(r"[^\s'\"()\[\]]*/[^\s'\"()\[\]]*\.\w+")
 
 
 def _shape(message: str) -> str:
     """The message with quoted names (and name suggestions) set aside: what stays equal across macro
     expansions."""
-    return _BRACKETED.sub("[…]", _QUOTED.sub("'…'", _HINT.sub("", message)))
+    return _PATH.sub("…", _BRACKETED.sub("[…]", _QUOTED.sub("'…'", _HINT.sub("", message))))
 
 
 def collapse(findings: list[Finding]) -> list[Finding]:
@@ -98,6 +100,19 @@ def chains(f: Finding) -> list[tuple]:
     return out
 
 
+def _short_names(paths: list[str]) -> list[str]:
+    """Each path by its file name, with as many parent folders as it takes to tell two apart
+    (moveit_resources has two panda.urdf.xacro)."""
+    out = []
+    for p in paths:
+        parts = p.split("/")
+        n = 1
+        while n < len(parts) and any(q != p and q.split("/")[-n:] == parts[-n:] for q in paths):
+            n += 1
+        out.append("/".join(parts[-n:]))
+    return out
+
+
 def _short(label: str) -> str:
     """A variant label for one line: a launch file path (a deployment's label) by its file name."""
     head, sep, rest = label.partition(" ")
@@ -151,7 +166,7 @@ def describe(f: Finding, totals: dict[str, int] | None = None, limit: int = 3, e
     parts = [s for s in (instances(f, limit), elsewhere(f, limit)) if s]
     models = list(dict.fromkeys(p.model for p in places))
     if len(models) > 1:
-        names = [m.rsplit("/", 1)[-1] for m in models]
+        names = _short_names(models)
         shown = ", ".join(names[:limit]) + (", …" if len(names) > limit else "")
         parts.append(f"in {len(models)} models: {shown}")
         # and in which of their variants, unless in all of them

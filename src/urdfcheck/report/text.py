@@ -42,9 +42,9 @@ def render(result, colour: bool = False, **_) -> str:
             shown = [" < ".join(_short(v) for v in chain) for chain in paths[:3]]
             more = f"; {len(paths) - 3} more" if len(paths) > 3 else ""
             tail += "  (via " + "; ".join(shown) + more + ")"
-        related = [r for r in f.related if (r.file, r.line) != (loc.file, loc.line)]
-        if related:
-            tail += "  (see also " + ", ".join(_short(r) for r in related) + ")"
+        related = list(dict.fromkeys(_short(r) for r in f.related if (r.file, r.line) != (loc.file, loc.line)))
+        if related:  # by file name and line: two uses through different macro calls are one place here
+            tail += "  (see also " + ", ".join(related) + ")"
         lines.append(f"{where}  {c(_COLOURS[f.severity], tag)}  {c(_DIM, str(f.severity))}  "
                      f"{clean_text(f.message)}{extra}{c(_DIM, tail)}")
     counts = {s: sum(1 for f in result.findings if f.severity == s) for s in Severity}
