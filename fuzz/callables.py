@@ -213,17 +213,13 @@ def _child(conn_w: int, cases: list[dict], ws_root: str) -> None:
     resource.setrlimit(resource.RLIMIT_AS, (3 * 1024**3, 3 * 1024**3))
     os.environ[SECRET_VAR] = SECRET
     sys.argv.append(ARGV_MARK)
-    import xacro
-    import xacro.substitution_args as subst
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # this folder: the shared harness helpers
+    import xacrostate
 
     from urdfcheck.load.packages import Resolver
     from urdfcheck.load.xacro import expand as xexpand
 
-    saved_x, saved_s = dict(vars(xacro)), dict(vars(subst))
-    saved_sym = dict(xacro._global_symbols)
-    saved_ns = {k: dict(v) for k, v in xacro._global_symbols.items() if isinstance(v, dict)}
-    units = getattr(xacro, "ConstructUnits", None)
-    saved_units = units.__dict__.get("constructor") if units is not None else None
+    restore = xacrostate.snapshot()
     ws = Workspace.__new__(Workspace)
     ws.root = Path(ws_root)
     ws.pkg = ws.root / "ws" / "fuzz_description"
@@ -245,15 +241,7 @@ def _child(conn_w: int, cases: list[dict], ws_root: str) -> None:
             out = {"ok": False, "code": "EXC", "text": f"{type(e).__name__}: {e}"[:2000]}
         finally:
             sys.stderr = err
-            vars(xacro).update(saved_x)
-            vars(subst).update(saved_s)
-            xacro._global_symbols.clear()
-            xacro._global_symbols.update(saved_sym)
-            for k, v in saved_ns.items():
-                dict.clear(xacro._global_symbols[k])
-                dict.update(xacro._global_symbols[k], v)
-            if saved_units is not None:
-                units.constructor = saved_units
+            restore()
         os.write(conn_w, (json.dumps(out) + "\n").encode())
     os._exit(0)
 

@@ -93,18 +93,15 @@ _WS: Workspace | None = None
 
 def _inprocess_worker():
     """Replace the forked worker by a direct call that restores xacro's pristine module state afterwards."""
-    import xacro
-    import xacro.substitution_args as subst
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # this folder: the shared harness helpers
+    import xacrostate
 
-    from urdfcheck.load import worker
+    from urdfcheck.core import worker
 
-    saved_x, saved_s = dict(vars(xacro)), dict(vars(subst))
-    saved_sym = dict(xacro._global_symbols)
-    saved_ns = {k: dict(v) for k, v in xacro._global_symbols.items() if isinstance(v, dict)}
-    units = getattr(xacro, "ConstructUnits", None)
-    saved_units = units.__dict__.get("constructor") if units is not None else None
+    restore = xacrostate.snapshot()
 
-    def run(fn, *args, timeout=None, memory=None, capture_fd2=False, **kwargs):
+    def run(fn, *args, timeout=None, memory=None, capture_fd2=False, env_keep=(), scrub_env=True, grace=None,
+            **kwargs):
         err = sys.stderr
         try:
             return fn(*args, **kwargs)
@@ -114,17 +111,13 @@ def _inprocess_worker():
             return worker.Failure("error", "recursion too deep")
         finally:
             sys.stderr = err
-            vars(xacro).update(saved_x)
-            vars(subst).update(saved_s)
-            xacro._global_symbols.clear()
-            xacro._global_symbols.update(saved_sym)
-            for k, v in saved_ns.items():
-                dict.clear(xacro._global_symbols[k])
-                dict.update(xacro._global_symbols[k], v)
-            if saved_units is not None:
-                units.constructor = saved_units
+            restore()
+
+    def start(fn, *args, **kwargs):  # what the loader calls: a Job that is already done
+        return worker.Job(None, None, None, None, value=run(fn, *args, **kwargs))
 
     worker.run = run
+    worker.start = start
 
 
 def check_output(fmt: str, out: str) -> None:
