@@ -491,3 +491,12 @@ def test_a_missing_file_named_without_quotes_is_the_same_problem_in_each_variant
     msgs = [f"No such file or directory: ur/config/{t}/visual_parameters.yaml" for t in ("ur12e", "ur15")]
     (one,) = collapse([f(m, code="X010", variant=v) for m, v in zip(msgs, ("ur12e.launch.py", "ur15.launch.py"))])
     assert [p.message or one.message for p in one.places()] == msgs
+
+
+def test_a_gazebo_block_inside_a_link_says_gazebo_loses_it_too(tmp_path):
+    # rosbot's body.urdf.xacro: parser_urdf.cc walks only robot->FirstChildElement("gazebo")
+    urdf = write(tmp_path, {"r.urdf": '<robot name="r">\n<link name="base_link">\n  <gazebo><mu1>0.5</mu1></gazebo>\n'
+                                      '</link>\n<gazebo reference="base_link"><mu1>0.5</mu1></gazebo>\n</robot>\n'})
+    _, report = lint_json(["--select", "U002", urdf / "r.urdf"])
+    (u,) = report["findings"]
+    assert u["location"]["line"] == 3 and "Gazebo reads <gazebo> only directly under <robot>" in u["message"]

@@ -203,7 +203,11 @@ class _Builder:
         if extensions.known("element", parent_tag, tag) is not None:
             return  # a known extension (model/extensions.yaml): its consumer reads it
         hint = _hint(tag, set(G.children(parent_tag)) | extensions.names("element", parent_tag))
-        self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{hint}; URDF parsers ignore it", c)
+        # Gazebo's URDF converter (sdformat and gazebo-classic parser_urdf.cc) reads <gazebo> blocks only as
+        # children of <robot>: one nested in a link or joint is lost to the simulator as well
+        lost = ("; Gazebo reads <gazebo> only directly under <robot> (with reference=\"…\"), so it ignores it too"
+                if tag == "gazebo" else "")
+        self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{hint}; URDF parsers ignore it{lost}", c)
 
     # --- parts ---------------------------------------------------------------------------------------------
     # Each element's children are walked once with a dispatch on the tag (lxml proxies are costly).
