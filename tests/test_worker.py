@@ -234,3 +234,54 @@ def test_a_job_cut_by_the_run_budget_gets_no_delivery_grace():
     t0 = time.monotonic()
     assert isinstance(job.result(), worker.Failure)
     assert time.monotonic() - t0 < 0.5
+
+
+# ---- the spare xacro worker the console forks before it imports the planner -----------------------------------
+def test_a_spare_runs_the_job_it_is_sent_by_name():
+    lim = worker.Limits(timeout=10)
+    worker.keep_spare("t", lim, preload=("json",))
+    job = worker.take_spare("t", lim)
+    assert job is not None and worker.take_spare("t", lim) is None  # handed out once
+    job.send("os.path:join", "a", "b")
+    assert job.result() == os.path.join("a", "b")
+
+
+def test_a_spare_with_other_limits_is_not_used_and_leaves_no_child():
+    worker.keep_spare("t", worker.Limits(timeout=10, scrub_env=True), preload=())
+    pid = worker._SPARES["t"].pid
+    # e.g. a config file that allows an environment variable: the spare's environment is already scrubbed
+    assert worker.take_spare("t", worker.Limits(timeout=10, scrub_env=True, env_keep=("HOME",))) is None
+    assert _gone(pid) and "t" not in worker._SPARES
+    worker.keep_spare("u", worker.Limits(), preload=())
+    pid = worker._SPARES["u"].pid
+    worker.drop_spares()
+    assert _gone(pid) and not worker._SPARES
+
+
+def test_the_console_sends_the_first_expansion_to_its_spare_and_finds_the_same(tmp_path, monkeypatch):
+    from urdfcheck.cli import lint as runlint
+    from urdfcheck.cli import main as cli
+
+    p = str(_targets(tmp_path, 1)[0].path)
+    taken = []
+    take = worker.take_spare
+    monkeypatch.setattr(worker, "take_spare", lambda key, lim: taken.append(r := take(key, lim)) or r)
+    before = len(runlint._UNTIL_EXIT)
+    out = []
+    import contextlib
+    import io
+
+    for one_shot in (False, True):
+        buf = io.StringIO()
+        try:
+            with contextlib.redirect_stdout(buf):
+                cli.main(["lint", "--no-config", "--format", "json", p], one_shot=one_shot)
+        finally:
+            import gc
+
+            gc.enable()
+            del runlint._UNTIL_EXIT[before:]
+        out.append(buf.getvalue())
+    assert [t is not None for t in taken] == [False, True]  # only the console entry forks a spare
+    assert out[0] == out[1] and '"findings"' in out[0]
+    assert not worker._SPARES

@@ -132,15 +132,30 @@ def cmd_rules(ns) -> int:
 
 
 def cmd_lint(ns) -> int:
-    from urdfcheck.cli.lint import run
-
     if getattr(ns, "one_shot", False):
         # The process ends after this command (see `run`). The models it builds hold no reference cycles,
         # and the collector would only trace them: on 10,000 links, one full pass costs 80 ms.
         import gc
 
         gc.disable()
+        _fork_xacro_worker(ns)
+    from urdfcheck.cli.lint import run
+
     return run(ns, UsageError)
+
+
+def _fork_xacro_worker(ns) -> None:
+    """Fork the xacro worker before the planner and the rules are imported: it imports xacro on the other core
+    meanwhile, and the first expansion is sent to it (load.loader). With other limits than these flags give
+    (a config file can set them) it is not used. Only where a path may hold xacro."""
+    paths = ns.paths or ["."]
+    if ns.list or ns.write_baseline or not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths):
+        return
+    from urdfcheck.core import worker
+    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD
+
+    worker.keep_spare(SPARE, worker.Limits(timeout=ns.timeout or worker.DEFAULT_TIMEOUT, scrub_env=not ns.trusted,
+                                           env_keep=tuple(ns.allow_env)), SPARE_PRELOAD)
 
 
 def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
@@ -170,6 +185,9 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
         print(f"urdfcheck {ns.command}: internal error: {type(e).__name__}: {e} "
               "(set URDFCHECK_DEBUG=1 for details and please report it)", file=sys.stderr)
         return EXIT_USAGE
+    finally:
+        if "urdfcheck.core.worker" in sys.modules:  # a spare worker nobody took (no xacro model after all)
+            sys.modules["urdfcheck.core.worker"].drop_spares()
 
 
 def run() -> None:

@@ -11,6 +11,10 @@ Two ways in, one child:
   while the parent works on, then waits for its arguments (pickled through a temp file, so the parent never
   blocks on a child that is still importing). The clock starts when the job is sent. ``progress=True``
   passes fn a ``progress(done, total)`` callable as its first argument; ``wait(jobs, on_progress)`` reports.
+* ``keep_spare(key, limits, preload)`` then ``take_spare(key, limits)``: a prepared child forked before the
+  caller knows its job (the console lint forks the xacro worker before it imports the planner, so the two
+  imports run at once); the job names its function as ``"module:function"``. A spare whose limits differ from
+  the job's is not used.
 
 Every child gets the same limits (`Limits`): an address-space allowance on top of what it inherits, a CPU
 limit and a wall clock per job, core dumps off, and (unless trusted) a scrubbed environment and argv.
@@ -290,6 +294,39 @@ def _progress_writer(fd):
             pass
 
     return progress
+
+
+# --- spares: prepared children forked before their job is known ----------------------------------------------
+_SPARES: dict = {}
+
+
+def _by_name(ref: str, *args):
+    """Call `module:function` in a prepared child: the function's module is imported there, not in the parent."""
+    import importlib
+
+    module, _, name = ref.partition(":")
+    return getattr(importlib.import_module(module), name)(*args)
+
+
+def keep_spare(key: str, limits: Limits, preload=()) -> None:
+    """Fork a child now that imports `preload` and waits; `take_spare` hands it a job, `drop_spares` ends it."""
+    if hasattr(os, "fork") and key not in _SPARES:
+        _SPARES[key] = _fork(_by_name, limits, preload=preload)
+
+
+def take_spare(key: str, limits: Limits):
+    """The spare kept under `key` if it was forked with exactly these limits (then `job.send("module:fn", ...)`);
+    None otherwise (a spare with other limits is ended: its environment or allowance would be wrong)."""
+    job = _SPARES.pop(key, None)
+    if job is not None and job.limits != limits:
+        job.cancel()
+        return None
+    return job
+
+
+def drop_spares() -> None:
+    while _SPARES:
+        _SPARES.popitem()[1].cancel()
 
 
 class Job:

@@ -274,10 +274,17 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
 
 def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None, grace=None):
     from urdfcheck.core import worker
+    from urdfcheck.load import xacro as xacro_pkg
     from urdfcheck.load.xacro import expand as xexpand
 
     opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
                            max_evals=max_elements)
+    if grace is None:  # a child the console forked at start-up, with xacro imported meanwhile (cli.main)
+        spare = worker.take_spare(xacro_pkg.SPARE, worker.Limits(memory=memory, timeout=timeout, scrub_env=not trusted,
+                                                       env_keep=tuple(allow_env)))
+        if spare is not None:
+            spare.send(xacro_pkg.EXPAND, str(p), opts)
+            return spare
     xexpand.preload()
     extra = {} if grace is None else {"grace": grace}  # cut by the run budget: no delivery grace past it
     return worker.start(xexpand.expand, str(p), opts, timeout=timeout, memory=memory,
