@@ -221,6 +221,8 @@ def _in_package(path) -> bool:
 
 def _dedupe(findings: list[Finding]) -> list[Finding]:
     """The same problem seen in several variants or models is reported once, naming where (issue 15)."""
+    if not findings:
+        return []
     from urdfcheck.pipeline.collapse import collapse
 
     return collapse(findings)

@@ -17,9 +17,10 @@ def render(result, colour: bool = False, **_) -> str:
     def c(code, text):
         return f"{code}{text}{_RESET}" if colour else text
 
-    from urdfcheck.pipeline.collapse import chains, describe, variant_totals
+    if result.findings:  # (a clean run does not need the collapse helpers: start-up time)
+        from urdfcheck.pipeline.collapse import chains, describe, variant_totals
 
-    totals = variant_totals(result.targets)
+        totals = variant_totals(result.targets)
     lines = []
     current = None
     for f in result.findings:
