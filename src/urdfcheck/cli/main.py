@@ -6,6 +6,7 @@ Exit codes: 0 clean; 1 findings at or above --fail-on (a broken or hostile model
 from __future__ import annotations
 
 import argparse
+import functools
 import os
 import sys
 
@@ -14,6 +15,8 @@ from urdfcheck.cli.common import (  # noqa: F401  (EXIT_*, UsageError: also read
     EXIT_CLEAN,
     EXIT_FINDINGS,
     EXIT_USAGE,
+    Formatter,
+    RawFormatter,
     UsageError,
     add_load_options,
     kv,
@@ -49,12 +52,14 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
 
     parser = argparse.ArgumentParser(
         prog="urdfcheck", description="Lint and verify ROS robot descriptions (URDF and xacro).",
-        epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+        epilog=EPILOG, formatter_class=RawFormatter)
     parser.add_argument("--version", action="version", version=f"urdfcheck {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    # every sub-command's parser with our formatter (no shutil import at start-up; see cli.common.Formatter)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND",
+                                parser_class=functools.partial(argparse.ArgumentParser, formatter_class=Formatter))
 
     lint = sub.add_parser("lint", help="check models and their contracts", epilog=EPILOG,
-                          formatter_class=argparse.RawDescriptionHelpFormatter)
+                          formatter_class=RawFormatter)
     lint.add_argument("paths", nargs="*", metavar="PATH",
                       help="URDF/xacro files or package folders (default: what the config declares, else .)")
     add_load_options(lint)
