@@ -80,7 +80,7 @@ class Expanded(Record):
 
     def clean_text(self) -> str:
         """The expanded document exactly as stock xacro prints it (no source markers)."""
-        from urdfcheck.load.xacro.expand import STRIP_RE
+        from urdfcheck.load.xacro import STRIP_RE
 
         if self.text is not None:
             return STRIP_RE.sub("", self.text)
@@ -90,7 +90,7 @@ class Expanded(Record):
         """Source location of an element of `root` (xacro markers or lxml line numbers)."""
         if not self.xacro:  # a 10,000-link URDF asks 180,000 times: skip NamedTuple's keyword handling
             return _new_location(Location, (self.entry, el.sourceline, None, ()))
-        from urdfcheck.load.xacro.expand import SRC_ATTR
+        from urdfcheck.load.xacro import SRC_ATTR
 
         node = el
         while node is not None:
@@ -275,16 +275,18 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
 def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None, grace=None):
     from urdfcheck.core import worker
     from urdfcheck.load import xacro as xacro_pkg
-    from urdfcheck.load.xacro import expand as xexpand
 
-    opts = xexpand.Options(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
-                           max_evals=max_elements)
+    options = dict(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
+                   max_evals=max_elements)
     if grace is None:  # a child the console forked at start-up, with xacro imported meanwhile (cli.main)
         spare = worker.take_spare(xacro_pkg.SPARE, worker.Limits(memory=memory, timeout=timeout, scrub_env=not trusted,
-                                                       env_keep=tuple(allow_env)))
-        if spare is not None:
-            spare.send(xacro_pkg.EXPAND, str(p), opts)
+                                                                 env_keep=tuple(allow_env)))
+        if spare is not None:  # the options go as a dict: this process need not import the expander
+            spare.send(xacro_pkg.EXPAND, str(p), options)
             return spare
+    from urdfcheck.load.xacro import expand as xexpand
+
+    opts = xexpand.Options(**options)
     xexpand.preload()
     extra = {} if grace is None else {"grace": grace}  # cut by the run budget: no delivery grace past it
     return worker.start(xexpand.expand, str(p), opts, timeout=timeout, memory=memory,

@@ -20,9 +20,8 @@ from xml.dom import expatbuilder
 
 from urdfcheck.core import xmlfront
 from urdfcheck.core.safeio import encoding_problem, read_file
+from urdfcheck.load.xacro import SRC_ATTR, STRIP_RE  # noqa: F401 - the markers, shared with the loader
 
-SRC_ATTR = "__ucsrc"
-STRIP_RE = re.compile(r' __ucsrc="[^"]*"')
 BUILTINS = {"include", "property", "macro", "arg", "element", "attribute", "if", "unless",
             "insert_block", "call"}
 MAX_INCLUDES = 5000
@@ -108,6 +107,12 @@ def preload() -> None:
     from xacro import substitution_args  # noqa: F401
 
     from urdfcheck.load.xacro import safeeval, yamlguard  # noqa: F401
+
+
+def expand_with(path: str, options: dict) -> dict:
+    """`expand` with the options as a dict (a job sent to a prepared worker: its sender has not imported this
+    module)."""
+    return expand(path, Options(**options))
 
 
 def expand(path: str, opts: Options) -> dict:
