@@ -306,3 +306,14 @@ def test_a_declaration_after_blank_lines_is_a_warning_and_the_model_loads(tmp_pa
     (f,) = exp.findings
     assert f.code == "X003" and f.location.line == 3 and "not at the start" in f.message
     assert loader.build_model(exp).links["a"].loc.line == 5
+
+
+def test_a_package_url_in_an_include_says_xacro_does_not_resolve_it(tmp_path):
+    # example-robot-data's hector quadrotor_base.xacro: stock xacro fails the same way, with a path it made up
+    entry = write(tmp_path, "r.urdf.xacro", f"""
+        <robot name="r" {XACRO_NS}>
+          <xacro:include filename="package://some_pkg/urdf/base.urdf.xacro"/>
+        </robot>
+        """)
+    (f,) = [f for f in loader.expand(entry).findings if f.code == "X010"]
+    assert "xacro does not resolve package:// URLs" in f.message and f.location.line == 2

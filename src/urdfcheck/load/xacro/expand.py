@@ -411,6 +411,9 @@ def _describe(e: BaseException, xacro) -> dict:
     msg = _text(e)
     if type(e).__name__ == "ExpatError":
         msg = f"XML parsing error: {msg}"
+    elif "No such file or directory" in msg and "package:/" in msg:
+        # stock xacro joins "package://pkg/x.xacro" to the including file's folder like any relative name
+        msg += " (xacro does not resolve package:// URLs in <xacro:include> or load_yaml: write $(find pkg)/...)"
     elif msg.startswith("Undefined substitution argument "):
         # xacro's words name the argument without quotes ("... argument name"): say what is missing and who sets it
         arg = msg[len("Undefined substitution argument "):].strip()
