@@ -500,3 +500,14 @@ def test_a_gazebo_block_inside_a_link_says_gazebo_loses_it_too(tmp_path):
     _, report = lint_json(["--select", "U002", urdf / "r.urdf"])
     (u,) = report["findings"]
     assert u["location"]["line"] == 3 and "Gazebo reads <gazebo> only directly under <robot>" in u["message"]
+
+
+def test_a_material_on_collision_geometry_is_information_not_a_warning(tmp_path):
+    # baxter, solo, tiago, centauro (example-robot-data) and robotiq: nothing reads it, and nothing could
+    urdf = write(tmp_path, {"r.urdf": '<robot name="r">\n<link name="base_link"><collision><material name="x"/>'
+                                      '<geometry><box size="1 1 1"/></geometry></collision>\n'
+                                      '<visual><geometry><box size="1 1 1"/></geometry><surface/></visual></link>\n'
+                                      '</robot>\n'})
+    code, report = lint_json([urdf / "r.urdf"])
+    got = {(f["location"]["line"], f["severity"]) for f in report["findings"] if f["code"] == "U002"}
+    assert got == {(2, "info"), (3, "warning")} and code == 1  # an unknown element in <visual> still warns

@@ -18,7 +18,7 @@ from types import MappingProxyType
 from lxml import etree
 
 from urdfcheck.core import nogc
-from urdfcheck.core.findings import Location, closest
+from urdfcheck.core.findings import Location, Severity, closest
 from urdfcheck.model import extensions
 from urdfcheck.model import grammar as G
 from urdfcheck.model.robot import (
@@ -105,6 +105,15 @@ def _unexpanded(raw: str) -> str:
     return ""
 
 
+# A URDF element written where no consumer reads it, and where no consumer would do anything with it either: a
+# colour on collision geometry. urdfdom, sdformat's parser_urdf, Drake and Pinocchio read <material> only in
+# <visual>; MuJoCo's URDF compiler (xml_urdf.cc) colours a collision geom with the link's last visual colour.
+# Common in exported models (baxter, solo, tiago in example-robot-data).
+_HARMLESS = {("collision", "material"): "consumers read <material> only in <visual> (MuJoCo colours collision "
+                                        "geometry like the link's visual), so nothing is lost; remove it to quiet "
+                                        "this"}
+
+
 def _hint(word: str, options) -> str:
     close = closest(word, sorted(options))
     return f" (did you mean {close!r}?)" if close else ""
@@ -132,8 +141,8 @@ class _Builder:
         # visual, collision and inertial; splitting and converting is the costly part of reading them
         self.vectors: dict[str, tuple] = {}
 
-    def issue(self, code: str, message: str, el) -> None:
-        self.issues.append(Issue(code, message, self.locate(el)))
+    def issue(self, code: str, message: str, el, severity=None) -> None:
+        self.issues.append(Issue(code, message, self.locate(el), severity))
 
     # --- attributes: the compiled readers call these for anything off the good path ---------------------------
     def missing(self, el, tag: str, i: int) -> None:
@@ -207,6 +216,9 @@ class _Builder:
         # children of <robot>: one nested in a link or joint is lost to the simulator as well
         lost = ("; Gazebo reads <gazebo> only directly under <robot> (with reference=\"…\"), so it ignores it too"
                 if tag == "gazebo" else "")
+        if (parent_tag, tag) in _HARMLESS:  # known elsewhere, read by nobody here, and nothing is lost by that
+            self.issue("U002", f"<{tag}> in <{parent_tag}> is ignored: {_HARMLESS[parent_tag, tag]}", c, Severity.INFO)
+            return
         self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{hint}; URDF parsers ignore it{lost}", c)
 
     # --- parts ---------------------------------------------------------------------------------------------

@@ -10,7 +10,7 @@ from collections.abc import Mapping
 from types import MappingProxyType
 from typing import NamedTuple
 
-from urdfcheck.core.findings import Location
+from urdfcheck.core.findings import Location, Severity
 from urdfcheck.core.records import FrozenRecord
 
 Vec3 = tuple[float, float, float]
@@ -172,6 +172,7 @@ class Issue(NamedTuple):
     code: str
     message: str
     loc: Location
+    severity: Severity | None = None  # None: the rule's; lower where nothing anyone reads is lost
 
 
 class Model(FrozenRecord):

@@ -14,7 +14,7 @@ from urdfcheck.rules.catalogue import check
 @check("U001", "U002", "U003", "U004", "U005", "U006", "U008", "U009")
 def unreadable_values(model, ctx):
     for issue in model.issues:
-        yield Problem(issue.message, at=issue.loc, code=issue.code)
+        yield Problem(issue.message, at=issue.loc, code=issue.code, severity=issue.severity)
 
 
 # --- U007: the declared URDF version ----------------------------------------------------------------------------
