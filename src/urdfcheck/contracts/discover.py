@@ -53,10 +53,11 @@ def _walk(root: str, max_files: int):
             yield dirpath, f
 
 
-def _read_head(path: str, trusted: bool = False) -> str:
+def _read_head(path: str, trusted: bool = False, cache: dict | None = None) -> str:
     from urdfcheck.load.packages import leaves_cwd
 
-    if not trusted and leaves_cwd(path):  # a committed symlink out of the checkout: its target is none of our business
+    # a committed symlink out of the checkout: its target is none of our business
+    if not trusted and leaves_cwd(path, cache=cache):
         return ""
     try:
         from urdfcheck.core.safeio import decode_model_text, read_file
@@ -191,17 +192,18 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
 
     # a model file linked out of the working directory is listed as a model, so that the loader names it
     # (X014) instead of it silently dropping out of the run; nothing behind the link is read
-    models = [] if trusted else [p for p in urdfs + xacros if leaves_cwd(p)]
+    real_dirs: dict = {}  # one realpath per folder, not per file
+    models = [] if trusted else [p for p in urdfs + xacros if leaves_cwd(p, cache=real_dirs)]
     urdfs = [p for p in urdfs if p not in models]
     xacros = [p for p in xacros if p not in models]
-    texts = {p: _read_head(p, trusted) for p in xacros}
+    texts = {p: _read_head(p, trusted, real_dirs) for p in xacros}
     included: set[str] = set()
     for p, t in texts.items():
         for m in _INCLUDE.finditer(t):
             included |= _included_files(m.group(2), p, xacros) - {p}
     libs = []
     for p in urdfs:  # a .urdf without any <link> is a fragment (materials, properties) for others to include
-        (models if re.search(r"<\s*link\b", _read_head(p, trusted)) else libs).append(p)
+        (models if re.search(r"<\s*link\b", _read_head(p, trusted, real_dirs)) else libs).append(p)
     for p in xacros:
         if p in included:
             libs.append(p)

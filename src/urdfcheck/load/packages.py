@@ -32,16 +32,27 @@ def _below(path: str, base: str) -> bool:
     return path == base or path.startswith(base.rstrip(os.sep) + os.sep)
 
 
-def leaves_cwd(path: str | os.PathLike, roots=()) -> bool:
+def leaves_cwd(path: str | os.PathLike, roots=(), cache: dict | None = None) -> bool:
     """`path` is written below the working directory but really lies outside it (and outside `roots`): a
     symbolic link, of the file or of a folder on the way, that a pull request could point at any file of the
-    machine that runs the check (CI runs in the checkout)."""
+    machine that runs the check (CI runs in the checkout). `cache`: real paths of folders already resolved, for
+    a caller that asks about many files of one tree (a folder's real path is the same for all its files)."""
     lexical = os.path.abspath(path)
     cwd = os.getcwd()
     if not _below(lexical, cwd):
         return False
-    real = os.path.realpath(lexical)
-    return not any(_below(real, os.path.realpath(r)) for r in (cwd, *roots))
+    if cache is None:
+        cache = {}
+
+    def real_dir(d: str) -> str:
+        got = cache.get(d)
+        if got is None:
+            got = cache[d] = os.path.realpath(d)
+        return got
+
+    head, tail = os.path.split(lexical)
+    real = os.path.realpath(lexical) if os.path.islink(lexical) else os.path.join(real_dir(head), tail)
+    return not any(_below(real, real_dir(r)) for r in (cwd, *roots))
 
 
 def enclosing_package(path: Path) -> Path | None:
