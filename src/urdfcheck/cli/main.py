@@ -157,10 +157,9 @@ def _fork_xacro_worker(ns) -> None:
     if ns.list or ns.write_baseline or not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths):
         return
     from urdfcheck.core import worker
-    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD
+    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, XACRO_TIMEOUT, worker_limits
 
-    worker.keep_spare(SPARE, worker.Limits(timeout=ns.timeout or worker.DEFAULT_TIMEOUT, scrub_env=not ns.trusted,
-                                           env_keep=tuple(ns.allow_env)), SPARE_PRELOAD)
+    worker.keep_spare(SPARE, worker_limits(bool(ns.trusted), ns.allow_env, ns.timeout or XACRO_TIMEOUT), SPARE_PRELOAD)
 
 
 def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:

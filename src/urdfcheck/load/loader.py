@@ -16,10 +16,9 @@ from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
 from urdfcheck.core.suppress import Suppression
 from urdfcheck.load import budget
 from urdfcheck.load.packages import Resolver
+from urdfcheck.load.xacro import XACRO_MEMORY, XACRO_TIMEOUT, worker_limits
 
 MAX_BYTES = xmlfront.MAX_BYTES
-XACRO_TIMEOUT = 20.0
-XACRO_MEMORY = 2 * 1024**3
 
 # Severity of load findings; the catalogue may override the names but these codes are fixed here
 # because loading happens before any rule runs.
@@ -279,8 +278,7 @@ def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, ma
     options = dict(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
                    max_evals=max_elements)
     if grace is None:  # a child the console forked at start-up, with xacro imported meanwhile (cli.main)
-        spare = worker.take_spare(xacro_pkg.SPARE, worker.Limits(memory=memory, timeout=timeout, scrub_env=not trusted,
-                                                                 env_keep=tuple(allow_env)))
+        spare = worker.take_spare(xacro_pkg.SPARE, worker_limits(trusted, allow_env, timeout, memory))
         if spare is not None:  # the options go as a dict: this process need not import the expander
             spare.send(xacro_pkg.EXPAND, str(p), options)
             return spare

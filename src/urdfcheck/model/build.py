@@ -211,14 +211,14 @@ class _Builder:
             return
         if extensions.known("element", parent_tag, tag) is not None:
             return  # a known extension (model/extensions.yaml): its consumer reads it
+        if (parent_tag, tag) in _HARMLESS:  # known elsewhere, read by nobody here, and nothing is lost by that
+            self.issue("U002", f"<{tag}> in <{parent_tag}> is ignored: {_HARMLESS[parent_tag, tag]}", c, Severity.INFO)
+            return
         hint = _hint(tag, set(G.children(parent_tag)) | extensions.names("element", parent_tag))
         # Gazebo's URDF converter (sdformat and gazebo-classic parser_urdf.cc) reads <gazebo> blocks only as
         # children of <robot>: one nested in a link or joint is lost to the simulator as well
         lost = ("; Gazebo reads <gazebo> only directly under <robot> (with reference=\"…\"), so it ignores it too"
                 if tag == "gazebo" else "")
-        if (parent_tag, tag) in _HARMLESS:  # known elsewhere, read by nobody here, and nothing is lost by that
-            self.issue("U002", f"<{tag}> in <{parent_tag}> is ignored: {_HARMLESS[parent_tag, tag]}", c, Severity.INFO)
-            return
         self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{hint}; URDF parsers ignore it{lost}", c)
 
     # --- parts ---------------------------------------------------------------------------------------------

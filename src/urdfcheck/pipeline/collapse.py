@@ -57,11 +57,12 @@ def collapse(findings: list[Finding]) -> list[Finding]:
     out = []
     for members in groups.values():
         out.append(members[0] if len(members) == 1 and not members[0].where else _merge(members))
-    return sorted(_across_lines(out), key=Finding.sort_key)
+    return _across_lines(out)
 
 
 def _across_lines(findings: list[Finding]) -> list[Finding]:
-    """Merge the same problem at several lines of one file (see the module doc); the first line leads."""
+    """Merge the same problem at several lines of one file (see the module doc); the first line leads. Returns
+    them sorted like `Finding.sort_key` (groups keep the order of their first member)."""
     groups: dict[tuple, list[Finding]] = {}
     for f in sorted(findings, key=Finding.sort_key):
         loc = f.location
@@ -124,20 +125,27 @@ def _first_name(message: str) -> str | None:
     return m.group(0) if m else None
 
 
+def _other_names(own_message: str, messages) -> list[str]:
+    """The first quoted name of each message, once each, other than the one `own_message` names."""
+    own = _first_name(own_message)
+    names: list[str] = []
+    for message in messages:
+        name = _first_name(message)
+        if name and name != own and name not in names:
+            names.append(name)
+    return names
+
+
+def _listed(names: list[str], limit: int) -> str:
+    return ", ".join(names[:limit]) + (f" and {len(names) - limit} more" if len(names) > limit else "")
+
+
 def instances(f: Finding, limit: int = 3) -> str:
     """The other instances of a problem in the model/variant the finding is shown under: "also 'right_wheel'"."""
-    places = f.places()
-    first = places[0]
-    own = _first_name(f.message)
-    names = []
-    for p in places[1:]:
-        if (p.model, p.variant) == (first.model, first.variant) and p.message:
-            name = _first_name(p.message)
-            if name and name != own and name not in names:
-                names.append(name)
-    if not names:
-        return ""
-    return "also " + ", ".join(names[:limit]) + (f" and {len(names) - limit} more" if len(names) > limit else "")
+    first, *others = f.places()
+    names = _other_names(f.message, (p.message for p in others
+                                     if (p.model, p.variant) == (first.model, first.variant) and p.message))
+    return "also " + _listed(names, limit) if names else ""
 
 
 def elsewhere(f: Finding, limit: int = 3) -> str:
@@ -145,16 +153,10 @@ def elsewhere(f: Finding, limit: int = 3) -> str:
     763, …" (names as the messages quote them, when they do)."""
     if not f.also:
         return ""
-    own = _first_name(f.message)
-    names = []
-    for a in f.also:
-        name = _first_name(a.message)
-        if name and name != own and name not in names:
-            names.append(name)
+    names = _other_names(f.message, (a.message for a in f.also))
     lines = [str(a.location.line) for a in f.also]
     shown_lines = ", ".join(lines[:limit]) + (", …" if len(lines) > limit else "")
-    head = "also " + (", ".join(names[:limit]) + (f" and {len(names) - limit} more" if len(names) > limit else "")
-                      + " " if names else "")
+    head = "also " + (_listed(names, limit) + " " if names else "")
     return f"{head}at line{'s' if len(lines) > 1 else ''} {shown_lines}"
 
 

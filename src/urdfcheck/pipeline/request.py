@@ -17,8 +17,7 @@ from typing import Any
 
 from urdfcheck.core.findings import Severity
 from urdfcheck.core.records import Record
-
-XACRO_TIMEOUT = 20.0  # seconds for one xacro expansion (load.loader.XACRO_TIMEOUT; not imported: start-up)
+from urdfcheck.load.xacro import XACRO_TIMEOUT  # one xacro expansion (a light module: xacro is not imported)
 
 
 class UsageError(ValueError):

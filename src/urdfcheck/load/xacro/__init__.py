@@ -10,6 +10,19 @@ import re
 SRC_ATTR = "__ucsrc"
 STRIP_RE = re.compile(r' __ucsrc="[^"]*"')
 
+# one xacro expansion's allowance in its worker (the request's default, the loader's, the console's spare)
+XACRO_TIMEOUT = 20.0  # wall-clock seconds
+XACRO_MEMORY = 2 * 1024**3  # bytes of address space on top of what the worker inherits
+
+
+def worker_limits(trusted: bool, allow_env=(), timeout: float = XACRO_TIMEOUT, memory: int = XACRO_MEMORY):
+    """The `core.worker.Limits` an expansion runs under: the loader starts its worker with these, and the console
+    forks its spare with them (a spare with other limits is not used)."""
+    from urdfcheck.core import worker
+
+    return worker.Limits(memory=memory, timeout=timeout, scrub_env=not trusted, env_keep=tuple(allow_env))
+
+
 SPARE = "xacro"
 SPARE_PRELOAD = ("xacro", "xacro.substitution_args", "urdfcheck.load.xacro.expand", "urdfcheck.load.xacro.safeeval",
                  "urdfcheck.load.xacro.yamlguard")
