@@ -171,7 +171,9 @@ def _wheelset(c, spec: dict, uses: dict) -> WheelSet:
     p = c.params
 
     def joints(keys) -> tuple:
-        for k in keys or ():
+        if spec.get("kind") == "mecanum":  # one parameter per wheel
+            return tuple(u for k in keys or () for u in uses.get(k, ()))
+        for k in keys or ():  # alternatives: the current name first, then the deprecated one
             if uses.get(k):
                 return uses[k]
         return ()
