@@ -98,7 +98,7 @@ def _interfaces(spec, params: dict) -> tuple[str, ...]:
 
 
 def _uses(c, names_set: set, param: str, command=(), state=(), role="joint") -> tuple:
-    from urdfcheck.contracts.controllers import _joint_uses
+    from urdfcheck.contracts.uses import _joint_uses
 
     v = c.params.get(param)
     names = _strings(v)
@@ -142,7 +142,7 @@ def apply(c, names_set: set) -> None:
 
 
 def _odom(c, spec: dict) -> None:
-    from urdfcheck.contracts.controllers import OdomTF, _norm_frame, _tf_prefix
+    from urdfcheck.contracts.uses import OdomTF, _norm_frame, _tf_prefix
 
     p = c.params
     en = p.get(spec["enable"])
@@ -201,7 +201,7 @@ _REP105 = ("map", "odom", "earth", "world")  # published by localization and odo
 
 def read_by_shape(c, names_set: set) -> None:
     """A controller type the catalogue does not know: joints and frames from the shape of its keys."""
-    from urdfcheck.contracts.controllers import _joint_uses
+    from urdfcheck.contracts.uses import _joint_uses
 
     found = False
     for key, v in sorted(c.params.items()):

@@ -35,6 +35,7 @@ from typing import NamedTuple
 
 from urdfcheck.contracts.common import ConsumerError, Value, as_bool, as_float, as_str_list
 from urdfcheck.contracts.params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
+from urdfcheck.contracts.uses import JointUse, OdomTF, _joint_uses, _norm_frame, _tf_prefix  # noqa: F401
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 
@@ -88,19 +89,6 @@ def _catalogue_kind(type_name: str, ros: int) -> str | None:
 
     kind = catalogue_kind(type_name, ros)
     return None if kind == "catalogue" else kind
-
-
-class JointUse(NamedTuple):
-    """A joint a controller or driver commands, and the hardware interfaces it needs on it."""
-
-    joint: str
-    loc: Location
-    owner: str
-    command: tuple[str, ...] = ()
-    state: tuple[str, ...] = ()
-    role: str = "joint"  # joint, left_wheel, right_wheel
-    via: str = ""  # upstream controller when chained (no interface claims then)
-    written: str = ""  # the name as written, when it differs (chained)
 
 
 class DriveSpec(NamedTuple):
@@ -181,16 +169,6 @@ def number_text(v: Value | None) -> str:
         name = _OPTENV.match(v.value).group(1)
         text += f" (the default of $(optenv {name}))"
     return text
-
-
-class OdomTF(NamedTuple):
-    """An odom -> base transform a controller or driver broadcasts."""
-
-    parent: str
-    child: str
-    owner: str
-    loc: Location
-    enabled: bool = True
 
 
 class Controller(Record):
@@ -275,26 +253,6 @@ class ControllerSet(Record):
 # --- helpers -----------------------------------------------------------------------------------------
 def _is_type_string(v) -> bool:
     return isinstance(v, str) and "/" in v and " " not in v.strip() and not v.strip().startswith("/")
-
-
-def _norm_frame(s: str) -> str:
-    return s.strip().lstrip("/")
-
-
-def _tf_prefix(params: Mapping[str, Value], namespace: str) -> str:
-    """diff_drive_controller's frame prefix (Humble..Kilted `tf_frame_prefix_enable`; Lyrical `~`)."""
-    enable_v = params.get("tf_frame_prefix_enable")
-    prefix_v = params.get("tf_frame_prefix")
-    enable = as_bool(enable_v.value) if enable_v is not None else None
-    prefix = str(prefix_v.value) if prefix_v is not None and prefix_v.value is not None else ""
-    if enable is False:
-        return ""
-    if "~" in prefix:
-        prefix = prefix.replace("~", namespace)
-    elif not prefix and enable is True:
-        prefix = namespace
-    prefix = prefix.strip("/")
-    return prefix + "/" if prefix else ""
 
 
 def _str_list(params: Mapping[str, Value], key: str, notes: list) -> tuple[list[str], Value] | None:
@@ -413,29 +371,6 @@ class _Reader:
                     kind=kind_of(tname, 1), ros=1, file=v.loc.file, params=params,
                 )
         return out
-
-
-def _resolve_chain(name: str, controller_names: set[str]) -> tuple[str, str]:
-    """'pid_left/left_wheel_joint' -> ('left_wheel_joint', 'pid_left') when pid_left is a controller."""
-    via = ""
-    parts = name.split("/")
-    while len(parts) > 1 and parts[0] in controller_names:
-        via = via or parts[0]
-        parts = parts[1:]
-    return ("/".join(parts), via) if via else (name, "")
-
-
-def _joint_uses(names: list[str], src: Value | Location, owner: str, names_set: set[str], command=(), state=(),
-                role="joint") -> tuple[JointUse, ...]:
-    out = []
-    for i, n in enumerate(names):
-        loc = src.item_loc(i) if isinstance(src, Value) else src
-        joint, via = _resolve_chain(n, names_set)
-        if via:
-            out.append(JointUse(joint, loc, owner, (), (), role, via, n))
-        else:
-            out.append(JointUse(n, loc, owner, tuple(command), tuple(state), role))
-    return tuple(out)
 
 
 def _finish(c: Controller, names_set: set[str]) -> None:

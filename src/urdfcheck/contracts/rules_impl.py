@@ -399,7 +399,6 @@ def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
     c = consumers(model, ctx)
     tol = float(ctx.options["tolerance"])  # typed and defaulted by the catalogue (rules/C010.yaml ...)
     ang = float(ctx.options["angle_tolerance"])
-    prefix = c.rsp_prefix
     inferred = {d.name for d in c.drivers if _inferred(d)}
     for drive, base in _drives(c, model):
         b = _base_in_model(model, c, base)

@@ -346,8 +346,8 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
         if abs(expected - w.radius) > tolerance:
             rep.problems_.append(WheelProblem(
                 "C011",
-                f"{drive.owner}: {drive.radius_key} {number_text(rad_v)} m, but wheel link {w.link} ({w.use.joint}) has a "
-                f"{w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m (difference "
+                f"{drive.owner}: {drive.radius_key} {number_text(rad_v)} m, but wheel link {w.link} ({w.use.joint}) "
+                f"has a {w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m (difference "
                 f"{_fmt(abs(expected - w.radius))} m, tolerance {_fmt(tolerance)} m)",
                 rad_v.loc, (w.shape_loc or w.joint_loc,), None, data))
     return rep
