@@ -414,3 +414,41 @@ def test_joint_state_plugins_supply_joint_states(tmp_path, plugin):
     good = lint(tmp_path / "good", robot(*WHEELS, gazebo(plugin)), {"launch/bringup.launch.xml": launch})
     assert hits(bad, "C003"), [x["code"] for x in bad]
     assert hits(good, "C003") == []
+
+
+SIM_LAUNCH = """
+from launch import LaunchDescription
+from launch.substitutions import Command, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    urdf = PathJoinSubstitution([FindPackageShare('bot_description'), 'urdf', 'bot.urdf'])
+    controllers = PathJoinSubstitution([FindPackageShare('bot_description'), 'config', 'controllers.yaml'])
+    return LaunchDescription([
+        Node(package='robot_state_publisher', executable='robot_state_publisher',
+             parameters=[{'robot_description': Command(['xacro ', urdf])}]),
+        Node(package='controller_manager', executable='ros2_control_node', parameters=[controllers]),
+        Node(package='controller_manager', executable='spawner', arguments=['diff_drive_controller']),
+        Node(package='controller_manager', executable='spawner', arguments=['joint_state_broadcaster']),
+%s    ])
+"""
+SPAWN = "        Node(package='gazebo_ros', executable='spawn_entity.py', arguments=['-topic', 'robot_description']),\n"
+
+
+@pytest.mark.parametrize("spawns", [True, False], ids=["simulation", "real-robot"])
+def test_plugin_and_controller_in_a_launch_file_that_starts_the_simulator(tmp_path, spawns):
+    """The deployment (a launch file) spawns the model into Gazebo and starts the controllers: the plugin's
+    odom -> base_link and the controller's are two owners (T001). The same launch file without the spawn is the
+    real robot: the plugin does not run there."""
+    urdf = robot(*WHEELS, DD_R2C, gazebo(DD_PLUGIN.format(sep=0.4, dia=0.1, tf="true")))
+    path = write(tmp_path, urdf, {"config/controllers.yaml": DIFF,
+                                  "launch/bringup.launch.py": SIM_LAUNCH % (SPAWN if spawns else "")})
+    code, report = lint_json([], cwd=tmp_path)
+    t001 = [f for f in report["findings"] if f["code"] == "T001"]
+    assert any(Path(m["path"]).name == path.name for m in report["models"]), report["models"]
+    if spawns:
+        assert len(t001) == 1 and "Gazebo plugin" in t001[0]["message"], [f["code"] for f in report["findings"]]
+    else:
+        assert t001 == []

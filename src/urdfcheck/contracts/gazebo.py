@@ -153,3 +153,18 @@ def state_joints(model) -> tuple[bool, set[str]]:
 def controllers_in_sim(model) -> bool:
     """The model loads ros2_control (or ROS 1 ros_control) into the simulator: its controllers run there."""
     return any(any(k in (p.filename + " " + p.name) for k in _CONTROL_PLUGINS) for p in model.plugins)
+
+
+_SIM_PACKAGES = ("gazebo_ros", "ros_gz_sim", "ros_ign_gazebo", "gazebo_ros2_control")
+_SIM_INCLUDE = re.compile(r"(gazebo|gz_sim|ign_gazebo)[^/]*\.launch", re.I)
+
+
+def launch_starts_sim(launch_infos) -> bool:
+    """A launch file read starts the simulator or spawns the model into it (gazebo_ros spawn_entity.py, ros_gz_sim
+    create, an include of gazebo.launch.py / gz_sim.launch.py)."""
+    for li in launch_infos:
+        if any(n.package in _SIM_PACKAGES for n in getattr(li, "nodes", ())):
+            return True
+        if any(inc.file and _SIM_INCLUDE.search(os.path.basename(inc.file)) for inc in getattr(li, "includes", ())):
+            return True
+    return False

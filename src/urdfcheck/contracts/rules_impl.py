@@ -570,19 +570,23 @@ def _tf_problems(model, ctx, analysis):
     if not _has_consumer_claims(g):
         return
     for p in analysis(g):
-        if not _alternatives(p, c) and not _apart(p, model):
+        if not _alternatives(p, c) and not _apart(p, model, c):
             yield p
 
 
-def _apart(p, model) -> bool:
-    """A Gazebo plugin's claim against a controller's or driver's, when the controllers do not run in the
-    simulator (the model loads no ros2_control into Gazebo): they belong to different deployments."""
+def _apart(p, model, c: Consumers) -> bool:
+    """A Gazebo plugin's claim against a controller's or driver's belong to different deployments unless those
+    run in the simulator: the model loads ros2_control into Gazebo, or the one deployment read (a launch chain or
+    a config's launch files) starts the simulator. Launch files found beside the model are often alternatives
+    (sim and real), so they do not count."""
     sources = {cl.source for cl in p.claims}
     if "gazebo" not in sources or not sources & {"controller", "driver"}:
         return False
-    from urdfcheck.contracts.gazebo import controllers_in_sim
+    from urdfcheck.contracts.gazebo import controllers_in_sim, launch_starts_sim
 
-    return not controllers_in_sim(model)
+    if controllers_in_sim(model):
+        return False
+    return not (c.origin in ("deployment", "config") and launch_starts_sim(c.launch))
 
 
 def _no_state_publisher(c: Consumers, model, ctx) -> bool:
