@@ -452,3 +452,19 @@ def test_plugin_and_controller_in_a_launch_file_that_starts_the_simulator(tmp_pa
         assert len(t001) == 1 and "Gazebo plugin" in t001[0]["message"], [f["code"] for f in report["findings"]]
     else:
         assert t001 == []
+
+
+@pytest.mark.parametrize("extra,enabled", [("", True), ("<publishTf>false</publishTf>", False),
+                                           ("<publishOdomTF>0</publishOdomTF>", False)])
+def test_ros1_diff_drive_plugin_transform_switches(extra, enabled):
+    """gazebo_ros_diff_drive (ROS 1): publishOdomTF (default true) turns the transform on, and publishTf (default
+    true) gates all odometry."""
+    from urdfcheck.contracts.gazebo import read_plugins
+    from urdfcheck.model.build import model_from_string
+
+    urdf = robot(*WHEELS, gazebo(f"""    <plugin name="dd" filename="libgazebo_ros_diff_drive.so">
+      <leftJoint>left_wheel_joint</leftJoint><rightJoint>right_wheel_joint</rightJoint>{extra}
+    </plugin>
+"""))
+    (owner,) = read_plugins(model_from_string(urdf))
+    assert (owner.odom.parent, owner.odom.child, owner.odom.enabled) == ("odom", "base_footprint", enabled)

@@ -79,6 +79,8 @@ def _odom(p, spec, label: str) -> OdomTF | None:
     en = _param(p, spec.get("enable"))
     on = as_bool(en.text) if en is not None else None
     on = bool(spec.get("default", True)) if on is None else on
+    for g in p.all(*spec.get("gate", ())):
+        on = on and as_bool(g.text) is not False
     loc = en.loc if en is not None else p.loc
     return OdomTF((parent.text if parent is not None and parent.text else pdefault).strip("/"),
                   (child.text if child is not None and child.text else cdefault).strip("/"), label, loc, on)
