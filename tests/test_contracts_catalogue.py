@@ -468,3 +468,21 @@ def test_ros1_diff_drive_plugin_transform_switches(extra, enabled):
 """))
     (owner,) = read_plugins(model_from_string(urdf))
     assert (owner.odom.parent, owner.odom.child, owner.odom.enabled) == ("odom", "base_footprint", enabled)
+
+
+def test_a_ros2_plugin_ignores_ros1_element_names():
+    """neo_simulation2's mpo_500: a ROS 2 planar_move plugin (it has <ros>) given ROS 1's <robotBaseFrame>: ROS 2
+    reads robot_base_frame only, so the transform goes to the default base_footprint, not base_link."""
+    from urdfcheck.contracts.gazebo import read_plugins
+    from urdfcheck.model.build import model_from_string
+
+    def owner(inner):
+        urdf = robot(gazebo(f"""    <plugin name="move" filename="libgazebo_ros_planar_move.so">
+      {inner}<publish_odom_tf>true</publish_odom_tf><robotBaseFrame>base_link</robotBaseFrame>
+    </plugin>
+"""))
+        (o,) = read_plugins(model_from_string(urdf))
+        return o.odom.child
+
+    assert owner("<ros><remapping>/tf:=tf</remapping></ros>") == "base_footprint"
+    assert owner("") == "base_link"  # no <ros>: the ROS 1 build, which reads robotBaseFrame

@@ -42,6 +42,7 @@ class WheelSet(NamedTuple):
     track_key: str = ""
     radius_key: str = ""
     projection_key: str = ""
+    from_urdf: bool = False  # ROS 1: a wheelbase not set is computed from the URDF by the controller
 
 
 @functools.lru_cache(maxsize=1)
@@ -190,7 +191,7 @@ def _wheelset(c, spec: dict, uses: dict) -> WheelSet:
     rk, rad = _first(p, spec.get("radius"))
     pk, proj = _first(p, spec.get("projection"))
     return WheelSet(c.name, spec.get("kind", ""), c.loc, traction, steering, wb, tr, rad, proj,
-                    wk or "wheelbase", tk, rk, pk)
+                    wk or "wheelbase", tk, rk, pk, bool(spec.get("from_urdf")))
 
 
 # --- controllers of no known type --------------------------------------------------------------------------

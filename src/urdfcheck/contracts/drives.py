@@ -69,7 +69,9 @@ def geometry_problems(model, ws, base: str | None, tolerance: float) -> list[Whe
         names = f"{', '.join(u.joint for u, _, _ in tr)} / {', '.join(u.joint for u, _, _ in st)}"
         related = (tr[0][1].loc, st[0][1].loc)
         data = {"measured": measured, "expected": said, "tolerance": tolerance}
-        if ws.wheelbase is None:
+        if ws.wheelbase is None and ws.from_urdf:
+            pass  # ROS 1 ackermann_steering_controller measures wheel_separation_h in the URDF itself
+        elif ws.wheelbase is None:
             out.append(WheelProblem(
                 "C016", f"{ws.owner} sets no {ws.wheelbase_key} (it defaults to 0: the controller refuses it or "
                         f"cannot turn); the model's traction and steering joints ({names}) are {measured:.6g} m "

@@ -45,7 +45,16 @@ def _key(p) -> str | None:
     return None
 
 
+def _names(p, names) -> tuple[str, ...]:
+    """The element names a plugin reads: a gazebo_ros plugin with a <ros> element is the ROS 2 build, which reads
+    only the snake_case names (ROS 1's camelCase ones are ignored there, and their defaults apply)."""
+    if p.get("ros") is not None:
+        return tuple(n for n in names if n == n.lower())
+    return tuple(names)
+
+
 def _param(p, names):
+    names = _names(p, names or ())
     return p.get(*names) if names else None
 
 
@@ -79,7 +88,7 @@ def _odom(p, spec, label: str) -> OdomTF | None:
     en = _param(p, spec.get("enable"))
     on = as_bool(en.text) if en is not None else None
     on = bool(spec.get("default", True)) if on is None else on
-    for g in p.all(*spec.get("gate", ())):
+    for g in p.all(*_names(p, spec.get("gate", ()))):
         on = on and as_bool(g.text) is not False
     loc = en.loc if en is not None else p.loc
     return OdomTF((parent.text if parent is not None and parent.text else pdefault).strip("/"),
@@ -89,8 +98,9 @@ def _odom(p, spec, label: str) -> OdomTF | None:
 def _drive(p, spec, label: str) -> DriveSpec | None:
     if not spec:
         return None
-    left = tuple(JointUse(x.text, x.loc, label, role="left_wheel") for x in p.all(*spec["left"]) if x.text)
-    right = tuple(JointUse(x.text, x.loc, label, role="right_wheel") for x in p.all(*spec["right"]) if x.text)
+    left = tuple(JointUse(x.text, x.loc, label, role="left_wheel") for x in p.all(*_names(p, spec["left"])) if x.text)
+    right = tuple(JointUse(x.text, x.loc, label, role="right_wheel")
+                  for x in p.all(*_names(p, spec["right"])) if x.text)
     if not left and not right:
         return None
     sep = _param(p, spec.get("separation"))
@@ -121,7 +131,7 @@ def _states(p, spec, drive: DriveSpec | None) -> tuple[str, ...] | None:
     if spec.get("joints") == "drive":
         return tuple(u.joint for u in (drive.left + drive.right)) if drive is not None else None
     names = []
-    for x in p.all(*spec["joints"]):
+    for x in p.all(*_names(p, spec["joints"])):
         names.extend(n.strip() for n in x.text.split(",") if n.strip())  # ROS 1 jointName: "a, b, c"
     return tuple(names)
 

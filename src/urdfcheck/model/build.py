@@ -405,9 +405,9 @@ class _Builder:
         for p in el.findall("plugin"):
             params = []
             for c in p.iter():
-                if c is p or not isinstance(c.tag, str) or len(c):
-                    continue
-                params.append(PluginParam(c.tag, (c.text or "").strip(), self.locate(c)))
+                if c is p or not isinstance(c.tag, str):
+                    continue  # (elements with children are kept too, with no text: <ros> marks a ROS 2 plugin)
+                params.append(PluginParam(c.tag, "" if len(c) else (c.text or "").strip(), self.locate(c)))
             out.append(GazeboPlugin(p.get("filename") or "", p.get("name") or "", self.locate(p), tuple(params),
                                     el.get("reference") or ""))
         return out
