@@ -35,6 +35,7 @@ from typing import NamedTuple
 
 from urdfcheck.contracts.common import ConsumerError, Value, as_bool, as_float, as_str_list
 from urdfcheck.contracts.params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
+from urdfcheck.contracts.uses import JointUse, OdomTF, _joint_uses, _norm_frame, _tf_prefix  # noqa: F401
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 
@@ -67,7 +68,11 @@ _FRAME_PARAMS = ("frame_id", "sensor_frame_id")  # broadcasters (force/torque, I
 
 def kind_of(type_name: str, ros: int) -> str:
     if ros == 2:
-        return _ROS2_TYPES.get(type_name, OTHER)
+        kind = _ROS2_TYPES.get(type_name)
+        return kind or _catalogue_kind(type_name, 2) or OTHER
+    kind = _catalogue_kind(type_name, 1)
+    if kind:
+        return kind
     if type_name == "diff_drive_controller/DiffDriveController":
         return DIFF_DRIVE
     if type_name == "joint_state_controller/JointStateController":
@@ -78,17 +83,12 @@ def kind_of(type_name: str, ros: int) -> str:
     return OTHER
 
 
-class JointUse(NamedTuple):
-    """A joint a controller or driver commands, and the hardware interfaces it needs on it."""
+def _catalogue_kind(type_name: str, ros: int) -> str | None:
+    """A family with a reader of its own named by the catalogue (ur_controllers' scaled JTC is a JTC)."""
+    from urdfcheck.contracts.catalog import kind_of as catalogue_kind
 
-    joint: str
-    loc: Location
-    owner: str
-    command: tuple[str, ...] = ()
-    state: tuple[str, ...] = ()
-    role: str = "joint"  # joint, left_wheel, right_wheel
-    via: str = ""  # upstream controller when chained (no interface claims then)
-    written: str = ""  # the name as written, when it differs (chained)
+    kind = catalogue_kind(type_name, ros)
+    return None if kind == "catalogue" else kind
 
 
 class DriveSpec(NamedTuple):
@@ -107,6 +107,12 @@ class DriveSpec(NamedTuple):
     right_radius_multiplier: Value | None = None
     wheels_per_side: Value | None = None
     from_urdf: bool = False  # ROS 1: separation/radius not set are computed from the URDF by the controller
+    # sided: the configuration names which wheels are left and right (diff drive, Gazebo's diff-drive plugins);
+    # False: the sides were taken from the model (steering controllers' traction wheels, mecanum), so wheel
+    # counts and swapped sides are not compared, and neither are geometry parameters left unset
+    sided: bool = True
+    separation_key: str = "wheel_separation"
+    radius_key: str = "wheel_radius"
 
     @staticmethod
     def _num(v: Value | None, default: float = 1.0) -> float | None:
@@ -165,16 +171,6 @@ def number_text(v: Value | None) -> str:
     return text
 
 
-class OdomTF(NamedTuple):
-    """An odom -> base transform a controller or driver broadcasts."""
-
-    parent: str
-    child: str
-    owner: str
-    loc: Location
-    enabled: bool = True
-
-
 class Controller(Record):
     # name: controller name (node basename)
     # node: fully qualified node key ("/ns/name"), "/name" when not namespaced
@@ -183,8 +179,11 @@ class Controller(Record):
     # state_joints: explicit state-source joints (JSB `joints`)
     # frames: frame ids the controller stamps data with / expects in the tree
     # notes: (message, Location)
+    # components: catalog.Component (<ros2_control> sensors/GPIOs it names); wheels: catalog.WheelSet
+    # inferred: its type is not in the catalogue; joints and frames were read by key shape
     _fields = ('name', 'node', 'type', 'type_loc', 'loc', 'kind', 'ros', 'file', 'params', 'joints', 'broadcasts_all',
-               'state_joints', 'drive', 'odom_tf', 'frames', 'notes')
+               'state_joints', 'drive', 'odom_tf', 'frames', 'notes', 'components', 'wheels')
+    inferred = False
 
     def __init__(self, name: str,
                  node: str,
@@ -201,7 +200,11 @@ class Controller(Record):
                  drive: DriveSpec | None = None,
                  odom_tf: OdomTF | None = None,
                  frames: tuple[Value, ...] = (),
-                 notes: list | None = None):
+                 notes: list | None = None,
+                 components: tuple = (),
+                 wheels=None):
+        self.components = components
+        self.wheels = wheels
         self.name = name
         self.node = node
         self.type = type
@@ -250,26 +253,6 @@ class ControllerSet(Record):
 # --- helpers -----------------------------------------------------------------------------------------
 def _is_type_string(v) -> bool:
     return isinstance(v, str) and "/" in v and " " not in v.strip() and not v.strip().startswith("/")
-
-
-def _norm_frame(s: str) -> str:
-    return s.strip().lstrip("/")
-
-
-def _tf_prefix(params: Mapping[str, Value], namespace: str) -> str:
-    """diff_drive_controller's frame prefix (Humble..Kilted `tf_frame_prefix_enable`; Lyrical `~`)."""
-    enable_v = params.get("tf_frame_prefix_enable")
-    prefix_v = params.get("tf_frame_prefix")
-    enable = as_bool(enable_v.value) if enable_v is not None else None
-    prefix = str(prefix_v.value) if prefix_v is not None and prefix_v.value is not None else ""
-    if enable is False:
-        return ""
-    if "~" in prefix:
-        prefix = prefix.replace("~", namespace)
-    elif not prefix and enable is True:
-        prefix = namespace
-    prefix = prefix.strip("/")
-    return prefix + "/" if prefix else ""
 
 
 def _str_list(params: Mapping[str, Value], key: str, notes: list) -> tuple[list[str], Value] | None:
@@ -390,29 +373,6 @@ class _Reader:
         return out
 
 
-def _resolve_chain(name: str, controller_names: set[str]) -> tuple[str, str]:
-    """'pid_left/left_wheel_joint' -> ('left_wheel_joint', 'pid_left') when pid_left is a controller."""
-    via = ""
-    parts = name.split("/")
-    while len(parts) > 1 and parts[0] in controller_names:
-        via = via or parts[0]
-        parts = parts[1:]
-    return ("/".join(parts), via) if via else (name, "")
-
-
-def _joint_uses(names: list[str], src: Value | Location, owner: str, names_set: set[str], command=(), state=(),
-                role="joint") -> tuple[JointUse, ...]:
-    out = []
-    for i, n in enumerate(names):
-        loc = src.item_loc(i) if isinstance(src, Value) else src
-        joint, via = _resolve_chain(n, names_set)
-        if via:
-            out.append(JointUse(joint, loc, owner, (), (), role, via, n))
-        else:
-            out.append(JointUse(n, loc, owner, tuple(command), tuple(state), role))
-    return tuple(out)
-
-
 def _finish(c: Controller, names_set: set[str]) -> None:
     p = c.params
     notes = c.notes
@@ -430,7 +390,14 @@ def _finish(c: Controller, names_set: set[str]) -> None:
             cmd_l = ([] if pkg == "joint_trajectory_controller"
                      else [_GROUP_INTERFACE.get(pkg, "")] if pkg in _GROUP_INTERFACE else [])
             st_l = []
-        if joints:
+        command_joints = _str_list(p, "command_joints", notes) if c.ros == 2 else None
+        if command_joints and command_joints[0]:
+            # JTC with command_joints (chained after another controller): it reads the states of `joints`
+            # and writes its commands to `command_joints`
+            c.joints = _joint_uses(command_joints[0], command_joints[1], c.name, names_set, cmd_l, ())
+            if joints:
+                c.joints += _joint_uses(joints[0], joints[1], c.name, names_set, (), st_l, role="state")
+        elif joints:
             c.joints = _joint_uses(joints[0], joints[1], c.name, names_set, cmd_l, st_l)
         else:
             notes.append((f"{c.name}: no 'joints' list", c.loc))
@@ -465,8 +432,15 @@ def _finish(c: Controller, names_set: set[str]) -> None:
             c.state_joints += _joint_uses(extra[0], extra[1], c.name, set(), (), (), role="extra")
     elif c.kind == JSC:
         c.broadcasts_all = True
+    elif c.kind == OTHER:
+        from urdfcheck.contracts import catalog
+
+        if catalog.entry(c.type, c.ros) is not None:
+            catalog.apply(c, names_set)
+        else:
+            catalog.read_by_shape(c, names_set)
     # any controller: odometry of other drive types, and stamped frames
-    if c.kind != DIFF_DRIVE:
+    if c.kind != DIFF_DRIVE and c.odom_tf is None:
         en = p.get("enable_odom_tf")
         if en is not None and as_bool(en.value) and ("odom_frame_id" in p or "base_frame_id" in p):
             prefix = _tf_prefix(p, c.namespace) if c.ros == 2 else ""

@@ -9,6 +9,9 @@ Claims (`TFClaim(parent, child, owner, kind, loc)`) come from
 * static_transform_publisher nodes in launch files (static);
 * controllers and drivers that broadcast odometry (dynamic odom -> base);
 * localization (robot_localization, AMCL) (dynamic);
+* Gazebo plugins and gz-sim systems in the model's <gazebo> blocks (`contracts.gazebo.plugin_claims`, source
+  "gazebo"): their odometry transforms (dynamic), counted against the controllers' only when the controllers run
+  in the simulator (rules_impl `_apart`);
 * owners declared in the config (`tf_owners: {"map->odom": amcl}`) (dynamic). A declaration that names the
   publisher already read for that edge (`add_declared`: the same owner, its node name, or its kind, e.g.
   `map_to_odom`, `static_transform_publisher`, `diff_drive_controller`) documents that publisher and adds no

@@ -86,6 +86,14 @@ def _inferred(owner):
     return _WARNING() if getattr(owner, "inferred", False) else None
 
 
+def _shape_note(owner) -> str:
+    """What a finding of a controller of no catalogued type says about how it was read."""
+    if getattr(owner, "inferred", False) and getattr(owner, "type", None):
+        return (f" (type {owner.type} is not in urdfcheck's controller catalogue: the key was read as a joint "
+                f"name by its shape)")
+    return ""
+
+
 def _owner_desc(owner_kind: str, owner) -> str:
     if owner_kind == "controller":
         return f"controller {owner.name}"
@@ -97,9 +105,12 @@ def unknown_joint(model, ctx) -> Iterator[Problem]:
     """A controller or driver names a joint the model does not have."""
     c = consumers(model, ctx)
     seen = set()
+    hw_items = {h.name for r in model.ros2_control for h in r.joints + r.sensors + r.gpios}
     for u, kind, owner in c.joint_uses():
         if _unresolved(u.joint) or u.joint in model.joints:
             continue
+        if u.role == "dof" and (u.joint in hw_items or not model.ros2_control):
+            continue  # pid_controller's degrees of freedom may be any hardware item's interfaces
         key = (u.joint, u.loc, owner.name)
         if key in seen:
             continue
@@ -111,7 +122,7 @@ def unknown_joint(model, ctx) -> Iterator[Problem]:
         else:
             hint = _suggest(u.joint, model.joints)
         yield Problem(f"{_owner_desc(kind, owner)} names joint {u.joint!r}{via}, which the model does not "
-                      f"have{hint}", at=u.loc, data={"joint": u.joint}, severity=_inferred(owner))
+                      f"have{hint}{_shape_note(owner)}", at=u.loc, data={"joint": u.joint}, severity=_inferred(owner))
 
 
 def joint_not_movable(model, ctx) -> Iterator[Problem]:
@@ -132,7 +143,7 @@ def joint_not_movable(model, ctx) -> Iterator[Problem]:
 
 def _not_movable(model, u, who: str, seen: set):
     j = model.joints.get(u.joint)
-    if j is None or j.movable or (u.joint, u.loc) in seen:
+    if j is None or j.movable or (u.joint, u.loc) in seen or u.role == "state":
         return
     seen.add((u.joint, u.loc))
     role = {"left_wheel": "drives wheel", "right_wheel": "drives wheel"}.get(u.role, "commands")
@@ -160,6 +171,11 @@ def _gazebo_state_joints(model) -> tuple[bool, set[str]]:
                 # wheel joint states (ROS 1 publishWheelJointState), or the wheel-to-base transforms themselves
                 # (gazebo_ros_diff_drive publish_wheel_tf): either way the wheels are in TF
                 named.update(re.findall(r"<(?:left|right)_?[Jj]oint>\s*([^<\s]+)\s*<", body))
+    if model.plugins:  # gz-sim's JointStatePublisher and the catalogue's other joint-state plugins
+        from urdfcheck.contracts.gazebo import state_joints
+
+        every, more = state_joints(model)
+        all_cov, named = all_cov or every, named | more
     return all_cov, named
 
 
@@ -344,26 +360,48 @@ def unreadable_consumer(model, ctx) -> Iterator[Problem]:
 
 
 # --- C010..C014: wheels ------------------------------------------------------------------------------------
-def _drives(c: Consumers):
+def _drives(c: Consumers, model=None):
     for ctrl in c.controllers:
+        base = ctrl.odom_tf.child if ctrl.odom_tf is not None else None
         if ctrl.drive is not None:
-            base = ctrl.odom_tf.child if ctrl.odom_tf is not None else None
             yield ctrl.drive, base
+        if ctrl.wheels is not None and model is not None:
+            from urdfcheck.contracts.drives import drive_of
+
+            drive = drive_of(model, ctrl.wheels, _base_in_model(model, c, base))
+            if drive is not None:
+                yield drive, base
     for d in c.drivers:
         if d.drive is not None:
             yield d.drive, None
+    for drive, base in _plugin_drives(model, c):
+        yield drive, base
+
+
+def _base_in_model(model, c: Consumers, base: str | None) -> str | None:
+    prefix = c.rsp_prefix
+    b = base[len(prefix):] if base and prefix and base.startswith(prefix) else base
+    if b not in model.links:
+        b = c.frames.get("base") if c.frames.get("base") in model.links else None
+    return b
+
+
+def _plugin_drives(model, c: Consumers):
+    """Gazebo diff-drive plugins and gz-sim systems in the model: wheel geometry the simulator is told."""
+    if model is None or not model.plugins:
+        return
+    from urdfcheck.contracts.gazebo import plugin_drives
+
+    yield from plugin_drives(model)
 
 
 def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
     c = consumers(model, ctx)
     tol = float(ctx.options["tolerance"])  # typed and defaulted by the catalogue (rules/C010.yaml ...)
     ang = float(ctx.options["angle_tolerance"])
-    prefix = c.rsp_prefix
     inferred = {d.name for d in c.drivers if _inferred(d)}
-    for drive, base in _drives(c):
-        b = base[len(prefix):] if base and prefix and base.startswith(prefix) else base
-        if b not in model.links:
-            b = c.frames.get("base") if c.frames.get("base") in model.links else None
+    for drive, base in _drives(c, model):
+        b = _base_in_model(model, c, base)
         rep = check_drive(model, drive, base_frame=b, tolerance=tol, angle_tolerance=ang)
         for p in rep.problems():
             if p.code == code:
@@ -392,6 +430,49 @@ def wheel_sides_swapped(model, ctx):
     yield from _wheel_problems(model, ctx, "C014")
 
 
+def wheel_direction_reversed(model, ctx):
+    yield from _wheel_problems(model, ctx, "C015")
+
+
+def drive_geometry_mismatch(model, ctx) -> Iterator[Problem]:
+    """C016: wheelbase (steering controllers, tricycle) and mecanum lx + ly against the model."""
+    from urdfcheck.contracts.drives import geometry_problems
+
+    c = consumers(model, ctx)
+    tol = float(ctx.options["tolerance"])
+    for ctrl in c.controllers:
+        if ctrl.wheels is None:
+            continue
+        base = _base_in_model(model, c, ctrl.odom_tf.child if ctrl.odom_tf is not None else None)
+        for p in geometry_problems(model, ctrl.wheels, base, tol):
+            yield Problem(p.message, at=p.at, related=_dedupe_locs(p.related, p.at), data=p.data,
+                          severity=p.severity)
+
+
+# --- C017: <ros2_control> sensors and GPIOs ------------------------------------------------------------------
+def unknown_hardware_component(model, ctx) -> Iterator[Problem]:
+    """A controller names a <ros2_control> sensor or GPIO (sensor_name, gpios, ft_sensor.name) the model's
+    <ros2_control> blocks do not declare."""
+    blocks = [r for r in model.ros2_control if not r.in_gazebo]
+    if not blocks:
+        return  # hardware described elsewhere (or not at all): nothing to compare with
+    c = consumers(model, ctx)
+    items = {"sensor": {h.name for r in blocks for h in r.sensors}, "gpio": {h.name for r in blocks for h in r.gpios}}
+    every = items["sensor"] | items["gpio"] | {h.name for r in blocks for h in r.joints}
+    for ctrl in c.controllers:
+        if ctrl.ros != 2:
+            continue
+        for comp in getattr(ctrl, "components", ()):
+            known = items.get(comp.kind, every)
+            if _unresolved(comp.name) or comp.name in known or comp.name in every:
+                continue
+            what = {"sensor": "<sensor>", "gpio": "<gpio>"}.get(comp.kind, "item")
+            yield Problem(f"controller {ctrl.name} ({ctrl.type}) names {what} {comp.name!r}, which no <ros2_control> "
+                          f"block of the model declares{_suggest(comp.name, sorted(known))}: the controller finds "
+                          f"no interfaces to read or write and fails to activate", at=comp.loc,
+                          related=tuple(blocks[:1]), data={"name": comp.name})
+
+
 # --- C020: frame ids -----------------------------------------------------------------------------------
 def unknown_frame(model, ctx) -> Iterator[Problem]:
     """A driver, controller or localization node uses a frame id that is not in the TF tree."""
@@ -406,7 +487,7 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
         items.extend((v, f"controller {ctrl.name}", ctrl.name) for v in ctrl.frames)
     for d in c.drivers:
         items.extend((v, f"driver {d.name}", d.name) for v in d.frames)
-    inferred = {d.name for d in c.drivers if _inferred(d)}
+    inferred = {d.name for d in c.drivers if _inferred(d)} | {x.name for x in c.controllers if _inferred(x)}
     for n in c.localization:
         items.append((n.base_frame, f"{n.kind} {n.node}", f" {n.node}"))
     seen = set()
@@ -439,6 +520,10 @@ def _graph(model, c: Consumers) -> TFGraph:
     g.extend(claims_from_odom((ctrl.odom_tf for ctrl in c.controllers), base, "controller"))
     g.extend(claims_from_odom((d.odom_tf for d in c.drivers), base, "driver"))
     g.extend(claims_from_localization(c.localization))
+    if model.plugins:  # Gazebo plugins' odometry transforms (contracts/gazebo.py)
+        from urdfcheck.contracts.gazebo import plugin_claims
+
+        g.extend(plugin_claims(model))
     add_declared(g, c.tf_owners)  # after the claims read from files: a declaration may name one of them
     c._graph_cache = (key, g)
     return g
@@ -485,8 +570,23 @@ def _tf_problems(model, ctx, analysis):
     if not _has_consumer_claims(g):
         return
     for p in analysis(g):
-        if not _alternatives(p, c):
+        if not _alternatives(p, c) and not _apart(p, model, c):
             yield p
+
+
+def _apart(p, model, c: Consumers) -> bool:
+    """A Gazebo plugin's claim against a controller's or driver's belong to different deployments unless those
+    run in the simulator: the model loads ros2_control into Gazebo, or the one deployment read (a launch chain or
+    a config's launch files) starts the simulator. Launch files found beside the model are often alternatives
+    (sim and real), so they do not count."""
+    sources = {cl.source for cl in p.claims}
+    if "gazebo" not in sources or not sources & {"controller", "driver"}:
+        return False
+    from urdfcheck.contracts.gazebo import controllers_in_sim, launch_starts_sim
+
+    if controllers_in_sim(model):
+        return False
+    return not (c.origin in ("deployment", "config") and launch_starts_sim(c.launch))
 
 
 def _no_state_publisher(c: Consumers, model, ctx) -> bool:

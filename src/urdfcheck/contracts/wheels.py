@@ -168,7 +168,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
     rep = DriveReport(drive, base or "")
     # --- counts (needs no geometry) ---------------------------------------------------------------
     nl, nr = len(drive.left), len(drive.right)
-    if nl != nr:
+    if nl != nr and drive.sided:
         empty = nl == 0 or nr == 0
         side_empty = "left" if nl == 0 else "right"
         msg = (f"{drive.owner} has {nl} left and {nr} right wheel joint(s)"
@@ -227,6 +227,9 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                     f"(in {base}); they are {math.degrees(ang):.3g} degrees apart, so the wheels fight each other",
                     w.joint_loc, (ref.joint_loc, w.use.loc), None,
                     {"angle": ang, "joint": w.use.joint, "reference": ref.use.joint}))
+    # --- directions (C015) --------------------------------------------------------------------------
+    if ref is not None:
+        rep.problems_.extend(_direction_problems(drive, base, lefts, rep.wheels))
     # --- separation ---------------------------------------------------------------------------------
     if lefts and rights:
         pl, pr = _mean([w.position for w in lefts]), _mean([w.position for w in rights])
@@ -238,7 +241,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
             rep.sides_swapped = lateral < 0
         fwd = _mean([w.axis for w in lefts])[1] + _mean([w.axis for w in rights])[1]
         rep.forward_sign = fwd
-        if abs(lateral) > tolerance and abs(fwd) >= MIN_FORWARD_SIGN:
+        if abs(lateral) > tolerance and abs(fwd) >= MIN_FORWARD_SIGN and drive.sided:
             rep.turn_reversed = lateral * fwd < 0
             if rep.turn_reversed:
                 rep.problems_.append(_sides_problem(drive, base, lefts, rights, pl, pr, fwd))
@@ -260,6 +263,8 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
             # a declared slip factor (skid steer): compare the base value with the model, say what it does
             rep.problems_.append(_slip_problem(drive, sep, slip, base_sep, rep.measured_separation, names,
                                                tolerance, (lefts[0].joint_loc, rights[0].joint_loc), data))
+        elif expected is None and not drive.sided and sep is None:
+            pass  # an optional track width the controller was not given
         elif expected is None:
             if drive.from_urdf and sep is None:
                 if abs(rep.urdf_distance - rep.measured_separation) > tolerance:
@@ -280,7 +285,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                 what = "wheel_separation" if base_sep is None else "wheel_separation_multiplier"
                 rep.notes.append((f"{what} {bad.value!r} is not a number", bad.loc))
         elif abs(expected - rep.measured_separation) > tolerance:
-            how = f"wheel_separation {number_text(sep)}" if sep is not None else "wheel_separation"
+            how = (f"{drive.separation_key} {number_text(sep)}" if sep is not None else drive.separation_key)
             rep.problems_.append(WheelProblem(
                 "C010",
                 f"{drive.owner}: {how} m, but the model's wheels ({names}) are {_fmt(rep.measured_separation)} m "
@@ -312,7 +317,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                                   w.joint_loc))
             continue
         if expected is None:
-            if rad_v is None and not drive.from_urdf:
+            if rad_v is None and not drive.from_urdf and drive.sided:
                 rep.problems_.append(WheelProblem(
                     "C011",
                     f"{drive.owner} sets no wheel_radius (it defaults to 0); wheel link {w.link} has radius "
@@ -341,11 +346,45 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
         if abs(expected - w.radius) > tolerance:
             rep.problems_.append(WheelProblem(
                 "C011",
-                f"{drive.owner}: wheel_radius {number_text(rad_v)} m, but wheel link {w.link} ({w.use.joint}) has a "
-                f"{w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m (difference "
+                f"{drive.owner}: {drive.radius_key} {number_text(rad_v)} m, but wheel link {w.link} ({w.use.joint}) "
+                f"has a {w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m (difference "
                 f"{_fmt(abs(expected - w.radius))} m, tolerance {_fmt(tolerance)} m)",
                 rad_v.loc, (w.shape_loc or w.joint_loc,), None, data))
     return rep
+
+
+def _direction_problems(drive: DriveSpec, base: str, lefts, wheels) -> list[WheelProblem]:
+    """C015: wheels a drive commands alike must roll the same way. A wheel turning positively about its axis `a`
+    (in the base frame, z up) rolls along `a x z`, whose forward component is `a_y`; the controllers (diff drive,
+    mecanum, steering traction) and Gazebo's drive plugins command every wheel with the same sign to drive
+    straight, so a wheel whose `a_y` has the other sign than the reference (the first left wheel) drives the other
+    way. A mirrored wheel frame (rpy flipping the child) with a flipped <axis> gives the same effective axis and
+    is fine."""
+    rolling = [w for w in wheels if abs(w.axis[1]) >= MIN_FORWARD_SIGN]
+    if len(rolling) < 2:
+        return []
+    if drive.sided:
+        ref = next((w for w in lefts if w in rolling), rolling[0])
+        sign = ref.axis[1] > 0
+    else:  # sides read from the model: the majority direction, ties to the first left wheel
+        pos = sum(1 for w in rolling if w.axis[1] > 0)
+        neg = len(rolling) - pos
+        first = next((w for w in lefts if w in rolling), rolling[0])
+        sign = pos > neg if pos != neg else first.axis[1] > 0
+        ref = next(w for w in ([first] + rolling) if (w.axis[1] > 0) == sign)
+    out = []
+    for w in rolling:
+        if (w.axis[1] > 0) == sign:
+            continue
+        msg = (f"wheel joint {w.use.joint} turns about {_vec(w.axis)} in {base}, but {ref.use.joint} about "
+               f"{_vec(ref.axis)}: {drive.owner} commands both with the same sign to drive straight, so one rolls "
+               f"forward and the other backward and the robot spins in place instead of driving (in Gazebo, and on "
+               f"hardware that follows the URDF); flip the <axis> of {w.use.joint} (with a mirrored wheel frame, "
+               f"the axis must be flipped too: it is the axis in {base} that counts)")
+        out.append(WheelProblem("C015", msg, w.joint_loc, (ref.joint_loc, w.use.loc), None,
+                                {"joint": w.use.joint, "reference": ref.use.joint, "axis": list(w.axis),
+                                 "reference_axis": list(ref.axis)}))
+    return out
 
 
 def _slip_problem(drive: DriveSpec, sep, slip: float, base: float, measured: float, names: str, tolerance: float,

@@ -23,6 +23,7 @@ from urdfcheck.model import extensions
 from urdfcheck.model import grammar as G
 from urdfcheck.model.robot import (
     Block,
+    GazeboPlugin,
     Geometry,
     HardwareItem,
     Inertial,
@@ -35,6 +36,7 @@ from urdfcheck.model.robot import (
     MaterialRef,
     Mimic,
     Model,
+    PluginParam,
     Pose,
     Ros2Control,
     Shape,
@@ -398,6 +400,18 @@ class _Builder:
         return Ros2Control(el.get("name") or "", el.get("type") or "", self.locate(el), plugin,
                            tuple(items["joint"]), tuple(items["sensor"]), tuple(items["gpio"]), in_gazebo)
 
+    def plugins(self, el) -> list[GazeboPlugin]:
+        out = []
+        for p in el.findall("plugin"):
+            params = []
+            for c in p.iter():
+                if c is p or not isinstance(c.tag, str):
+                    continue  # (elements with children are kept too, with no text: <ros> marks a ROS 2 plugin)
+                params.append(PluginParam(c.tag, "" if len(c) else (c.text or "").strip(), self.locate(c)))
+            out.append(GazeboPlugin(p.get("filename") or "", p.get("name") or "", self.locate(p), tuple(params),
+                                    el.get("reference") or ""))
+        return out
+
     def transmission(self, el) -> Transmission:
         joints = tuple(Interface(j.get("name") or "", self.locate(j)) for j in el.findall("joint"))
         return Transmission(el.get("name") or "", self.locate(el), joints)
@@ -447,7 +461,7 @@ def _build(root, locate: Callable[[object], Location], source: str) -> Model:
         b.issue("U001", f"the root element is <{root.tag}>, not <robot>", root)
     else:
         b.R["robot"](b, root)
-    links, joints, materials, blocks, r2c, trans = [], [], [], [], [], []
+    links, joints, materials, blocks, r2c, trans, plugins = [], [], [], [], [], [], []
     for el in root:
         tag = el.tag
         if tag == "link":
@@ -469,6 +483,7 @@ def _build(root, locate: Callable[[object], Location], source: str) -> Model:
             elif tag == "gazebo":
                 for inner in el.iter("ros2_control"):
                     r2c.append(b.ros2_control(inner, True))
+                plugins.extend(b.plugins(el))
             else:
                 trans.append(b.transmission(el))
         elif is_robot and isinstance(tag, str):
@@ -489,6 +504,7 @@ def _build(root, locate: Callable[[object], Location], source: str) -> Model:
         transmissions=tuple(trans),
         version=version,
         declared_version=declared,
+        plugins=tuple(plugins),
     )
 
 

@@ -160,6 +160,33 @@ class Ros2Control(NamedTuple):
     in_gazebo: bool = False  # written inside a <gazebo> block, where ros2_control never reads it
 
 
+class PluginParam(NamedTuple):
+    tag: str
+    text: str
+    loc: Location
+
+
+class GazeboPlugin(NamedTuple):
+    """A <plugin> directly inside a <gazebo> block (Gazebo classic model plugins, gz-sim systems)."""
+
+    filename: str
+    name: str
+    loc: Location
+    params: tuple[PluginParam, ...] = ()  # its child elements in document order (repeated tags kept)
+    reference: str = ""  # the <gazebo reference=...> it sits in
+
+    def get(self, *tags: str) -> PluginParam | None:
+        """The first child element with one of `tags`, also inside <ros> (gazebo_ros plugins)."""
+        for t in tags:
+            for p in self.params:
+                if p.tag == t:
+                    return p
+        return None
+
+    def all(self, *tags: str) -> tuple[PluginParam, ...]:
+        return tuple(p for p in self.params if p.tag in tags)
+
+
 class Transmission(NamedTuple):
     name: str
     loc: Location
@@ -182,7 +209,7 @@ class Model(FrozenRecord):
     # version: the URDF version the model is read as (the declared one; 1.0 when none is declared; the newest
     #   when the declared one is one no urdfdom reads); declared_version: <robot version> as written
     _fields = ('name', 'loc', 'links', 'joints', 'materials', 'link_list', 'joint_list', 'material_list', 'blocks',
-               'issues', 'source', 'ros2_control', 'transmissions', 'version', 'declared_version')
+               'issues', 'source', 'ros2_control', 'transmissions', 'version', 'declared_version', 'plugins')
 
     def __init__(self, name: str,
                  loc: Location,
@@ -198,7 +225,8 @@ class Model(FrozenRecord):
                  ros2_control: tuple[Ros2Control, ...] = (),
                  transmissions: tuple[Transmission, ...] = (),
                  version: tuple[int, int] = (1, 0),
-                 declared_version: str | None = None):
+                 declared_version: str | None = None,
+                 plugins: tuple[GazeboPlugin, ...] = ()):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["name"] = name
         d["loc"] = loc
@@ -215,6 +243,7 @@ class Model(FrozenRecord):
         d["transmissions"] = transmissions
         d["version"] = version
         d["declared_version"] = declared_version
+        d["plugins"] = plugins
 
     # --- derived structure -------------------------------------------------
     @property
