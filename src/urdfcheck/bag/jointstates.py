@@ -63,6 +63,7 @@ class JointStateChecks:
         self.last_stamp: int | None = None
         self.last_time: int | None = None
         self.periods: list[int] = []  # bounded sample of receive periods for the median
+        self.median_period = 0.0  # of `periods`, recomputed as the sample grows (sorting per message is slow)
         self.gaps: list = [0, None, 0, None]  # count, first message, largest gap ns, its message
 
     # --- one message ----------------------------------------------------------------------------------------
@@ -78,26 +79,30 @@ class JointStateChecks:
                 self._first(self.length, 2, m)
                 break
         joints = self.model.joints
+        seen, ranges = self.seen, self.ranges
+        vel = js.velocity if len(js.velocity) == len(names) else None
+        stamp = js.stamp_ns
         for k, name in enumerate(names):
-            self.seen.add(name)
-            if name not in joints:
-                self.unknown.setdefault(name, m)
-                continue
+            if name not in seen:
+                seen.add(name)
+            r = ranges.get(name)
+            if r is None:
+                if name not in joints:
+                    self.unknown.setdefault(name, m)
+                    continue
+                r = ranges[name] = _Range()
             q = pos[k]
-            if not math.isfinite(q):
+            if q - q != 0.0:  # NaN or infinite (faster than math.isfinite on the hot path)
                 rec = self.nonfinite.setdefault(name, [0, m])
                 rec[0] += 1
                 continue
-            r = self.ranges.get(name)
-            if r is None:
-                r = self.ranges[name] = _Range()
             if q < r.lo:
                 r.lo, r.lo_msg = q, m
             if q > r.hi:
                 r.hi, r.hi_msg = q, m
-            if k < len(js.velocity) and len(js.velocity) == len(names):
-                self._unit_sample(name, q, js.velocity[k], js.stamp_ns, r)
-            self.prev_pos[name] = (js.stamp_ns, q)
+            if vel is not None:
+                self._unit_sample(name, q, vel[k], stamp, r)
+                self.prev_pos[name] = (stamp, q)
         self._stamp(m, js.stamp_ns)
         self._timing(m)
 
@@ -133,10 +138,13 @@ class JointStateChecks:
         t = m.time_ns
         if self.last_time is not None and t > self.last_time:
             period = t - self.last_time
-            if len(self.periods) < 4096:
+            n = len(self.periods)
+            if n < 4096:
                 self.periods.append(period)
-            med = _median(self.periods)
-            if len(self.periods) >= 10 and period > max(self.gap_factor * med, self.min_gap_ns):
+                if n < 64 or n % 256 == 0:
+                    self.median_period = _median(self.periods)
+            med = self.median_period
+            if n >= 10 and period > max(self.gap_factor * med, self.min_gap_ns):
                 self._first(self.gaps, 0, m)
                 if period > self.gaps[2]:
                     self.gaps[2], self.gaps[3] = period, m
@@ -194,7 +202,7 @@ class JointStateChecks:
 
     def _range_issues(self, name, j) -> list[Issue]:
         r = self.ranges[name]
-        if j is None or j.type not in MOVABLE:
+        if j is None or j.type not in MOVABLE or r.lo > r.hi:  # (every value was NaN: B004 says so)
             return []
         ratio = _median(r.ratios) if len(r.ratios) >= 5 else None
         limit = j.limit

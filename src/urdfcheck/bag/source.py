@@ -119,9 +119,8 @@ def _bag_messages(path, joint_topic, tf_topics, others) -> Iterator[Message]:
             caller = getattr(conn.ext, "callerid", None) or ""
             if conn.msgtype == JOINT_STATE:
                 st = msg.header.stamp
-                data = JointStateMsg(tuple(msg.name), tuple(float(x) for x in msg.position),
-                                     tuple(float(x) for x in msg.velocity), tuple(float(x) for x in msg.effort),
-                                     int(st.sec) * NS + int(st.nanosec))
+                data = JointStateMsg(tuple(msg.name), _list(msg.position), _list(msg.velocity),
+                                     _list(msg.effort), int(st.sec) * NS + int(st.nanosec))
                 yield Message(conn.topic, i, int(t), "joint_state", data, caller)
             else:
                 edges = tuple(_edge_from_msg(ts) for ts in msg.transforms)
@@ -132,6 +131,12 @@ def _bag_messages(path, joint_topic, tf_topics, others) -> Iterator[Message]:
             reader.close()
         except Exception:  # noqa: BLE001,S110 - closing a broken bag must not hide the finding
             pass
+
+
+def _list(values) -> tuple:
+    """A numpy float64 array (what rosbags gives) as a tuple of Python floats, fast."""
+    tolist = getattr(values, "tolist", None)
+    return tuple(tolist()) if tolist is not None else tuple(float(x) for x in values)
 
 
 def _edge_from_msg(ts) -> Edge:

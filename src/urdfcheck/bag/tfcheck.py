@@ -90,8 +90,8 @@ class TfChecks:
             self.second[key] = (m, f"it is published on /tf_static, while robot_state_publisher publishes joint "
                                    f"{seg.name!r} ({seg.type}) on /tf")
         prev = self.last_value.get(key)
-        if prev is not None and prev[0] == e.stamp_ns and _diff(prev[1], prev[2], e)[0] + \
-                _diff(prev[1], prev[2], e)[1] > 10 * self.tolerance and key not in self.second:
+        if prev is not None and prev[0] == e.stamp_ns and key not in self.second and \
+                sum(_diff(prev[1], prev[2], e)) > 10 * self.tolerance:
             self.second[key] = (m, "two different transforms carry the same stamp")
         self.last_value[key] = (e.stamp_ns, e.translation, e.rotation)
         expected = self._expected(e.stamp_ns, seg)

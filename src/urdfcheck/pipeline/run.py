@@ -129,8 +129,23 @@ def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding
                          static_tolerance=opt("B011", "tolerance", 1e-4))
     out = []
     for bag in t.bags:
-        out.extend(check_recording(model, bag, options))
+        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag)))
     return out
+
+
+def _bag_progress(bag: str):
+    """Messages read so far, on a terminal's stderr (a long recording takes minutes); None elsewhere."""
+    import sys
+
+    if not sys.stderr.isatty():
+        return None
+    name = os.path.basename(bag.rstrip(os.sep))
+
+    def show(n: int) -> None:
+        sys.stderr.write(f"\rurdfcheck: {name}: {n:,} messages read\x1b[K")
+        sys.stderr.flush()
+
+    return show
 
 
 def _begin(t: Target, kw: dict) -> load.Pending:
