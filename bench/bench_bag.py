@@ -14,7 +14,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import resource
 import statistics
 import subprocess
 import sys
@@ -94,16 +93,23 @@ def write_bag(model_path: str, n: int, out: Path) -> Path:
     return path
 
 
-def measure(cmd: list[str], runs: int) -> tuple[float, int, str]:
-    walls, peak, out = [], 0, ""
+def measure(cmd: list[str], runs: int, env) -> tuple[float, str]:
+    """Median wall time of `runs` runs, and the end of the last run's output."""
+    walls, out = [], ""
     for _ in range(runs):
-        before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
         t0 = time.perf_counter()
-        p = subprocess.run(cmd, capture_output=True, text=True)
+        p = subprocess.run(cmd, capture_output=True, text=True, env=env)
         walls.append(time.perf_counter() - t0)
-        peak = max(peak, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss, before)
         out = p.stdout[-400:] + p.stderr[-400:]
-    return statistics.median(walls), peak, out
+    return statistics.median(walls), out
+
+
+def peak_of(cmd: list[str], env) -> int:
+    """Peak resident set (KiB) of one run of `cmd`, measured from a fresh parent process."""
+    probe = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], capture_output=True); "
+             "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+    out = subprocess.run([sys.executable, "-c", probe, *cmd], capture_output=True, text=True, env=env).stdout
+    return int(out.strip() or 0)
 
 
 def main() -> None:
@@ -124,21 +130,16 @@ def main() -> None:
             print(f"wrote {n:,} JointState messages (+{n // 10:,} /tf) in {time.perf_counter() - t0:.1f} s",
                   flush=True)
         env = dict(os.environ, PYTHONPATH=str(HERE.parent / "src"))
-        peer_t, peer_m, _ = measure([sys.executable, "-c", PEER, str(bag)], ns.runs)
-        ours_t, ours_m, tail = measure([sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format",
-                                        "json", "--no-config"], ns.runs)
-        # ru_maxrss of RUSAGE_CHILDREN is the largest child so far: measure ours in a fresh process for memory
-        mem = subprocess.run([sys.executable, "-c", "import resource, subprocess, sys; subprocess.run(sys.argv[1:], "
-                              "capture_output=True); print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)",
-                              sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json",
-                              "--no-config"], capture_output=True, text=True, env=env).stdout.strip()
-        peer_mem = subprocess.run([sys.executable, "-c", "import resource, subprocess, sys; subprocess.run(sys.argv[1:],"
-                                   " capture_output=True); print(resource.getrusage(resource.RUSAGE_CHILDREN)"
-                                   ".ru_maxrss)", sys.executable, "-c", PEER, str(bag)],
-                                  capture_output=True, text=True).stdout.strip()
+        peer_t, _ = measure([sys.executable, "-c", PEER, str(bag)], ns.runs, env)
+        ours_t, tail = measure([sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json",
+                                "--no-config"], ns.runs, env)
+        # ru_maxrss of RUSAGE_CHILDREN is the largest child so far: each command's peak from a fresh parent
+        mem = peak_of([sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json", "--no-config"],
+                      env)
+        peer_mem = peak_of([sys.executable, "-c", PEER, str(bag)], env)
         print(f"{n:>9,} messages: urdfcheck bag {ours_t:7.1f} s ({n / ours_t:,.0f} msg/s), rosbags read alone "
-              f"{peer_t:7.1f} s: {ours_t / peer_t:.2f}x; peak memory {int(mem) / 1024:.0f} MiB vs "
-              f"{int(peer_mem) / 1024:.0f} MiB", flush=True)
+              f"{peer_t:7.1f} s: {ours_t / peer_t:.2f}x; peak memory {mem / 1024:.0f} MiB vs "
+              f"{peer_mem / 1024:.0f} MiB", flush=True)
         if '"findings": []' not in tail and "findings" in tail:
             print("  (the recording is clean by construction; the run reported:", tail.strip()[-300:], ")")
 
