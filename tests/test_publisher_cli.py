@@ -95,7 +95,8 @@ def test_publish_replays_messages(robot, tmp_path):
 - {name: [shoulder], position: [], stamp: 2.0}         # rejected
 """)
     code, out, err = run_cli(["publish", robot, "--joint-states", js])
-    assert code == 0, err
+    assert code == 1, err  # the input's defects are said: an unknown name (B001), a rejected message (B003)
+    assert "B001" in err and "B003" in err
     d = json.loads(out)
     assert [(t["parent"], t["child"]) for t in d["startup"]["/tf_static"]] == [("base", "cam"), ("arm", "tool")]
     m = d["messages"]

@@ -86,7 +86,22 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
                       help="show paths relative to DIR (default: the working directory)")
     lint.add_argument("--baseline", metavar="FILE", help="only fail on findings not in this baseline")
     lint.add_argument("--write-baseline", metavar="FILE", help="write current findings as a baseline and exit 0")
+    lint.add_argument("--bag", dest="bags", action="append", default=[], metavar="RECORDING",
+                      help="also check a recording against the model: a ROS 1 .bag, a ROS 2 bag folder, a .db3 "
+                           "or .mcap file, or a YAML/JSON list of messages (repeatable; `urdfcheck bag` is the short "
+                           "form)")
+    lint.add_argument("--joint-states", metavar="TOPIC",
+                      help="the recordings' JointState topic (default /joint_states, else the only one)")
     lint.set_defaults(func=cmd_lint)
+
+    bag = sub.add_parser("bag", help="check a recording (/joint_states, /tf, /tf_static) against the model",
+                         description="urdfcheck bag MODEL RECORDING [lint options] is `urdfcheck lint MODEL --bag "
+                         "RECORDING --select B,X`: MODEL is anything lint takes (URDF, xacro with --arg, a package "
+                         "with its config); RECORDING a ROS 1 .bag, a ROS 2 bag folder, a .db3 or .mcap file, or a "
+                         "YAML/JSON list of messages. Every lint option applies (--format, --joint-states, "
+                         "--select, --fail-on, ...).", epilog=EPILOG, formatter_class=RawFormatter)
+    bag.add_argument("model", metavar="MODEL")
+    bag.add_argument("recordings", nargs="+", metavar="RECORDING")
 
     exp = sub.add_parser("expand", help="print the expanded URDF exactly as the rules see it")
     exp.add_argument("path", metavar="FILE")
@@ -162,10 +177,44 @@ def _fork_xacro_worker(ns) -> None:
     worker.keep_spare(SPARE, worker_limits(bool(ns.trusted), ns.allow_env, ns.timeout or XACRO_TIMEOUT), SPARE_PRELOAD)
 
 
+def bag_argv(rest: list[str]) -> list[str] | None:
+    """`bag MODEL RECORDING... [options]` as the lint command it is: the first two positional words are the
+    model and a recording, later positional words more recordings; without --select, the B and X rules.
+    None when the model or the recording is missing."""
+    out, positional, skip = ["lint"], [], False
+    valued = {"--arg", "--package", "--allow-env", "--timeout", "--max-elements", "--budget", "--select", "--ignore",
+              "--fail-on", "--format", "--output", "-o", "--report", "--color", "--config", "--target", "--root",
+              "--baseline", "--write-baseline", "--joint-states", "--bag"}
+    for word in rest:
+        if skip:
+            out.append(word)
+            skip = False
+        elif word.startswith("-"):
+            out.append(word)
+            skip = word in valued
+        else:
+            positional.append(word)
+    if positional:
+        out.insert(1, positional[0])
+        for rec in positional[1:]:
+            out += ["--bag", rec]
+    if len(positional) < 2:
+        return None
+    if not any(w == "--select" or w.startswith("--select=") for w in rest):
+        out += ["--select", "B,X"]
+    return out
+
+
 def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
     """`one_shot`: the process exits after this call (the console entry), so lint may skip cleanup work."""
     argv = list(sys.argv[1:] if argv is None else argv)
-    if argv and not argv[0].startswith("-") and argv[0] not in ("lint", "expand", "rules", "help") \
+    if argv and argv[0] == "bag" and not {"-h", "--help"} & set(argv):
+        lint_argv = bag_argv(argv[1:])
+        if lint_argv is None:
+            print("urdfcheck bag: error: expected MODEL and RECORDING (`urdfcheck bag --help`)", file=sys.stderr)
+            return EXIT_USAGE
+        argv = lint_argv
+    if argv and not argv[0].startswith("-") and argv[0] not in ("lint", "expand", "rules", "help", "bag") \
             and argv[0] not in PUBLISH_COMMANDS:
         argv = ["lint"] + argv  # `urdfcheck model.urdf` is `urdfcheck lint model.urdf`
     parser = build_parser(with_publish=not argv or argv[0] not in ("lint", "expand", "rules"))

@@ -298,7 +298,19 @@ def cmd_publish(ns) -> int:
     sys.stdout.write("\n")
     if errors:
         print(f"urdfcheck publish: {errors} message(s) rejected (see \"error\" in the output)", file=sys.stderr)
-    return EXIT_OK
+    return EXIT_FAIL if _check_states(model, ns.joint_states) else EXIT_OK
+
+
+def _check_states(model, path: str) -> bool:
+    """The recording checks of `urdfcheck bag` on the input (a joint 90 rad past its limits, a NaN, a stamp
+    going backwards), on stderr; True when one is a warning or an error."""
+    from urdfcheck.bag import BagOptions, check_recording
+    from urdfcheck.core.findings import Severity
+
+    found = check_recording(model, path, BagOptions(), text=True)
+    found = [f for f in found if f.code != "B015"]  # a list without JointState fields is said above already
+    _print_findings(found)
+    return any(f.severity >= Severity.WARNING for f in found)
 
 
 # --- tree -------------------------------------------------------------------------------------------------------

@@ -86,7 +86,7 @@ class ModelConfig(FrozenRecord):
     # variants: "auto", a mapping, or None
     # drivers: contracts.controllers.DriverSpec, one per declared custom driver
     _fields = ('path', 'loc', 'args', 'variants', 'controllers', 'drivers', 'launch', 'launch_args', 'localization',
-               'frame_prefix')
+               'frame_prefix', 'bags')
 
     def __init__(self, path: str,
                  loc: Location,
@@ -97,7 +97,8 @@ class ModelConfig(FrozenRecord):
                  launch: tuple[str, ...] = (),
                  launch_args: Mapping[str, str] | None = None,
                  localization: tuple[str, ...] = (),
-                 frame_prefix: str = ""):
+                 frame_prefix: str = "",
+                 bags: tuple[str, ...] = ()):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
         d["loc"] = loc
@@ -109,6 +110,7 @@ class ModelConfig(FrozenRecord):
         d["launch_args"] = _ro({}) if launch_args is None else launch_args
         d["localization"] = localization
         d["frame_prefix"] = frame_prefix
+        d["bags"] = bags  # recordings checked against this model (urdfcheck.bag)
 
     def variant_args(self) -> list[tuple[str, dict]]:
         """(variant name, xacro args) pairs: one ("", args) when there are no variants."""
@@ -415,6 +417,7 @@ def load_config(path: str | os.PathLike) -> Config:
             localization=tuple(resolve(p, "models", i, "localization", k)
                                for k, p in enumerate(m.get("localization") or [])),
             frame_prefix=str(m.get("frame_prefix") or ""),
+            bags=tuple(resolve(p, "models", i, "bags", k, kind="recording") for k, p in enumerate(m.get("bags") or [])),
         ))
     packages = {str(k): resolve(v, "packages", k, kind="folder") for k, v in (data.get("packages") or {}).items()}
     for k, p in packages.items():

@@ -60,6 +60,8 @@ class Target(Record):
     deployment: the launch file that starts this model (label and defining Location), when planned from one."""
 
     _fields = ('path', 'args', 'variant', 'contracts', 'packages', 'settings', 'deployment')
+    bags: tuple = ()  # recordings a config declares for this model (urdfcheck.bag)
+    joint_states: str | None = None  # their JointState topic (None: /joint_states, else the only one)
 
     def __init__(self, path: Path,
                  args: dict | None = None,
@@ -253,6 +255,7 @@ class Planner:
             consumers = Later(lambda m=m: _consumers(m, cfg, dict(settings.packages)))  # read in the warm-up
             for vname, vargs in m.variant_args():
                 out.append(self.target(Path(m.path), vargs, vname, consumers, settings))
+                out[-1].bags = m.bags
         for raw in rest:
             out.extend(self.file_targets(Path(raw), settings) if not os.path.isdir(raw)
                        else self.discovered(raw, _walk(raw), settings))

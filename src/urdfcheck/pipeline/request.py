@@ -54,6 +54,8 @@ class LintRequest(Record):
         "baseline": None,        # only findings not in this baseline file
         "budget": None,          # seconds for the whole run (issue 11: run-wide limits); None = load.budget's default
         "target": None,          # ROS distribution the description is meant for (issue 14)
+        "bags": (),              # recordings checked against every model linted (urdfcheck.bag)
+        "joint_states": None,    # their JointState topic (None: /joint_states, else the only one)
     }
     _fields = tuple(_defaults)
 
@@ -155,8 +157,11 @@ def make_request(paths=(), **options) -> LintRequest:
         kw["fail_on"] = _severity(options["fail_on"])
     if options.get("allow_env") is not None:
         kw["allow_env"] = tuple(options["allow_env"])
+    if options.get("bags"):
+        kw["bags"] = tuple(os.fsdecode(b) for b in ([options["bags"]] if isinstance(options["bags"], str)
+                                                     else options["bags"]))
     for key in ("trusted", "timeout", "max_elements", "config", "use_config", "root", "baseline", "budget",
-                "target"):
+                "target", "joint_states"):
         if options.get(key) is not None:
             kw[key] = options[key]
     if kw.get("target") is not None:
@@ -168,7 +173,7 @@ def make_request(paths=(), **options) -> LintRequest:
         if not os.path.isdir(kw["root"]):
             raise UsageError(f"--root: no such folder: {kw['root']}")
         kw["root"] = os.path.abspath(kw["root"])
-    missing = [p for p in kw["paths"] if not os.path.exists(p)]
+    missing = [p for p in kw["paths"] + kw.get("bags", ()) if not os.path.exists(p)]
     if missing:
         raise UsageError(f"no such file or folder: {', '.join(missing)}")
     if kw.get("config") is not None and not os.path.isfile(kw["config"]):

@@ -73,6 +73,8 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
             result.infos = infos
             return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
+    if request.bags:
+        _attach_bags(targets, request.bags, request.joint_states)
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
     result.infos = infos
     _missing_packages_once(result)
@@ -92,11 +94,58 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
     return result
 
 
+def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
+    """A recording shows one configuration of the robot: it is checked against one target per entry model,
+    the defaults (or the deployment, or the first variant), not against every variant."""
+    chosen: dict[str, Target] = {}
+    for t in targets:
+        best = chosen.get(str(t.path))
+        if best is None or (best.variant not in ("", "defaults") and t.variant in ("", "defaults")):
+            chosen[str(t.path)] = t
+    for t in chosen.values():
+        t.bags = tuple(t.bags) + tuple(b for b in bags if b not in t.bags)
+        t.joint_states = topic
+
+
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
                 config=None, max_elements=None) -> tuple[list[Finding], object]:
     """One target on its own (tests). A run lints all its targets with `lint_targets`."""
     pending = _begin(t, dict(trusted=trusted, allow_env=allow_env, timeout=timeout, max_elements=max_elements))
     return _check(t, pending.result(), selection, config)
+
+
+def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding]:
+    """The recordings of this target against its model (urdfcheck.bag), with the B rules' options."""
+    from urdfcheck.bag import CODES, BagOptions, check_recording
+
+    if not any(selection.enabled(c) for c in CODES):
+        return []
+
+    def opt(code, name, default):
+        return selection.options.get(code, {}).get(name, default)
+
+    options = BagOptions(joint_topic=t.joint_states,
+                         tolerance=opt("B005", "tolerance", 1e-3), replay_tolerance=opt("B013", "tolerance", 1e-5),
+                         static_tolerance=opt("B011", "tolerance", 1e-4))
+    out = []
+    for bag in t.bags:
+        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag)))
+    return out
+
+
+def _bag_progress(bag: str):
+    """Messages read so far, on a terminal's stderr (a long recording takes minutes); None elsewhere."""
+    import sys
+
+    if not sys.stderr.isatty():
+        return None
+    name = os.path.basename(bag.rstrip(os.sep))
+
+    def show(n: int) -> None:
+        sys.stderr.write(f"\rurdfcheck: {name}: {n:,} messages read\x1b[K")
+        sys.stderr.flush()
+
+    return show
 
 
 def _begin(t: Target, kw: dict) -> load.Pending:
@@ -113,6 +162,8 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
                              variant=t.variant, target=t.settings.target if t.settings is not None else None)
         findings.extend(engine.run_checks(model, ctx))
+        if t.bags:
+            findings.extend(_bag_findings(model, t, selection))
         if yaml is not None:
             yaml.read(contracts, selection)
     return engine.finish(findings, selection, exp.suppressions, model=exp.entry, variant=t.variant,

@@ -1,0 +1,148 @@
+"""`urdfcheck bag` on a long recording: time and peak memory against rosbags reading the same bag alone.
+
+    python bench/bench_bag.py [--messages 1000000] [--model PATH]
+
+Writes a ROS 2 MCAP bag of N JointState messages (every movable joint of the model, 100 Hz, with the matching
+/tf every 10th message) to a temporary folder, then runs, as separate processes, each three times:
+  peer:  a plain rosbags loop that reads and deserialises every message (the floor any bag checker pays)
+  ours:  urdfcheck bag MODEL BAG --format json
+and prints the median wall time, the ratio, and both peak resident sizes (ru_maxrss of the child). Run it with
+N and N/10: memory must not grow with the recording's length. Default model: example-robot-data's PR2.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+PEER = """
+import sys
+from pathlib import Path
+from rosbags.highlevel import AnyReader
+from rosbags.typesys import Stores, get_typestore
+n = 0
+with AnyReader([Path(sys.argv[1])], default_typestore=get_typestore(Stores.ROS2_HUMBLE)) as r:
+    for c, t, raw in r.messages(connections=r.connections):
+        r.deserialize(raw, c.msgtype)
+        n += 1
+print(n)
+"""
+
+
+def default_model() -> str:
+    try:
+        import example_robot_data  # noqa: F401
+    except ImportError:
+        pass
+    prefix = Path(sys.prefix) / "lib"
+    hits = sorted(prefix.glob("python3*/site-packages/cmeel.prefix/share/example-robot-data/robots/"
+                              "pr2_description/urdf/pr2.urdf"))
+    if not hits:
+        sys.exit("no model: pip install example-robot-data, or pass --model")
+    return str(hits[0])
+
+
+def write_bag(model_path: str, n: int, out: Path) -> Path:
+    import numpy as np
+    from rosbags.rosbag2 import StoragePlugin, Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    from urdfcheck.load import loader
+    from urdfcheck.publisher import StatePublisher
+
+    model = loader.load_model(model_path, {})
+    pub = StatePublisher(model)
+    joints = sorted(pub.tree.movable)
+    limits = {}
+    for name in joints:
+        lim = model.joints[name].limit
+        lo, hi = (lim.lower, lim.upper) if lim is not None and lim.lower is not None else (-1.0, 1.0)
+        limits[name] = (lo, hi) if hi > lo else (-1.0, 1.0)
+    ts = get_typestore(Stores.ROS2_HUMBLE)
+    T = ts.types
+    JS, H, Tm = T["sensor_msgs/msg/JointState"], T["std_msgs/msg/Header"], T["builtin_interfaces/msg/Time"]
+    TFM, TS = T["tf2_msgs/msg/TFMessage"], T["geometry_msgs/msg/TransformStamped"]
+    Tr, V3, Q = T["geometry_msgs/msg/Transform"], T["geometry_msgs/msg/Vector3"], T["geometry_msgs/msg/Quaternion"]
+    path = out / f"pr2_{n}"
+    empty = np.array([], dtype=float)
+    with Writer(path, version=8, storage_plugin=StoragePlugin.MCAP) as w:
+        cj = w.add_connection("/joint_states", JS.__msgtype__, typestore=ts)
+        ct = w.add_connection("/tf", TFM.__msgtype__, typestore=ts)
+        for i in range(n):
+            t_ns = 1_000_000_000 + i * 10_000_000
+            stamp = Tm(sec=t_ns // 1_000_000_000, nanosec=t_ns % 1_000_000_000)
+            pos = [lo + (hi - lo) * (0.5 + 0.4 * math.sin(i * 1e-3 + k)) for k, (lo, hi) in
+                   enumerate(limits[j] for j in joints)]
+            msg = JS(header=H(stamp=stamp, frame_id=""), name=joints, position=np.array(pos), velocity=empty,
+                     effort=empty)
+            w.write(cj, t_ns, ts.serialize_cdr(msg, JS.__msgtype__))
+            if i % 10 == 0:
+                tfs = [TS(header=H(stamp=stamp, frame_id=t.parent), child_frame_id=t.child,
+                          transform=Tr(translation=V3(x=t.translation[0], y=t.translation[1], z=t.translation[2]),
+                                       rotation=Q(x=t.rotation[0], y=t.rotation[1], z=t.rotation[2],
+                                                  w=t.rotation[3])))
+                       for t in pub.transforms_for(dict(zip(joints, pos)), (stamp.sec, stamp.nanosec))]
+                w.write(ct, t_ns, ts.serialize_cdr(TFM(transforms=tfs), TFM.__msgtype__))
+    return path
+
+
+def measure(cmd: list[str], runs: int, env) -> tuple[float, str]:
+    """Median wall time of `runs` runs, and the end of the last run's output."""
+    walls, out = [], ""
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+        walls.append(time.perf_counter() - t0)
+        out = p.stdout[-400:] + p.stderr[-400:]
+    return statistics.median(walls), out
+
+
+def peak_of(cmd: list[str], env) -> int:
+    """Peak resident set (KiB) of one run of `cmd`, measured from a fresh parent process."""
+    probe = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], capture_output=True); "
+             "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+    out = subprocess.run([sys.executable, "-c", probe, *cmd], capture_output=True, text=True, env=env).stdout
+    return int(out.strip() or 0)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--messages", type=int, default=1_000_000)
+    ap.add_argument("--model", default=None)
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--keep", metavar="DIR", help="write (or reuse) the bags here")
+    ns = ap.parse_args()
+    model = ns.model or default_model()
+    folder = Path(ns.keep) if ns.keep else Path(tempfile.mkdtemp(prefix="urdfcheck-bench-bag-"))
+    folder.mkdir(parents=True, exist_ok=True)
+    for n in (ns.messages // 10, ns.messages):
+        bag = folder / f"pr2_{n}"
+        if not bag.exists():
+            t0 = time.perf_counter()
+            write_bag(model, n, folder)
+            print(f"wrote {n:,} JointState messages (+{n // 10:,} /tf) in {time.perf_counter() - t0:.1f} s",
+                  flush=True)
+        env = dict(os.environ, PYTHONPATH=str(HERE.parent / "src"))
+        peer_t, _ = measure([sys.executable, "-c", PEER, str(bag)], ns.runs, env)
+        ours_t, tail = measure([sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json",
+                                "--no-config"], ns.runs, env)
+        # ru_maxrss of RUSAGE_CHILDREN is the largest child so far: each command's peak from a fresh parent
+        mem = peak_of([sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json", "--no-config"],
+                      env)
+        peer_mem = peak_of([sys.executable, "-c", PEER, str(bag)], env)
+        print(f"{n:>9,} messages: urdfcheck bag {ours_t:7.1f} s ({n / ours_t:,.0f} msg/s), rosbags read alone "
+              f"{peer_t:7.1f} s: {ours_t / peer_t:.2f}x; peak memory {mem / 1024:.0f} MiB vs "
+              f"{peer_mem / 1024:.0f} MiB", flush=True)
+        if '"findings": []' not in tail and "findings" in tail:
+            print("  (the recording is clean by construction; the run reported:", tail.strip()[-300:], ")")
+
+
+if __name__ == "__main__":
+    main()

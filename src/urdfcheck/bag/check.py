@@ -1,0 +1,105 @@
+"""One recording against one model: stream it once through the JointState and TF checks, return findings."""
+from __future__ import annotations
+
+from urdfcheck.bag import source
+from urdfcheck.bag.jointstates import Issue, JointStateChecks
+from urdfcheck.bag.tfcheck import TfChecks
+from urdfcheck.core.findings import Finding, Location, Severity, clean_text
+from urdfcheck.core.records import FrozenRecord
+
+CODES = {
+    "B001": "joint-state-unknown-name",
+    "B002": "joint-never-published",
+    "B003": "joint-state-length-mismatch",
+    "B004": "joint-state-not-finite",
+    "B005": "joint-state-outside-limits",
+    "B006": "joint-state-in-degrees",
+    "B007": "joint-state-in-millimetres",
+    "B008": "joint-state-stamp",
+    "B009": "joint-state-gap",
+    "B010": "tf-edge-second-publisher",
+    "B011": "tf-static-differs-from-model",
+    "B012": "tf-frame-two-parents",
+    "B013": "tf-replay-mismatch",
+    "B014": "recording-unreadable",
+    "B015": "recording-nothing-to-check",
+}
+
+
+class BagOptions(FrozenRecord):
+    """joint_topic: the JointState topic (None: /joint_states, else the recording's only one);
+    tolerance: how far (rad or m) a position may lie outside its limits; replay_tolerance: metres and radians
+    a recorded /tf transform may differ from the replay; static_tolerance: the same for /tf_static against
+    the model's fixed joints; profile and frame_prefix: the robot_state_publisher that ran."""
+
+    _fields = ("joint_topic", "tolerance", "replay_tolerance", "static_tolerance", "profile", "frame_prefix")
+
+    def __init__(self, joint_topic: str | None = None, tolerance: float = 1e-3, replay_tolerance: float = 1e-5,
+                 static_tolerance: float = 1e-4, profile: str = "ros2", frame_prefix: str = ""):
+        d = self.__dict__
+        d["joint_topic"] = joint_topic
+        d["tolerance"] = tolerance
+        d["replay_tolerance"] = replay_tolerance
+        d["static_tolerance"] = static_tolerance
+        d["profile"] = profile
+        d["frame_prefix"] = frame_prefix
+
+
+def check_recording(model, path: str, options: BagOptions | None = None, progress=None, text: bool | None = None
+                    ) -> list[Finding]:
+    """Findings about the recording at `path` (bag, bag folder, .db3, .mcap, or a YAML/JSON message list),
+    located in the recording; `related` points at the model's source lines. Never raises for a bad recording:
+    that is a B014 finding. `progress(n)` is called every 10,000 messages. `text`: read it as a YAML/JSON list
+    whatever its name (None: by its suffix)."""
+    opts = options or BagOptions()
+    states = JointStateChecks(model, tolerance=opts.tolerance)
+    tf = TfChecks(model, profile=opts.profile, frame_prefix=opts.frame_prefix, tolerance=opts.replay_tolerance,
+                  static_tolerance=opts.static_tolerance)
+    issues: list[Issue] = []
+    others: list[str] = []
+    n = 0
+    try:
+        for m in source.messages(path, opts.joint_topic, others=others, text=text):
+            n += 1
+            if m.kind == "joint_state":
+                states.add(m)
+                tf.joint_state(m)
+            else:
+                tf.add(m)
+            if progress is not None and n % 10_000 == 0:
+                progress(n)
+    except source.RecordingError as e:
+        issues.append(Issue("B014", f"the recording cannot be read: {e}"))
+    except RecursionError:
+        issues.append(Issue("B014", "the recording cannot be read: nested too deeply"))
+    issues.extend(states.issues())
+    issues.extend(tf.issues())
+    if not n and not issues:
+        topic = opts.joint_topic or "/joint_states"
+        issues.append(Issue("B015", f"the recording has no JointState messages on {topic} and no /tf or "
+                            "/tf_static messages: nothing was checked"
+                            + (f" (JointState topics in it: {', '.join(others)}; pass --joint-states TOPIC)"
+                               if others else "")))
+    if others and states.count:
+        for i in issues:
+            if i.code == "B002":  # an absence claim about a topic we did not read all of: say what we did not see
+                i.severity = "info"
+                i.message += (f" (the recording also has {', '.join(others)}, not read: a joint_state_publisher "
+                              "may merge them; pass --joint-states TOPIC to check one of them)")
+    return [_finding(i, path) for i in issues]
+
+
+def _finding(i: Issue, path: str) -> Finding:
+    name = CODES[i.code]
+    loc = Location(str(path))
+    if i.severity is not None:  # a severity other than the catalogue's (engine.finish keeps a named one)
+        return Finding(i.code, Severity.parse(i.severity), clean_text(i.message, 2000), loc, name,
+                       tuple(i.related))
+    return Finding(i.code, _default(i.code), clean_text(i.message, 2000), loc, "", tuple(i.related))
+
+
+def _default(code: str) -> Severity:
+    from urdfcheck.rules import catalogue
+
+    info = catalogue.info(code)
+    return info.severity if info is not None else Severity.ERROR

@@ -1,0 +1,296 @@
+"""Checks over the JointState messages of a recording, fed one message at a time.
+
+What robot_state_publisher does with each defect (ROS 2 `robot_state_publisher.cpp`, ROS 1
+`joint_state_listener.cpp`): a message whose `name` and `position` lengths differ is dropped; a name the model
+does not have is ignored; a movable joint that no message names never gets its transform, so its child frame
+and everything below it are missing from TF; a stamp that is not at least one publish interval after the
+last one for its joints is throttled (a stamp going backwards freezes those frames until it catches up, a
+repeated stamp is dropped, or with `ignore_timestamp` published again, which tf2 buffers reject as
+TF_REPEATED_DATA); NaN positions become NaN transforms that break every lookup through them.
+"""
+from __future__ import annotations
+
+import math
+
+from urdfcheck.bag.source import NS, Message
+
+DEG = 180.0 / math.pi
+LIMITED = ("revolute", "prismatic")
+MOVABLE = ("revolute", "continuous", "prismatic")
+
+
+class Issue:
+    """A problem seen in the recording: code, message, where it was first seen, model parts it concerns."""
+
+    __slots__ = ("code", "message", "first", "related", "severity")
+
+    def __init__(self, code: str, message: str, first: Message | None = None, related=(), severity=None):
+        self.code, self.message, self.first, self.related, self.severity = code, message, first, related, severity
+
+
+class _Range:
+    __slots__ = ("lo", "hi", "lo_msg", "hi_msg", "ratios")
+
+    def __init__(self):
+        self.lo = math.inf
+        self.hi = -math.inf
+        self.lo_msg = self.hi_msg = None
+        self.ratios: list[float] = []  # |d position / dt| / |velocity| samples (unit signature), bounded
+
+
+class JointStateChecks:
+    """Feed every JointState message with `add`; `issues()` at the end."""
+
+    MAX_RATIOS = 512
+
+    def __init__(self, model, tolerance: float = 1e-3, gap_factor: float = 5.0, min_gap: float = 0.5):
+        self.model = model
+        self.tolerance = tolerance
+        self.gap_factor = gap_factor
+        self.min_gap_ns = int(min_gap * NS)
+        joints = model.joints
+        self.movable = {n for n, j in joints.items() if j.type in MOVABLE}
+        self.mimic = {n for n, j in joints.items() if j.mimic is not None}
+        self.count = 0
+        self.seen: set[str] = set()
+        self.unknown: dict[str, Message] = {}
+        self.length: list = [0, None, 0, None]  # position mismatches (count, first), velocity/effort (count, first)
+        self.nonfinite: dict[str, list] = {}  # joint -> [count, first message]
+        self.ranges: dict[str, _Range] = {}
+        self.prev_pos: dict[str, tuple[int, float]] = {}
+        self.stamps = {"zero": [0, None], "repeated": [0, None], "backwards": [0, None]}
+        self.worst_back = 0
+        self.last_stamp: int | None = None
+        self.last_time: int | None = None
+        self.periods: list[int] = []  # bounded sample of receive periods for the median
+        self.median_period = 0.0  # of `periods`, recomputed as the sample grows (sorting per message is slow)
+        self.gaps: list = [0, None, 0, None]  # count, first message, largest gap ns, its message
+
+    # --- one message ----------------------------------------------------------------------------------------
+    def add(self, m: Message) -> None:
+        js = m.data
+        self.count += 1
+        names, pos = js.names, js.position
+        if len(names) != len(pos):
+            self._first(self.length, 0, m)
+            return  # robot_state_publisher drops the whole message
+        for extra in (js.velocity, js.effort):
+            if extra and len(extra) != len(names):
+                self._first(self.length, 2, m)
+                break
+        joints = self.model.joints
+        seen, ranges = self.seen, self.ranges
+        vel = js.velocity if len(js.velocity) == len(names) else None
+        stamp = js.stamp_ns
+        for k, name in enumerate(names):
+            if name not in seen:
+                seen.add(name)
+            r = ranges.get(name)
+            if r is None:
+                if name not in joints:
+                    self.unknown.setdefault(name, m)
+                    continue
+                r = ranges[name] = _Range()
+            q = pos[k]
+            if q - q != 0.0:  # NaN or infinite (faster than math.isfinite on the hot path)
+                rec = self.nonfinite.setdefault(name, [0, m])
+                rec[0] += 1
+                continue
+            if q < r.lo:
+                r.lo, r.lo_msg = q, m
+            if q > r.hi:
+                r.hi, r.hi_msg = q, m
+            if vel is not None:
+                self._unit_sample(name, q, vel[k], stamp, r)
+                self.prev_pos[name] = (stamp, q)
+        self._stamp(m, js.stamp_ns)
+        self._timing(m)
+
+    def _first(self, rec: list, i: int, m: Message) -> None:
+        rec[i] += 1
+        if rec[i + 1] is None:
+            rec[i + 1] = m
+
+    def _unit_sample(self, name, q, v, stamp, r: _Range) -> None:
+        prev = self.prev_pos.get(name)
+        if prev is None or len(r.ratios) >= self.MAX_RATIOS or not math.isfinite(v) or abs(v) < 1e-3:
+            return
+        dt = (stamp - prev[0]) / NS
+        if dt <= 0:
+            return
+        rate = abs(q - prev[1]) / dt
+        if rate > 0:
+            r.ratios.append(rate / abs(v))
+
+    def _stamp(self, m: Message, st: int) -> None:
+        if st == 0:
+            self._first(self.stamps["zero"], 0, m)
+        elif self.last_stamp is not None:
+            if st == self.last_stamp:
+                self._first(self.stamps["repeated"], 0, m)
+            elif st < self.last_stamp:
+                self._first(self.stamps["backwards"], 0, m)
+                self.worst_back = max(self.worst_back, self.last_stamp - st)
+        if st:
+            self.last_stamp = st
+
+    def _timing(self, m: Message) -> None:
+        t = m.time_ns
+        if self.last_time is not None and t > self.last_time:
+            period = t - self.last_time
+            n = len(self.periods)
+            if n < 4096:
+                self.periods.append(period)
+                if n < 64 or n % 256 == 0:
+                    self.median_period = _median(self.periods)
+            med = self.median_period
+            if n >= 10 and period > max(self.gap_factor * med, self.min_gap_ns):
+                self._first(self.gaps, 0, m)
+                if period > self.gaps[2]:
+                    self.gaps[2], self.gaps[3] = period, m
+        self.last_time = t
+
+    # --- the verdict ---------------------------------------------------------------------------------------
+    def issues(self) -> list[Issue]:
+        out: list[Issue] = []
+        if not self.count:
+            return out
+        joints = self.model.joints
+        if self.unknown:
+            names = sorted(self.unknown)
+            first = min(self.unknown.values(), key=lambda m: (m.time_ns, m.index))
+            one = len(names) == 1
+            out.append(Issue("B001", f"{_names(names)} in the joint states {'is' if one else 'are'} not "
+                             f"{'a joint' if one else 'joints'} of the model, first in {first.where()} "
+                             f"(robot_state_publisher ignores {'it' if one else 'them'}; renamed in firmware or a "
+                             "driver's config?)" + _close(names, joints), first))
+        never = sorted(n for n in self.movable - self.seen if n not in self.mimic)
+        if never:
+            out.append(Issue("B002", f"movable joint{'s' if len(never) > 1 else ''} {_names(never)} "
+                             f"{'is' if len(never) == 1 else 'are'} never named in {self.count} JointState "
+                             "messages: robot_state_publisher never publishes "
+                             f"{'its' if len(never) == 1 else 'their'} transform, so "
+                             f"{_names(sorted({joints[n].child for n in never if joints[n].child}))} and every "
+                             "frame below are missing from TF", None, tuple(joints[n].loc for n in never)))
+        if self.length[0]:
+            out.append(Issue("B003", f"{self.length[0]} JointState message{'s' if self.length[0] > 1 else ''} "
+                             "with different numbers of names and positions, first "
+                             f"{self.length[1].where()}: robot_state_publisher drops such a message whole",
+                             self.length[1]))
+        if self.length[2]:
+            out.append(Issue("B003", f"{self.length[2]} JointState message{'s' if self.length[2] > 1 else ''} "
+                             "whose velocity or effort list is neither empty nor as long as the names, first "
+                             f"{self.length[3].where()}: consumers that index them by name read other "
+                             "joints' values", self.length[3], severity="warning"))
+        for name in sorted(self.nonfinite):
+            n, m = self.nonfinite[name]
+            j = joints.get(name)
+            out.append(Issue("B004", f"joint {name!r} has a NaN or infinite position in {n} message"
+                             f"{'s' if n > 1 else ''}, first {m.where()}: robot_state_publisher publishes a NaN "
+                             "transform and every TF lookup through it fails", m, (j.loc,) if j else ()))
+        for name in sorted(self.ranges):
+            out.extend(self._range_issues(name, joints.get(name)))
+        out.extend(self._stamp_issues())
+        if self.gaps[0]:
+            med = _median(self.periods)
+            out.append(Issue("B009", f"{self.gaps[0]} gap{'s' if self.gaps[0] > 1 else ''} in the joint states "
+                             f"longer than {self.gap_factor:g}x the usual period ({med / 1e6:.1f} ms, "
+                             f"{NS / med:.1f} Hz); the largest, {self.gaps[2] / NS:.3f} s, before "
+                             f"{self.gaps[3].where()}: TF goes stale meanwhile (lookups extrapolate or fail)",
+                             self.gaps[1]))
+        return out
+
+    def _range_issues(self, name, j) -> list[Issue]:
+        r = self.ranges[name]
+        if j is None or j.type not in MOVABLE or r.lo > r.hi:  # (every value was NaN: B004 says so)
+            return []
+        ratio = _median(r.ratios) if len(r.ratios) >= 5 else None
+        limit = j.limit
+        lo = getattr(limit, "lower", None) if limit is not None else None
+        hi = getattr(limit, "upper", None) if limit is not None else None
+        limited = j.type in LIMITED and lo is not None and hi is not None and hi > lo
+        where = r.hi_msg if r.hi_msg is not None else r.lo_msg
+        if j.type == "prismatic":
+            scaled = limited and _outside(r, lo, hi, self.tolerance) and _fits(r, 1e-3, lo, hi, self.tolerance)
+            if scaled or (ratio is not None and 900 <= ratio <= 1100):
+                return [Issue("B007", f"prismatic joint {name!r} reads {r.lo:g} .. {r.hi:g} "
+                              + (f"while its limits are {lo:g} .. {hi:g} m" if limited else "")
+                              + (f"{' and' if limited else ''} its positions change ~{ratio:.0f}x faster than its "
+                                 "velocities say" if ratio is not None and 900 <= ratio <= 1100 else "")
+                              + ": the driver reports millimetres, URDF and robot_state_publisher use metres",
+                              where, (j.loc,))]
+        else:
+            scaled = limited and _outside(r, lo, hi, self.tolerance) and _fits(r, 1 / DEG, lo, hi, self.tolerance)
+            if scaled or (ratio is not None and 50 <= ratio <= 65):
+                return [Issue("B006", f"joint {name!r} reads {r.lo:g} .. {r.hi:g} "
+                              + (f"while its limits are {lo:g} .. {hi:g} rad" if limited else "")
+                              + (f"{' and' if limited else ''} its positions change ~{ratio:.1f}x faster than its "
+                                 "velocities say (57.3x is degrees)" if ratio is not None and 50 <= ratio <= 65
+                                 else "")
+                              + ": the driver reports degrees, URDF and robot_state_publisher use radians",
+                              where, (j.loc,))]
+        if limited and _outside(r, lo, hi, self.tolerance):
+            unit = "m" if j.type == "prismatic" else "rad"
+            worst = r.hi_msg if r.hi - hi >= lo - r.lo else r.lo_msg
+            return [Issue("B005", f"joint {name!r} goes to {r.lo:g} .. {r.hi:g} {unit}, outside its limits "
+                          f"{lo:g} .. {hi:g} {unit} (tolerance {self.tolerance:g}), worst at {worst.where()}: "
+                          "the model's limits or the driver's calibration are wrong", worst, (j.loc,))]
+        return []
+
+    def _stamp_issues(self) -> list[Issue]:
+        out = []
+        n, m = self.stamps["zero"]
+        if n:
+            out.append(Issue("B008", f"{n} JointState message{'s' if n > 1 else ''} stamped 0, first {m.where()}: "
+                             "robot_state_publisher stamps their transforms 0 and throttles them by that stamp, "
+                             "so they are published once and then never again", m))
+        n, m = self.stamps["backwards"]
+        if n:
+            out.append(Issue("B008", f"the JointState stamp goes backwards {n} time{'s' if n > 1 else ''} (by up to "
+                             f"{self.worst_back / NS:.3f} s), first {m.where()}: robot_state_publisher throttles by "
+                             "stamp and publishes nothing for those joints until the stamps catch up (a clock "
+                             "jump, or two publishers on one topic)", m))
+        n, m = self.stamps["repeated"]
+        if n:
+            out.append(Issue("B008", f"{n} JointState message{'s' if n > 1 else ''} repeat the previous stamp, first "
+                             f"{m.where()}: robot_state_publisher drops them (throttled), or with ignore_timestamp "
+                             "publishes the same stamp again, which tf2 reports as TF_REPEATED_DATA", m,
+                             severity="warning"))
+        return out
+
+
+def _outside(r: _Range, lo, hi, tol) -> bool:
+    return r.lo < lo - tol or r.hi > hi + tol
+
+
+def _fits(r: _Range, scale, lo, hi, tol) -> bool:
+    """The values, scaled, lie inside the limits, and are far outside them unscaled (not a small overshoot)."""
+    a, b = r.lo * scale, r.hi * scale
+    span = max(hi - lo, 1e-9)
+    far = max(lo - r.lo, r.hi - hi) > 2 * span or max(abs(r.lo), abs(r.hi)) > 3 * max(abs(lo), abs(hi), 1e-9)
+    return far and lo - tol <= a and b <= hi + tol
+
+
+def _median(xs) -> float:
+    s = sorted(xs)
+    n = len(s)
+    if not n:
+        return 0.0
+    return s[n // 2] if n % 2 else 0.5 * (s[n // 2 - 1] + s[n // 2])
+
+
+def _names(names) -> str:
+    names = list(names)
+    shown = ", ".join(repr(n) for n in names[:6])
+    return shown + (f" and {len(names) - 6} more" if len(names) > 6 else "")
+
+
+def _close(names, joints) -> str:
+    from urdfcheck.core.findings import closest
+
+    hints = []
+    for n in names[:3]:
+        c = closest(n, list(joints), cutoff=0.6)
+        if c:
+            hints.append(f"{n!r} -> {c!r}")
+    return f" (did you mean: {', '.join(hints)}?)" if hints else ""
