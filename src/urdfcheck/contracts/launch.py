@@ -33,7 +33,6 @@ import os
 import re
 import shlex
 from collections.abc import Mapping
-from typing import Any
 
 from lxml import etree
 
@@ -579,148 +578,6 @@ def _opt_str(v) -> str | None:
     return str(v)
 
 
-# --- Python (ROS 2), by ast ---------------------------------------------------------------------------
-class _PyReader:
-    """Reads `Node(...)` calls with literal keyword values. Nothing is imported or executed."""
-
-    def __init__(self, path: str, tree: ast.AST, args, packages):
-        self.path = path
-        self.tree = tree
-        self.overrides = dict(args or {})
-        self.defaults: dict[str, str] = {}
-        self.packages = dict(packages or {})
-        self.info = LaunchInfo(path, "ros2-py")
-
-    def loc(self, node: ast.AST) -> Location:
-        return Location(self.path, getattr(node, "lineno", None), (getattr(node, "col_offset", -1) + 1) or None)
-
-    @staticmethod
-    def _callee(call: ast.Call) -> str:
-        f = call.func
-        if isinstance(f, ast.Name):
-            return f.id
-        if isinstance(f, ast.Attribute):
-            return f.attr
-        return ""
-
-    def run(self) -> LaunchInfo:
-        calls = [n for n in ast.walk(self.tree) if isinstance(n, ast.Call)]
-        calls.sort(key=lambda c: (c.lineno, c.col_offset))
-        for c in calls:  # launch argument defaults first
-            if self._callee(c) == "DeclareLaunchArgument" and c.args and isinstance(c.args[0], ast.Constant):
-                kw = {k.arg: k.value for k in c.keywords if k.arg}
-                d = kw.get("default_value")
-                if isinstance(d, ast.Constant) and isinstance(d.value, (str, int, float, bool)):
-                    self.defaults[str(c.args[0].value)] = str(d.value)
-        for c in calls:
-            if self._callee(c) == "Node":
-                self.node(c)
-        from urdfcheck.contracts.pyinclude import find_includes
-
-        own: list = []
-
-        def find_package(name: str) -> str | None:
-            if name in self.packages:
-                return self.packages[name]
-            if not own:
-                own.append(_own(self.path))
-            return own[0][1] if own[0][0] == name else None
-
-        inherited = {**self.defaults, **{k: (None if v is None else str(v)) for k, v in self.overrides.items()}}
-        self.info.includes.extend(find_includes(self.tree, self.path, self.literal, find_package, inherited))
-        return self.info
-
-    def literal(self, node: ast.AST) -> tuple[Any, bool]:
-        """A literal value; LaunchConfiguration('x') resolves to its default. (value, ok)."""
-        if isinstance(node, ast.Constant):
-            return node.value, True
-        if isinstance(node, (ast.List, ast.Tuple)):
-            vals = [self.literal(e) for e in node.elts]
-            return [v for v, _ in vals], all(ok for _, ok in vals)
-        if isinstance(node, ast.Dict):
-            out, ok_all = {}, True
-            for k, v in zip(node.keys, node.values):
-                if k is None:
-                    ok_all = False
-                    continue
-                kv, kok = self.literal(k)
-                vv, vok = self.literal(v)
-                if kok and isinstance(kv, str):
-                    out[kv] = vv if vok else None
-                ok_all = ok_all and kok and vok
-            return out, ok_all
-        if isinstance(node, ast.Call) and self._callee(node) == "LaunchConfiguration" and node.args:
-            a = node.args[0]
-            if isinstance(a, ast.Constant) and isinstance(a.value, str):
-                name = a.value
-                if name in self.overrides:
-                    return str(self.overrides[name]), True
-                kw = {k.arg: k.value for k in node.keywords if k.arg}
-                d = kw.get("default")
-                if isinstance(d, ast.Constant):
-                    return str(d.value), True
-                if name in self.defaults:
-                    return self.defaults[name], True
-        return None, False
-
-    def node(self, call: ast.Call) -> None:
-        kw = {k.arg: k.value for k in call.keywords if k.arg}
-        loc = self.loc(call)
-
-        def text(*names) -> str:
-            for n in names:
-                if n in kw:
-                    v, ok = self.literal(kw[n])
-                    return str(v) if ok and v is not None else ""
-            return ""
-
-        pkg = text("package")
-        exe = text("executable", "node_executable")
-        name = text("name", "node_name")
-        ns = text("namespace", "node_namespace") or "/"
-        cond = None
-        if "condition" in kw:
-            cond_node = kw["condition"]
-            decided = None
-            if isinstance(cond_node, ast.Call) and cond_node.args:
-                v, ok = self.literal(cond_node.args[0])
-                b = as_bool(v) if ok else None
-                if b is not None:
-                    callee = self._callee(cond_node)
-                    decided = b if callee == "IfCondition" else (not b if callee == "UnlessCondition" else None)
-            if decided is False:
-                return
-            if decided is None:
-                try:
-                    cond = f"condition={ast.unparse(cond_node)[:120]}"
-                except (RecursionError, ValueError):
-                    cond = "condition=?"
-        args: tuple[str, ...] | None = ()
-        if "arguments" in kw:
-            v, ok = self.literal(kw["arguments"])
-            if ok and isinstance(v, list) and all(isinstance(x, (str, int, float)) for x in v):
-                args = tuple(str(x) for x in v)
-            else:
-                args = None
-        params: dict[str, Value] = {}
-        pfiles: list[str] = []
-        if "parameters" in kw and isinstance(kw["parameters"], (ast.List, ast.Tuple)):
-            for el in kw["parameters"].elts:
-                if isinstance(el, ast.Dict):
-                    for k, v in zip(el.keys, el.values):
-                        kv, kok = self.literal(k) if k is not None else (None, False)
-                        if not kok or not isinstance(kv, str):
-                            continue
-                        vv, vok = self.literal(v)
-                        params[kv] = Value(vv if vok else None, self.loc(v))
-                else:
-                    vv, vok = self.literal(el)
-                    if vok and isinstance(vv, str):
-                        pfiles.append(vv)
-        node = LaunchNode(pkg, exe, name, ns, args, loc, params, tuple(pfiles), cond)
-        record_node(self.info, node, 2)
-
-
 # --- entry point -------------------------------------------------------------------------------------
 def launch_format(path: str) -> str | None:
     p = path.lower()
@@ -754,12 +611,30 @@ def parse_launch(data: bytes | str, path: str, *, args: Mapping[str, str] | None
         except (RecursionError, MemoryError, ValueError):
             raise ConsumerError("Python launch file nested too deeply or otherwise unparsable; refused",
                                 Location(path)) from None
-        return _PyReader(path, tree, args, packages).run()
+        return _read_python(path, tree, args, packages)
     if fmt == "xml":
         root = _xml_root(raw, path)
         return _XmlReader(path, root, args, packages).run()
     raise ConsumerError("unknown launch file type (expected .launch, .launch.xml, .launch.py, .launch.yaml)",
                         Location(path))
+
+
+def _read_python(path: str, tree: ast.AST, args, packages) -> LaunchInfo:
+    """The one Python reader (`pylaunch.read`), whoever asks: a config's launch files, zero-config discovery
+    and the deployment finder read the same `LaunchInfo` from the same file."""
+    from urdfcheck.contracts import pylaunch
+
+    known = dict(packages or {})
+    own: list = []
+
+    def find_package(name: str) -> str | None:
+        if name in known:
+            return known[name]
+        if not own:
+            own.append(_own(path))
+        return own[0][1] if own[0][0] == name else None
+
+    return pylaunch.read(path, tree, args, find_package)
 
 
 def read_launch(path: str | os.PathLike, *, args: Mapping[str, str] | None = None,

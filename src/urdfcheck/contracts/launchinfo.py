@@ -1,5 +1,4 @@
-"""What a launch file says, as every launch reader (XML/YAML in `launch`, Python in `pylaunch`, includes in
-`pyinclude`) records it: the result records, the model a robot_state_publisher is given, static transform
+"""What a launch file says, as every launch reader (XML/YAML in `launch`, Python in `pylaunch`) records it: the result records, the model a robot_state_publisher is given, static transform
 arguments, and how one node is filed into a `LaunchInfo`. The readers import this module; it imports none of
 them (no import cycle between the readers).
 """

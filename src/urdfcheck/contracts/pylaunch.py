@@ -37,6 +37,10 @@ _MAX_STEPS = 50_000
 _MAX_LEN = 64 * 1024
 
 
+_SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAMLLaunchDescriptionSource",
+            "AnyLaunchDescriptionSource", "FrontendLaunchDescriptionSource"}
+
+
 class Cmd(NamedTuple):
     """`Command([...])`: the command line robot_state_publisher's parameter gets the output of."""
     text: str
@@ -366,6 +370,8 @@ class PyLaunch:
                 return None
             got = self.find_package(pkg)
             return got if got is not None else None
+        if name in _SOURCES:  # a launch description source kept in a variable: the file it names
+            return self.ev(self._arg(node, 0, "launch_file_path"), d)
         if name == "ThisLaunchFileDir":
             return os.path.dirname(os.path.abspath(self.path))
         if full in ("os.path.dirname", "dirname", "path.dirname", "os.path.abspath", "os.path.realpath"):
