@@ -90,6 +90,10 @@ class _Subst:
         """(substituted text, fully resolved?)"""
         if text is None:
             return None, True
+        t = text.strip()
+        if t.startswith("$(eval ") and t.endswith(")"):  # roslaunch: $(eval ...) is the whole attribute
+            got = self._eval(t[7:-1])
+            return (got, True) if got is not None else (text, False)
         ok = True
         for _ in range(32):  # innermost first; bounded
             m = _SUBST.search(text)
@@ -106,6 +110,56 @@ class _Subst:
         if "$(" in text:
             ok = False
         return text, ok
+
+    def _eval(self, expr: str) -> str | None:
+        """`$(eval ...)` when it only joins strings and numbers with `+` from literals, `arg('x')` (or the
+        argument's bare name), `find('pkg')` and `dirname()`; evaluated here on the parsed tree, never by
+        Python. None otherwise (decided at launch time)."""
+        if len(expr) > 2000:
+            return None
+        try:
+            tree = ast.parse(expr.strip(), mode="eval")
+        except (SyntaxError, ValueError, RecursionError, MemoryError):
+            return None
+
+        def ev(n, depth=0):
+            if depth > 30:
+                raise ValueError
+            if isinstance(n, ast.Expression):
+                return ev(n.body, depth + 1)
+            if isinstance(n, ast.Constant) and isinstance(n.value, (str, int, float)):
+                return n.value
+            if isinstance(n, ast.Name):
+                v = self._one("arg", n.id)
+                if v is None:
+                    raise ValueError
+                return v
+            if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and not n.keywords:
+                args = [ev(a, depth + 1) for a in n.args]
+                if n.func.id in ("arg", "find") and len(args) == 1 and isinstance(args[0], str):
+                    v = self._one(n.func.id, args[0])
+                elif n.func.id == "dirname" and not args:
+                    v = self._one("dirname", "")
+                else:
+                    v = None
+                if v is None:
+                    raise ValueError
+                return v
+            if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Add):
+                a, b = ev(n.left, depth + 1), ev(n.right, depth + 1)
+                if isinstance(a, str) != isinstance(b, str):
+                    raise ValueError
+                out = a + b
+                if isinstance(out, str) and len(out) > 4096:
+                    raise ValueError
+                return out
+            raise ValueError
+
+        try:
+            v = ev(tree)
+        except (ValueError, TypeError, RecursionError):
+            return None
+        return v if isinstance(v, str) else str(v)
 
     def _own_package(self, name: str) -> str | None:
         """A launch file names its own package (`$(find-pkg-share my_robot)`) without a package map."""
@@ -241,6 +295,8 @@ class _XmlReader:
                     else:
                         d, ok = self.attr(el, "default")
                         self.subst.declare(name, d if ok else None)
+                        choices = tuple(c.get("value") for c in el if _tag(c) == "choice" and c.get("value"))
+                        self.info.declared.setdefault(name, _declared(d if ok else None, choices, self.loc(el)))
             elif tag == "let":
                 name = el.get("name")
                 v, ok = self.attr(el, "value")
@@ -262,7 +318,8 @@ class _XmlReader:
                 passed = dict(self.subst.vars) if self.ros == 2 or as_bool(el.get("pass_all_args")) else {}
                 for a in el:
                     if _tag(a) == "arg" and a.get("name"):
-                        v, aok = self.attr(a, "value")
+                        # <arg name="x" default="..."/> in an include passes its default like a value
+                        v, aok = self.attr(a, "value" if a.get("value") is not None else "default")
                         passed[a.get("name")] = v if aok else None
                 self.info.includes.append(Include(f if ok else None, self.loc(el), passed, c))
             elif tag == "rosparam":
@@ -362,6 +419,38 @@ class _XmlReader:
         elif param is not None and data is not None:
             self._set(ParamSet(base, Value(data, shift(doc.loc())), len(self.info.param_sets)))
 
+    def _node_rosparam(self, el) -> dict[str, Value]:
+        """A node's inline `<rosparam>` YAML as its private parameters (dotted names), located in the launch file;
+        with `subst_value="true"` the `$(arg ...)` in its values are substituted (a value left unresolved is
+        dropped)."""
+        try:
+            doc = parse_yaml(el.text, self.path)
+        except ConsumerError as e:
+            self.info.notes.append((f"inline <rosparam> YAML not readable ({e.message}); not applied", self.loc(el)))
+            return {}
+        first = el.sourceline or 1
+        subst = as_bool(el.get("subst_value")) is True
+        prefix = (el.get("param") or "").strip("~/").replace("/", ".")
+        out: dict[str, Value] = {}
+
+        def emit(value, path: tuple) -> None:
+            if isinstance(value, dict) and value:
+                for k, v in value.items():
+                    emit(v, path + (k,))
+                return
+            name = ".".join(str(x) for x in ((prefix,) if prefix else ()) + path)
+            if not name:
+                return
+            if subst and isinstance(value, str) and "$(" in value:
+                value, ok = self.subst(value)
+                if not ok:
+                    return
+            loc = doc.loc(*path)
+            out[name] = Value(value, Location(self.path, first + (loc.line or 1) - 1))
+
+        emit(doc.data, ())
+        return out
+
     def node(self, el, ns: str, cond: str | None) -> None:
         pkg, _ = self.attr(el, "pkg")
         exe, _ = self.subst(el.get("exec") or el.get("type") or el.get("executable"))
@@ -400,6 +489,13 @@ class _XmlReader:
                 f, ok = self.attr(ch, "file")
                 if ok:
                     pfiles.append(f)
+                    if as_bool(ch.get("subst_value")) is True:  # the file's $(arg ...) take this file's values
+                        got = params.get(SUBST_KEY)
+                        files = (got.value[0] if got else ()) + (f,)
+                        known = {k: v for k, v in self.subst.vars.items() if v is not None}
+                        params[SUBST_KEY] = Value((files, known), self.loc(ch))
+            elif t == "rosparam" and (ch.get("command") or "load") == "load" and (ch.text or "").strip():
+                params.update(self._node_rosparam(ch))
         if pkg == "robot_state_publisher" and "robot_description" not in params:
             key = "robot_description"
             for ch in el:
@@ -418,6 +514,16 @@ class _XmlReader:
 
 
 _NOT_A_VALUE = object()
+SUBST_KEY = "\x00subst_value"  # LaunchNode.params: ((files loaded with subst_value="true"), {arg: value})
+
+
+def substitute_args(text: str, args: Mapping[str, str]) -> str:
+    """`$(arg x)` in a value of a file loaded with `subst_value="true"`, from the launch file's arguments
+    (others are left as written: decided at launch time)."""
+    def one(m):
+        got = args.get(m.group(2).strip())
+        return m.group(0) if got is None else str(got)
+    return re.sub(r"\$\(\s*(arg|var)\s+([^()$]*)\)", one, text)
 
 
 def _typed_param(text: str, type_: str, path: str, loc: Location):
@@ -453,6 +559,14 @@ def _typed_param(text: str, type_: str, path: str, loc: Location):
     if t.lower() in ("true", "false"):
         return t.lower() == "true"
     return text
+
+
+def _declared(default: str | None, choices: tuple, loc: Location):
+    """A launch argument as the deployment finder reads it (one variant per choice)."""
+    from urdfcheck.contracts.pylaunch import Declared
+
+    ok = tuple(c for c in choices if isinstance(c, str) and c and "$(" not in c)
+    return Declared(default, ok or None, loc)
 
 
 def _join_ns(ns: str, sub: str | None) -> str:
@@ -506,6 +620,11 @@ class _YamlReader:
                 else:
                     d, ok = self.s(body.get("default"))
                     self.subst.declare(str(body["name"]), d if ok else None)
+                    raw = body.get("choices") or body.get("choice") or ()
+                    choices = tuple(str(c.get("value") if isinstance(c, dict) else c)
+                                    for c in (raw if isinstance(raw, list) else ()) if c is not None)
+                    self.info.declared.setdefault(str(body["name"]), _declared(d if ok else None, choices,
+                                                                               self.doc.loc(*p)))
             elif tag == "let" and body.get("name"):
                 v, ok = self.s(body.get("value"))
                 self.subst.fix(str(body["name"]), v if ok else None)

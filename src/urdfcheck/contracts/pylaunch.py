@@ -352,6 +352,9 @@ class PyLaunch:
             if name == "read_text" and isinstance(base, str):
                 return FileText(base)
             return None
+        if name == "FileContent":  # launch's FileContent(path): the file's text
+            p = self.ev(self._arg(node, 0, "path"), d)
+            return FileText(text_of(p)) if p is not None else None
         if name == "open" and not full.startswith("os."):
             p = self.ev(self._arg(node, 0, "file"), d)
             return FileOpen(text_of(p)) if p is not None else None
@@ -548,8 +551,9 @@ def _flatten(d: dict, prefix: str = ""):
             yield prefix + k, v
 
 
-def include_calls(r: PyLaunch) -> list[tuple[str | None, Location, dict, str | None]]:
-    """(file or None, location, arguments passed, undecided condition) per IncludeLaunchDescription."""
+def include_calls(r: PyLaunch) -> list[tuple]:
+    """(file or None, location, arguments passed, undecided condition, package and base name of a file not
+    known) per IncludeLaunchDescription."""
     out = []
     inherited = r.configs()
     for call in r.calls("IncludeLaunchDescription"):
@@ -558,7 +562,7 @@ def include_calls(r: PyLaunch) -> list[tuple[str | None, Location, dict, str | N
             continue
         kw = r._kw(call)
         source = call.args[0] if call.args else kw.get("launch_description_source")
-        file = None
+        file, t = None, ""
         if isinstance(source, ast.Call):
             src = source.args[0] if source.args else r._kw(source).get("launch_file_path")
             t = text_of(r.ev(src))
@@ -578,8 +582,29 @@ def include_calls(r: PyLaunch) -> list[tuple[str | None, Location, dict, str | N
             if isinstance(k, str):
                 t = text_of(v)
                 passed[k] = None if UNKNOWN in t else t
-        out.append((file, r.loc(call), passed, cond))
+        out.append((file, r.loc(call), passed, cond, _named_package(r, source) if file is None else None,
+                    os.path.basename(t.replace(UNKNOWN, "")) if file is None else ""))
     return out
+
+
+def _named_package(r: PyLaunch, source: ast.AST | None) -> str | None:
+    """The package an include's path is found in (`FindPackageShare('realsense2_camera')`), when the path is not
+    known because the package is not in the workspace: a known driver's launch file is still recognised."""
+    if source is None:
+        return None
+    todo, seen = [source], 0
+    while todo and seen < 200:
+        n = todo.pop()
+        seen += 1
+        if isinstance(n, ast.Name) and isinstance(r.assign.get(n.id), ast.AST):
+            todo.append(r.assign[n.id])
+            continue
+        if isinstance(n, ast.Call) and _callee(n) in ("FindPackageShare", "get_package_share_directory") and n.args:
+            v = r.ev(n.args[0])
+            if isinstance(v, str) and UNKNOWN not in v:
+                return v
+        todo.extend(ast.iter_child_nodes(n))
+    return None
 
 
 def inactive_include_files(path: str, tree: ast.AST, find_package) -> list[str]:
@@ -641,8 +666,8 @@ def read(path: str, tree: ast.AST, args: Mapping[str, str | None] | None,
                 _read_node(r, info, call, pushed)
             finally:
                 r.bindings = {}
-    for file, loc, passed, cond in include_calls(r):
-        info.includes.append(Include(file, loc, passed, cond))
+    for file, loc, passed, cond, package, name in include_calls(r):
+        info.includes.append(Include(file, loc, passed, cond, package, name))
     info.consulted = set(r.consulted)  # the launch arguments this reading depended on
     return info
 

@@ -31,8 +31,9 @@ MAX_VARIANTS = 24  # launch-argument assignments tried per root launch file
 MAX_MODEL_FILES = 8  # files one model path chosen at launch time may match
 MAX_TREE_FILES = 60
 MAX_DEPTH = 8
-LOCALIZATION_PACKAGES = ("robot_localization", "nav2_amcl", "amcl", "slam_toolbox", "nav2_bringup",
-                         "nav2_controller", "nav2_planner", "nav2_bt_navigator", "nav2_map_server")
+LOCALIZATION_PACKAGES = ("robot_localization", "nav2_amcl", "amcl", "slam_toolbox", "cartographer_ros",
+                         "realsense2_camera", "nav2_bringup", "nav2_controller", "nav2_planner", "nav2_bt_navigator",
+                         "nav2_map_server")
 _CONTROLLER_EXES = ("ros2_control_node", "spawner", "spawner.py", "controller_manager")
 # nodes whose parameters are not a custom driver's (their kinds are read elsewhere, or say nothing of the model)
 KNOWN_PACKAGES = {"robot_state_publisher", "joint_state_publisher", "joint_state_publisher_gui", "controller_manager",
@@ -127,9 +128,8 @@ class Deployment(Record):
 
     def consumers(self):
         """The contract checks' view of this deployment (read on each call; cheap, files are small)."""
-        from urdfcheck.contracts.consumers import Consumers, _Reader
+        from urdfcheck.contracts.consumers import Consumers, _Reader, tf_owners
         from urdfcheck.contracts.controllers import read_controllers, spawner_types
-        from urdfcheck.contracts.localization import localization_from_params
 
         out = Consumers(origin="deployment")
         r = _Reader()
@@ -140,9 +140,9 @@ class Deployment(Record):
             out.notes.extend(c.notes)
         self._spawned_broadcasters(out)
         lpfs = [pf for pf in (r.params(p, out.errors) for p in self.localization_files) if pf is not None]
-        out.localization = localization_from_params(lpfs)
         out.drivers = infer_drivers(self.driver_nodes, r)
         out.launch = list(self.infos)
+        tf_owners(out, lpfs, r, lambda f: _same_file(f, self.localization_files))
         out.frame_prefix = self.frame_prefix or ""
         out.notes.extend(self.notes)
         if len(out.controllers) and any(li.param_sets for li in out.launch):
@@ -153,6 +153,14 @@ class Deployment(Record):
                      "launch": [li.path for li in self.infos],
                      "drivers": sorted({f for _, files in self.driver_nodes for f in files})}
         return out
+
+
+def _same_file(path: str, files) -> str | None:
+    """`path` as read (a source file), or the file of `files` it names in the install layout."""
+    if os.path.isfile(path):
+        return path
+    tail = os.sep.join(path.split(os.sep)[-2:])
+    return next((f for f in files if f.endswith(os.sep + tail)), None)
 
 
 # --- the workspace's launch files --------------------------------------------------------------------------
@@ -610,8 +618,12 @@ def describe(deployments: list[Deployment], show=None) -> str:
         if d.static_tfs:
             lines.append("  static transforms: " + ", ".join(f"{t.parent}->{t.child}" for t in d.static_tfs))
         if d.localization_files or nodes:
+            # each node with the file it was read from: a file is never listed under another node's kind
+            named = {os.path.realpath(f) for _, _, f in nodes if f}
+            rest = [show(f) for f in d.localization_files if os.path.realpath(f) not in named]
             lines.append("  localization: " + ", ".join(
-                [f"{kind} {node}" for kind, node in nodes] + [show(f) for f in d.localization_files]))
+                [f"{kind} {node}" + (f" ({show(f)})" if f else "") for kind, node, f in nodes]
+                + ([f"no TF owner in {', '.join(rest)}"] if rest else [])))
         for msg, loc in dict.fromkeys(d.notes):
             lines.append(f"  note: {msg} ({at(loc)})")
     n = sum(1 for d in deployments if d.model is not None)
@@ -629,15 +641,15 @@ def show_args(args: Mapping[str, str], show, total: int | None = None, files: bo
     return text + (f" (+{hidden} more)" if hidden > 0 else "")
 
 
-def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str]]]:
-    """The controllers (name -> type) and localization nodes (kind, node) the deployment's files declare,
+def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str, str]]]:
+    """The controllers (name -> type) and localization nodes (kind, node, file) the deployment's files declare,
     for `describe` (an unreadable file is reported by the lint run, not here)."""
     try:
         c = d.consumers()
     except Exception:  # noqa: BLE001 - a listing never fails on a file the lint run reports
         return {}, []
     types = {ctl.name: ctl.type or "" for ctl in c.controllers}
-    return types, [(n.kind, n.node) for n in c.localization]
+    return types, [(n.kind, n.node, n.file if n.file and os.path.isfile(n.file) else "") for n in c.localization]
 
 
 # --- custom drivers, read by the shape of their keys ---------------------------------------------------------
