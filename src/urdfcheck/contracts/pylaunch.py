@@ -580,8 +580,8 @@ def include_calls(r: PyLaunch) -> list[tuple]:
             items = []
         for k, v in items:
             if isinstance(k, str):
-                t = text_of(v)
-                passed[k] = None if UNKNOWN in t else t
+                given_text = text_of(v)
+                passed[k] = None if UNKNOWN in given_text else given_text
         out.append((file, r.loc(call), passed, cond, _named_package(r, source) if file is None else None,
                     os.path.basename(t.replace(UNKNOWN, "")) if file is None else ""))
     return out
