@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.conftest import lint_json, run_cli
+from conftest import CORPUS, REPO, lint_json, run_cli
 
 URDF = """<robot name="bot">
   <link name="base_link"/>
@@ -353,3 +353,40 @@ def test_list_names_the_node_of_each_localization_file(tmp_path):
     code, out, _ = run_cli(["lint", "--list"], cwd=root)
     line = next(x for x in out.splitlines() if "localization:" in x)
     assert "slam_toolbox slam_toolbox (" in line and "slam.yaml" in line and "amcl" not in line, line
+
+
+# --- one reader per launch format, whoever asks -----------------------------------------------------
+def _summary(info):
+    if not hasattr(info, "nodes"):
+        return ("error", str(info))
+    return (info.format,
+            sorted((t.parent, t.child, t.xyz, t.rpy, t.loc.line) for t in info.static_tfs),
+            sorted((s.name, s.namespace, s.frame_prefix, s.loc.line, s.description and s.description.path)
+                   for s in info.state_publishers),
+            sorted((n.package, n.executable, n.name, n.namespace, n.loc.line, tuple(sorted(n.params)))
+                   for n in info.nodes),
+            sorted((i.file or "", i.loc.line) for i in info.includes),
+            sorted(info.spawned, key=str))
+
+
+@pytest.mark.parametrize("where", ["examples", "corpus"])
+def test_config_and_planner_read_every_launch_file_alike(where):
+    """The config path (`consumers`: `launch.read_launch`) and the deployment finder (`_Workspace.read`) read
+    each launch file of the examples and the corpus into the same record."""
+    from urdfcheck.contracts.common import ConsumerError
+    from urdfcheck.contracts.launch import read_launch
+    from urdfcheck.pipeline.deployments import _Workspace, launch_files
+
+    root = REPO / "examples" if where == "examples" else CORPUS
+    if not root.is_dir():
+        pytest.skip(f"{root} not here")
+    ws = _Workspace(str(root))
+    files = launch_files(str(root))
+    assert files
+    for p in files:
+        planner = ws.read(p, {})
+        try:
+            configured = read_launch(p, packages=ws.package_map(p))
+        except ConsumerError as e:
+            configured = e
+        assert _summary(planner) == _summary(configured), p
