@@ -5,7 +5,6 @@ import json
 from pathlib import Path
 
 import pytest
-
 from conftest import CORPUS, REPO, lint_json, run_cli
 
 URDF = """<robot name="bot">
