@@ -389,3 +389,30 @@ def test_config_and_planner_read_every_launch_file_alike(where):
         except ConsumerError as e:
             configured = e
         assert _summary(planner) == _summary(configured), p
+
+
+def test_alternative_launch_files_of_a_package_are_not_two_owners(tmp_path):
+    """No launch file starts robot_state_publisher: the package's launch files are read as alternatives (sim and
+    real each start their own ekf); their nodes are not counted together."""
+    start = "    return LaunchDescription([\n"
+    body = PY_HEAD.split(start)[0] + start + EKF_ODOM + "    ])\n"
+    root = package(tmp_path, "", {"launch/sim.launch.py": body, "launch/real.launch.py": body})
+    (root / "launch" / "bringup.launch.py").unlink()
+    assert [f for f in tf(root) if f[0] == "T001"] == []
+
+
+def test_two_robots_in_one_launch_file_each_have_their_ekf(tmp_path):
+    """Two robot_state_publishers in two namespaces, /tf remapped into each (as rosbot's bringup does): each
+    deployment counts the ekf of its own namespace, not both."""
+    nodes = ""
+    for ns in ("r1", "r2"):
+        nodes += f"""        Node(package="robot_state_publisher", executable="robot_state_publisher", namespace="{ns}",
+             parameters=[{{"robot_description": model}}], remappings=[("/tf", "tf"), ("/tf_static", "tf_static")]),
+        Node(package="robot_localization", executable="ekf_node", name="ekf", namespace="{ns}",
+             parameters=[{{"world_frame": "odom", "base_link_frame": "base_link"}}],
+             remappings=[("/tf", "tf")]),
+"""
+    head = PY_HEAD.split("        Node(package=\"robot_state_publisher\"")[0]
+    root = package(tmp_path, "")
+    (root / "launch" / "bringup.launch.py").write_text(head + nodes + "    ])\n")
+    assert [f for f in tf(root) if f[0] == "T001"] == []

@@ -255,10 +255,17 @@ def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None
     return c
 
 
-def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None) -> None:
+def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace: str | None = None) -> None:
     """The localization, SLAM and driver nodes that broadcast transforms: those the launch files start (inline
-    parameters over the files each node is given), then those of parameter files no such node has read."""
-    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate)
+    parameters over the files each node is given), then those of parameter files no such node has read.
+    Discovered launch files of a package are often alternatives (sim/real): their nodes count only when one
+    launch file starts them all."""
+    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace)
+    starters = {n.loc.file for n in nodes}
+    if out.origin == "discovered" and len(starters) > 1:
+        out.notes.append((f"TF-owning nodes are started by {len(starters)} launch files of the package, which may "
+                          "be alternatives; only their parameter files are read", Location(sorted(starters)[0])))
+        nodes, used = [], set()
     out.localization = nodes + localization_from_params(pfs, skip=used)
     out.notes.extend(notes)
 

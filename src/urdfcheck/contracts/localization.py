@@ -217,10 +217,11 @@ def _matching(pf: ParamFile, node_name: str, executable: str) -> list[tuple[str,
 
 
 def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | None],
-                             locate: Callable[[str], str | None] | None = None,
+                             locate: Callable[[str], str | None] | None = None, namespace: str | None = None,
                              ) -> tuple[list[LocalizationNode], set, list]:
-    """TF-owning nodes started by the launch files `infos`: (nodes, (file, node key) pairs read for them,
-    notes). `read(path)` reads a parameter file (None: unreadable); `locate` maps a path to a workspace file."""
+    """TF-owning nodes started by the launch files `infos` (in `namespace` when given): (nodes, (file, node
+    key) pairs read for them, notes). `read(path)` reads a parameter file (None: unreadable); `locate` maps a
+    path to a workspace file."""
     out: list[LocalizationNode] = []
     used: set = set()
     notes: list = []
@@ -228,7 +229,7 @@ def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | 
         ros1 = getattr(info, "format", "") == "ros1-xml"
         for n in info.nodes:
             owner = _owner_of(n.package, n.executable)
-            if owner is None or n.condition:
+            if owner is None or n.condition or (namespace is not None and n.namespace != namespace):
                 continue
             given: dict[str, Value] = {}
             files = []

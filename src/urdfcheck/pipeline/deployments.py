@@ -142,7 +142,8 @@ class Deployment(Record):
         lpfs = [pf for pf in (r.params(p, out.errors) for p in self.localization_files) if pf is not None]
         out.drivers = infer_drivers(self.driver_nodes, r)
         out.launch = list(self.infos)
-        tf_owners(out, lpfs, r, lambda f: _same_file(f, self.localization_files))
+        several = len({s.namespace for li in self.infos for s in li.state_publishers}) > 1  # each robot its own
+        tf_owners(out, lpfs, r, lambda f: _same_file(f, self.localization_files), self.namespace if several else None)
         out.frame_prefix = self.frame_prefix or ""
         out.notes.extend(self.notes)
         if len(out.controllers) and any(li.param_sets for li in out.launch):
