@@ -416,3 +416,51 @@ def test_two_robots_in_one_launch_file_each_have_their_ekf(tmp_path):
     root = package(tmp_path, "")
     (root / "launch" / "bringup.launch.py").write_text(head + nodes + "    ])\n")
     assert [f for f in tf(root) if f[0] == "T001"] == []
+
+
+ROS1_SERVER = """<launch>
+  <arg name="world" default="{world}"/>
+  <param name="robot_description" textfile="$(find bot)/urdf/bot.urdf"/>
+  <node pkg="robot_state_publisher" type="robot_state_publisher" name="rsp"/>
+  <param name="ekf_odom/world_frame" value="odom"/>
+  <node pkg="robot_localization" type="ekf_localization_node" name="ekf_odom"/>
+  <rosparam command="load" file="$(find bot)/config/ekf.yaml" ns="ekf_second" subst_value="true"/>
+  <node pkg="robot_localization" type="ekf_localization_node" name="ekf_second"/>
+</launch>
+"""
+
+
+@pytest.mark.parametrize("world,want", [("odom", True), ("map", False)])
+def test_ros1_parameters_written_outside_the_node(tmp_path, world, want):
+    files = {"config/ekf.yaml": "world_frame: $(arg world)\nbase_link_frame: base_link\n"}
+    root = ros1_package(tmp_path, ROS1_SERVER.format(world=world), files)
+    t001 = [f for f in tf(root) if f[0] == "T001"]
+    assert bool(t001) == want, tf(root)
+    if want:
+        assert "ekf.yaml:1" in t001[0][3] and "bringup.launch:5" in t001[0][3], t001
+
+
+def test_ros2_xml_include_of_the_realsense_launch_file(tmp_path):
+    launch = """<launch>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher" name="rsp">
+    <param name="robot_description" value="$(command 'cat $(find-pkg-share bot)/urdf/bot.urdf')"/>
+  </node>
+  <include file="$(find-pkg-share realsense2_camera)/launch/rs_launch.py">
+    <arg name="publish_tf" value="{publish}"/>
+  </include>
+</launch>
+"""
+    for publish, want in (("true", ["T001"]), ("false", [])):
+        root = write(tmp_path / publish / "bot", {
+            "package.xml": "<package format='3'><name>bot</name></package>\n",
+            "urdf/bot.urdf": URDF.format(extra=DEPTH_IN_MODEL),
+            "launch/bringup.launch.xml": launch.format(publish=publish)})
+        assert [f[0] for f in tf(root)] == want, tf(root)
+
+
+@pytest.mark.parametrize("publish,want", [("True", ["T001"]), ("False", [])])
+def test_laser_odometry_publishing_odom_beside_an_ekf(tmp_path, publish, want):
+    rf2o = f"""        Node(package="rf2o_laser_odometry", executable="rf2o_laser_odometry_node",
+             parameters=[{{"odom_frame_id": "odom", "publish_tf": {publish}}}]),
+"""
+    assert [f[0] for f in tf(package(tmp_path, EKF_ODOM + rf2o))] == want

@@ -321,7 +321,8 @@ class _XmlReader:
                         # <arg name="x" default="..."/> in an include passes its default like a value
                         v, aok = self.attr(a, "value" if a.get("value") is not None else "default")
                         passed[a.get("name")] = v if aok else None
-                self.info.includes.append(Include(f if ok else None, self.loc(el), passed, c))
+                self.info.includes.append(Include(f if ok else None, self.loc(el), passed, c,
+                                                  *(_outside(el.get("file")) if not ok else (None, ""))))
             elif tag == "rosparam":
                 if (el.get("command") or "load") == "load" and el.get("file"):
                     f, ok = self.attr(el, "file")
@@ -330,7 +331,10 @@ class _XmlReader:
                         if self.ros == 1 and not c:
                             rns = self._param_ns(el, ns)
                             if rns is not None:
-                                self._set(RosparamLoad(f, rns, self.loc(el), len(self.info.param_sets)))
+                                subst = as_bool(el.get("subst_value")) is True
+                                known = tuple(sorted((k, v) for k, v in self.subst.vars.items() if v is not None))
+                                self._set(RosparamLoad(f, rns, self.loc(el), len(self.info.param_sets),
+                                                       known if subst else None))
                     else:
                         self.info.notes.append((f"rosparam file {el.get('file')!r} not resolved", self.loc(el)))
                 elif self.ros == 1 and not c and (el.get("command") or "load") == "load" and (el.text or "").strip():
@@ -559,6 +563,15 @@ def _typed_param(text: str, type_: str, path: str, loc: Location):
     if t.lower() in ("true", "false"):
         return t.lower() == "true"
     return text
+
+
+_FIND_FILE = re.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)/(?:[^$]*/)?([^/$]+)$")
+
+
+def _outside(raw: str | None) -> tuple[str | None, str]:
+    """(package, base name) of an include written `$(find pkg)/.../file` whose package is not known here."""
+    m = _FIND_FILE.match((raw or "").strip())
+    return (m.group(1), m.group(2)) if m else (None, "")
 
 
 def _declared(default: str | None, choices: tuple, loc: Location):

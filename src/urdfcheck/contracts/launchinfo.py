@@ -145,6 +145,7 @@ class RosparamLoad(NamedTuple):
     ns: str
     loc: Location
     order: int
+    subst: tuple | None = None  # subst_value="true": ((arg, value), ...) its $(arg ...) take
 
 
 class Include(NamedTuple):

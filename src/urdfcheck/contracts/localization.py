@@ -37,6 +37,11 @@ def owners() -> dict[str, dict]:
         return yaml.safe_load(f) or {}
 
 
+def owner_packages() -> set[str]:
+    """The packages whose nodes are TF owners of the table (read here, never as custom drivers)."""
+    return {p for spec in owners().values() for p in spec.get("packages") or ()}
+
+
 class Edge(NamedTuple):
     parent: str
     child: str
@@ -243,6 +248,8 @@ def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | 
                 for key, node in _matching(pf, n.name, n.executable):
                     used.add((os.path.realpath(pf.path), key))
                     given.update(_substituted(node.params, n, f))
+            if ros1:
+                given.update(_ros1_server(info, n, read, locate, used))
             given.update({k: v for k, v in n.params.items() if v.value is not None and not k.startswith("\x00")})
             if owners()[owner].get("lua"):
                 got = _lua_options(n, locate, notes)
@@ -256,6 +263,38 @@ def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | 
             if got is not None:
                 out.append(got)
     return out, used, notes
+
+
+def _ros1_server(info, n, read, locate, used: set) -> dict[str, Value]:
+    """A ROS 1 node's private parameters written outside it, in document order: `<rosparam command="load"
+    file=... ns=...>` (with `subst_value="true"` its `$(arg ...)` substituted) and `<param name="node/x">`."""
+    from urdfcheck.contracts.launch import substitute_args
+    from urdfcheck.contracts.launchinfo import ParamSet, RosparamLoad
+
+    name = n.name or n.executable
+    if not name:
+        return {}
+    home = "/" + "/".join(x for x in (n.namespace.strip("/"), name.strip("/")) if x)
+    out: dict[str, Value] = {}
+    for item in info.param_sets:
+        if isinstance(item, ParamSet) and item.name.startswith(home + "/"):
+            out[item.name[len(home) + 1:].replace("/", ".")] = item.value
+        elif isinstance(item, RosparamLoad):
+            path = (locate(item.file) if locate is not None else item.file) or item.file
+            pf = read(path)
+            if pf is None:
+                continue
+            args = dict(item.subst or ())
+            for key, node in pf.nodes.items():
+                full = "/" + "/".join(x for x in (item.ns.strip("/"), key.strip("/")) if x)
+                if full != home:
+                    continue
+                used.add((os.path.realpath(pf.path), key))
+                for k, v in node.params.items():
+                    if item.subst is not None and isinstance(v.value, str) and "$(" in v.value:
+                        v = Value(substitute_args(v.value, args), v.loc, v.default, v.items)
+                    out[k] = v
+    return out
 
 
 def _substituted(params: dict[str, Value], n, file: str) -> dict[str, Value]:

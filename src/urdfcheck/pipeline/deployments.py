@@ -31,9 +31,8 @@ MAX_VARIANTS = 24  # launch-argument assignments tried per root launch file
 MAX_MODEL_FILES = 8  # files one model path chosen at launch time may match
 MAX_TREE_FILES = 60
 MAX_DEPTH = 8
-LOCALIZATION_PACKAGES = ("robot_localization", "nav2_amcl", "amcl", "slam_toolbox", "cartographer_ros",
-                         "realsense2_camera", "nav2_bringup", "nav2_controller", "nav2_planner", "nav2_bt_navigator",
-                         "nav2_map_server")
+LOCALIZATION_PACKAGES = ("robot_localization", "nav2_amcl", "amcl", "slam_toolbox", "nav2_bringup",
+                         "nav2_controller", "nav2_planner", "nav2_bt_navigator", "nav2_map_server")
 _CONTROLLER_EXES = ("ros2_control_node", "spawner", "spawner.py", "controller_manager")
 # nodes whose parameters are not a custom driver's (their kinds are read elsewhere, or say nothing of the model)
 KNOWN_PACKAGES = {"robot_state_publisher", "joint_state_publisher", "joint_state_publisher_gui", "controller_manager",
@@ -440,7 +439,10 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
 def _beside(ws: _Workspace, infos, namespace: str | None):
     """Controller and localization parameter files, spawned controllers, joint state sources and static
     transforms of the nodes in `infos` (in `namespace` when given)."""
+    from urdfcheck.contracts.localization import owner_packages
+
     ctrl, loc_files, spawned, js, tfs, notes, drivers = [], [], [], [], [], [], []
+    owned = owner_packages()  # TF owners of the table: read by `localization`, not as custom drivers
 
     def add(files, path, where):
         got = ws.locate(path)
@@ -458,7 +460,7 @@ def _beside(ws: _Workspace, infos, namespace: str | None):
                 spawner_locs.add(n.loc)
                 for f in n.param_files:
                     add(ctrl, f, n.loc)
-            elif n.package in LOCALIZATION_PACKAGES or n.package.startswith("nav2_"):
+            elif n.package in LOCALIZATION_PACKAGES or n.package.startswith("nav2_") or n.package in owned:
                 for f in n.param_files:
                     add(loc_files, f, n.loc)
             elif n.package and n.package not in KNOWN_PACKAGES and not n.package.startswith(("rviz", "gazebo", "ros_gz",
