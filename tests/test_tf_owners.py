@@ -464,3 +464,13 @@ def test_laser_odometry_publishing_odom_beside_an_ekf(tmp_path, publish, want):
              parameters=[{{"odom_frame_id": "odom", "publish_tf": {publish}}}]),
 """
     assert [f[0] for f in tf(package(tmp_path, EKF_ODOM + rf2o))] == want
+
+
+def test_mapping_and_localization_files_of_a_package_are_alternatives(tmp_path):
+    """slam_toolbox's and AMCL's parameter files in one package, no launch file starting them: one runs for
+    mapping, the other for localization; not two owners of map -> odom."""
+    amcl = ("amcl:\n  ros__parameters:\n    global_frame_id: map\n    odom_frame_id: odom\n"
+            "    base_frame_id: base_link\n")
+    root = package(tmp_path, EKF_ODOM, {"config/slam.yaml": SLAM_YAML, "config/amcl.yaml": amcl})
+    (root / "launch" / "bringup.launch.py").unlink()
+    assert [f for f in tf(root) if f[0] == "T001"] == []

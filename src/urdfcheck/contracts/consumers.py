@@ -266,8 +266,34 @@ def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace
         out.notes.append((f"TF-owning nodes are started by {len(starters)} launch files of the package, which may "
                           "be alternatives; only their parameter files are read", Location(sorted(starters)[0])))
         nodes, used = [], set()
-    out.localization = nodes + localization_from_params(pfs, skip=used)
+    from_files = localization_from_params(pfs, skip=used)
+    if out.origin == "discovered":
+        from_files = _one_map_owner(from_files, out.notes)
+    out.localization = nodes + from_files
     out.notes.extend(notes)
+
+
+_MAP_OWNERS = ("amcl", "slam_toolbox", "cartographer")
+
+
+def _one_map_owner(nodes: list, notes: list) -> list:
+    """A package's parameter files for localization (AMCL) and for mapping (slam_toolbox, cartographer) are
+    alternatives: without a launch file that starts them together, the first one read owns map -> odom."""
+    seen: dict[tuple, LocalizationNode] = {}
+    out = []
+    for n in nodes:
+        if n.kind in _MAP_OWNERS:
+            edges = tuple((e.parent, e.child) for e in n.edges())
+            first = next((seen[e] for e in edges if e in seen and seen[e].kind != n.kind), None)
+            if first is not None:
+                notes.append((f"{n.kind} {n.node} ({os.path.basename(n.file)}) and {first.kind} {first.node} "
+                              f"({os.path.basename(first.file)}) are read as alternatives (mapping or localization): "
+                              "no launch file starts them together", n.loc))
+                continue
+            for e in edges:
+                seen.setdefault(e, n)
+        out.append(n)
+    return out
 
 
 def _launch_typed(out: Consumers, pfs: list) -> None:
