@@ -474,3 +474,23 @@ def test_mapping_and_localization_files_of_a_package_are_alternatives(tmp_path):
     root = package(tmp_path, EKF_ODOM, {"config/slam.yaml": SLAM_YAML, "config/amcl.yaml": amcl})
     (root / "launch" / "bringup.launch.py").unlink()
     assert [f for f in tf(root) if f[0] == "T001"] == []
+
+
+@pytest.mark.parametrize("sep,want", [("0.52", ["C010"]), ("0.50", [])])
+def test_ros1_controllers_loaded_with_subst_value(tmp_path, sep, want):
+    import shutil
+
+    root = tmp_path / "agv"
+    shutil.copytree(REPO / "examples" / "broken" / "contract_launch_override", root)
+    ctrl = root / "config" / "agv_controllers.yaml"
+    ctrl.write_text(ctrl.read_text().replace("wheel_separation: 0.50", "wheel_separation: $(arg sep)"))
+    launch = root / "launch" / "agv.launch"
+    text = launch.read_text().replace('<param name="diff_drive_controller/wheel_separation" value="0.52"/>', "")
+    text = text.replace("<launch>", f'<launch>\n  <arg name="sep" default="{sep}"/>')
+    text = text.replace('agv_controllers.yaml"/>', 'agv_controllers.yaml" subst_value="true"/>')
+    launch.write_text(text)
+    _, report = lint_json(["--select", "C010"], cwd=root)
+    got = [(f["code"], Path(f["location"]["file"]).name, f["location"].get("line")) for f in report["findings"]]
+    assert [g[0] for g in got] == want, got
+    if want:
+        assert got[0][1:] == ("agv_controllers.yaml", 11)  # where the value is written, substituted
