@@ -312,8 +312,8 @@ def _substituted(params: dict[str, Value], n, file: str) -> dict[str, Value]:
 def _driver_include(inc) -> LocalizationNode | None:
     """An include of a known driver's own launch file (`realsense2_camera/launch/rs_launch.py`): the node it
     starts, its parameters the arguments passed (the launch file's defaults otherwise)."""
-    if inc.condition:
-        return None
+    if inc.condition or (inc.file and os.path.isfile(inc.file)):
+        return None  # a launch file of the workspace is read itself, with the node it starts
     file = inc.file or ""
     base = os.path.basename(file) if file else getattr(inc, "name", "")
     for name, spec in owners().items():
