@@ -17,7 +17,7 @@ from urdfcheck.contracts.common import ConsumerError
 from urdfcheck.contracts.controllers import ControllerSet, Driver, read_controllers, read_driver
 from urdfcheck.contracts.graph import TFClaim, claims_from_owners
 from urdfcheck.contracts.launch import LaunchInfo, read_launch
-from urdfcheck.contracts.localization import LocalizationNode, localization_from_params
+from urdfcheck.contracts.localization import LocalizationNode, localization_from_launch, localization_from_params
 from urdfcheck.contracts.params import ParamFile, read_params
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
@@ -179,9 +179,9 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
         drv = read_driver(d, [pf])
         out.drivers.append(drv)
     loc_pfs = [pf for pf in (r.params(p, out.errors) for p in mc.localization) if pf is not None]
-    out.localization = localization_from_params(loc_pfs)
     pk = dict(packages or (config.packages if config is not None else {}))
     _read_launch(mc.launch, out, dict(mc.launch_args), pk, r, follow=True)
+    tf_owners(out, loc_pfs, r)
     _launch_typed(out, pfs)
     out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
                  "launch": list(mc.launch), "localization": list(mc.localization)}
@@ -222,7 +222,6 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     out.controllers = read_controllers(pfs)
     for c in out.controllers:
         out.notes.extend(c.notes)
-    out.localization = localization_from_params(pfs)
     base = os.path.basename(entry)
     launches = []
     for p in found.launch:
@@ -230,6 +229,7 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
             launches.append(p)
     pk = dict(packages or {})
     _read_launch(launches, out, None, pk, r)
+    tf_owners(out, pfs, r)
     _launch_typed(out, pfs)
     # every launch file of the package, associated with this model or not: when none starts a
     # robot_state_publisher, nothing in the package needs joint states (C003)
@@ -253,6 +253,47 @@ def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None
             c.tf_owners = claims_from_owners(owners, dict(getattr(config, "tf_owner_locs", {}) or {}),
                                              Location(getattr(config, "path", "<config>")))
     return c
+
+
+def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace: str | None = None) -> None:
+    """The localization, SLAM and driver nodes that broadcast transforms: those the launch files start (inline
+    parameters over the files each node is given), then those of parameter files no such node has read.
+    Discovered launch files of a package are often alternatives (sim/real): their nodes count only when one
+    launch file starts them all."""
+    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace)
+    starters = {n.loc.file for n in nodes}
+    if out.origin == "discovered" and len(starters) > 1:
+        out.notes.append((f"TF-owning nodes are started by {len(starters)} launch files of the package, which may "
+                          "be alternatives; only their parameter files are read", Location(sorted(starters)[0])))
+        nodes, used = [], set()
+    from_files = localization_from_params(pfs, skip=used)
+    if out.origin == "discovered":
+        from_files = _one_map_owner(from_files, out.notes)
+    out.localization = nodes + from_files
+    out.notes.extend(notes)
+
+
+_MAP_OWNERS = ("amcl", "slam_toolbox", "cartographer")
+
+
+def _one_map_owner(nodes: list, notes: list) -> list:
+    """A package's parameter files for localization (AMCL) and for mapping (slam_toolbox, cartographer) are
+    alternatives: without a launch file that starts them together, the first one read owns map -> odom."""
+    seen: dict[tuple, LocalizationNode] = {}
+    out = []
+    for n in nodes:
+        if n.kind in _MAP_OWNERS:
+            edges = tuple((e.parent, e.child) for e in n.edges())
+            first = next((seen[e] for e in edges if e in seen and seen[e].kind != n.kind), None)
+            if first is not None:
+                notes.append((f"{n.kind} {n.node} ({os.path.basename(n.file)}) and {first.kind} {first.node} "
+                              f"({os.path.basename(first.file)}) are read as alternatives (mapping or localization): "
+                              "no launch file starts them together", n.loc))
+                continue
+            for e in edges:
+                seen.setdefault(e, n)
+        out.append(n)
+    return out
 
 
 def _launch_typed(out: Consumers, pfs: list) -> None:

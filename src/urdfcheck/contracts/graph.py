@@ -8,7 +8,8 @@ Claims (`TFClaim(parent, child, owner, kind, loc)`) come from
   link is used (a second parent is the model's own structure error);
 * static_transform_publisher nodes in launch files (static);
 * controllers and drivers that broadcast odometry (dynamic odom -> base);
-* localization (robot_localization, AMCL) (dynamic);
+* localization, SLAM and drivers that broadcast frames (robot_localization, AMCL, slam_toolbox, cartographer,
+  realsense2_camera: `localization.py`, data in `tfowners.yaml`);
 * Gazebo plugins and gz-sim systems in the model's <gazebo> blocks (`contracts.gazebo.plugin_claims`, source
   "gazebo"): their odometry transforms (dynamic), counted against the controllers' only when the controllers run
   in the simulator (rules_impl `_apart`);
@@ -168,11 +169,10 @@ def claims_from_odom(odom_tfs: Iterable, base_frame: str = "base_link", source: 
 def claims_from_localization(nodes: Iterable) -> list[TFClaim]:
     out = []
     for n in nodes:
-        e = n.edge()
-        if e is None:
-            continue
         owner = {"ekf": "robot_localization (ekf)", "ukf": "robot_localization (ukf)"}.get(n.kind, n.kind)
-        out.append(TFClaim(e[0], e[1], f"{owner} {n.node}", DYNAMIC, n.edge_loc, "localization"))
+        for e in n.edges():  # localization, SLAM and drivers: every edge the node's parameters turn on
+            kind = STATIC if e.kind == STATIC else DYNAMIC
+            out.append(TFClaim(e.parent, e.child, f"{owner} {n.node}", kind, e.loc, "localization"))
     return out
 
 

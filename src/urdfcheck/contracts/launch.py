@@ -33,7 +33,6 @@ import os
 import re
 import shlex
 from collections.abc import Mapping
-from typing import Any
 
 from lxml import etree
 
@@ -91,6 +90,10 @@ class _Subst:
         """(substituted text, fully resolved?)"""
         if text is None:
             return None, True
+        t = text.strip()
+        if t.startswith("$(eval ") and t.endswith(")"):  # roslaunch: $(eval ...) is the whole attribute
+            got = self._eval(t[7:-1])
+            return (got, True) if got is not None else (text, False)
         ok = True
         for _ in range(32):  # innermost first; bounded
             m = _SUBST.search(text)
@@ -107,6 +110,56 @@ class _Subst:
         if "$(" in text:
             ok = False
         return text, ok
+
+    def _eval(self, expr: str) -> str | None:
+        """`$(eval ...)` when it only joins strings and numbers with `+` from literals, `arg('x')` (or the
+        argument's bare name), `find('pkg')` and `dirname()`; evaluated here on the parsed tree, never by
+        Python. None otherwise (decided at launch time)."""
+        if len(expr) > 2000:
+            return None
+        try:
+            tree = ast.parse(expr.strip(), mode="eval")
+        except (SyntaxError, ValueError, RecursionError, MemoryError):
+            return None
+
+        def ev(n, depth=0):
+            if depth > 30:
+                raise ValueError
+            if isinstance(n, ast.Expression):
+                return ev(n.body, depth + 1)
+            if isinstance(n, ast.Constant) and isinstance(n.value, (str, int, float)):
+                return n.value
+            if isinstance(n, ast.Name):
+                v = self._one("arg", n.id)
+                if v is None:
+                    raise ValueError
+                return v
+            if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and not n.keywords:
+                args = [ev(a, depth + 1) for a in n.args]
+                if n.func.id in ("arg", "find") and len(args) == 1 and isinstance(args[0], str):
+                    v = self._one(n.func.id, args[0])
+                elif n.func.id == "dirname" and not args:
+                    v = self._one("dirname", "")
+                else:
+                    v = None
+                if v is None:
+                    raise ValueError
+                return v
+            if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Add):
+                a, b = ev(n.left, depth + 1), ev(n.right, depth + 1)
+                if isinstance(a, str) != isinstance(b, str):
+                    raise ValueError
+                out = a + b
+                if isinstance(out, str) and len(out) > 4096:
+                    raise ValueError
+                return out
+            raise ValueError
+
+        try:
+            v = ev(tree)
+        except (ValueError, TypeError, RecursionError):
+            return None
+        return v if isinstance(v, str) else str(v)
 
     def _own_package(self, name: str) -> str | None:
         """A launch file names its own package (`$(find-pkg-share my_robot)`) without a package map."""
@@ -242,6 +295,8 @@ class _XmlReader:
                     else:
                         d, ok = self.attr(el, "default")
                         self.subst.declare(name, d if ok else None)
+                        choices = tuple(c.get("value") for c in el if _tag(c) == "choice" and c.get("value"))
+                        self.info.declared.setdefault(name, _declared(d if ok else None, choices, self.loc(el)))
             elif tag == "let":
                 name = el.get("name")
                 v, ok = self.attr(el, "value")
@@ -263,9 +318,11 @@ class _XmlReader:
                 passed = dict(self.subst.vars) if self.ros == 2 or as_bool(el.get("pass_all_args")) else {}
                 for a in el:
                     if _tag(a) == "arg" and a.get("name"):
-                        v, aok = self.attr(a, "value")
+                        # <arg name="x" default="..."/> in an include passes its default like a value
+                        v, aok = self.attr(a, "value" if a.get("value") is not None else "default")
                         passed[a.get("name")] = v if aok else None
-                self.info.includes.append(Include(f if ok else None, self.loc(el), passed, c))
+                self.info.includes.append(Include(f if ok else None, self.loc(el), passed, c,
+                                                  *(_outside(el.get("file")) if not ok else (None, ""))))
             elif tag == "rosparam":
                 if (el.get("command") or "load") == "load" and el.get("file"):
                     f, ok = self.attr(el, "file")
@@ -274,7 +331,10 @@ class _XmlReader:
                         if self.ros == 1 and not c:
                             rns = self._param_ns(el, ns)
                             if rns is not None:
-                                self._set(RosparamLoad(f, rns, self.loc(el), len(self.info.param_sets)))
+                                subst = as_bool(el.get("subst_value")) is True
+                                known = tuple(sorted((k, v) for k, v in self.subst.vars.items() if v is not None))
+                                self._set(RosparamLoad(f, rns, self.loc(el), len(self.info.param_sets),
+                                                       known if subst else None))
                     else:
                         self.info.notes.append((f"rosparam file {el.get('file')!r} not resolved", self.loc(el)))
                 elif self.ros == 1 and not c and (el.get("command") or "load") == "load" and (el.text or "").strip():
@@ -363,6 +423,38 @@ class _XmlReader:
         elif param is not None and data is not None:
             self._set(ParamSet(base, Value(data, shift(doc.loc())), len(self.info.param_sets)))
 
+    def _node_rosparam(self, el) -> dict[str, Value]:
+        """A node's inline `<rosparam>` YAML as its private parameters (dotted names), located in the launch file;
+        with `subst_value="true"` the `$(arg ...)` in its values are substituted (a value left unresolved is
+        dropped)."""
+        try:
+            doc = parse_yaml(el.text, self.path)
+        except ConsumerError as e:
+            self.info.notes.append((f"inline <rosparam> YAML not readable ({e.message}); not applied", self.loc(el)))
+            return {}
+        first = el.sourceline or 1
+        subst = as_bool(el.get("subst_value")) is True
+        prefix = (el.get("param") or "").strip("~/").replace("/", ".")
+        out: dict[str, Value] = {}
+
+        def emit(value, path: tuple) -> None:
+            if isinstance(value, dict) and value:
+                for k, v in value.items():
+                    emit(v, path + (k,))
+                return
+            name = ".".join(str(x) for x in ((prefix,) if prefix else ()) + path)
+            if not name:
+                return
+            if subst and isinstance(value, str) and "$(" in value:
+                value, ok = self.subst(value)
+                if not ok:
+                    return
+            loc = doc.loc(*path)
+            out[name] = Value(value, Location(self.path, first + (loc.line or 1) - 1))
+
+        emit(doc.data, ())
+        return out
+
     def node(self, el, ns: str, cond: str | None) -> None:
         pkg, _ = self.attr(el, "pkg")
         exe, _ = self.subst(el.get("exec") or el.get("type") or el.get("executable"))
@@ -401,6 +493,13 @@ class _XmlReader:
                 f, ok = self.attr(ch, "file")
                 if ok:
                     pfiles.append(f)
+                    if as_bool(ch.get("subst_value")) is True:  # the file's $(arg ...) take this file's values
+                        got = params.get(SUBST_KEY)
+                        files = (got.value[0] if got else ()) + (f,)
+                        known = {k: v for k, v in self.subst.vars.items() if v is not None}
+                        params[SUBST_KEY] = Value((files, known), self.loc(ch))
+            elif t == "rosparam" and (ch.get("command") or "load") == "load" and (ch.text or "").strip():
+                params.update(self._node_rosparam(ch))
         if pkg == "robot_state_publisher" and "robot_description" not in params:
             key = "robot_description"
             for ch in el:
@@ -419,6 +518,16 @@ class _XmlReader:
 
 
 _NOT_A_VALUE = object()
+SUBST_KEY = "\x00subst_value"  # LaunchNode.params: ((files loaded with subst_value="true"), {arg: value})
+
+
+def substitute_args(text: str, args: Mapping[str, str]) -> str:
+    """`$(arg x)` in a value of a file loaded with `subst_value="true"`, from the launch file's arguments
+    (others are left as written: decided at launch time)."""
+    def one(m):
+        got = args.get(m.group(2).strip())
+        return m.group(0) if got is None else str(got)
+    return re.sub(r"\$\(\s*(arg|var)\s+([^()$]*)\)", one, text)
 
 
 def _typed_param(text: str, type_: str, path: str, loc: Location):
@@ -454,6 +563,23 @@ def _typed_param(text: str, type_: str, path: str, loc: Location):
     if t.lower() in ("true", "false"):
         return t.lower() == "true"
     return text
+
+
+_FIND_FILE = re.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)/(?:[^$]*/)?([^/$]+)$")
+
+
+def _outside(raw: str | None) -> tuple[str | None, str]:
+    """(package, base name) of an include written `$(find pkg)/.../file` whose package is not known here."""
+    m = _FIND_FILE.match((raw or "").strip())
+    return (m.group(1), m.group(2)) if m else (None, "")
+
+
+def _declared(default: str | None, choices: tuple, loc: Location):
+    """A launch argument as the deployment finder reads it (one variant per choice)."""
+    from urdfcheck.contracts.pylaunch import Declared
+
+    ok = tuple(c for c in choices if isinstance(c, str) and c and "$(" not in c)
+    return Declared(default, ok or None, loc)
 
 
 def _join_ns(ns: str, sub: str | None) -> str:
@@ -507,6 +633,11 @@ class _YamlReader:
                 else:
                     d, ok = self.s(body.get("default"))
                     self.subst.declare(str(body["name"]), d if ok else None)
+                    raw = body.get("choices") or body.get("choice") or ()
+                    choices = tuple(str(c.get("value") if isinstance(c, dict) else c)
+                                    for c in (raw if isinstance(raw, list) else ()) if c is not None)
+                    self.info.declared.setdefault(str(body["name"]), _declared(d if ok else None, choices,
+                                                                               self.doc.loc(*p)))
             elif tag == "let" and body.get("name"):
                 v, ok = self.s(body.get("value"))
                 self.subst.fix(str(body["name"]), v if ok else None)
@@ -579,148 +710,6 @@ def _opt_str(v) -> str | None:
     return str(v)
 
 
-# --- Python (ROS 2), by ast ---------------------------------------------------------------------------
-class _PyReader:
-    """Reads `Node(...)` calls with literal keyword values. Nothing is imported or executed."""
-
-    def __init__(self, path: str, tree: ast.AST, args, packages):
-        self.path = path
-        self.tree = tree
-        self.overrides = dict(args or {})
-        self.defaults: dict[str, str] = {}
-        self.packages = dict(packages or {})
-        self.info = LaunchInfo(path, "ros2-py")
-
-    def loc(self, node: ast.AST) -> Location:
-        return Location(self.path, getattr(node, "lineno", None), (getattr(node, "col_offset", -1) + 1) or None)
-
-    @staticmethod
-    def _callee(call: ast.Call) -> str:
-        f = call.func
-        if isinstance(f, ast.Name):
-            return f.id
-        if isinstance(f, ast.Attribute):
-            return f.attr
-        return ""
-
-    def run(self) -> LaunchInfo:
-        calls = [n for n in ast.walk(self.tree) if isinstance(n, ast.Call)]
-        calls.sort(key=lambda c: (c.lineno, c.col_offset))
-        for c in calls:  # launch argument defaults first
-            if self._callee(c) == "DeclareLaunchArgument" and c.args and isinstance(c.args[0], ast.Constant):
-                kw = {k.arg: k.value for k in c.keywords if k.arg}
-                d = kw.get("default_value")
-                if isinstance(d, ast.Constant) and isinstance(d.value, (str, int, float, bool)):
-                    self.defaults[str(c.args[0].value)] = str(d.value)
-        for c in calls:
-            if self._callee(c) == "Node":
-                self.node(c)
-        from urdfcheck.contracts.pyinclude import find_includes
-
-        own: list = []
-
-        def find_package(name: str) -> str | None:
-            if name in self.packages:
-                return self.packages[name]
-            if not own:
-                own.append(_own(self.path))
-            return own[0][1] if own[0][0] == name else None
-
-        inherited = {**self.defaults, **{k: (None if v is None else str(v)) for k, v in self.overrides.items()}}
-        self.info.includes.extend(find_includes(self.tree, self.path, self.literal, find_package, inherited))
-        return self.info
-
-    def literal(self, node: ast.AST) -> tuple[Any, bool]:
-        """A literal value; LaunchConfiguration('x') resolves to its default. (value, ok)."""
-        if isinstance(node, ast.Constant):
-            return node.value, True
-        if isinstance(node, (ast.List, ast.Tuple)):
-            vals = [self.literal(e) for e in node.elts]
-            return [v for v, _ in vals], all(ok for _, ok in vals)
-        if isinstance(node, ast.Dict):
-            out, ok_all = {}, True
-            for k, v in zip(node.keys, node.values):
-                if k is None:
-                    ok_all = False
-                    continue
-                kv, kok = self.literal(k)
-                vv, vok = self.literal(v)
-                if kok and isinstance(kv, str):
-                    out[kv] = vv if vok else None
-                ok_all = ok_all and kok and vok
-            return out, ok_all
-        if isinstance(node, ast.Call) and self._callee(node) == "LaunchConfiguration" and node.args:
-            a = node.args[0]
-            if isinstance(a, ast.Constant) and isinstance(a.value, str):
-                name = a.value
-                if name in self.overrides:
-                    return str(self.overrides[name]), True
-                kw = {k.arg: k.value for k in node.keywords if k.arg}
-                d = kw.get("default")
-                if isinstance(d, ast.Constant):
-                    return str(d.value), True
-                if name in self.defaults:
-                    return self.defaults[name], True
-        return None, False
-
-    def node(self, call: ast.Call) -> None:
-        kw = {k.arg: k.value for k in call.keywords if k.arg}
-        loc = self.loc(call)
-
-        def text(*names) -> str:
-            for n in names:
-                if n in kw:
-                    v, ok = self.literal(kw[n])
-                    return str(v) if ok and v is not None else ""
-            return ""
-
-        pkg = text("package")
-        exe = text("executable", "node_executable")
-        name = text("name", "node_name")
-        ns = text("namespace", "node_namespace") or "/"
-        cond = None
-        if "condition" in kw:
-            cond_node = kw["condition"]
-            decided = None
-            if isinstance(cond_node, ast.Call) and cond_node.args:
-                v, ok = self.literal(cond_node.args[0])
-                b = as_bool(v) if ok else None
-                if b is not None:
-                    callee = self._callee(cond_node)
-                    decided = b if callee == "IfCondition" else (not b if callee == "UnlessCondition" else None)
-            if decided is False:
-                return
-            if decided is None:
-                try:
-                    cond = f"condition={ast.unparse(cond_node)[:120]}"
-                except (RecursionError, ValueError):
-                    cond = "condition=?"
-        args: tuple[str, ...] | None = ()
-        if "arguments" in kw:
-            v, ok = self.literal(kw["arguments"])
-            if ok and isinstance(v, list) and all(isinstance(x, (str, int, float)) for x in v):
-                args = tuple(str(x) for x in v)
-            else:
-                args = None
-        params: dict[str, Value] = {}
-        pfiles: list[str] = []
-        if "parameters" in kw and isinstance(kw["parameters"], (ast.List, ast.Tuple)):
-            for el in kw["parameters"].elts:
-                if isinstance(el, ast.Dict):
-                    for k, v in zip(el.keys, el.values):
-                        kv, kok = self.literal(k) if k is not None else (None, False)
-                        if not kok or not isinstance(kv, str):
-                            continue
-                        vv, vok = self.literal(v)
-                        params[kv] = Value(vv if vok else None, self.loc(v))
-                else:
-                    vv, vok = self.literal(el)
-                    if vok and isinstance(vv, str):
-                        pfiles.append(vv)
-        node = LaunchNode(pkg, exe, name, ns, args, loc, params, tuple(pfiles), cond)
-        record_node(self.info, node, 2)
-
-
 # --- entry point -------------------------------------------------------------------------------------
 def launch_format(path: str) -> str | None:
     p = path.lower()
@@ -754,12 +743,30 @@ def parse_launch(data: bytes | str, path: str, *, args: Mapping[str, str] | None
         except (RecursionError, MemoryError, ValueError):
             raise ConsumerError("Python launch file nested too deeply or otherwise unparsable; refused",
                                 Location(path)) from None
-        return _PyReader(path, tree, args, packages).run()
+        return _read_python(path, tree, args, packages)
     if fmt == "xml":
         root = _xml_root(raw, path)
         return _XmlReader(path, root, args, packages).run()
     raise ConsumerError("unknown launch file type (expected .launch, .launch.xml, .launch.py, .launch.yaml)",
                         Location(path))
+
+
+def _read_python(path: str, tree: ast.AST, args, packages) -> LaunchInfo:
+    """The one Python reader (`pylaunch.read`), whoever asks: a config's launch files, zero-config discovery
+    and the deployment finder read the same `LaunchInfo` from the same file."""
+    from urdfcheck.contracts import pylaunch
+
+    known = dict(packages or {})
+    own: list = []
+
+    def find_package(name: str) -> str | None:
+        if name in known:
+            return known[name]
+        if not own:
+            own.append(_own(path))
+        return own[0][1] if own[0][0] == name else None
+
+    return pylaunch.read(path, tree, args, find_package)
 
 
 def read_launch(path: str | os.PathLike, *, args: Mapping[str, str] | None = None,

@@ -1,7 +1,7 @@
-"""What a launch file says, as every launch reader (XML/YAML in `launch`, Python in `pylaunch`, includes in
-`pyinclude`) records it: the result records, the model a robot_state_publisher is given, static transform
-arguments, and how one node is filed into a `LaunchInfo`. The readers import this module; it imports none of
-them (no import cycle between the readers).
+"""What a launch file says, as every launch reader (XML/YAML in `launch`, Python in `pylaunch`) records it: the
+result records, the model a robot_state_publisher is given, static transform arguments, and how one node is filed
+into a `LaunchInfo`. The readers import this module; it imports none of them (no import cycle between the
+readers).
 """
 from __future__ import annotations
 
@@ -145,16 +145,20 @@ class RosparamLoad(NamedTuple):
     ns: str
     loc: Location
     order: int
+    subst: tuple | None = None  # subst_value="true": ((arg, value), ...) its $(arg ...) take
 
 
 class Include(NamedTuple):
     """An <include> of another launch file. `file`: None when not literal. `args`: what the included file sees
-    (value None: not literal). `condition`: an if/unless, its own or a group's, that could not be decided."""
+    (value None: not literal). `condition`: an if/unless, its own or a group's, that could not be decided.
+    `package` and `name`: where a file outside the workspace would be (a known driver's launch file)."""
 
     file: str | None
     loc: Location
     args: Mapping[str, str | None]
     condition: str | None = None
+    package: str | None = None  # file not known: the package it is in, when named (not in the workspace)
+    name: str = ""  # file not known: its base name, when literal
 
 
 class LaunchInfo(Record):

@@ -35,11 +35,19 @@ def _ns_join(ns: str, rest: str) -> str:
     return "/" + "/".join(s for s in (ns.strip("/"), rest.strip("/")) if s)
 
 
-def _file_sets(pf: ParamFile, ns: str, order: int) -> list[ParamSet]:
-    """The parameters a ROS 1 file writes when loaded at `ns`, as global names."""
+def _file_sets(pf: ParamFile, ns: str, order: int, subst: tuple | None = None,
+               only_substituted: bool = False) -> list[ParamSet]:
+    """The parameters a ROS 1 file writes when loaded at `ns`, as global names (`subst`: loaded with
+    `subst_value="true"`, its `$(arg ...)` take these values; `only_substituted`: just the values that changed)."""
+    from urdfcheck.contracts.launch import substitute_args
+
     out = []
     for node_name, node in pf.nodes.items():
         for pname, v in node.params.items():
+            if subst is not None and isinstance(v.value, str) and "$(" in v.value:
+                v = Value(substitute_args(v.value, dict(subst)), v.loc, v.default, v.items)
+            elif only_substituted:
+                continue
             rest = (node_name.strip("/") + "/" if node_name != "/" else "") + pname.replace(".", "/")
             out.append(ParamSet(_ns_join(ns, rest), v, order))
     return out
@@ -95,17 +103,23 @@ def apply_launch_params(cset: ControllerSet, launches: Iterable[LaunchInfo],
                             for k in list(mine):
                                 if k in _file_params(c, read):
                                     del mine[k]
-                    continue
-                if not (os.path.isabs(item.file) and os.path.isfile(item.file)):
-                    notes.append((f"rosparam file {item.file} not found; its parameters are not applied", item.loc))
-                    continue
-                if not _inside(item.file, _allowed_roots(li, packages or {})):
-                    notes.append((f"rosparam file {item.file} is outside the known packages; not read", item.loc))
-                    continue
-                pf = read(item.file)
-                if pf is None or pf.dialect != "ros1":
-                    continue
-                sets = _file_sets(pf, item.ns, item.order)
+                    pf = read(own[0].file) if item.subst is not None else None
+                    if pf is None:
+                        continue
+                    sets = _file_sets(pf, item.ns, item.order, item.subst, only_substituted=True)
+                else:
+                    if not (os.path.isabs(item.file) and os.path.isfile(item.file)):
+                        notes.append((f"rosparam file {item.file} not found; its parameters are not applied",
+                                      item.loc))
+                        continue
+                    if not _inside(item.file, _allowed_roots(li, packages or {})):
+                        notes.append((f"rosparam file {item.file} is outside the known packages; not read",
+                                      item.loc))
+                        continue
+                    pf = read(item.file)
+                    if pf is None or pf.dialect != "ros1":
+                        continue
+                    sets = _file_sets(pf, item.ns, item.order, item.subst)
             else:
                 sets = [item]
             for ps in sets:

@@ -37,6 +37,10 @@ _MAX_STEPS = 50_000
 _MAX_LEN = 64 * 1024
 
 
+_SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAMLLaunchDescriptionSource",
+            "AnyLaunchDescriptionSource", "FrontendLaunchDescriptionSource"}
+
+
 class Cmd(NamedTuple):
     """`Command([...])`: the command line robot_state_publisher's parameter gets the output of."""
     text: str
@@ -348,6 +352,9 @@ class PyLaunch:
             if name == "read_text" and isinstance(base, str):
                 return FileText(base)
             return None
+        if name == "FileContent":  # launch's FileContent(path): the file's text
+            p = self.ev(self._arg(node, 0, "path"), d)
+            return FileText(text_of(p)) if p is not None else None
         if name == "open" and not full.startswith("os."):
             p = self.ev(self._arg(node, 0, "file"), d)
             return FileOpen(text_of(p)) if p is not None else None
@@ -366,6 +373,8 @@ class PyLaunch:
                 return None
             got = self.find_package(pkg)
             return got if got is not None else None
+        if name in _SOURCES:  # a launch description source kept in a variable: the file it names
+            return self.ev(self._arg(node, 0, "launch_file_path"), d)
         if name == "ThisLaunchFileDir":
             return os.path.dirname(os.path.abspath(self.path))
         if full in ("os.path.dirname", "dirname", "path.dirname", "os.path.abspath", "os.path.realpath"):
@@ -542,8 +551,9 @@ def _flatten(d: dict, prefix: str = ""):
             yield prefix + k, v
 
 
-def include_calls(r: PyLaunch) -> list[tuple[str | None, Location, dict, str | None]]:
-    """(file or None, location, arguments passed, undecided condition) per IncludeLaunchDescription."""
+def include_calls(r: PyLaunch) -> list[tuple]:
+    """(file or None, location, arguments passed, undecided condition, package and base name of a file not
+    known) per IncludeLaunchDescription."""
     out = []
     inherited = r.configs()
     for call in r.calls("IncludeLaunchDescription"):
@@ -552,7 +562,7 @@ def include_calls(r: PyLaunch) -> list[tuple[str | None, Location, dict, str | N
             continue
         kw = r._kw(call)
         source = call.args[0] if call.args else kw.get("launch_description_source")
-        file = None
+        file, t = None, ""
         if isinstance(source, ast.Call):
             src = source.args[0] if source.args else r._kw(source).get("launch_file_path")
             t = text_of(r.ev(src))
@@ -570,10 +580,31 @@ def include_calls(r: PyLaunch) -> list[tuple[str | None, Location, dict, str | N
             items = []
         for k, v in items:
             if isinstance(k, str):
-                t = text_of(v)
-                passed[k] = None if UNKNOWN in t else t
-        out.append((file, r.loc(call), passed, cond))
+                given_text = text_of(v)
+                passed[k] = None if UNKNOWN in given_text else given_text
+        out.append((file, r.loc(call), passed, cond, _named_package(r, source) if file is None else None,
+                    os.path.basename(t.replace(UNKNOWN, "")) if file is None else ""))
     return out
+
+
+def _named_package(r: PyLaunch, source: ast.AST | None) -> str | None:
+    """The package an include's path is found in (`FindPackageShare('realsense2_camera')`), when the path is not
+    known because the package is not in the workspace: a known driver's launch file is still recognised."""
+    if source is None:
+        return None
+    todo, seen = [source], 0
+    while todo and seen < 200:
+        n = todo.pop()
+        seen += 1
+        if isinstance(n, ast.Name) and isinstance(r.assign.get(n.id), ast.AST):
+            todo.append(r.assign[n.id])
+            continue
+        if isinstance(n, ast.Call) and _callee(n) in ("FindPackageShare", "get_package_share_directory") and n.args:
+            v = r.ev(n.args[0])
+            if isinstance(v, str) and UNKNOWN not in v:
+                return v
+        todo.extend(ast.iter_child_nodes(n))
+    return None
 
 
 def inactive_include_files(path: str, tree: ast.AST, find_package) -> list[str]:
@@ -635,8 +666,8 @@ def read(path: str, tree: ast.AST, args: Mapping[str, str | None] | None,
                 _read_node(r, info, call, pushed)
             finally:
                 r.bindings = {}
-    for file, loc, passed, cond in include_calls(r):
-        info.includes.append(Include(file, loc, passed, cond))
+    for file, loc, passed, cond, package, name in include_calls(r):
+        info.includes.append(Include(file, loc, passed, cond, package, name))
     info.consulted = set(r.consulted)  # the launch arguments this reading depended on
     return info
 

@@ -127,9 +127,8 @@ class Deployment(Record):
 
     def consumers(self):
         """The contract checks' view of this deployment (read on each call; cheap, files are small)."""
-        from urdfcheck.contracts.consumers import Consumers, _Reader
+        from urdfcheck.contracts.consumers import Consumers, _Reader, tf_owners
         from urdfcheck.contracts.controllers import read_controllers, spawner_types
-        from urdfcheck.contracts.localization import localization_from_params
 
         out = Consumers(origin="deployment")
         r = _Reader()
@@ -140,9 +139,10 @@ class Deployment(Record):
             out.notes.extend(c.notes)
         self._spawned_broadcasters(out)
         lpfs = [pf for pf in (r.params(p, out.errors) for p in self.localization_files) if pf is not None]
-        out.localization = localization_from_params(lpfs)
         out.drivers = infer_drivers(self.driver_nodes, r)
         out.launch = list(self.infos)
+        several = len({s.namespace for li in self.infos for s in li.state_publishers}) > 1  # each robot its own
+        tf_owners(out, lpfs, r, lambda f: _same_file(f, self.localization_files), self.namespace if several else None)
         out.frame_prefix = self.frame_prefix or ""
         out.notes.extend(self.notes)
         if len(out.controllers) and any(li.param_sets for li in out.launch):
@@ -153,6 +153,14 @@ class Deployment(Record):
                      "launch": [li.path for li in self.infos],
                      "drivers": sorted({f for _, files in self.driver_nodes for f in files})}
         return out
+
+
+def _same_file(path: str, files) -> str | None:
+    """`path` as read (a source file), or the file of `files` it names in the install layout."""
+    if os.path.isfile(path):
+        return path
+    tail = os.sep.join(path.split(os.sep)[-2:])
+    return next((f for f in files if f.endswith(os.sep + tail)), None)
 
 
 # --- the workspace's launch files --------------------------------------------------------------------------
@@ -431,7 +439,10 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
 def _beside(ws: _Workspace, infos, namespace: str | None):
     """Controller and localization parameter files, spawned controllers, joint state sources and static
     transforms of the nodes in `infos` (in `namespace` when given)."""
+    from urdfcheck.contracts.localization import owner_packages
+
     ctrl, loc_files, spawned, js, tfs, notes, drivers = [], [], [], [], [], [], []
+    owned = owner_packages()  # TF owners of the table: read by `localization`, not as custom drivers
 
     def add(files, path, where):
         got = ws.locate(path)
@@ -449,7 +460,7 @@ def _beside(ws: _Workspace, infos, namespace: str | None):
                 spawner_locs.add(n.loc)
                 for f in n.param_files:
                     add(ctrl, f, n.loc)
-            elif n.package in LOCALIZATION_PACKAGES or n.package.startswith("nav2_"):
+            elif n.package in LOCALIZATION_PACKAGES or n.package.startswith("nav2_") or n.package in owned:
                 for f in n.param_files:
                     add(loc_files, f, n.loc)
             elif n.package and n.package not in KNOWN_PACKAGES and not n.package.startswith(("rviz", "gazebo", "ros_gz",
@@ -610,8 +621,12 @@ def describe(deployments: list[Deployment], show=None) -> str:
         if d.static_tfs:
             lines.append("  static transforms: " + ", ".join(f"{t.parent}->{t.child}" for t in d.static_tfs))
         if d.localization_files or nodes:
+            # each node with the file it was read from: a file is never listed under another node's kind
+            named = {os.path.realpath(f) for _, _, f in nodes if f}
+            rest = [show(f) for f in d.localization_files if os.path.realpath(f) not in named]
             lines.append("  localization: " + ", ".join(
-                [f"{kind} {node}" for kind, node in nodes] + [show(f) for f in d.localization_files]))
+                [f"{kind} {node}" + (f" ({show(f)})" if f else "") for kind, node, f in nodes]
+                + ([f"no TF owner in {', '.join(rest)}"] if rest else [])))
         for msg, loc in dict.fromkeys(d.notes):
             lines.append(f"  note: {msg} ({at(loc)})")
     n = sum(1 for d in deployments if d.model is not None)
@@ -629,15 +644,15 @@ def show_args(args: Mapping[str, str], show, total: int | None = None, files: bo
     return text + (f" (+{hidden} more)" if hidden > 0 else "")
 
 
-def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str]]]:
-    """The controllers (name -> type) and localization nodes (kind, node) the deployment's files declare,
+def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str, str]]]:
+    """The controllers (name -> type) and localization nodes (kind, node, file) the deployment's files declare,
     for `describe` (an unreadable file is reported by the lint run, not here)."""
     try:
         c = d.consumers()
     except Exception:  # noqa: BLE001 - a listing never fails on a file the lint run reports
         return {}, []
     types = {ctl.name: ctl.type or "" for ctl in c.controllers}
-    return types, [(n.kind, n.node) for n in c.localization]
+    return types, [(n.kind, n.node, n.file if n.file and os.path.isfile(n.file) else "") for n in c.localization]
 
 
 # --- custom drivers, read by the shape of their keys ---------------------------------------------------------
