@@ -67,7 +67,8 @@ def test_joint_limit_in_the_macro(two):
     data = as_json(cli(old, new, "--format", "json"))
     m = next(m for m in data["models"] if m["variant"] == "camera")
     got = {(c["name"], c["field"], c["old"], c["new"]) for c in m["changes"]}
-    assert got == {("left_wheel_joint", "limit.velocity", 10.0, 8.0), ("right_wheel_joint", "limit.velocity", 10.0, 8.0)}
+    assert got == {("left_wheel_joint", "limit.velocity", 10.0, 8.0),
+                   ("right_wheel_joint", "limit.velocity", 10.0, 8.0)}
     assert m["moved"] == []
 
 
