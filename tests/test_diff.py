@@ -168,3 +168,17 @@ def test_broken_side_is_not_a_clean_diff(tmp_path):
     b.write_text('<robot name="r"><link name="base"/>')
     res = cli(a, b)
     assert res.returncode == 1 and "does not load" in res.stdout
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_git_new_package_is_added(tmp_path):
+    repo = tmp_path / "repo"
+    (repo / "docs").mkdir(parents=True)
+    (repo / "docs/readme.md").write_text("x\n")
+    _git("init", "-q", cwd=repo)
+    _git("add", "-A", cwd=repo)
+    _git("commit", "-qm", "init", cwd=repo)
+    shutil.copytree(AGV, repo / "agv_description")
+    data = as_json(cli("--git", "HEAD", "agv_description", "--format", "json", cwd=repo))
+    assert {m["status"] for m in data["models"]} == {"added"}
+    assert cli("--git", "HEAD", "agv_description", "--fail-on-change", cwd=repo).returncode == 1

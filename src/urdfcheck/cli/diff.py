@@ -60,10 +60,7 @@ def cmd_diff(ns) -> int:
             rel = [os.path.relpath(os.path.abspath(p), repo) for p in paths]
             if any(r == ".." or r.startswith(".." + os.sep) for r in rel):
                 raise UsageError(f"--git: every path must be inside the repository {repo}")
-            old = [os.path.join(tmp, r) for r in rel]
-            missing = [r for r, o in zip(rel, old) if not os.path.exists(o)]
-            if missing:
-                raise UsageError(f"--git: {', '.join(missing)} does not exist in {ns.git}")
+            old = [o for o in (os.path.join(tmp, r) for r in rel) if os.path.exists(o)]  # else: all added
             result = stage.diff(old, [os.path.abspath(p) for p in paths], tmp, repo, seeds=ns.seeds,
                                 **_options(ns))
     from urdfcheck.report.diff import render

@@ -92,9 +92,13 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
     from urdfcheck.load.budget import run_budget
 
     old_root, new_root = os.path.abspath(old_root), os.path.abspath(new_root)
-    old_t = {_key(t, old_root): t for t in plan_side(old_paths, old_root, options)}
-    new_t = {_key(t, new_root): t for t in plan_side(new_paths, new_root, options)}
-    if len({m for m, _ in old_t}) == 1 and len({m for m, _ in new_t}) == 1:
+    old_t = {_key(t, old_root): t for t in plan_side(old_paths, old_root, options)} if old_paths else {}
+    new_t = {_key(t, new_root): t for t in plan_side(new_paths, new_root, options)} if new_paths else {}
+    if not old_t and not new_t:
+        from urdfcheck.pipeline.request import UsageError
+
+        raise UsageError(f"no URDF or xacro model found in {', '.join(map(str, [*old_paths, *new_paths]))}")
+    if len({m for m, _ in old_t}) == 1 and len({m for m, _ in new_t}) == 1 and set(old_t) != set(new_t):
         # one model each side (two files named differently): pair by variant
         name = next(iter(new_t))[0]
         old_t = {(name, v): t for (_, v), t in old_t.items()}
@@ -210,6 +214,8 @@ def compare_models(old, new, *, seeds: int = SEEDS) -> Pair:
 
 def _num(v):
     if isinstance(v, float):
+        if not math.isfinite(v):
+            return str(v)  # JSON has no NaN or inf
         return round(v, 9) + 0.0  # -0.0 is 0.0
     if isinstance(v, (tuple, list)):
         return [_num(x) for x in v]

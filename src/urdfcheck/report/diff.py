@@ -81,7 +81,7 @@ def text(result, shown=str) -> str:
 
 
 def _cell(s) -> str:
-    return clean_text(str(s)).replace("|", "\\|")
+    return clean_text(str(s)).replace("|", "\\|").replace("`", "'")
 
 
 def markdown(result, shown=str) -> str:
