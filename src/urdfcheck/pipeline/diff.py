@@ -155,13 +155,13 @@ def match(old, new) -> tuple[dict, dict]:
     taken = set(links.values())
     for root in old.roots:
         for name in old.descendants_in_order(root):
-            if name in links:
+            if name in links or name not in old.links:  # a joint may name a link nobody defines (S003)
                 continue
             j = old.parent_joint.get(name)
             if j is None or j.parent not in links:
                 continue
             cands = [c for c in new.child_joints.get(links[j.parent], ())
-                     if c.child is not None and c.child not in taken and c.child not in old.links
+                     if c.child in new.links and c.child not in taken and c.child not in old.links
                      and c.type == j.type]
             if not cands:
                 continue

@@ -74,10 +74,19 @@ def text(result, shown=str) -> str:
         lines.extend(f"  {x}" for x in _structure(p))
         lines.extend(f"  {_moved_line(m)}" for m in p.moved)
         lines.extend(f"  {_change_line(c)}" for c in p.changes)
-    changed = sum(p.changed for p in result.pairs)
-    lines.append(f"{changed} of {len(result.pairs)} model variants changed" if changed else
-                 f"no change in {len(result.pairs)} model variant{'s' if len(result.pairs) != 1 else ''}")
+    lines.append(_tally(result))
     return "\n".join(lines) + "\n"
+
+
+def _tally(result) -> str:
+    n = len(result.pairs)
+    changed = sum(p.status in ("changed", "added", "removed") for p in result.pairs)
+    broken = sum(p.status == "unloadable" for p in result.pairs)
+    out = f"{changed} of {n} model variants changed" if changed else \
+        f"no change in {n - broken} model variant{'s' if n - broken != 1 else ''}"
+    if broken:
+        out += f"; {broken} not compared (a side does not load)"
+    return out
 
 
 def _cell(s) -> str:
@@ -86,9 +95,8 @@ def _cell(s) -> str:
 
 def markdown(result, shown=str) -> str:
     out = ["## urdfcheck diff", ""]
-    changed = [p for p in result.pairs if p.changed]
-    if not changed:
-        out.append(f"No change to the robot in {len(result.pairs)} model variant(s).")
+    out += [_tally(result), ""]
+    if not any(p.changed for p in result.pairs):
         return "\n".join(out) + "\n"
     for p in result.pairs:
         out.append(f"### `{_cell(_title(p))}`: {'no change' if not p.changed else p.status}")
