@@ -57,15 +57,21 @@ def _included(path: str, packages: Mapping[str, str]):
 
     entry = os.path.abspath(path)
     resolver = Resolver(dict(packages), near=Path(entry))
-    allowed = [os.path.realpath(p) for p in (*packages.values(), os.getcwd())]
     pkg = enclosing_package(Path(entry).parent)
-    allowed.append(os.path.realpath(pkg if pkg is not None else os.path.dirname(entry)))
-    for file, text in literal_includes([entry], resolver.find, max_files=100):
-        real = os.path.realpath(file)
-        if real == os.path.realpath(entry):
-            continue
-        if any(real == a or real.startswith(a.rstrip(os.sep) + os.sep) for a in allowed):
+    roots = [os.path.abspath(p) for p in (*packages.values(), os.getcwd(), pkg or os.path.dirname(entry))]
+    real_roots = [os.path.realpath(r) for r in roots]
+
+    def allow(file: str) -> bool:
+        # written inside (nothing outside is ever looked at), and really inside (no link out)
+        return _under(file, roots) and _under(os.path.realpath(file), real_roots)
+
+    for file, text in literal_includes([entry], resolver.find, max_files=100, allow=allow):
+        if file != entry:
             yield file, text
+
+
+def _under(path: str, roots) -> bool:
+    return any(path == r or path.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
 
 
 def auto_variants(path: str, base: Mapping[str, str], packages: Mapping[str, str] | None = None
