@@ -182,3 +182,14 @@ def test_git_new_package_is_added(tmp_path):
     data = as_json(cli("--git", "HEAD", "agv_description", "--format", "json", cwd=repo))
     assert {m["status"] for m in data["models"]} == {"added"}
     assert cli("--git", "HEAD", "agv_description", "--fail-on-change", cwd=repo).returncode == 1
+
+
+def test_plain_urdf_against_the_variants_of_a_xacro(two):
+    old, new = two
+    data = as_json(cli(old / "urdf/agv.urdf", new / "urdf/agv.urdf.xacro", "--format", "json"))
+    by = {m["variant"]: m for m in data["models"]}
+    assert set(by) == {"camera", "no_camera"}  # the one URDF against each variant of the xacro
+    assert by["camera"]["status"] == "unchanged"  # agv.urdf is the xacro's output with use_camera:=true
+    assert by["no_camera"]["links"]["removed"] == ["camera_link"]
+    shapes = {c["field"] for c in by["no_camera"]["changes"] if c["name"] == "base_link"}
+    assert shapes == {"visual[camera_mast]", "collision[camera_mast]"}

@@ -102,6 +102,13 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
         # one model each side (two files named differently): pair by variant
         name = next(iter(new_t))[0]
         old_t = {(name, v): t for (_, v), t in old_t.items()}
+        # a plain URDF against the variants of a xacro (or the reverse): the one model against each variant
+        if len(old_t) == 1 and set(old_t) != set(new_t):
+            only = next(iter(old_t.values()))
+            old_t = {k: only for k in new_t}
+        elif len(new_t) == 1 and set(old_t) != set(new_t):
+            only = next(iter(new_t.values()))
+            new_t = {k: only for k in old_t}
     pairs = []
     with run_budget(options.get("budget")):
         for key in list(dict.fromkeys([*old_t, *new_t])):
@@ -273,15 +280,26 @@ def _link_changes(old, new, a, b) -> list[dict]:
                    _rotation(ib.origin) if ib else None)
     out += _change("link", b.name, "inertia", ia.inertia if ia else None, ib.inertia if ib else None)
     for kind in ("visuals", "collisions"):
-        sa = [_shape(old, s) for s in getattr(a, kind)]
-        sb = [_shape(new, s) for s in getattr(b, kind)]
-        for i in range(max(len(sa), len(sb))):
-            x = sa[i] if i < len(sa) else None
-            y = sb[i] if i < len(sb) else None
-            label = (y or x)["name"] or str(i)
+        sa, sb = _shapes(old, getattr(a, kind)), _shapes(new, getattr(b, kind))
+        for label in dict.fromkeys([*sa, *sb]):
+            x, y = sa.get(label), sb.get(label)
+            if x is None or y is None:  # a shape added or removed: one line
+                out += _change("link", b.name, f"{kind[:-1]}[{label}]", x and _brief(x), y and _brief(y))
+                continue
             for f in ("geometry", "mesh", "origin", "material"):
-                out += _change("link", b.name, f"{kind[:-1]}[{label}].{f}", x and x.get(f), y and y.get(f))
+                out += _change("link", b.name, f"{kind[:-1]}[{label}].{f}", x.get(f), y.get(f))
     return out
+
+
+def _shapes(model, shapes) -> dict:
+    """Shapes by name (their index when unnamed or the name repeats): an inserted shape changes only itself."""
+    names = [s.name for s in shapes]
+    return {(s.name if s.name and names.count(s.name) == 1 else f"#{i}"): _shape(model, s)
+            for i, s in enumerate(shapes)}
+
+
+def _brief(shape: dict) -> list:
+    return [shape["mesh"][0] if shape["mesh"] else shape["geometry"], shape["material"] and shape["material"][0]]
 
 
 def _shape(model, s) -> dict:

@@ -8,8 +8,8 @@ covering array - every value of every pair of arguments appears in at least one 
 needing two arguments true (`use_arm and use_gripper`) is linted, at a handful of variants (7 for 5
 arguments, 17 for 20). Arguments are read as text (no expansion): the entry file's, then those of the
 files it includes literally (an argument declared in an included macro file is a command-line argument of the
-robot too; xacro keeps the first declaration's default). Included files are read only inside the entry's
-package, the named packages and the working directory.
+robot too; xacro keeps the first declaration's default). Included files are looked at only inside the package
+roots the loader reads from (the entry's package, the named packages, the packages its `$(find)`s resolve).
 """
 from __future__ import annotations
 
@@ -58,12 +58,13 @@ def _included(path: str, packages: Mapping[str, str]):
     entry = os.path.abspath(path)
     resolver = Resolver(dict(packages), near=Path(entry))
     pkg = enclosing_package(Path(entry).parent)
-    roots = [os.path.abspath(p) for p in (*packages.values(), os.getcwd(), pkg or os.path.dirname(entry))]
-    real_roots = [os.path.realpath(r) for r in roots]
+    fixed = [os.path.abspath(p) for p in (*packages.values(), pkg or os.path.dirname(entry))]
 
     def allow(file: str) -> bool:
+        # the package roots the loader reads from (the entry's, the named ones, those its $(find)s resolved):
         # written inside (nothing outside is ever looked at), and really inside (no link out)
-        return _under(file, roots) and _under(os.path.realpath(file), real_roots)
+        roots = fixed + [os.path.abspath(str(p)) for p in resolver.used.values()]
+        return _under(file, roots) and _under(os.path.realpath(file), [os.path.realpath(r) for r in roots])
 
     for file, text in literal_includes([entry], resolver.find, max_files=100, allow=allow):
         if file != entry:
