@@ -172,7 +172,6 @@ def test_cmake_package_files():
     assert manifest.find("export/build_type").text == "ament_cmake"
     text = (CMAKE_PKG / "CMakeLists.txt").read_text()
     assert 'CONFIG_EXTRAS "ament_cmake_urdfcheck-extras.cmake"' in text
-    import tomllib
-
+    tomllib = pytest.importorskip("tomllib")  # Python 3.11+
     scripts = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["scripts"]
     assert scripts["ament_urdfcheck"] == "urdfcheck.cli.ament:run"
