@@ -199,14 +199,14 @@ def test_each_package_fails_at_its_own_level(tmp_path):
     assert code == 0, err
 
 
-def test_a_launch_file_lints_the_models_it_starts_and_a_yaml_file_is_refused():
+def test_a_launch_file_or_a_yaml_file_lints_the_models_that_use_it():
     pkg = REPO / "examples" / "broken" / "contract_wheel_radius"
     code, out, err = run_cli(["lint", "--format", "json", "launch/agv.launch.xml"], cwd=pkg)
     data = json.loads(out)
     assert code == 1 and [m["path"] for m in data["models"]] == [os.path.join("urdf", "agv.urdf")], err
     assert {f["code"] for f in data["findings"]} == {"C011"}
-    code, out, err = run_cli(["lint", "config/agv_controllers.yaml"], cwd=pkg)
-    assert code == 2 and "not a URDF or xacro model" in err
+    code, out, err = run_cli(["lint", "--format", "json", "config/agv_controllers.yaml"], cwd=pkg)
+    assert code == 1 and {f["code"] for f in json.loads(out)["findings"]} == {"C011"}, err  # what reads it
 
 
 def test_a_workspace_config_applies_below_it_unless_a_package_has_its_own(tmp_path):

@@ -27,13 +27,15 @@ def test_hooks_file_is_well_formed():
     assert set(hooks) == {"urdfcheck", "urdfcheck-package"}
     one = hooks["urdfcheck"]
     assert one["entry"] == "urdfcheck lint" and one["language"] == "python"
-    assert one["files"] == r"\.(urdf|xacro)$" and one.get("pass_filenames", True) is True
+    assert one["files"] == r"\.(urdf|xacro|ya?ml)$" and one.get("pass_filenames", True) is True
     pkg = hooks["urdfcheck-package"]
     assert pkg["pass_filenames"] is False and pkg["entry"] == "urdfcheck lint"
     import re
 
-    for name in ("a.urdf", "urdf/b.urdf.xacro"):
-        assert re.search(one["files"], name)
+    for name in ("a.urdf", "urdf/b.urdf.xacro", "config/controllers.yaml"):
+        assert re.search(one["files"], name) and not re.search(one["exclude"], name)
+    for name in (".pre-commit-config.yaml", ".github/workflows/ci.yml", "sub/.gitlab-ci.yml"):
+        assert re.search(one["exclude"], name)
     assert not re.search(one["files"], "a.urdf.bak")
     for name in ("urdf/a.xacro", "config/c.yaml", "meshes/m.STL", "launch/x.launch.py", "pyproject.toml"):
         assert re.search(pkg["files"], name), name

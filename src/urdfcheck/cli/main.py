@@ -1,4 +1,4 @@
-"""Command line: `urdfcheck lint|expand|rules|tree|tf|publish|verify`.
+"""Command line: `urdfcheck lint|expand|rules|tree|tf|publish|verify|diff`.
 
 Exit codes: 0 clean; 1 findings at or above --fail-on (a broken or hostile model is a finding too);
 2 unusable invocation (missing path, bad flag, invalid config) or an internal error.
@@ -44,7 +44,7 @@ def _severity(text: str):
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
-PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify")
+PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify", "diff")
 
 
 def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
@@ -117,6 +117,9 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
         from urdfcheck.cli import publish as cli_publish
 
         cli_publish.add_parsers(sub)
+        from urdfcheck.cli import diff as cli_diff
+
+        cli_diff.add_parser(sub)
     return parser
 
 

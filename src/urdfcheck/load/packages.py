@@ -338,7 +338,7 @@ def missing_packages(entries, find) -> dict[str, list[tuple[str, int]]]:
     return missing
 
 
-def _literal_include(ref: str, includer: str, lookup) -> str | None:
+def _literal_include(ref: str, includer: str, lookup, allow=None) -> str | None:
     m = re.match(r"^\$\(\s*find\s+([A-Za-z0-9_]+)\s*\)(.*)$", ref)
     if m:
         root = lookup(m.group(1))
@@ -346,6 +346,8 @@ def _literal_include(ref: str, includer: str, lookup) -> str | None:
         if root is None or "$" in rest:
             return None
         cand = os.path.join(str(root), rest)
+        if allow is not None and not allow(os.path.abspath(cand)):
+            return None  # not even looked at
         if not os.path.isfile(cand):  # install layout vs source layout
             hits = [str(c) for c in Path(root).glob(f"*/{rest}") if c.is_file()] or \
                    [str(c) for c in Path(root).glob(f"*/*/{rest}") if c.is_file()]
@@ -356,16 +358,19 @@ def _literal_include(ref: str, includer: str, lookup) -> str | None:
     return os.path.abspath(os.path.join(os.path.dirname(includer), ref))
 
 
-def literal_includes(entries, find, max_files: int = MAX_REF_FILES):
+def literal_includes(entries, find, max_files: int = MAX_REF_FILES, allow=None):
     """(path, text) of `entries` and of every file they include through a literal `xacro:include` (a literal
     name or `$(find known_package)/literal`), breadth first, each once, read as text without expanding: what
-    the unresolved packages, a library's robots and a model's Gazebo parameter files are found from."""
+    the unresolved packages, a library's robots and a model's Gazebo parameter files are found from.
+    `allow(path)`: whether an included file may be looked at at all (asked before any stat or read)."""
     from urdfcheck.core.safeio import read_file  # a regular file only: a FIFO must not block
 
     queue, seen = [os.path.abspath(e) for e in entries], set()
     while queue and len(seen) < max_files:
         path = queue.pop(0)
         if path in seen:
+            continue
+        if allow is not None and seen and not allow(path):
             continue
         seen.add(path)
         try:
@@ -374,7 +379,7 @@ def literal_includes(entries, find, max_files: int = MAX_REF_FILES):
             continue
         yield path, text
         for m in _XINCLUDE.finditer(text):
-            target = _literal_include(m.group(2).strip(), path, find)
+            target = _literal_include(m.group(2).strip(), path, find, allow)
             if target is not None and target not in seen:
                 queue.append(target)
 

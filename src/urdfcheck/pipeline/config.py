@@ -48,7 +48,6 @@ target: humble                            # ROS distribution whose urdfdom must 
 """
 from __future__ import annotations
 
-import itertools
 import json
 import os
 import re
@@ -62,7 +61,7 @@ from urdfcheck.core.records import FrozenRecord
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")
 PYPROJECT = "pyproject.toml"
-MAX_AUTO_ARGS = 4  # `variants: auto` enumerates at most 2**4 combinations; beyond, one flip at a time
+MAX_AUTO_ARGS = 4  # `variants: auto` enumerates at most 2**4 combinations; beyond, pairwise (pipeline.variants)
 SCHEMA_PATH = Path(__file__).resolve().parent.parent / "schemas" / "config.schema.json"
 DEFAULT_FRAMES = MappingProxyType({"map": "map", "odom": "odom", "base": "base_link"})
 
@@ -443,46 +442,16 @@ def load_config(path: str | os.PathLike) -> Config:
     )
 
 
-# --- variants: auto ------------------------------------------------------------------------------------
-_ARG = re.compile(r"<\s*xacro:arg\b([^>]*)/?>", re.S)
-_ATTR = re.compile(r"""(\w+)\s*=\s*(["'])(.*?)\2""", re.S)
-_BOOLS = {"true": "false", "false": "true", "True": "False", "False": "True", "1": "0", "0": "1"}
-
-
+# --- variants: auto (pipeline.variants; imported from here too) ----------------------------------------------
 def boolean_args(path: str) -> dict[str, str]:
-    """xacro:args of the entry file whose default is a boolean literal (name -> default), in order."""
-    try:
-        from urdfcheck.core.safeio import read_file
+    """The entry file's own boolean xacro:args (name -> default)."""
+    from urdfcheck.pipeline.variants import boolean_args as args_of
 
-        text = read_file(path, 4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
-    except OSError:
-        return {}
-    text = re.sub(r"<!--.*?-->", "", text, flags=re.S)
-    out: dict[str, str] = {}
-    for m in _ARG.finditer(text):
-        attrs = {k: v for k, _, v in _ATTR.findall(m.group(1))}
-        name, default = attrs.get("name"), attrs.get("default")
-        if name and default is not None and default.strip() in _BOOLS:
-            out.setdefault(name, default.strip())
-    return out
+    return args_of(path, included=False)
 
 
-def auto_variants(path: str, base: Mapping[str, str]) -> list[tuple[str, dict]]:
-    """Every combination of the boolean xacro:args not fixed by `base` (at most 2**MAX_AUTO_ARGS);
-    with more such args: the defaults plus each argument flipped alone."""
-    flags = {k: v for k, v in boolean_args(path).items() if k not in base}
-    if not flags:
-        return [("", {})]
-    names = list(flags)
-    out = []
-    if len(names) <= MAX_AUTO_ARGS:
-        for combo in itertools.product(*[(flags[n], _BOOLS[flags[n]]) for n in names]):
-            args = dict(zip(names, combo))
-            # named by what differs from the defaults: short, and the same name in both enumerations
-            flipped = ",".join(f"{k}={v}" for k, v in args.items() if v != flags[k])
-            out.append((flipped or "defaults", args))
-    else:
-        out.append(("defaults", {}))
-        for n in names:
-            out.append((f"{n}={_BOOLS[flags[n]]}", {n: _BOOLS[flags[n]]}))
-    return out
+def auto_variants(path: str, base: Mapping[str, str], packages: Mapping[str, str] | None = None
+                  ) -> list[tuple[str, dict]]:
+    from urdfcheck.pipeline.variants import auto_variants as variants_of
+
+    return variants_of(path, base, packages)

@@ -204,6 +204,10 @@ class Planner:
                 return self.declared(cfg, [raw])
             if _is_launch(raw):
                 return self.launch_targets(raw, settings)
+            if raw.lower().endswith((".yaml", ".yml")):
+                from urdfcheck.pipeline.dependents import targets_reading
+
+                return targets_reading(self, raw, settings)  # the per-file hook names a parameter file
             if raw.lower().endswith(".srdf.xacro"):  # the per-file hook passes every *.xacro: not an error
                 self.infos.append(f"{self.request.shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
                 return []
@@ -355,6 +359,8 @@ class Planner:
                     self.infos.append(f"{self.request.shown(str(path))}: a xacro library that no robot of "
                                       "its workspace includes: not linted alone")
                 return robots
+            if _robot_file(path):  # a robot named by itself (the per-file hook): its variants too
+                return self.variants(path, settings)
         return [self.target(path, {}, "", None, settings)]
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
@@ -363,18 +369,22 @@ class Planner:
 
         here = os.path.abspath(self.here)
         ws = here if _below(library, here) else os.path.abspath(pkg)
-        if ws not in self._robots:
-            sub = Planner(self.request, self.here)  # the workspace as `urdfcheck lint` there plans it
-            sub._configs, sub._settings = self._configs, self._settings
-            self._robots[ws] = list(sub.path_targets(ws))
         real, out = os.path.realpath(library), []
-        for t in self._robots[ws]:
+        for t in self.workspace_targets(ws):
             key = (os.path.realpath(t.path), tuple(sorted(t.packages.items())))
             if key not in self._closures:
                 self._closures[key] = included_files(t.path, lambda n, pk=t.packages: pk.get(n))
             if real in self._closures[key] and os.path.realpath(t.path) != real:
                 out.append(t)
         return out
+
+    def workspace_targets(self, ws: str) -> list[Target]:
+        """The targets of a workspace folder as `urdfcheck lint` run there plans them (once per run)."""
+        if ws not in self._robots:
+            sub = Planner(self.request, self.here)
+            sub._configs, sub._settings = self._configs, self._settings
+            self._robots[ws] = list(sub.path_targets(ws))
+        return self._robots[ws]
 
     def variants(self, entry: Path, settings: Settings, root: str | None = None) -> list[Target]:
         """Each combination of the boolean xacro:args the request does not fix (bounded; named)."""
@@ -384,7 +394,8 @@ class Planner:
         from urdfcheck.pipeline.config import auto_variants
 
         return [self.target(entry, vargs, name, None, settings, packages)
-                for name, vargs in auto_variants(str(entry), dict(self.request.args))]
+                for name, vargs in auto_variants(str(entry), dict(self.request.args),
+                                                 dict(settings.packages) if packages is None else packages)]
 
     def target(self, path: Path, args: dict, variant: str, consumers, settings: Settings,
                packages: dict | None = None) -> Target:

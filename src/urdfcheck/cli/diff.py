@@ -1,0 +1,83 @@
+"""`urdfcheck diff OLD NEW` and `urdfcheck diff --git REV [PATH...]`: flags -> `pipeline.diff` -> report.
+
+Exit 0 (whatever changed) unless `--fail-on-change`: then 1 when anything changed. A side that does not load
+is reported and exits 1 (nothing was compared); an unusable invocation exits 2.
+"""
+from __future__ import annotations
+
+import os
+import sys
+
+from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, UsageError, add_load_options
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "diff", help="what a change does to the robot (frames moved, joints, limits, inertia, contracts)",
+        description="Compare the robots two trees describe (every model, deployment and variant that `lint` "
+        "plans), or the working tree with a git revision (--git REV: the old files are read with git, "
+        "nothing is checked out). Comments and formatting are no change.")
+    p.add_argument("paths", nargs="*", metavar="PATH",
+                   help="OLD NEW (two files or folders); with --git: the paths to compare (default .)")
+    p.add_argument("--git", metavar="REV", help="compare the working tree with this revision (e.g. HEAD, origin/main)")
+    p.add_argument("--format", choices=["text", "json", "markdown"], default="text")
+    p.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
+    p.add_argument("--fail-on-change", action="store_true", help="exit 1 when anything changed (frozen descriptions)")
+    p.add_argument("--seeds", type=int, default=5, metavar="N",
+                   help="random joint configurations besides zero at which frame poses are compared (default 5)")
+    p.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
+    p.add_argument("--no-config", action="store_true", help="ignore config files")
+    add_load_options(p)
+    p.set_defaults(func=cmd_diff)
+
+
+def _options(ns) -> dict:
+    return dict(args=dict(ns.args), packages=dict(ns.packages), trusted=True if ns.trusted else None,
+                allow_env=tuple(ns.allow_env), timeout=ns.timeout, max_elements=ns.max_elements,
+                config=ns.config, use_config=not ns.no_config, budget=ns.budget)
+
+
+def cmd_diff(ns) -> int:
+    from urdfcheck.pipeline import diff as stage
+
+    if ns.seeds < 0 or ns.seeds > 100:
+        raise UsageError("--seeds must be between 0 and 100")
+    for p in ns.paths:
+        if not os.path.exists(p):
+            raise UsageError(f"no such file or folder: {p}")
+    if ns.git is None:
+        if len(ns.paths) != 2:
+            raise UsageError("give OLD and NEW (two files or folders), or --git REV")
+        old, new = ns.paths
+        result = stage.diff([old], [new], _root(old), _root(new), seeds=ns.seeds, **_options(ns))
+    else:
+        from urdfcheck.pipeline import gitside
+
+        paths = ns.paths or ["."]
+        repo = gitside.repo_root(os.path.abspath(paths[0]) if os.path.isdir(paths[0])
+                                 else os.path.dirname(os.path.abspath(paths[0])))
+        with gitside.export(ns.git, repo) as tmp:
+            rel = [os.path.relpath(os.path.abspath(p), repo) for p in paths]
+            if any(r == ".." or r.startswith(".." + os.sep) for r in rel):
+                raise UsageError(f"--git: every path must be inside the repository {repo}")
+            old = [o for o in (os.path.join(tmp, r) for r in rel) if os.path.exists(o)]  # else: all added
+            result = stage.diff(old, [os.path.abspath(p) for p in paths], tmp, repo, seeds=ns.seeds,
+                                **_options(ns))
+    from urdfcheck.report.diff import render
+
+    text = render(ns.format, result)
+    if ns.output:
+        try:
+            with open(ns.output, "w", encoding="utf-8") as f:
+                f.write(text)
+        except OSError as e:
+            raise UsageError(f"cannot write {ns.output}: {e.strerror}") from None
+    else:
+        sys.stdout.write(text)
+    if any(p.status == "unloadable" for p in result.pairs):
+        return EXIT_FINDINGS
+    return EXIT_FINDINGS if ns.fail_on_change and result.changed else EXIT_CLEAN
+
+
+def _root(path: str) -> str:
+    return os.path.abspath(path) if os.path.isdir(path) else os.path.dirname(os.path.abspath(path))

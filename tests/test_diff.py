@@ -1,0 +1,195 @@
+"""`urdfcheck diff`: what a change does to the robot (issue 22)."""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+AGV = ROOT / "examples" / "agv"
+SRC = str(ROOT / "src")
+
+
+def cli(*args, cwd=None):
+    env = {**os.environ, "PYTHONPATH": SRC + os.pathsep + os.environ.get("PYTHONPATH", "")}
+    return subprocess.run([sys.executable, "-m", "urdfcheck", "diff", *map(str, args)], capture_output=True,
+                          text=True, cwd=cwd, env=env, timeout=120)
+
+
+def edit(path: Path, old: str, new: str) -> None:
+    text = path.read_text()
+    assert old in text, old
+    path.write_text(text.replace(old, new))
+
+
+@pytest.fixture
+def two(tmp_path):
+    old, new = tmp_path / "old", tmp_path / "new"
+    shutil.copytree(AGV, old)
+    shutil.copytree(AGV, new)
+    return old, new
+
+
+def as_json(res):
+    assert res.returncode in (0, 1), res.stderr
+    return json.loads(res.stdout)
+
+
+def test_laser_moved_one_centimetre(two):
+    old, new = two
+    edit(new / "urdf/agv.urdf.xacro", 'name="laser_link" parent="base_link" xyz="0.25 0 0.15"',
+         'name="laser_link" parent="base_link" xyz="0.26 0 0.15"')
+    data = as_json(cli(old, new, "--format", "json"))
+    xacro = [m for m in data["models"] if m["model"] == "urdf/agv.urdf.xacro"]
+    assert {m["variant"] for m in xacro} == {"camera", "no_camera"}
+    for m in xacro:
+        assert m["status"] == "changed"
+        assert [f["frame"] for f in m["moved"]] == ["laser_link"]  # and nothing else moved
+        assert m["moved"][0]["zero_mm"] == pytest.approx(10.0, abs=1e-6)
+        assert m["moved"][0]["deg"] == 0
+        assert m["moved"][0]["because"] == "laser_link_joint"
+        assert [(c["name"], c["field"]) for c in m["changes"]] == [("laser_link_joint", "origin.xyz")]
+    plain = [m for m in data["models"] if m["model"] == "urdf/agv.urdf"]
+    assert [m["status"] for m in plain] == ["unchanged"]
+    res = cli(old, new)
+    assert "laser_link moved 10 mm" in res.stdout and res.returncode == 0
+    assert cli(old, new, "--fail-on-change").returncode == 1
+
+
+def test_joint_limit_in_the_macro(two):
+    old, new = two
+    edit(new / "urdf/macros/components.xacro", 'velocity="10.0"', 'velocity="8.0"')
+    data = as_json(cli(old, new, "--format", "json"))
+    m = next(m for m in data["models"] if m["variant"] == "camera")
+    got = {(c["name"], c["field"], c["old"], c["new"]) for c in m["changes"]}
+    assert got == {("left_wheel_joint", "limit.velocity", 10.0, 8.0),
+                   ("right_wheel_joint", "limit.velocity", 10.0, 8.0)}
+    assert m["moved"] == []
+
+
+def test_comments_and_formatting_are_no_change(two):
+    old, new = two
+    f = new / "urdf/agv.urdf.xacro"
+    text = f.read_text().replace('xyz="0.25 0 0.15"', 'xyz="0.250  0.0 0.15"  ')
+    text = text.replace("<!-- Sensors -->", "<!-- Sensors (comment edited) -->\n\n   <!-- another -->")
+    f.write_text(text.replace('value="0.10"/>', 'value="0.1" />'))
+    res = cli(old, new, "--fail-on-change")
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "no change in 3 model variants" in res.stdout
+
+
+def test_rename_inertia_material_and_contract(two):
+    old, new = two
+    f = new / "urdf/agv.urdf.xacro"
+    edit(f, 'name="imu_link" parent="base_link"', 'name="imu_frame" parent="base_link"')
+    edit(f, 'mass="0.15"/>', 'mass="0.25"/>')
+    edit(f, '<color rgba="0.05 0.05 0.05 1.0"/>', '<color rgba="0.1 0.1 0.1 1.0"/>')
+    edit(new / "config/agv_controllers.yaml", "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [left_wheel]")
+    data = as_json(cli(old, new, "--format", "json"))
+    m = next(m for m in data["models"] if m["variant"] == "camera")
+    assert m["links"]["renamed"] == [["imu_link", "imu_frame"]]
+    assert m["joints"]["renamed"] == [["imu_link_joint", "imu_frame_joint"]]
+    assert m["links"]["added"] == m["links"]["removed"] == []
+    fields = {(c["kind"], c["name"], c["field"]) for c in m["changes"]}
+    assert ("link", "laser_link", "mass") in fields and ("link", "laser_link", "inertia") in fields
+    assert ("material", "black", "rgba") in fields
+    assert ("link", "left_wheel_link", "visual[left_wheel].material") in fields
+    contract = [c for c in m["changes"] if c["kind"] == "contract"]
+    assert any("diff_drive_controller" in c["name"] and "left_wheel" in c["new"] for c in contract), contract
+    assert m["moved"] == []
+    md = cli(old, new, "--format", "markdown").stdout
+    assert "```mermaid" in md and "linkStyle" in md and "| what | field | before | after |" in md
+
+
+def test_added_link_and_moved_children(tmp_path):
+    a = tmp_path / "a.urdf"
+    b = tmp_path / "b.urdf"
+    base = """<robot name="r">
+  <link name="base"/><link name="arm"/><link name="tool"/>
+  <joint name="j1" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="0 0 {z}"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>
+  <joint name="j2" type="fixed"><parent link="arm"/><child link="tool"/><origin xyz="0.5 0 0"/></joint>
+  {extra}
+</robot>"""
+    a.write_text(base.format(z="0.1", extra=""))
+    b.write_text(base.format(z="0.1", extra='<link name="cam"/><joint name="jc" type="fixed"><parent link="tool"/>'
+                                           '<child link="cam"/></joint>').replace('<axis xyz="0 0 1"/>',
+                                                                                    '<axis xyz="0 1 0"/>'))
+    data = as_json(cli(a, b, "--format", "json"))
+    (m,) = data["models"]
+    assert m["links"]["added"] == ["cam"] and m["joints"]["added"] == ["jc"]
+    moved = {x["frame"]: x for x in m["moved"]}
+    # the axis changed: nothing moves at zero, the random configurations move the arm and what hangs from it
+    assert set(moved) == {"arm", "tool"}
+    assert moved["tool"]["zero_mm"] == 0 and moved["tool"]["mm"] > 0 and moved["tool"]["because"] == "j1"
+    assert ("j1", "axis") in {(c["name"], c["field"]) for c in m["changes"]}
+
+
+def _git(*args, cwd):
+    env = {**os.environ, "GIT_AUTHOR_NAME": "t", "GIT_AUTHOR_EMAIL": "t@t", "GIT_COMMITTER_NAME": "t",
+           "GIT_COMMITTER_EMAIL": "t@t"}
+    subprocess.run(["git", *args], cwd=cwd, check=True, capture_output=True, env=env)
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_git_revision_reads_old_files_without_checkout(tmp_path):
+    repo = tmp_path / "repo"
+    shutil.copytree(AGV, repo / "agv_description")
+    _git("init", "-q", cwd=repo)
+    _git("add", "-A", cwd=repo)
+    _git("commit", "-qm", "init", cwd=repo)
+    f = repo / "agv_description/urdf/agv.urdf.xacro"
+    edit(f, 'xyz="0.25 0 0.15"', 'xyz="0.26 0 0.15"')
+    before = f.read_text()
+    res = cli("--git", "HEAD", "--format", "json", cwd=repo)
+    data = as_json(res)
+    changed = [m for m in data["models"] if m["status"] == "changed"]
+    assert changed and all([x["frame"] for x in m["moved"]] == ["laser_link"] for m in changed)
+    assert f.read_text() == before  # the working tree is untouched
+    status = subprocess.run(["git", "status", "--porcelain"], cwd=repo, capture_output=True, text=True).stdout
+    assert status.split() == ["M", "agv_description/urdf/agv.urdf.xacro"]
+    assert not data["old"].startswith(str(repo))  # the old side lived outside the user's tree
+    assert cli("--git", "no-such-rev", cwd=repo).returncode == 2
+
+
+def test_usage_errors(tmp_path):
+    assert cli(tmp_path / "missing", tmp_path).returncode == 2
+    assert cli(tmp_path).returncode == 2
+
+
+def test_broken_side_is_not_a_clean_diff(tmp_path):
+    a, b = tmp_path / "a.urdf", tmp_path / "b.urdf"
+    a.write_text('<robot name="r"><link name="base"/></robot>')
+    b.write_text('<robot name="r"><link name="base"/>')
+    res = cli(a, b)
+    assert res.returncode == 1 and "does not load" in res.stdout
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_git_new_package_is_added(tmp_path):
+    repo = tmp_path / "repo"
+    (repo / "docs").mkdir(parents=True)
+    (repo / "docs/readme.md").write_text("x\n")
+    _git("init", "-q", cwd=repo)
+    _git("add", "-A", cwd=repo)
+    _git("commit", "-qm", "init", cwd=repo)
+    shutil.copytree(AGV, repo / "agv_description")
+    data = as_json(cli("--git", "HEAD", "agv_description", "--format", "json", cwd=repo))
+    assert {m["status"] for m in data["models"]} == {"added"}
+    assert cli("--git", "HEAD", "agv_description", "--fail-on-change", cwd=repo).returncode == 1
+
+
+def test_plain_urdf_against_the_variants_of_a_xacro(two):
+    old, new = two
+    data = as_json(cli(old / "urdf/agv.urdf", new / "urdf/agv.urdf.xacro", "--format", "json"))
+    by = {m["variant"]: m for m in data["models"]}
+    assert set(by) == {"camera", "no_camera"}  # the one URDF against each variant of the xacro
+    assert by["camera"]["status"] == "unchanged"  # agv.urdf is the xacro's output with use_camera:=true
+    assert by["no_camera"]["links"]["removed"] == ["camera_link"]
+    shapes = {c["field"] for c in by["no_camera"]["changes"] if c["name"] == "base_link"}
+    assert shapes == {"visual[camera_mast]", "collision[camera_mast]"}
