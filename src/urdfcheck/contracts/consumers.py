@@ -34,6 +34,24 @@ class Consumers(Record):
     # files: kind -> [paths read]
     _fields = ('controllers', 'drivers', 'launch', 'localization', 'tf_owners', 'frames', 'frame_prefix', 'errors',
                'notes', 'origin', 'files')
+    # issue 20 (contracts.openworld), set after reading: unknown: (what, Location) not understood, which makes
+    # absence claims infos; package_files: parameter files no deployment reads, checked against the model
+    # (`settle`); elsewhere_localization: localization nodes of those files
+    unknown: list = ()
+    package_files: tuple = ()
+    package_single = True
+    elsewhere_localization: list = ()
+    workspace: str | None = None  # the folder whose joint state broadcasters may run beside this deployment
+
+    def settle(self, model) -> Consumers:
+        """Add the package's unread parameter files, once, now that the model is known."""
+        files, self.package_files = self.package_files, ()
+        if files:
+            from urdfcheck.contracts.openworld import add_package_files
+
+            add_package_files(self, files, model, _Reader(), single=self.package_single,
+                              why="no launch file of this deployment reads its file")
+        return self
 
     def __init__(self, controllers: ControllerSet | None = None,
                  drivers: list[Driver] | None = None,
@@ -223,6 +241,9 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     for c in out.controllers:
         out.notes.extend(c.notes)
     out.localization = localization_from_params(pfs)
+    from urdfcheck.contracts.openworld import package_drivers, package_unknowns
+
+    out.drivers = package_drivers(pfs, out.controllers, out.localization)  # the base driver's YAML (issue 20)
     base = os.path.basename(entry)
     launches = []
     for p in found.launch:
@@ -234,6 +255,7 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     # every launch file of the package, associated with this model or not: when none starts a
     # robot_state_publisher, nothing in the package needs joint states (C003)
     out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found.launch)}
+    out.unknown = package_unknowns(out)
     return out
 
 
