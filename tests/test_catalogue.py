@@ -32,7 +32,8 @@ def test_names_are_unique():
 
 def test_every_check_has_an_entry_and_vice_versa():
     checks = rulebook.load_checks()
-    load_time = {c for c in CATALOGUE if c[0] in "XRV"}  # produced by the loader/engine/verify, not by checks
+    # produced by the loader/engine/verify, not by checks; C021 by the planner (a deployment it did not understand)
+    load_time = {c for c in CATALOGUE if c[0] in "XRV"} | {"C021"}
     assert set(checks) - set(CATALOGUE) == set(), "checks without catalogue entry"
     assert set(CATALOGUE) - set(checks) - load_time == set(), "catalogue entries without a check"
 

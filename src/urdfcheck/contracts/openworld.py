@@ -85,15 +85,18 @@ def _description_only(root, nodes) -> bool:
 
 
 def package_unknowns(c) -> list[tuple[str, Location]]:
-    """Zero config: parameter files beside the model and no launch file that runs it with them."""
+    """Zero config: parameter files beside the model, and either no launch file of the package that starts
+    robot_state_publisher (what runs beside the model is not known) or nodes of no known kind in them."""
+    from urdfcheck.load.loader import display
+
     first = next((ctrl.loc for ctrl in c.controllers), None) or next((d.loc for d in c.drivers), None)
-    if first is None:
+    if first is None and not c.launch:
         return []
-    starts = any(li.state_publishers for li in c.launch)
-    if starts:
-        return []
-    return [("no launch file found that runs this model with its parameter files (what runs beside it is "
-             "not known)", first)]
+    if not any(li.state_publishers for li in c.launch):
+        return [("no launch file found that runs this model with its parameter files (what runs beside it is "
+                 "not known)", first or Location(c.launch[0].path))]
+    return [(f"{_node_label(n)} in {display(n.loc.file)}", n.loc) for li in c.launch for n in li.nodes
+            if not known_kind(n.package or "")]
 
 
 # --- parameter files no deployment reads -------------------------------------------------------------------
@@ -207,17 +210,23 @@ _BROADCASTER = re.compile(rb"joint_state_broadcaster|joint_state_controller|Join
 _WORKSPACE: dict[str, list] = {}  # workspace root -> its broadcaster files' controllers (read once per run)
 
 
-def workspace_broadcasters(c) -> list:
-    """Joint state broadcasters configured anywhere in the consumers' workspace (`c.workspace`) in files
-    that `c` does not read: suppliers that another launch file may start beside this one (a `*_control`
-    package's YAML). Each marked `elsewhere`."""
+def workspace_broadcasters(c, joints: set) -> list:
+    """Joint state broadcasters configured anywhere in the consumers' workspace (`c.workspace`), in files that
+    `c` does not read and that name some of `joints` (a `*_control` package's YAML beside the controllers of
+    this model): suppliers that another launch file may start beside this one. (broadcaster, the joints its
+    file names), each marked `elsewhere`."""
     root = getattr(c, "workspace", None)
-    if not root:
+    if not root or not joints:
         return []
     if root not in _WORKSPACE:
         _WORKSPACE[root] = _broadcasters(root)
     mine = {os.path.realpath(f) for fs in (c.files or {}).values() for f in fs}
-    return [b for b in _WORKSPACE[root] if os.path.realpath(b.file) not in mine]
+    out = []
+    for ctl, named in _WORKSPACE[root]:
+        hit = named & joints
+        if hit and os.path.realpath(ctl.file) not in mine:
+            out.append((ctl, hit))
+    return out
 
 
 def _broadcasters(root: str) -> list:
@@ -236,10 +245,12 @@ def _broadcasters(root: str) -> list:
         pf = reader.params(f, [])
         if pf is None:
             continue
+        named = {x for node in pf.nodes.values() for v in node.params.values()
+                 for x in (v.value if isinstance(v.value, list) else [v.value]) if isinstance(x, str)}
         for ctl in read_controllers([pf]):
             if ctl.kind in (JSB, JSC):
                 ctl.elsewhere = f"it is configured in {_show(f)}, which no launch file of this deployment reads"
-                out.append(ctl)
+                out.append((ctl, named))
     return out
 
 

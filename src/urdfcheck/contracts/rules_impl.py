@@ -193,11 +193,13 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
         return
     # suppliers not known to run in this deployment: the package's unread files, then the workspace's
     far, far_covered, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=False)
-    if not far:
+    if not far:  # a broadcaster in a workspace file that names these joints (a `*_control` package)
         from urdfcheck.contracts.openworld import workspace_broadcasters
 
-        far, far_covered, everything = _state_cover(workspace_broadcasters(c), (), hw_joints, trans_joints,
-                                                    local=False)
+        found = workspace_broadcasters(c, set(model.joints))
+        far = [b for b, _ in found]
+        far_covered = set().union(set(), *(named | hw_joints for _, named in found))
+        everything = False
     if everything:
         far_covered = {j.name for j in missing}
     supplied = [j for j in missing if j.name in far_covered]

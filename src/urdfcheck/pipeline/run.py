@@ -75,6 +75,7 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
     result.infos = infos
+    _not_understood(result, getattr(targets, "not_understood", ()), request)
     _missing_packages_once(result)
     if request.fail_on is not None:
         result.fail_on = request.fail_on
@@ -90,6 +91,15 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
     if request.root and os.path.abspath(request.root) != os.getcwd():
         _rebase(result, os.path.abspath(request.root))
     return result
+
+
+def _not_understood(result: Result, deployments, request: LintRequest) -> None:
+    """Deployments whose model was not understood: C021 infos (issue 20), beside the targets' findings."""
+    from urdfcheck.pipeline.understood import findings
+
+    extra = findings(deployments, request.settings(None), request.shown)
+    if extra:
+        result.findings = sorted([*result.findings, *extra], key=Finding.sort_key)
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
