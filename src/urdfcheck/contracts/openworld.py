@@ -66,8 +66,8 @@ def deployment_unknowns(dep) -> list[tuple[str, Location]]:
     root = [i for i in dep.infos if dep.launch is not None and os.path.realpath(i.path) == os.path.realpath(
         dep.launch.file)]
     if root and not dep.chain and _description_only(root[0], nodes):
-        out.append((f"{display(dep.launch.file)} starts robot_state_publisher without anything that moves or "
-                    "supplies the robot: a description launch file that another launch file includes", dep.launch))
+        out.append((f"the launch files that include {display(dep.launch.file)} (it starts robot_state_publisher "
+                    "and nothing that moves or supplies the robot: a description launch file)", dep.launch))
     return out
 
 

@@ -32,7 +32,7 @@ def findings(deployments, settings, shown) -> list[Finding]:
         msg = (f"{launch}{variant} starts robot_state_publisher, but {why}: the contracts of this deployment "
                f"(controllers, drivers, TF owners) are not checked; tell urdfcheck the model it runs in "
                f"urdfcheck.yaml: `models: [{{path: <the model file>, launch: [{launch}]}}]`")
-        where = loc._replace(file=loc.file) if loc is not None else Location(d.launch.file)
+        where = loc._replace(file=shown(loc.file)) if loc is not None else Location(launch)
         out.append(Finding(CODE, sel.severity_of(CODE, Severity.INFO), clean_text(msg, 1000), where, name=NAME,
                            model=launch, variant=d.variant))
     return out
