@@ -322,7 +322,8 @@ def _attach_point(model, g) -> str | None:
     if len(dangling) != 1:
         return None
     j, end, name = dangling[0]
-    if end != "parent" or g.suggestion.get(name) or j.child not in model.links:
+    # `world` is no attach point: a robot fixed to it must define it (urdfdom refuses it; only Gazebo knows it)
+    if end != "parent" or name == "world" or g.suggestion.get(name) or j.child not in model.links:
         return None
     children = {x.child for x in model.joint_list}
     roots = [n for n in model.links if n not in children]
