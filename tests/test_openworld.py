@@ -53,17 +53,21 @@ CASTER = """  <link name="caster_link"/>
 </robot>"""
 TILTED = [(MACROS, "params=\"prefix side_sign ", "params=\"prefix side_sign axis:='0 1 0' "),
           (MACROS, '<axis xyz="0 1 0"/>', '<axis xyz="${axis}"/>'),
-          (XACRO, '<xacro:wheel prefix="right" side_sign="-1"', '<xacro:wheel prefix="right" side_sign="-1" axis="0 0.8 0.6"')]
+          (XACRO, '<xacro:wheel prefix="right" side_sign="-1"',
+           '<xacro:wheel prefix="right" side_sign="-1" axis="0 0.8 0.6"')]
 
 # (name, edits, expected code, severity, file the finding is in)
 SEEDED = [
-    ("controller joint misspelt", [(CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [left_wheel_jiont]")],
-     "C001", "error", CTRL),
-    ("controller wheel separation", [(CTRL, "wheel_separation: 0.50", "wheel_separation: 0.56")], "C010", "error", CTRL),
+    ("controller joint misspelt",
+     [(CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [left_wheel_jiont]")], "C001", "error", CTRL),
+    ("controller wheel separation", [(CTRL, "wheel_separation: 0.50", "wheel_separation: 0.56")],
+     "C010", "error", CTRL),
     ("controller wheel radius", [(CTRL, "wheel_radius: 0.10", "wheel_radius: 0.12")], "C011", "error", CTRL),
-    ("controller base frame", [(CTRL, "base_frame_id: base_link", "base_frame_id: base_lnk")], "C020", "error", CTRL),
-    ("controller wheels swapped", [(CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [right_wheel_joint]"),
-                                   (CTRL, "right_wheel_names: [right_wheel_joint]", "right_wheel_names: [left_wheel_joint]")],
+    ("controller base frame", [(CTRL, "base_frame_id: base_link", "base_frame_id: base_lnk")],
+     "C020", "error", CTRL),
+    ("controller wheels swapped",
+     [(CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [right_wheel_joint]"),
+      (CTRL, "right_wheel_names: [right_wheel_joint]", "right_wheel_names: [left_wheel_joint]")],
      "C014", "error", CTRL),
     ("fixed wheel", [(MACROS, 'type="continuous"', 'type="${\'fixed\' if prefix == \'right\' else \'continuous\'}"')],
      "C002", "error", CTRL),
@@ -295,7 +299,8 @@ def generate_launch_description():
 ROS1_NOT_UNDERSTOOD = {
     "eval find": """<launch>
   <arg name="robot" default="bot"/>
-  <param name="robot_description" command="$(find xacro)/xacro $(eval find(arg('robot') + '_description') + '/urdf/x.xacro')"/>
+  <param name="robot_description"
+         command="$(find xacro)/xacro $(eval find(arg('robot') + '_description') + '/urdf/x.xacro')"/>
   <node pkg="robot_state_publisher" type="robot_state_publisher" name="rsp"/>
 </launch>
 """,

@@ -317,8 +317,8 @@ def _attach_point(model, g) -> str | None:
     """The link an attachable fragment (an end effector, a sensor mount) hangs from: the only undefined name of
     the model is the parent of exactly one joint, no defined link resembles it, and that joint's child is the
     root of everything else (issue 20). None when the model is not such a fragment."""
-    dangling = [(j, end, name) for j in model.joint_list
-                for end, name in (("parent", j.parent), ("child", j.child)) if name is not None and name not in model.links]
+    dangling = [(j, end, name) for j in model.joint_list for end, name in (("parent", j.parent), ("child", j.child))
+                if name is not None and name not in model.links]
     if len(dangling) != 1:
         return None
     j, end, name = dangling[0]
