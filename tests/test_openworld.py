@@ -337,3 +337,61 @@ def test_not_understood_in_every_report_format(tmp_path, fmt):
     code, out, err = run_cli(["lint", "--no-config", "--format", fmt], cwd=d)
     assert code == 0, err
     assert "C021" in out or "deployment-not-understood" in out, out
+
+
+CONTROLLERS = """controller_manager:
+  ros__parameters:
+    diff_drive_controller: {type: diff_drive_controller/DiffDriveController}
+diff_drive_controller:
+  ros__parameters:
+    left_wheel_names: [left_wheel_joint]
+    right_wheel_names: [right_wheel_joint]
+    wheel_separation: 0.4
+    wheel_radius: 0.05
+"""
+CONTROL_NODES = ('  <node pkg="controller_manager" exec="ros2_control_node">'
+                 '<param from="$(find-pkg-share bot_description)/config/c.yaml"/></node>\n'
+                 '  <node pkg="controller_manager" exec="spawner" args="diff_drive_controller"/>\n')
+
+
+@pytest.mark.parametrize("script,severity", [
+    ("from sensor_msgs.msg import JointState\n", "info"),  # may publish them: not failed
+    ("from sensor_msgs.msg import BatteryState\n", "warning"),  # read, supplies nothing: the world is understood
+])
+def test_a_projects_own_script_is_read_when_it_is_in_the_workspace(tmp_path, script, severity):
+    d = description_ws(tmp_path, CONTROL_NODES + '  <node pkg="bot_description" exec="helper_node.py"/>\n')
+    write(d / "config" / "c.yaml", CONTROLLERS)
+    write(d / "scripts" / "helper_node.py", "#!/usr/bin/env python3\nimport rclpy\n" + script)
+    _, report = lint_json([], cwd=d)
+    assert [x["severity"] for x in by_code(report, "C003")] == [severity], report["findings"]
+
+
+def test_a_launch_file_included_by_an_unfollowed_include_is_not_a_closed_world(tmp_path):
+    """bringup includes the description launch file only under a condition that is false by default: the
+    description launch file is a deployment of its own, and whoever includes it may supply the joint states."""
+    d = description_ws(tmp_path, CONTROL_NODES)
+    write(d / "config" / "c.yaml", CONTROLLERS)
+    b = tmp_path / "bot_bringup"
+    write(b / "package.xml", PKG.format("bot_bringup"))
+    write(b / "launch" / "bringup.launch.py", '''import os
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription
+from launch.conditions import IfCondition
+from launch.launch_description_sources import AnyLaunchDescriptionSource
+from launch.substitutions import LaunchConfiguration
+
+
+def generate_launch_description():
+    desc = os.path.join(get_package_share_directory('bot_description'), 'launch', 'description.launch.xml')
+    return LaunchDescription([
+        DeclareLaunchArgument('use_desc', default_value='false'),
+        IncludeLaunchDescription(AnyLaunchDescriptionSource(desc),
+                                 condition=IfCondition(LaunchConfiguration('use_desc'))),
+    ])
+''')
+    code, report = lint_json([], cwd=tmp_path)
+    c003 = by_code(report, "C003")
+    assert [x["severity"] for x in c003] == ["info"], report["findings"]
+    assert "(not followed to it)" in c003[0]["message"] and "description launch file" not in c003[0]["message"]
+    assert code == 0

@@ -57,7 +57,7 @@ def deployment_unknowns(dep) -> list[tuple[str, Location]]:
     read = {n.loc for n, _ in dep.driver_nodes}
     nodes = [n for info in dep.infos for n in info.nodes]
     for n in nodes:
-        if n.loc in read or known_kind(n.package or ""):
+        if n.loc in read or known_kind(n.package or "") or _read_and_silent(n, dep.workspace):
             continue
         out.append((f"{_node_label(n)} in {display(n.loc.file)}", n.loc))
     for msg, loc in dep.notes:
@@ -65,10 +65,51 @@ def deployment_unknowns(dep) -> list[tuple[str, Location]]:
             out.append((f"{msg} ({display(loc.file)})", loc))
     root = [i for i in dep.infos if dep.launch is not None and os.path.realpath(i.path) == os.path.realpath(
         dep.launch.file)]
-    if root and not dep.chain and _description_only(root[0], nodes):
+    if getattr(dep, "included_elsewhere", False):
+        out.append((f"the launch files that include {display(dep.launch.file)} (not followed to it)", dep.launch))
+    elif root and not dep.chain and _description_only(root[0], nodes):
         out.append((f"the launch files that include {display(dep.launch.file)} (it starts robot_state_publisher "
                     "and nothing that moves or supplies the robot: a description launch file)", dep.launch))
     return out
+
+
+# what a node's own script would contain if it published joint states, transforms or a model
+_SUPPLIES = re.compile(rb"JointState|TransformBroadcaster|sendTransform|TFMessage|tf2_ros|\btf\b|robot_description"
+                       rb"|urdf|xacro")
+_SCRIPTS: dict[tuple, bool] = {}
+MAX_SCRIPT_FILES = 5000
+
+
+def _read_and_silent(node, workspace: str | None) -> bool:
+    """The node is a Python script of a package in the workspace that was read and publishes no joint states,
+    no transforms and no model (a battery monitor, a command timeout): it supplies nothing an absence is
+    about. C++ executables (named by a build target, not a file) stay unknown."""
+    exe = node.executable or ""
+    if not workspace or not node.package or not exe or "/" in exe or "\x00" in exe:
+        return False
+    key = (workspace, node.package, exe)
+    if key not in _SCRIPTS:
+        _SCRIPTS[key] = _silent_script(workspace, node.package, exe)
+    return _SCRIPTS[key]
+
+
+def _silent_script(workspace: str, package: str, exe: str) -> bool:
+    from urdfcheck.contracts.discover import _walk
+    from urdfcheck.core.safeio import read_file
+    from urdfcheck.load.packages import leaves_cwd, workspace_packages
+
+    dirs = workspace_packages(workspace).get(package) or []
+    names = {exe} if exe.endswith(".py") else {exe, exe + ".py"}
+    hits = [os.path.join(d, f) for folder in dirs[:1] for d, f in _walk(str(folder), MAX_SCRIPT_FILES) if f in names]
+    if len(hits) != 1 or leaves_cwd(hits[0]):
+        return False
+    try:
+        text = read_file(hits[0], 1024 * 1024)
+    except OSError:
+        return False
+    if not (hits[0].endswith(".py") or text.startswith(b"#!") and b"python" in text.split(b"\n", 1)[0]):
+        return False
+    return _SUPPLIES.search(text) is None
 
 
 def _description_only(root, nodes) -> bool:

@@ -60,6 +60,7 @@ class Deployment(Record):
     package_files: tuple = ()
     package_single = True
     workspace: str | None = None
+    included_elsewhere = False
 
     def __init__(self, model, how="xacro", args=None, variant="", namespace="/", frame_prefix=None,
                  launch: Location | None = None, rsp: Location | None = None, chain=(), controller_files=(),
@@ -545,7 +546,7 @@ def find_deployments(root: str | os.PathLike, resolver=None, *, packages: Mappin
             out.append(dep)
     from urdfcheck.pipeline.unread import mark_unread
 
-    mark_unread(out, ws.root)
+    mark_unread(out, ws.root, included)
     return out
 
 

@@ -5,7 +5,8 @@ checked every controller, driver and localization file of the model's package ag
 no launch file names (the seed tutorial's driver YAML beside a launch file that starts robot_state_publisher
 alone) must still be checked. `mark_unread` gives each deployment the files of its model's package that no
 deployment of the same run reads (`Deployment.package_files`); `contracts.openworld.add_package_files`
-checks them against the model once it is built, marked as not known to run in that deployment.
+checks them against the model once it is built, marked as not known to run in that deployment. It also
+notes the workspace (`Deployment.workspace`) and whether another launch file includes the deployment's root.
 """
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ import os
 from pathlib import Path
 
 
-def mark_unread(deployments, root: str) -> None:
+def mark_unread(deployments, root: str, included=()) -> None:
     from urdfcheck.contracts.discover import discover
     from urdfcheck.load.packages import enclosing_package
 
@@ -24,6 +25,9 @@ def mark_unread(deployments, root: str) -> None:
     found: dict[str, tuple] = {}
     for d in deployments:
         d.workspace = root
+        # a root launch file that another launch file includes, which was not followed to it: that one's
+        # world is not known (contracts.openworld)
+        d.included_elsewhere = d.launch is not None and os.path.realpath(d.launch.file) in included
         if d.model is None:
             continue
         pkg = enclosing_package(Path(os.path.abspath(d.model)).parent)
