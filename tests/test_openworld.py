@@ -395,3 +395,22 @@ def generate_launch_description():
     assert [x["severity"] for x in c003] == ["info"], report["findings"]
     assert "(not followed to it)" in c003[0]["message"] and "description launch file" not in c003[0]["message"]
     assert code == 0
+
+
+def test_a_config_listing_the_launch_file_gives_the_same_verdict(tmp_path):
+    """Zero config and a config that lists the same launch file agree: an unknown node makes the absence an
+    info in both."""
+    d = description_ws(tmp_path, CONTROL_NODES + '  <node pkg="bot_description" exec="my_joint_publisher.py"/>\n')
+    write(d / "config" / "c.yaml", CONTROLLERS)
+    _, plain = lint_json([], cwd=d)
+    write(d / "urdfcheck.yaml", "models:\n  - path: urdf/bot.urdf\n    controllers: [config/c.yaml]\n"
+                                "    launch: [launch/description.launch.xml]\npackages: {bot_description: .}\n")
+    from tests.conftest import run_cli
+
+    code, out, err = run_cli(["lint", "--format", "json"], cwd=d)
+    import json
+
+    configured = json.loads(out)
+    assert [x["severity"] for x in by_code(plain, "C003")] == ["info"], plain["findings"]
+    assert [x["severity"] for x in by_code(configured, "C003")] == ["info"], configured["findings"]
+    assert code == 0, err

@@ -18,6 +18,7 @@ from urdfcheck.contracts.controllers import ControllerSet, Driver, read_controll
 from urdfcheck.contracts.graph import TFClaim, claims_from_owners
 from urdfcheck.contracts.launch import LaunchInfo, read_launch
 from urdfcheck.contracts.localization import LocalizationNode, localization_from_params
+from urdfcheck.contracts.openworld import names_a_joint as _names_a_joint
 from urdfcheck.contracts.params import ParamFile, read_params
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
@@ -203,6 +204,10 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     _launch_typed(out, pfs)
     out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
                  "launch": list(mc.launch), "localization": list(mc.localization)}
+    from urdfcheck.contracts.openworld import launch_unknowns
+
+    # the config declares the world, but for what its launch files run that was not understood (issue 20)
+    out.unknown = launch_unknowns(out, [d.file for d in mc.drivers])
     return out
 
 
@@ -290,19 +295,6 @@ def _launch_typed(out: Consumers, pfs: list) -> None:
     for c in out.controllers:
         if out.controllers.by_name(c.name) is c and c.name in types:
             out.notes.extend(c.notes)
-
-
-def _names_a_joint(pf: ParamFile, joints: set[str]) -> bool:
-    if not joints:
-        return False
-    for node in pf.nodes.values():
-        for v in node.params.values():
-            val = v.value
-            if isinstance(val, str) and val in joints:
-                return True
-            if isinstance(val, list) and any(isinstance(x, str) and x in joints for x in val):
-                return True
-    return False
 
 
 def _mentions(path: str, name: str) -> bool:

@@ -128,16 +128,26 @@ def _description_only(root, nodes) -> bool:
 def package_unknowns(c) -> list[tuple[str, Location]]:
     """Zero config: parameter files beside the model, and either no launch file of the package that starts
     robot_state_publisher (what runs beside the model is not known) or nodes of no known kind in them."""
-    from urdfcheck.load.loader import display
-
     first = next((ctrl.loc for ctrl in c.controllers), None) or next((d.loc for d in c.drivers), None)
     if first is None and not c.launch:
         return []
     if not any(li.state_publishers for li in c.launch):
         return [("no launch file found that runs this model with its parameter files (what runs beside it is "
                  "not known)", first or Location(c.launch[0].path))]
-    return [(f"{_node_label(n)} in {display(n.loc.file)}", n.loc) for li in c.launch for n in li.nodes
-            if not known_kind(n.package or "")]
+    return launch_unknowns(c)
+
+
+def launch_unknowns(c, read=()) -> list[tuple[str, Location]]:
+    """Nodes of no known kind in the launch files `c` read (but those given a parameter file in `read`: a
+    declared driver), and includes not followed: what a config's launch files run that was not understood."""
+    from urdfcheck.load.loader import display
+
+    read = {os.path.realpath(f) for f in read}
+    out = [(f"{_node_label(n)} in {display(n.loc.file)}", n.loc) for li in c.launch for n in li.nodes
+           if not known_kind(n.package or "") and not ({os.path.realpath(f) for f in n.param_files} & read)]
+    out.extend((f"{msg} ({display(loc.file)})", loc) for msg, loc in c.notes
+               if msg.startswith("include") and "not followed" in msg)
+    return out
 
 
 # --- parameter files no deployment reads -------------------------------------------------------------------
@@ -181,10 +191,18 @@ def infer_driver(name: str, file: str, loc: Location, params: dict, *, needs_joi
     return drv
 
 
-def _names_joint(pf, joints: set) -> bool:
-    from urdfcheck.contracts.consumers import _names_a_joint
-
-    return _names_a_joint(pf, joints)
+def names_a_joint(pf, joints: set[str]) -> bool:
+    """The parameter file names one of `joints` (as a value, or in a list)."""
+    if not joints:
+        return False
+    for node in pf.nodes.values():
+        for v in node.params.values():
+            val = v.value
+            if isinstance(val, str) and val in joints:
+                return True
+            if isinstance(val, list) and any(isinstance(x, str) and x in joints for x in val):
+                return True
+    return False
 
 
 def add_package_files(c, files, model, reader, *, single: bool, why: str) -> None:
@@ -203,7 +221,7 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
             if single:
                 c.errors.extend(e for e in errs if e not in c.errors)
             continue
-        if single or _names_joint(pf, joints):
+        if single or names_a_joint(pf, joints):
             pfs.append(pf)
     if not pfs:
         return
@@ -271,20 +289,22 @@ def workspace_broadcasters(c, joints: set) -> list:
 
 
 def _broadcasters(root: str) -> list:
-    from urdfcheck.contracts.consumers import _Reader
+    from urdfcheck.contracts.common import ConsumerError
     from urdfcheck.contracts.controllers import JSB, JSC, read_controllers
     from urdfcheck.contracts.discover import discover
+    from urdfcheck.contracts.params import read_params
     from urdfcheck.core.safeio import read_file
 
-    out, reader = [], _Reader()
+    out = []
     for f in discover(root).params:
         try:
             if not _BROADCASTER.search(read_file(f, 2 * 1024 * 1024)):
                 continue
         except OSError:
             continue
-        pf = reader.params(f, [])
-        if pf is None:
+        try:
+            pf = read_params(f)
+        except ConsumerError:
             continue
         named = {x for node in pf.nodes.values() for v in node.params.values()
                  for x in (v.value if isinstance(v.value, list) else [v.value]) if isinstance(x, str)}
