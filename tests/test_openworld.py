@@ -414,3 +414,32 @@ def test_a_config_listing_the_launch_file_gives_the_same_verdict(tmp_path):
     assert [x["severity"] for x in by_code(plain, "C003")] == ["info"], plain["findings"]
     assert [x["severity"] for x in by_code(configured, "C003")] == ["info"], configured["findings"]
     assert code == 0, err
+
+
+SEED_LAB_LAUNCH = """<launch>
+  <arg name="use_camera" default="true"/>
+  <param name="robot_description"
+         command="$(find xacro)/xacro '$(find agv_description)/urdf/agv.urdf.xacro' use_camera:=$(arg use_camera)"/>
+  <node pkg="robot_state_publisher" type="robot_state_publisher" name="robot_state_publisher"/>
+  <node pkg="tf2_ros" type="static_transform_publisher" name="map_to_odom" args="0 0 0 0 0 0 map odom"/>
+  {odom}
+</launch>
+"""
+
+
+@pytest.mark.parametrize("odom,severity", [
+    ('<node pkg="ros1_tf_lab" type="odom_tf_broadcaster" name="odom_tf_broadcaster"/>', "info"),
+    ('<node pkg="controller_manager" type="spawner" name="spawner" args="joint_state_controller"/>', "warning"),
+])
+def test_seed_tf_ownership_odom_from_its_own_broadcaster(tmp_path, odom, severity):
+    """The seed tutorial's ownership table: map -> odom from a static publisher, odom -> base_link from the
+    tutorial's own odom_tf_broadcaster (a node the tool cannot read), base_link -> sensors from
+    robot_state_publisher. With the broadcaster in the launch file, T005 is an info naming it; with only known
+    nodes beside robot_state_publisher (a spawner), nothing can publish odom -> base_link and T005 warns."""
+    ws = seed(tmp_path)
+    write(ws / "launch" / "description.launch", SEED_LAB_LAUNCH.format(odom=odom))
+    _, report = lint_json([], cwd=ws)
+    t005 = by_code(report, "T005")
+    assert t005 and {x["severity"] for x in t005} == {severity}, report["findings"]
+    if severity == "info":
+        assert "`odom_tf_broadcaster`" in t005[0]["message"]
