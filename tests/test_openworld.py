@@ -231,8 +231,11 @@ def test_own_joint_state_script_in_the_launch_file_is_named(tmp_path):
     assert code == 0
 
 
-def test_camera_driver_may_publish_its_own_frames(tmp_path):
-    d = description_ws(tmp_path, """  <node pkg="realsense2_camera" exec="realsense2_camera_node"/>
+@pytest.mark.parametrize("camera_params", ["", '<param name="publish_tf" value="true"/>'
+                                               '<param name="base_frame_id" value="camera_link"/>'])
+def test_camera_driver_may_publish_its_own_frames(tmp_path, camera_params):
+    camera = f'  <node pkg="realsense2_camera" exec="realsense2_camera_node">{camera_params}</node>\n'
+    d = description_ws(tmp_path, camera + """
   <node pkg="bot_base" exec="base_driver"><param from="$(find-pkg-share bot_description)/config/base.yaml"/></node>
   <node pkg="joint_state_publisher" exec="joint_state_publisher"/>
 """)

@@ -34,8 +34,8 @@ KNOWN_PACKAGES = {"robot_state_publisher", "joint_state_publisher", "joint_state
                   "teleop_twist_joy", "joy", "joy_linux", "twist_mux", "rosbridge_server", "foxglove_bridge",
                   "topic_tools", "image_transport", *LOCALIZATION_PACKAGES}
 KNOWN_PREFIXES = ("rviz", "gazebo", "ros_gz", "ros_ign", "moveit", "nav2_", "rqt")
-# nodes that supply or move the robot: a root launch file with none of these beside robot_state_publisher
-# is a description fragment
+# tools that neither move nor supply the robot: a root launch file that starts robot_state_publisher and only
+# these beside it is a description fragment
 _TOOLS = {"rviz", "rviz2", "xacro", "rqt_robot_steering", "foxglove_bridge", "rosbridge_server", "tf", "tf2_ros"}
 
 
@@ -49,12 +49,14 @@ def _node_label(n) -> str:
     return f"`{exe}`" + (f" (package {n.package})" if n.package and n.package != exe else "")
 
 
-def deployment_unknowns(dep) -> list[tuple[str, Location]]:
-    """What the deployment `dep` (pipeline.deployments.Deployment) did not understand, as (what, where)."""
+def deployment_unknowns(dep, drivers=()) -> list[tuple[str, Location]]:
+    """What the deployment `dep` (pipeline.deployments.Deployment) did not understand, as (what, where).
+    `drivers`: the base drivers read from its nodes' parameters (a node whose parameters name joints was read;
+    one whose parameters say nothing of joints, a camera's, was not: it may publish its own frames)."""
     from urdfcheck.load.loader import display
 
     out: list[tuple[str, Location]] = []
-    read = {n.loc for n, _ in dep.driver_nodes}
+    read = {d.loc for d in drivers if d.joints}
     nodes = [n for info in dep.infos for n in info.nodes]
     for n in nodes:
         if n.loc in read or known_kind(n.package or "") or _read_and_silent(n, dep.workspace):

@@ -155,7 +155,7 @@ class Deployment(Record):
                      "drivers": sorted({f for _, files in self.driver_nodes for f in files})}
         from urdfcheck.contracts.openworld import deployment_unknowns
 
-        out.unknown = deployment_unknowns(self)
+        out.unknown = deployment_unknowns(self, out.drivers)
         out.package_files, out.package_single = list(self.package_files), self.package_single
         out.workspace = self.workspace
         return out
