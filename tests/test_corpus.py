@@ -127,6 +127,11 @@ def _assert_meshes_only_stripped(g001):
         assert "meshes" in path.parts, path
 
 
+def _in_defaults(f) -> bool:
+    places = f.get("where") or [{"variant": f.get("variant", "")}]
+    return any(p.get("variant", "") in ("", "defaults") for p in places)
+
+
 @pytest.mark.parametrize("name, entry, args, known", GOOD, ids=[g[0] for g in GOOD])
 def test_good_model_has_only_known_errors(name, entry, args, known, corpus):
     _, report = lint(corpus / entry, args)
@@ -135,7 +140,9 @@ def test_good_model_has_only_known_errors(name, entry, args, known, corpus):
     if sandbox:
         pytest.xfail(f"xacro sandbox cannot expand {name} yet: {sandbox[0]['message']}")
 
-    errors = [f for f in findings if f["severity"] == "error"]
+    # the model as named, with these arguments: the other boolean-argument combinations it is linted in
+    # (pairwise variants, issue 22) are checked by the workspace tests
+    errors = [f for f in findings if f["severity"] == "error" and _in_defaults(f)]
     _assert_meshes_only_stripped([f for f in errors if f["code"] == "G001"])
     rest = [f for f in errors if f["code"] != "G001"]
 

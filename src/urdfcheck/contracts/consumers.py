@@ -18,6 +18,7 @@ from urdfcheck.contracts.controllers import ControllerSet, Driver, read_controll
 from urdfcheck.contracts.graph import TFClaim, claims_from_owners
 from urdfcheck.contracts.launch import LaunchInfo, read_launch
 from urdfcheck.contracts.localization import LocalizationNode, localization_from_launch, localization_from_params
+from urdfcheck.contracts.openworld import names_a_joint as _names_a_joint
 from urdfcheck.contracts.params import ParamFile, read_params
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
@@ -34,6 +35,24 @@ class Consumers(Record):
     # files: kind -> [paths read]
     _fields = ('controllers', 'drivers', 'launch', 'localization', 'tf_owners', 'frames', 'frame_prefix', 'errors',
                'notes', 'origin', 'files')
+    # issue 20 (contracts.openworld), set after reading: unknown: (what, Location) not understood, which makes
+    # absence claims infos; package_files: parameter files no deployment reads, checked against the model
+    # (`settle`); elsewhere_localization: localization nodes of those files
+    unknown: list = ()
+    package_files: tuple = ()
+    package_single = True
+    elsewhere_localization: list = ()
+    workspace: str | None = None  # the folder whose joint state broadcasters may run beside this deployment
+
+    def settle(self, model) -> Consumers:
+        """Add the package's unread parameter files, once, now that the model is known."""
+        files, self.package_files = self.package_files, ()
+        if files:
+            from urdfcheck.contracts.openworld import add_package_files
+
+            add_package_files(self, files, model, _Reader(), single=self.package_single,
+                              why="no launch file of this deployment reads its file")
+        return self
 
     def __init__(self, controllers: ControllerSet | None = None,
                  drivers: list[Driver] | None = None,
@@ -185,6 +204,10 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     _launch_typed(out, pfs)
     out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
                  "launch": list(mc.launch), "localization": list(mc.localization)}
+    from urdfcheck.contracts.openworld import launch_unknowns
+
+    # the config declares the world, but for what its launch files run that was not understood (issue 20)
+    out.unknown = launch_unknowns(out, [d.file for d in mc.drivers])
     return out
 
 
@@ -222,6 +245,8 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     out.controllers = read_controllers(pfs)
     for c in out.controllers:
         out.notes.extend(c.notes)
+    from urdfcheck.contracts.openworld import package_drivers, package_unknowns
+
     base = os.path.basename(entry)
     launches = []
     for p in found.launch:
@@ -230,10 +255,12 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     pk = dict(packages or {})
     _read_launch(launches, out, None, pk, r)
     tf_owners(out, pfs, r)
+    out.drivers = package_drivers(pfs, out.controllers, out.localization)  # the base driver's YAML (issue 20)
     _launch_typed(out, pfs)
     # every launch file of the package, associated with this model or not: when none starts a
     # robot_state_publisher, nothing in the package needs joint states (C003)
     out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found.launch)}
+    out.unknown = package_unknowns(out)
     return out
 
 
@@ -309,19 +336,6 @@ def _launch_typed(out: Consumers, pfs: list) -> None:
     for c in out.controllers:
         if out.controllers.by_name(c.name) is c and c.name in types:
             out.notes.extend(c.notes)
-
-
-def _names_a_joint(pf: ParamFile, joints: set[str]) -> bool:
-    if not joints:
-        return False
-    for node in pf.nodes.values():
-        for v in node.params.values():
-            val = v.value
-            if isinstance(val, str) and val in joints:
-                return True
-            if isinstance(val, list) and any(isinstance(x, str) and x in joints for x in val):
-                return True
-    return False
 
 
 def _mentions(path: str, name: str) -> bool:

@@ -200,40 +200,83 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
         return
     hw_joints = {h.name for r in model.ros2_control if not r.in_gazebo for h in r.joints}
     trans_joints = {i.name for t in model.transmissions for i in t.joints}
-    sources = []
-    for ctrl in c.controllers:
-        if ctrl.broadcasts_all:
-            sources.append(ctrl)
-            if ctrl.ros == 2:
-                if not hw_joints:
-                    return  # hardware described elsewhere: assume it covers the model
-                covered |= hw_joints
-            else:
-                if not trans_joints:
-                    return
-                covered |= trans_joints
-        for u in ctrl.state_joints:
-            covered.add(u.joint)
-            sources.append(ctrl)
-    for d in c.drivers:
-        for u in d.joints:
-            covered.add(u.joint)
-            sources.append(d)
+    sources, got, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=True)
+    if everything:
+        return  # a broadcaster of hardware described elsewhere: assume it covers the model
+    covered |= got
     missing = [j for j in movable if j.name not in covered]
     if not missing:
         return
-    if not sources:
+    # suppliers not known to run in this deployment: the package's unread files, then the workspace's
+    far, far_covered, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=False)
+    if not far:  # a broadcaster in a workspace file that names these joints (a `*_control` package)
+        from urdfcheck.contracts.openworld import workspace_broadcasters
+
+        found = workspace_broadcasters(c, set(model.joints))
+        far = [b for b, _ in found]
+        far_covered = set().union(set(), *(named | hw_joints for _, named in found))
+        everything = False
+    if everything:
+        far_covered = {j.name for j in missing}
+    supplied = [j for j in missing if j.name in far_covered]
+    if supplied:
+        names = ", ".join(j.name for j in supplied[:6]) + (", ..." if len(supplied) > 6 else "")
+        who = ", ".join(dict.fromkeys(s.name + ("" if os.path.basename(s.file) in s.name else
+                                                f" ({os.path.basename(s.file)})") for s in far[:3]))
+        yield Problem(f"the state of {len(supplied)} movable joint(s) ({names}) comes from {who}, which this "
+                      f"deployment does not start ({_elsewhere(far[0])}): not failed; run it with this model",
+                      at=far[0].loc, related=_dedupe_locs(supplied[:6], far[0].loc), severity=_INFO())
+    missing = [j for j in missing if j.name not in far_covered]
+    if not missing:
+        return
+    if not sources and not far:
         names = ", ".join(j.name for j in missing[:6]) + (", ..." if len(missing) > 6 else "")
         where = _consumer_anchor(c) or model.loc
         yield Problem(f"nothing publishes joint states for the model's {len(missing)} movable joint(s) ({names}): "
                       f"no joint_state_broadcaster/joint_state_controller, joint_state_publisher or driver; "
                       f"robot_state_publisher cannot place their child links", at=where,
-                      related=_dedupe_locs(missing[:6], where))
+                      related=_dedupe_locs(missing[:6], where), absent="publish them")
         return
+    # evidence cuts both ways: the suppliers found cover other joints, not these
     for j in missing:
         yield Problem(f"nothing publishes the state of joint {j.name!r} (the joint state broadcaster does not "
                       f"cover it and no driver names it); robot_state_publisher will not publish "
                       f"{j.child!r}", at=j, data={"joint": j.name})
+
+
+def _elsewhere(item) -> str:
+    return getattr(item, "elsewhere", None) or "it is configured in another package of the workspace"
+
+
+def _state_cover(controllers, drivers, hw_joints: set, trans_joints: set, local: bool):
+    """(sources, joints covered, everything) by the joint state suppliers that run here (`local`) or are not
+    known to (`elsewhere`, issue 20); everything: a broadcaster of hardware described outside the model
+    (assumed to cover every joint)."""
+    sources, covered, everything = [], set(), False
+    for ctrl in controllers:
+        if bool(getattr(ctrl, "elsewhere", None)) == local:
+            continue
+        if ctrl.broadcasts_all:
+            sources.append(ctrl)
+            joints = hw_joints if ctrl.ros == 2 else trans_joints
+            everything = everything or not joints
+            covered |= joints
+        for u in ctrl.state_joints:
+            covered.add(u.joint)
+            sources.append(ctrl)
+    for d in drivers:
+        if bool(getattr(d, "elsewhere", None)) == local:
+            continue
+        for u in d.joints:
+            covered.add(u.joint)
+            sources.append(d)
+    return sources, covered, everything
+
+
+def _INFO():
+    from urdfcheck.core.findings import Severity
+
+    return Severity.INFO
 
 
 def _package_launches(c: Consumers, model, ctx) -> list:
@@ -488,7 +531,7 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
     for d in c.drivers:
         items.extend((v, f"driver {d.name}", d.name) for v in d.frames)
     inferred = {d.name for d in c.drivers if _inferred(d)} | {x.name for x in c.controllers if _inferred(x)}
-    for n in c.localization:
+    for n in [*c.localization, *c.elsewhere_localization]:
         items.append((n.base_frame, f"{n.kind} {n.node}", f" {n.node}"))
     seen = set()
     for v, who, owner in items:
@@ -501,9 +544,12 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
         if name in others:
             continue
         seen.add((name, v.loc))
+        hint = _suggest_frame(name, sorted(links | others))
+        # a near miss of a frame that exists is evidence of a typo; without one, the claim is that nothing
+        # publishes the frame, which holds only where the whole deployment was understood (issue 20)
         yield Problem(f"{who} uses frame {name!r}, which is neither a link of the model nor published by "
-                      f"anything else{_suggest_frame(name, sorted(links | others))}", at=v.loc,
-                      data={"frame": name}, severity=_WARNING() if owner in inferred else None)
+                      f"anything else{hint}", at=v.loc, data={"frame": name},
+                      severity=_WARNING() if owner in inferred else None, absent=None if hint else "publish it")
 
 
 # --- T001..T006: TF ownership ------------------------------------------------------------------------------
@@ -517,8 +563,10 @@ def _graph(model, c: Consumers) -> TFGraph:
     for li in c.launch:
         g.extend(claims_from_static_tfs(li.static_tfs, g.notes))
     base = c.frames.get("base", "base_link")
-    g.extend(claims_from_odom((ctrl.odom_tf for ctrl in c.controllers), base, "controller"))
-    g.extend(claims_from_odom((d.odom_tf for d in c.drivers), base, "driver"))
+    # files no launch file of this deployment reads claim no transform in it (issue 20)
+    g.extend(claims_from_odom((ctrl.odom_tf for ctrl in c.controllers if not getattr(ctrl, "elsewhere", None)),
+                              base, "controller"))
+    g.extend(claims_from_odom((d.odom_tf for d in c.drivers if not getattr(d, "elsewhere", None)), base, "driver"))
     g.extend(claims_from_localization(c.localization))
     if model.plugins:  # Gazebo plugins' odometry transforms (contracts/gazebo.py)
         from urdfcheck.contracts.gazebo import plugin_claims
@@ -632,7 +680,9 @@ def tf_not_one_tree(model, ctx):
     if not _has_consumer_claims(g) or len(model.roots) > 1:
         return  # several roots in the model itself: S001
     for p in not_one_tree(g, c.frames):
-        yield _as_problem(p)
+        got = _as_problem(p)
+        got.absent = "publish the transform that joins them"
+        yield got
 
 
 def frame_prefix_collision(model, ctx):

@@ -103,12 +103,15 @@ class Problem:
 
     `at` is a model part (anything with a `.loc` Location) or a Location; `related` likewise.
     `severity` None means the catalogue default; `code` is for checks that serve several codes.
+    `absent`: the problem claims that nothing supplies something (what might: "publish them"); the engine
+    keeps its severity only where the consumers understood everything that could supply it (issue 20).
     """
 
-    __slots__ = ("message", "at", "related", "severity", "code", "data")
+    __slots__ = ("message", "at", "related", "severity", "code", "data", "absent")
 
     def __init__(self, message: str, at: object = None, related: tuple = (), severity: Severity | None = None,
-                 code: str | None = None, data: dict | None = None):
+                 code: str | None = None, data: dict | None = None, absent: str | None = None):
+        self.absent = absent
         self.message = message
         self.at = at
         self.related = related

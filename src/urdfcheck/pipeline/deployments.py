@@ -24,6 +24,7 @@ import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 
+from urdfcheck.contracts.openworld import KNOWN_PACKAGES, LOCALIZATION_PACKAGES, known_kind  # noqa: F401
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 
@@ -31,14 +32,7 @@ MAX_VARIANTS = 24  # launch-argument assignments tried per root launch file
 MAX_MODEL_FILES = 8  # files one model path chosen at launch time may match
 MAX_TREE_FILES = 60
 MAX_DEPTH = 8
-LOCALIZATION_PACKAGES = ("robot_localization", "nav2_amcl", "amcl", "slam_toolbox", "nav2_bringup",
-                         "nav2_controller", "nav2_planner", "nav2_bt_navigator", "nav2_map_server")
 _CONTROLLER_EXES = ("ros2_control_node", "spawner", "spawner.py", "controller_manager")
-# nodes whose parameters are not a custom driver's (their kinds are read elsewhere, or say nothing of the model)
-KNOWN_PACKAGES = {"robot_state_publisher", "joint_state_publisher", "joint_state_publisher_gui", "controller_manager",
-                  "tf", "tf2_ros", "rviz", "rviz2", "xacro", "rqt_robot_steering", "teleop_twist_keyboard",
-                  "teleop_twist_joy", "joy", "joy_linux", "twist_mux", "rosbridge_server", "foxglove_bridge",
-                  "topic_tools", "image_transport", *LOCALIZATION_PACKAGES}
 
 
 def _show(path: str) -> str:
@@ -60,6 +54,13 @@ class Deployment(Record):
     _fields = ('model', 'how', 'args', 'variant', 'namespace', 'frame_prefix', 'launch', 'rsp', 'chain',
                'controller_files', 'localization_files', 'spawned', 'joint_state', 'static_tfs', 'infos',
                'notes', 'dropped_args', 'driver_nodes')
+
+    # package_files: parameter files of the model's package that no deployment reads (checked against the
+    # model too, `contracts.openworld`); package_single: the package holds one model
+    package_files: tuple = ()
+    package_single = True
+    workspace: str | None = None
+    included_elsewhere = False
 
     def __init__(self, model, how="xacro", args=None, variant="", namespace="/", frame_prefix=None,
                  launch: Location | None = None, rsp: Location | None = None, chain=(), controller_files=(),
@@ -152,6 +153,11 @@ class Deployment(Record):
         out.files = {"controllers": list(self.controller_files), "localization": list(self.localization_files),
                      "launch": [li.path for li in self.infos],
                      "drivers": sorted({f for _, files in self.driver_nodes for f in files})}
+        from urdfcheck.contracts.openworld import deployment_unknowns
+
+        out.unknown = deployment_unknowns(self, out.drivers)
+        out.package_files, out.package_single = list(self.package_files), self.package_single
+        out.workspace = self.workspace
         return out
 
 
@@ -463,8 +469,7 @@ def _beside(ws: _Workspace, infos, namespace: str | None):
             elif n.package in LOCALIZATION_PACKAGES or n.package.startswith("nav2_") or n.package in owned:
                 for f in n.param_files:
                     add(loc_files, f, n.loc)
-            elif n.package and n.package not in KNOWN_PACKAGES and not n.package.startswith(("rviz", "gazebo", "ros_gz",
-                                                                                          "ros_ign", "moveit")):
+            elif n.package and not known_kind(n.package):
                 files: list = []
                 for f in n.param_files:
                     add(files, f, n.loc)
@@ -550,6 +555,9 @@ def find_deployments(root: str | os.PathLike, resolver=None, *, packages: Mappin
                 continue
             seen[k] = dep
             out.append(dep)
+    from urdfcheck.pipeline.unread import mark_unread
+
+    mark_unread(out, ws.root, included)
     return out
 
 
@@ -656,23 +664,16 @@ def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str, str]
 
 
 # --- custom drivers, read by the shape of their keys ---------------------------------------------------------
-_JOINT_KEY = re.compile(r"(^|[._])(\w*_)?joints?$|_wheel_names$|_joint_names$")
-_FRAME_KEY = re.compile(r"_frame(_id)?$|^frame_id$")
-_GEOMETRY = ("wheel_separation", "track_width", "wheel_radius")
-
-
 def infer_drivers(driver_nodes, reader) -> list:
     """A `controllers.Driver` per node of no known kind whose parameters (inline, and from the parameter files
-    it is given) have keys shaped like joint names (*_joint, *_joints, *_wheel_names), frame ids (*_frame,
-    *_frame_id) or wheel geometry (wheel_separation / track_width, wheel_radius with left and right wheel
-    names). The meaning is inferred from the key, so the checks report these as warnings (`inferred`)."""
-    from urdfcheck.contracts.common import Value
-    from urdfcheck.contracts.controllers import Driver, DriveSpec, JointUse
+    it is given) have keys shaped like joint names, frame ids or wheel geometry (`openworld.infer_driver`).
+    The meaning is inferred from the key, so the checks report these as warnings (`inferred`)."""
+    from urdfcheck.contracts.openworld import infer_driver
 
     out = []
     for node, files in driver_nodes:
         name = f"{node.name or node.executable or node.package} (inferred from {node.package})"
-        params: dict[str, Value] = {}
+        params: dict = {}
         for f in files:
             pf = reader.params(f, [])
             if pf is None:
@@ -682,30 +683,7 @@ def infer_drivers(driver_nodes, reader) -> list:
             for n in mine:
                 params.update(n.params)
         params.update({k: v for k, v in node.params.items() if v.value is not None and not k.startswith("\x00")})
-        joints, left, right, frames = [], [], [], []
-        for key, v in sorted(params.items()):
-            leaf = key.split(".")[-1]
-            vals = v.value if isinstance(v.value, list) else [v.value]
-            if not all(isinstance(x, str) and x and "$(" not in x and "\x00" not in x for x in vals):
-                continue
-            if _JOINT_KEY.search(leaf):
-                role = "left_wheel" if leaf.startswith("left") and "wheel" in leaf else \
-                    "right_wheel" if leaf.startswith("right") and "wheel" in leaf else "joint"
-                uses = [JointUse(x, v.item_loc(i) if isinstance(v.value, list) else v.loc, name, role=role)
-                        for i, x in enumerate(vals)]
-                (left if role == "left_wheel" else right if role == "right_wheel" else joints).extend(uses)
-            elif _FRAME_KEY.search(leaf) and not isinstance(v.value, list):
-                frames.append(Value(v.value.strip().lstrip("/"), v.loc))
-        if not (joints or left or right or frames):
-            continue
-        drv = Driver(name, files[0] if files else node.loc.file, node.loc, tuple(left + right + joints),
-                     frames=tuple(frames))
-        geo = {k.split(".")[-1]: v for k, v in params.items() if k.split(".")[-1] in _GEOMETRY}
-        if left and right and (geo.get("wheel_separation") or geo.get("track_width") or geo.get("wheel_radius")):
-            drv.drive = DriveSpec(owner=name, loc=node.loc, left=tuple(left), right=tuple(right),
-                                  left_loc=left[0].loc, right_loc=right[0].loc,
-                                  wheel_separation=geo.get("wheel_separation") or geo.get("track_width"),
-                                  wheel_radius=geo.get("wheel_radius"))
-        drv.inferred = True
-        out.append(drv)
+        drv = infer_driver(name, files[0] if files else node.loc.file, node.loc, params)
+        if drv is not None:
+            out.append(drv)
     return out

@@ -95,7 +95,7 @@ class Target(Record):
         they wait for the model), kept on the target. None: the model has no consumers to compare with."""
         c = self.contracts
         if c is not None:
-            return c
+            return c.settle(model) if hasattr(c, "settle") else c
         entry = getattr(exp, "entry", None) or getattr(model, "source", None) or str(self.path)
         from urdfcheck.load.packages import enclosing_package
 

@@ -77,6 +77,7 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
         _attach_bags(targets, request.bags, request.joint_states)
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
     result.infos = infos
+    _not_understood(result, getattr(targets, "not_understood", ()), request)
     _missing_packages_once(result)
     if request.fail_on is not None:
         result.fail_on = request.fail_on
@@ -105,6 +106,15 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
     for t in chosen.values():
         t.bags = tuple(t.bags) + tuple(b for b in bags if b not in t.bags)
         t.joint_states = topic
+
+
+def _not_understood(result: Result, deployments, request: LintRequest) -> None:
+    """Deployments whose model was not understood: C021 infos (issue 20), beside the targets' findings."""
+    from urdfcheck.pipeline.understood import findings
+
+    extra = findings(deployments, request.settings(None), request.shown)
+    if extra:
+        result.findings = sorted([*result.findings, *extra], key=Finding.sort_key)
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,

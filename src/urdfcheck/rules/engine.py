@@ -116,14 +116,29 @@ def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
         return None
     info = cat.get(code)
     default = p.severity or (info.severity if info else Severity.ERROR)
+    message, related = p.message, tuple(_loc(r, model.loc) for r in p.related)
+    unknown = getattr(ctx.contracts, "unknown", None) if p.absent else None
+    if unknown:  # an absence claimed about a world not wholly understood (issue 20): said, not failed
+        default = Severity.INFO
+        message += f"; not failed, since {_listing([w for w, _ in unknown])} may {p.absent}"
+        related += tuple(loc for _, loc in unknown[:3] if loc is not None)
     return Finding(
         code=code,
         severity=ctx.selection.severity_of(code, default),
-        message=clean_text(p.message),
+        message=clean_text(message),
         location=_loc(p.at, model.loc),
         name=info.name if info else "",
-        related=tuple(_loc(r, model.loc) for r in p.related),
+        related=related,
     )
+
+
+def _listing(items, shown: int = 3) -> str:
+    """`a`, `a and b`, `a, b, c and 2 more`."""
+    items = list(dict.fromkeys(items))
+    head, more = items[:shown], len(items) - shown
+    if more > 0:
+        return ", ".join(head) + f" and {more} more"
+    return head[0] if len(head) == 1 else ", ".join(head[:-1]) + " and " + head[-1]
 
 
 def finish(findings: list[Finding], selection: Selection, suppressions=(), model: str = "",

@@ -313,13 +313,37 @@ def no_root(model, ctx):
         at=first.closing, related=tuple(others))
 
 
+def _attach_point(model, g) -> str | None:
+    """The link an attachable fragment (an end effector, a sensor mount) hangs from: the only undefined name of
+    the model is the parent of exactly one joint, no defined link resembles it, and that joint's child is the
+    root of everything else (issue 20). None when the model is not such a fragment."""
+    dangling = [(j, end, name) for j in model.joint_list for end, name in (("parent", j.parent), ("child", j.child))
+                if name is not None and name not in model.links]
+    if len(dangling) != 1:
+        return None
+    j, end, name = dangling[0]
+    # `world` is no attach point: a robot fixed to it must define it (urdfdom refuses it; only Gazebo knows it)
+    if end != "parent" or name == "world" or g.suggestion.get(name) or j.child not in model.links:
+        return None
+    children = {x.child for x in model.joint_list}
+    roots = [n for n in model.links if n not in children]
+    return name if not roots else None
+
+
 @check("S003")
 def missing_link(model, ctx):
     links = model.links
     g = _graph(model)
+    attach = _attach_point(model, g)
     for j in model.joint_list:
         for end, name, loc in (("parent", j.parent, j.parent_loc), ("child", j.child, j.child_loc)):
             if name is None or name in links:
+                continue
+            if name == attach:
+                yield Problem(f"joint {_q(j.name)} attaches this model to link {_q(name)}, which it does not define: "
+                              f"an attachable fragment (an end effector, a sensor mount), complete only in the robot "
+                              f"that defines {_q(name)}; urdfdom refuses it alone ('parent link [{name}] of joint "
+                              f"[{j.name}] not found')", at=loc or j, severity=Severity.INFO)
                 continue
             hint = g.suggestion.get(name)
             hint = f" (did you mean {hint!r}?)" if hint else ""
