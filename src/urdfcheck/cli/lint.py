@@ -23,7 +23,8 @@ def request_from_flags(ns) -> LintRequest:
         trusted=True if ns.trusted else None, allow_env=tuple(ns.allow_env), timeout=ns.timeout,
         max_elements=ns.max_elements, config=ns.config, use_config=not ns.no_config,
         root=getattr(ns, "root", None), baseline=None if ns.write_baseline else ns.baseline,
-        budget=getattr(ns, "budget", None), target=getattr(ns, "target", None))
+        budget=getattr(ns, "budget", None), target=getattr(ns, "target", None),
+        profiles=getattr(ns, "profile", None))
 
 
 def run(ns, usage_error=UsageError) -> int:
