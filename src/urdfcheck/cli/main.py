@@ -44,7 +44,7 @@ def _severity(text: str):
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
-PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify")
+PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify", "consumers")
 
 
 def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:

@@ -46,8 +46,8 @@ def speak(ctx, profiles: tuple[str, ...], message: str, at, *, quiet: bool = Fal
     if quiet:
         return None
     flags = " or ".join(f"--profile {p}" for p in profiles)
-    return Problem(f"{message} (info here; {flags} reports it at the rule's severity)", at=at, related=related, severity=Severity.INFO,
-                   data={"profile": profiles[0]})
+    return Problem(f"{message} (info here; {flags} reports it at the rule's severity)", at=at, related=related,
+                   severity=Severity.INFO, data={"profile": profiles[0]})
 
 
 def names(items, limit: int = 6) -> str:

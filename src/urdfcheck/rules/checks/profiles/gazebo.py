@@ -49,12 +49,15 @@ def massless_link_dropped(model, ctx):
     for n, g in group.items():
         members.setdefault(g, []).append(n)
     root = model.roots[0]
-    for body, links in members.items():
-        if body == root or body == "world" or body not in model.links:
+    gone: set[str] = set()  # below a dropped link: already named by its finding
+    for body in model.descendants_in_order(root):
+        links = members.get(body)
+        if links is None or body == root or body == "world" or body not in model.links or body in gone:
             continue
         if not all(_massless(model.links[n]) for n in links):
             continue
         below = [d for d in model.descendants_in_order(body)[1:] if group.get(d) != body]
+        gone.update(below)
         j = model.parent_joint.get(body)
         p = speak(ctx, ("gazebo",),
                   f"Gazebo drops link '{body}'" + (f" and the {len(below)} link(s) below it ({names(below)})"

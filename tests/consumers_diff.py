@@ -1,0 +1,141 @@
+"""The differential test of the consumer profiles (issue 25): every model it finds, and mutants of them, through
+the profile predictions (`urdfcheck lint --profile NAME`) and through the real consumer (`urdfcheck consumers`).
+Per consumer: recall (refusals the profile predicted) and false alarms (predicted refusals of models the consumer
+loads). `python tests/consumers_diff.py [--full]` prints the table committed to docs/consumers.md."""
+from __future__ import annotations
+
+import glob
+import os
+import random
+import re
+import sys
+import tempfile
+
+CORPUS = os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "corpus")
+if not os.path.isdir(CORPUS):
+    CORPUS = "/work/shared/corpus"
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+MUTANTS = {
+    "zero mass": (r'(<mass\s+value=")[^"]*(")', r"\g<1>0\2"),
+    "zero inertia": (r'(<inertia\s)[^>]*?(/?>)', r'\1ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"\2'),
+    "no inertial": (r"<inertial>.*?</inertial>", ""),
+    "triangle": (r'(<inertia\s)[^>]*?(/?>)', r'\1ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.01"\2'),
+    "zero axis": (r'(<axis\s+xyz=")[^"]*(")', r"\g<1>0 0 0\2"),
+    "negative effort": (r'(effort=")([0-9.]+)(")', r"\1-\2\3"),
+    "negative velocity": (r'(velocity=")([0-9.]+)(")', r"\1-\2\3"),
+}
+
+
+def models(full: bool) -> list[str]:
+    found = sorted(glob.glob(os.path.join(CORPUS, "**", "*.urdf"), recursive=True))
+    found += sorted(glob.glob(os.path.join(HERE, "..", "examples", "**", "*.urdf"), recursive=True))
+    try:
+        import pybullet_data
+
+        found += sorted(glob.glob(os.path.join(pybullet_data.getDataPath(), "**", "*.urdf"), recursive=True))
+    except ImportError:
+        pass
+    erd = glob.glob(os.path.join(sys.prefix, "lib", "python3*", "site-packages", "cmeel.prefix", "share",
+                                 "example-robot-data", "robots", "**", "*.urdf"), recursive=True)
+    found += sorted(erd)
+    found = [f for f in found if os.path.getsize(f) < 2_000_000]
+    rng = random.Random(25)
+    return rng.sample(found, min(int(full) if full and full is not True else (len(found) if full else 12),
+                                 len(found)))
+
+
+def mutants(paths, full: bool, folder: str) -> list[tuple[str, str]]:
+    """(label, path) of each model mutated in one way (the first place the pattern matches, or every place)."""
+    out = []
+    rng = random.Random(7)
+    base = paths[:40] if full else paths[:6]
+    for p in base:
+        text = open(p, encoding="utf-8", errors="replace").read()
+        for name, (pattern, repl) in MUTANTS.items():
+            new, n = re.subn(pattern, repl, text, count=0 if name in ("no inertial",) else 1, flags=re.S)
+            if n == 0 or new == text:
+                continue
+            if not full and rng.random() < 0.5:
+                continue
+            path = os.path.join(folder, f"{len(out):04d}-{os.path.basename(p)}")
+            with open(path, "w", encoding="utf-8") as f:
+                f.write(new)
+            out.append((f"{os.path.basename(p)} [{name}]", path))
+    return out
+
+
+def predict(path: str, consumer: str) -> tuple[bool, list[str]] | None:
+    """(the profile predicts a refusal, the codes behind it), None when the model does not load for urdfcheck."""
+    import urdfcheck
+
+    folder = os.path.dirname(path)
+    res = urdfcheck.lint([path], profiles=[consumer], no_config=True, root=folder, select=["ALL"])
+    if any(f.code.startswith("X") and str(f.severity) == "error" for f in res.findings):
+        return None
+    codes = sorted({f.code for f in res.findings if f.profile == consumer and str(f.severity) == "error"})
+    return bool(codes), codes
+
+
+def truth(path: str, consumer: str):
+    from urdfcheck.load import loader
+    from urdfcheck.verify import consumers as C
+
+    exp = loader.expand(path, {})
+    if exp.root is None:
+        return None
+    model = loader.build_model(exp)
+    return C.run(model, exp.clean_text(), (consumer,), timeout=60)[0]
+
+
+def measure(full: bool = False, consumers=("mujoco", "pinocchio")) -> dict:
+    with tempfile.TemporaryDirectory() as folder:
+        base = models(full)
+        items = [(os.path.relpath(p, CORPUS) if p.startswith(CORPUS) else os.path.basename(p), p) for p in base]
+        items += mutants(base, full, folder)
+        table = {}
+        for consumer in consumers:
+            row = {"models": 0, "refused": 0, "predicted": 0, "false_alarms": [], "missed": [], "failed": []}
+            for label, path in items:
+                p = predict(path, consumer)
+                if p is None:
+                    continue
+                t = truth(path, consumer)
+                if t is None or t.status == "missing":
+                    continue
+                row["models"] += 1
+                if t.status in ("crashed", "timeout", "memory"):
+                    row["failed"].append((label, t.message))
+                    continue
+                refused = t.status == "rejected"
+                row["refused"] += refused
+                if refused and p[0]:
+                    row["predicted"] += 1
+                elif refused:
+                    row["missed"].append((label, t.message[:160]))
+                elif p[0]:
+                    row["false_alarms"].append((label, ",".join(p[1])))
+            table[consumer] = row
+        return table
+
+
+def render(table: dict) -> str:
+    lines = ["| consumer | models | refused | predicted | recall | false alarms | consumer failed |",
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for c, r in table.items():
+        recall = f"{100.0 * r['predicted'] / r['refused']:.1f} %" if r["refused"] else "n/a"
+        lines.append(f"| {c} | {r['models']} | {r['refused']} | {r['predicted']} | {recall} | "
+                     f"{len(r['false_alarms'])} | {len(r['failed'])} |")
+    for c, r in table.items():
+        for label, why in r["missed"]:
+            lines.append(f"- {c} refused, not predicted: `{label}`: {why}")
+        for label, codes in r["false_alarms"]:
+            lines.append(f"- {c} loaded, refusal predicted: `{label}` ({codes})")
+        for label, why in r["failed"]:
+            lines.append(f"- {c} failed on `{label}`: {why}")
+    return "\n".join(lines) + "\n"
+
+
+if __name__ == "__main__":
+    size = next((int(a.split("=")[1]) for a in sys.argv if a.startswith("--sample=")), None)
+    print(render(measure(full=size or ("--full" in sys.argv))))
