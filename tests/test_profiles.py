@@ -4,7 +4,7 @@ import json
 import textwrap
 
 import pytest
-from conftest import lint_json
+from conftest import lint_json, run_cli
 
 import urdfcheck
 
@@ -115,3 +115,36 @@ def test_differential_sample_mujoco_and_pinocchio():
         assert row["models"] >= 10
         assert not row["false_alarms"], row["false_alarms"]
         assert not row["missed"], row["missed"]
+
+
+V11 = ('<robot name="r" version="1.1">\n  <link name="base_link"/>\n  <link name="tool"/>\n'
+       '  <joint name="j" type="fixed">\n    <origin xyz="0 0 0.1" quat_xyzw="0 0 0.7071068 0.7071068"/>\n'
+       '    <parent link="base_link"/><child link="tool"/>\n  </joint>\n</robot>\n')
+
+
+def test_default_target_is_humble_and_says_why(tmp_path):
+    p = tmp_path / "r.urdf"
+    p.write_text(V11)
+    _, report = lint_json([str(p), "--select", "U007"], cwd=tmp_path)
+    (f,) = report["findings"]
+    assert "humble ships urdfdom 3.0" in f["message"] and "oldest supported ROS 2 LTS" in f["message"]
+
+
+@pytest.mark.parametrize("name,text,expect", [
+    (".github/workflows/ci.yml", "jobs:\n  t:\n    strategy:\n      matrix:\n        ROS_DISTRO: [rolling, jazzy]\n",
+     "jazzy"),
+    ("Dockerfile", "FROM ros:kilted-ros-base\nRUN true\n", "kilted"),
+    ("deps.repos", "repositories:\n  x:\n    type: git\n    version: rolling\n", "rolling"),
+    (".git/HEAD", "ref: refs/heads/jazzy-devel\n", "jazzy"),
+])
+def test_target_read_from_the_workspace(tmp_path, name, text, expect):
+    (tmp_path / ".git").mkdir()
+    f = tmp_path / name
+    f.parent.mkdir(parents=True, exist_ok=True)
+    f.write_text(text)
+    (tmp_path / "pkg" / "urdf").mkdir(parents=True)
+    (tmp_path / "pkg" / "urdf" / "r.urdf").write_text(V11)
+    code, out, _ = run_cli(["lint", "--list", "pkg/urdf/r.urdf"], cwd=tmp_path)
+    assert code == 0 and f"ROS distribution: {expect} (assumed: {expect} named in {name}" in out
+    _, report = lint_json(["pkg/urdf/r.urdf", "--select", "U007"], cwd=tmp_path)
+    assert bool(report["findings"]) == (expect != "rolling")

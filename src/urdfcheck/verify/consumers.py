@@ -189,7 +189,8 @@ def _changes(name: str, facts: dict, model) -> list[str]:
             out.append(f"movable joint(s) not in the model: {_few(gone)}")
         dof = sum(1 for j in movable if j.type in ("revolute", "prismatic", "continuous"))
         if facts["nq"] != facts["nv"]:
-            out.append(f"nq = {facts['nq']}, nv = {facts['nv']} (continuous joints take cos/sin, floating a quaternion)")
+            out.append(f"nq = {facts['nq']}, nv = {facts['nv']} (continuous joints take cos/sin, floating a "
+                       "quaternion)")
         elif facts["nv"] != dof:
             out.append(f"nv = {facts['nv']} for {dof} one-degree-of-freedom joint(s)")
     elif name == "pybullet":
@@ -251,7 +252,7 @@ def run(model, xml: str, consumers=CONSUMERS, *, timeout: float = DEFAULT_TIMEOU
 
 def _one(name: str, path: str, model, timeout: float, memory, notes) -> Outcome:
     if not available(name):
-        hint = "check_urdf (Debian liburdfdom-tools)" if name == "urdfdom" else f"pip install 'urdfcheck[consumers]'"
+        hint = "check_urdf (Debian liburdfdom-tools)" if name == "urdfdom" else "pip install 'urdfcheck[consumers]'"
         return Outcome(name, "missing", f"not installed ({hint})")
     limits = worker.Limits(memory=memory, timeout=timeout, result=16 * 1024 * 1024)
     job = worker.prepare(JOBS[name], limits=limits, preload=(MODULE.get(name, "subprocess"),), capture="output",

@@ -50,6 +50,12 @@ def speak(ctx, profiles: tuple[str, ...], message: str, at, *, quiet: bool = Fal
                    severity=Severity.INFO, data={"profile": profiles[0]})
 
 
+def dynamic(model) -> bool:
+    """Does the model carry dynamics at all? A model without a single <inertial> is kinematic by intent (a MoveIt
+    test robot, a tutorial): without a profile, its missing masses are nobody's mistake."""
+    return any(lk.inertial is not None for lk in model.link_list)
+
+
 def names(items, limit: int = 6) -> str:
     items = [f"'{i}'" for i in items]
     if len(items) <= limit:

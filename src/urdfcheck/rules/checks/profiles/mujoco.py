@@ -14,7 +14,7 @@ import math
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check
-from urdfcheck.rules.checks.profiles.common import fixed_groups, names, speak
+from urdfcheck.rules.checks.profiles.common import dynamic, fixed_groups, names, speak
 
 MJMINVAL = 1e-15
 DENSITY = 1000.0  # mjsGeom default density: collision geometry of a link without <inertial> gets mass from it
@@ -80,6 +80,7 @@ def moving_bodies(model) -> dict[str, list[str]]:
 def massless_moving_body(model, ctx):
     if model.links and len(model.roots) != 1:
         return  # S001/S002: no single tree to reason about
+    kinematic = not dynamic(model)
     for body, links in moving_bodies(model).items():
         parts = [(n, _part(model.links[n])) for n in links if n in model.links]
         if any(p is None for _, p in parts):
@@ -99,7 +100,7 @@ def massless_moving_body(model, ctx):
                   f"MuJoCo refuses the model: link '{body}'{fused} moves (joint "
                   f"'{model.parent_joint[body].name}') but gets {what} {source}: \"mass and inertia of moving "
                   f"bodies must be larger than mjMINVAL\" (1e-15)",
-                  model.links[body].inertial or model.links[body], quiet=explicit)
+                  model.links[body].inertial or model.links[body], quiet=explicit or kinematic)
         if p is not None:
             yield p
 
