@@ -72,21 +72,21 @@ def massless_link_dropped(model, ctx):
 
 @check("P013")
 def undrivable_joint(model, ctx):
-    """effort="0" on a movable joint nothing actuates: Gazebo copies the limit into SDFormat (<effort>0: no force
-    can move the joint) and Isaac Sim's importer makes it the drive's maximum force. ROS-Industrial arms write
-    effort 0 because their driver commands positions: a <transmission> or <ros2_control> joint tells them apart
-    (J004 covers those)."""
+    """effort="0" on a movable joint nothing actuates. Gazebo copies the limit into SDFormat, where 0 clamps every
+    commanded force to 0; Isaac Sim's importer reads 0 as no limit (configureDriveAPI: maxForce FLT_MAX). ROS-Industrial
+    arms write effort 0 because their driver commands positions: a <transmission> or <ros2_control> joint tells them
+    apart (J004 covers those)."""
     driven = actuated(model)
     zero = [j for j in model.joint_list if j.type in ("revolute", "prismatic", "continuous") and j.limit is not None
             and j.limit.effort == 0 and j.mimic is None and j.name not in driven]
     if not zero:
         return
-    first = zero[0]
     p = speak(ctx, ("gazebo", "isaac"),
               f"joint(s) {names([j.name for j in zero])} have effort=\"0\" and no actuator (<transmission> or "
-              "<ros2_control>): Gazebo copies the limit into SDFormat (<effort>0</effort>: no force can move the "
-              "joint) and Isaac Sim's URDF importer uses it as the drive's maximum force, so neither can drive "
-              "them (fine on a position-controlled ROS-Industrial arm, not in simulation)", first.limit)
+              "<ros2_control>): Gazebo copies the limit into SDFormat (<effort>0</effort>), so any force or torque "
+              "a plugin or controller commands is clamped to 0 and the joint cannot be driven, while Isaac Sim's "
+              "URDF importer reads 0 as no limit at all (drive maxForce FLT_MAX); fine on a position-controlled "
+              "ROS-Industrial arm, wrong in both simulators", zero[0].limit)
     if p is not None:
         yield p
 
