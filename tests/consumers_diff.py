@@ -24,6 +24,9 @@ MUTANTS = {
     "zero axis": (r'(<axis\s+xyz=")[^"]*(")', r"\g<1>0 0 0\2"),
     "negative effort": (r'(effort=")([0-9.]+)(")', r"\1-\2\3"),
     "negative velocity": (r'(velocity=")([0-9.]+)(")', r"\1-\2\3"),
+    "no limit": (r"<limit\b[^>]*/>", ""),
+    "second root": (r"(</robot>\s*)$", r'<link name="urdfcheck_stray_link"/>\n\1'),
+    "duplicate link": (r'(<link\s+name="[^"]*"\s*/>)', r"\1\1"),
 }
 
 
@@ -77,18 +80,56 @@ def predict(path: str, consumer: str) -> tuple[bool, list[str]] | None:
     return bool(codes), codes
 
 
-def truth(path: str, consumer: str):
+def _batch_job(consumer: str, paths: list[str]) -> list[dict]:
+    from urdfcheck.verify import consumers as C
+
+    return [C.JOBS[consumer](p) for p in paths]
+
+
+def truths(paths: list[str], consumer: str, folder: str, batch: int = 40) -> dict[str, object]:
+    """path -> "loaded" | the refusal message | a Failure: the consumer run on copies without meshes, many models
+    per sandboxed worker (one import of the consumer per batch; a batch that crashes is run model by model)."""
+    from urdfcheck.core import worker
     from urdfcheck.load import loader
     from urdfcheck.verify import consumers as C
 
-    exp = loader.expand(path, {})
-    if exp.root is None:
-        return None
-    model = loader.build_model(exp)
-    return C.run(model, exp.clean_text(), (consumer,), timeout=60)[0]
+    copies = {}
+    for i, p in enumerate(paths):
+        exp = loader.expand(p, {})
+        if exp.root is None:
+            continue
+        text, _ = C.without_meshes(exp.clean_text())
+        copy = os.path.join(folder, f"{consumer}-{i:05d}.urdf")
+        with open(copy, "w", encoding="utf-8") as f:
+            f.write(text)
+        copies[p] = copy
+    out: dict[str, object] = {}
+    todo = list(copies)
+    while todo:
+        chunk, todo = todo[:batch], todo[batch:]
+        lim = worker.Limits(memory=C.DEFAULT_MEMORY, timeout=30.0 * len(chunk), result=64 * 1024 * 1024)
+        job = worker.prepare(_batch_job, limits=lim, preload=(C.MODULE[consumer],), capture="output")
+        job.send(consumer, [copies[p] for p in chunk])
+        got = job.result()
+        if isinstance(got, worker.Failure):
+            if len(chunk) == 1:
+                out[chunk[0]] = got
+            else:
+                for p in chunk:  # one by one: find the model that crashed the consumer
+                    one = worker.prepare(_batch_job, limits=worker.Limits(memory=C.DEFAULT_MEMORY, timeout=30.0),
+                                         preload=(C.MODULE[consumer],), capture="output")
+                    one.send(consumer, [copies[p]])
+                    r = one.result()
+                    out[p] = r if isinstance(r, worker.Failure) else (r[0].get("rejected") or "loaded")
+            continue
+        for p, r in zip(chunk, got):
+            out[p] = r.get("rejected") or "loaded"
+    return out
 
 
-def measure(full: bool = False, consumers=("mujoco", "pinocchio")) -> dict:
+def measure(full=False, consumers=("mujoco", "pinocchio")) -> dict:
+    from urdfcheck.core import worker
+
     with tempfile.TemporaryDirectory() as folder:
         base = models(full)
         items = [(os.path.relpath(p, CORPUS) if p.startswith(CORPUS) else os.path.basename(p), p) for p in base]
@@ -96,23 +137,22 @@ def measure(full: bool = False, consumers=("mujoco", "pinocchio")) -> dict:
         table = {}
         for consumer in consumers:
             row = {"models": 0, "refused": 0, "predicted": 0, "false_alarms": [], "missed": [], "failed": []}
+            predicted = {path: predict(path, consumer) for _, path in items}
+            truth = truths([path for _, path in items if predicted[path] is not None], consumer, folder)
             for label, path in items:
-                p = predict(path, consumer)
-                if p is None:
-                    continue
-                t = truth(path, consumer)
-                if t is None or t.status == "missing":
+                p, t = predicted[path], truth.get(path)
+                if p is None or t is None:
                     continue
                 row["models"] += 1
-                if t.status in ("crashed", "timeout", "memory"):
+                if isinstance(t, worker.Failure):
                     row["failed"].append((label, t.message))
                     continue
-                refused = t.status == "rejected"
+                refused = t != "loaded"
                 row["refused"] += refused
                 if refused and p[0]:
                     row["predicted"] += 1
                 elif refused:
-                    row["missed"].append((label, t.message[:160]))
+                    row["missed"].append((label, str(t).replace("\n", " ")[:160]))
                 elif p[0]:
                     row["false_alarms"].append((label, ",".join(p[1])))
             table[consumer] = row

@@ -50,6 +50,13 @@ def speak(ctx, profiles: tuple[str, ...], message: str, at, *, quiet: bool = Fal
                    severity=Severity.INFO, data={"profile": profiles[0]})
 
 
+def is_tree(model) -> bool:
+    """One root, every link reached once: the structure the profile rules reason about (S rules report the rest)."""
+    if len(model.roots) != 1 or len(model.joint_list) != len(model.links) - 1:
+        return False
+    return len(model.descendants_in_order(model.roots[0])) == len(model.links)
+
+
 def dynamic(model) -> bool:
     """Does the model carry dynamics at all? A model without a single <inertial> is kinematic by intent (a MoveIt
     test robot, a tutorial): without a profile, its missing masses are nobody's mistake."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 
 from urdfcheck.rules.catalogue import check
-from urdfcheck.rules.checks.profiles.common import actuated, dynamic, fixed_groups, names, speak
+from urdfcheck.rules.checks.profiles.common import actuated, fixed_groups, is_tree, names, speak
 
 _KEEP = re.compile(r"<\s*(preserveFixedJoint|disableFixedJointLumping)\s*>\s*(true|1)\s*<", re.I)
 
@@ -42,7 +42,7 @@ def fixed_joint_lumping(model, ctx):
 
 @check("P011")
 def massless_link_dropped(model, ctx):
-    if len(model.roots) != 1:
+    if not is_tree(model):
         return
     group = fixed_groups(model, kept_fixed_joints(model))
     members: dict[str, list[str]] = {}
@@ -65,7 +65,7 @@ def massless_link_dropped(model, ctx):
                   + f": it has no <inertial> or a mass of 0 (sdformat parser_urdf.cc CreateSDF: \"has no inertia, "
                   f"not modeled in sdf\"), so joint '{j.name if j else '?'}' and everything attached below it are "
                   "missing from the simulation; give it an <inertial> with a small positive mass",
-                  model.links[body].inertial or model.links[body], quiet=not dynamic(model))
+                  model.links[body].inertial or model.links[body], quiet=True)  # P001's info names Gazebo too
         if p is not None:
             yield p
 

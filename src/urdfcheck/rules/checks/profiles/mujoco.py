@@ -14,7 +14,7 @@ import math
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check
-from urdfcheck.rules.checks.profiles.common import dynamic, fixed_groups, names, speak
+from urdfcheck.rules.checks.profiles.common import dynamic, fixed_groups, is_tree, names, speak
 
 MJMINVAL = 1e-15
 DENSITY = 1000.0  # mjsGeom default density: collision geometry of a link without <inertial> gets mass from it
@@ -78,7 +78,7 @@ def moving_bodies(model) -> dict[str, list[str]]:
 
 @check("P001")
 def massless_moving_body(model, ctx):
-    if model.links and len(model.roots) != 1:
+    if not is_tree(model):
         return  # S001/S002: no single tree to reason about
     kinematic = not dynamic(model)
     for body, links in moving_bodies(model).items():
@@ -96,10 +96,12 @@ def massless_moving_body(model, ctx):
         source = ("from its <inertial>" if explicit else
                   "from its collision geometry (no <inertial>; density 1000)" if any(
                       model.links[n].collisions for n in links) else "(no <inertial>, no collision geometry)")
+        gazebo = ("" if "mujoco" in ctx.profiles or any(model.links[n].collisions for n in links) else
+                  "; Gazebo drops such a link with everything below it (P011)")
         p = speak(ctx, ("mujoco",),
                   f"MuJoCo refuses the model: link '{body}'{fused} moves (joint "
                   f"'{model.parent_joint[body].name}') but gets {what} {source}: \"mass and inertia of moving "
-                  f"bodies must be larger than mjMINVAL\" (1e-15)",
+                  f"bodies must be larger than mjMINVAL\" (1e-15){gazebo}",
                   model.links[body].inertial or model.links[body], quiet=explicit or kinematic)
         if p is not None:
             yield p
