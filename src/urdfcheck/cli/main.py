@@ -106,6 +106,9 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
         from urdfcheck.cli import publish as cli_publish
 
         cli_publish.add_parsers(sub)
+        from urdfcheck.cli import consumers as cli_consumers
+
+        cli_consumers.add_parser(sub)
     return parser
 
 

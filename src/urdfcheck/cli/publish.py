@@ -150,10 +150,6 @@ def add_parsers(subparsers) -> None:
     _add_load_options(p)
     p.set_defaults(func=_run(cmd_verify))
 
-    from urdfcheck.cli import consumers
-
-    consumers.add_parser(subparsers)
-
 
 # --- tf ---------------------------------------------------------------------------------------------------------
 def cmd_tf(ns) -> int:
