@@ -98,7 +98,7 @@ def truths(paths: list[str], consumer: str, folder: str, batch: int = 40) -> dic
         exp = loader.expand(p, {})
         if exp.root is None:
             continue
-        text, _ = C.without_meshes(exp.clean_text())
+        text, _ = C.without_meshes(exp.clean_text(), folder)
         copy = os.path.join(folder, f"{consumer}-{i:05d}.urdf")
         with open(copy, "w", encoding="utf-8") as f:
             f.write(text)

@@ -43,7 +43,7 @@ def test_loaded_with_changes_and_meshes_replaced(tmp_path):
     code, out, err = run_cli(["consumers", str(p), "--consumer", "mujoco,pinocchio"], cwd=tmp_path)
     assert code == 0, (out, err)
     assert "mujoco     loaded" in out and "pinocchio  loaded" in out
-    assert "replaced by 0.1 0.1 0.1 m boxes" in out
+    assert "1 <mesh> file replaced by 0.1 0.1 0.1 m boxes" in out
     code, out, _ = run_cli(["consumers", str(p), "--consumer", "mujoco", "--format", "markdown"], cwd=tmp_path)
     assert out.startswith("## Consumers of") and "| mujoco | loaded |" in out
 

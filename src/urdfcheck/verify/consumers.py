@@ -3,8 +3,9 @@ each in the sandboxed worker (core/worker.py: memory, CPU and wall-clock limits)
 loaded the model or refused it (its message, mapped back to the source line where it names a link or joint), and
 what it changed compared with the URDF (bodies, joints, fused links, constraints).
 
-Mesh files are not loaded: every <mesh> is replaced by a 0.1 m box in a temporary copy (the corpus has no meshes,
-and a consumer's verdict on a missing file says nothing about the model); each result says how many were replaced.
+Mesh files are not loaded: every <mesh> points to a box STL in a temporary folder, sized to be a 0.1 m cube after
+the mesh's scale (the corpus has no meshes, and a consumer's verdict on a missing file says nothing about the
+model); each result says how many were replaced.
 A consumer that crashes, runs out of memory or hangs ends as a Failure of its worker, reported as a finding.
 """
 from __future__ import annotations
@@ -59,8 +60,10 @@ def available(name: str) -> bool:
         return False
 
 
-def without_meshes(xml: str) -> tuple[str, int]:
-    """The document with every <mesh> geometry replaced by a box, and how many were replaced."""
+def without_meshes(xml: str, folder: str | None = None) -> tuple[str, int]:
+    """The document with every <mesh> file replaced, and how many were. With `folder`: each mesh points to a box
+    STL written there, sized so that after the mesh's own `scale` it is a 0.1 m cube (the scale stays, so a
+    consumer still reads and checks it); without: the <mesh> becomes a 0.1 m <box>."""
     from lxml import etree
 
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
@@ -69,15 +72,50 @@ def without_meshes(xml: str) -> tuple[str, int]:
     except etree.XMLSyntaxError:
         return xml, 0  # the consumers get it as it is, and say what they think of it
     n = 0
+    boxes: dict[tuple, str] = {}
     for mesh in list(root.iter("mesh")):
         parent = mesh.getparent()
         if parent is None or parent.tag != "geometry":
             continue
-        box = etree.Element("box", size=MESH_BOX)
-        box.tail = mesh.tail
-        parent.replace(mesh, box)
         n += 1
+        if folder is None:
+            box = etree.Element("box", size=MESH_BOX)
+            box.tail = mesh.tail
+            parent.replace(mesh, box)
+            continue
+        scale = _scale(mesh.get("scale"))
+        if scale not in boxes:
+            boxes[scale] = _box_stl(folder, [0.1 / s if s else 0.1 for s in scale], len(boxes))
+        mesh.set("filename", boxes[scale])
     return etree.tostring(root, encoding="unicode"), n
+
+
+def _scale(text) -> tuple[float, float, float]:
+    try:
+        v = [abs(float(x)) for x in (text or "1 1 1").split()]
+    except ValueError:
+        return (1.0, 1.0, 1.0)
+    return tuple(v) if len(v) == 3 and all(x < 1e6 for x in v) else (1.0, 1.0, 1.0)  # type: ignore[return-value]
+
+
+def _box_stl(folder: str, size, index: int) -> str:
+    """A binary STL box of the given size, centred at the origin (12 outward-facing triangles)."""
+    import struct
+
+    hx, hy, hz = (s / 2.0 for s in size)
+    v = [(x, y, z) for x in (-hx, hx) for y in (-hy, hy) for z in (-hz, hz)]
+    faces = [(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
+             (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]
+    data = bytearray(b"urdfcheck box".ljust(80, b" ")) + struct.pack("<I", len(faces))
+    for a, b, c in faces:
+        data += struct.pack("<3f", 0.0, 0.0, 0.0)
+        for i in (a, b, c):
+            data += struct.pack("<3f", *v[i])
+        data += b"\0\0"
+    path = os.path.join(folder, f"box{index}.stl")
+    with open(path, "wb") as f:
+        f.write(data)
+    return path
 
 
 # --- the jobs (run in the child; heavy imports happen there) -------------------------------------------------
@@ -234,10 +272,10 @@ def locate(message: str, model) -> Location | None:
 def run(model, xml: str, consumers=CONSUMERS, *, timeout: float = DEFAULT_TIMEOUT,
         memory: int | None = DEFAULT_MEMORY) -> list[Outcome]:
     """Each consumer's Outcome, in the order asked. Never raises for what a consumer does."""
-    text, meshes = without_meshes(xml)
-    notes = [f"{meshes} <mesh> geometr{'y' if meshes == 1 else 'ies'} replaced by {MESH_BOX} m boxes for loading "
-             "(mesh files are not read)"] if meshes else []
     folder = tempfile.mkdtemp(prefix="urdfcheck-consumers-")
+    text, meshes = without_meshes(xml, folder)
+    notes = [f"{meshes} <mesh> file{'' if meshes == 1 else 's'} replaced by {MESH_BOX} m boxes for loading "
+             "(their scale kept; mesh files are not read)"] if meshes else []
     path = os.path.join(folder, "model.urdf")
     try:
         with open(path, "w", encoding="utf-8") as f:

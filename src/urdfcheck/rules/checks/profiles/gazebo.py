@@ -85,8 +85,9 @@ def undrivable_joint(model, ctx):
               f"joint(s) {names([j.name for j in zero])} have effort=\"0\" and no actuator (<transmission> or "
               "<ros2_control>): Gazebo copies the limit into SDFormat (<effort>0</effort>), so any force or torque "
               "a plugin or controller commands is clamped to 0 and the joint cannot be driven, while Isaac Sim's "
-              "URDF importer reads 0 as no limit at all (drive maxForce FLT_MAX); fine on a position-controlled "
-              "ROS-Industrial arm, wrong in both simulators", zero[0].limit)
+              "URDF importer reads 0 as no limit at all (drive maxForce FLT_MAX); a position-controlled "
+              "ROS-Industrial arm or a passive joint (moved by a spring or gravity) can ignore this, a joint meant "
+              "to be driven in simulation needs its real effort limit", zero[0].limit)
     if p is not None:
         yield p
 

@@ -132,6 +132,26 @@ def inertia_refused(model, ctx):
                       f"{a:.6g}, {b:.6g}, {c:.6g}): {why}", at=inr.inertia_loc or inr, data={"profile": "mujoco"})
 
 
+_SHAPES = ("box", "cylinder", "sphere", "capsule", "mesh")
+
+
+@check("P005")
+def collision_geometry_refused(model, ctx):
+    """xml_urdf.cc mjXURDF::Geom: a <collision> without <geometry> ("missing element: 'geometry'") or with a shape
+    other than box, cylinder, sphere, capsule and mesh ("visual geometry specification not found") is refused.
+    Visual elements are discarded first (discardvisual, the URDF default), so theirs do not matter."""
+    if "mujoco" not in ctx.profiles:
+        return  # G005 reports empty and unknown geometry for every consumer
+    for link in model.link_list:
+        for shape in link.collisions:
+            g = shape.geometry
+            if g is None or g.kind not in _SHAPES:
+                what = "no <geometry>" if g is None or not g.kind else f"a <{g.kind}> shape"
+                yield Problem(f"MuJoCo refuses the model: a <collision> of link '{link.name}' has {what} "
+                              "(xml_urdf.cc: only box, cylinder, sphere, capsule and mesh are read)",
+                              at=g if g is not None else shape, data={"profile": "mujoco"})
+
+
 @check("P003")
 def mimic_becomes_equality(model, ctx):
     if "mujoco" not in ctx.profiles:
