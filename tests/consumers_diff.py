@@ -166,6 +166,7 @@ def render(table: dict) -> str:
         recall = f"{100.0 * r['predicted'] / r['refused']:.1f} %" if r["refused"] else "n/a"
         lines.append(f"| {c} | {r['models']} | {r['refused']} | {r['predicted']} | {recall} | "
                      f"{len(r['false_alarms'])} | {len(r['failed'])} |")
+    lines.append("")
     for c, r in table.items():
         for label, why in r["missed"]:
             lines.append(f"- {c} refused, not predicted: `{label}`: {why}")
