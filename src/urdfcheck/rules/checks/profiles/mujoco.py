@@ -152,6 +152,47 @@ def collision_geometry_refused(model, ctx):
                               at=g if g is not None else shape, data={"profile": "mujoco"})
 
 
+# the sub-elements xml_urdf.cc looks up with FindSubElem (xml_util.cc), which throws "repeated element" when one is
+# written twice; urdfdom reads the first and carries on
+_ONCE = {
+    "joint": ("parent", "child", "axis", "dynamics", "limit", "origin"),
+    "inertial": ("mass", "inertia", "origin"),
+    "collision": ("geometry", "origin"),
+    "visual": ("material",),  # read before visuals are discarded
+    "geometry": ("box", "cylinder", "sphere", "capsule", "mesh"),
+}
+
+
+@check("P006")
+def repeated_element(model, ctx):
+    root = getattr(ctx.expanded, "root", None)
+    if root is None:
+        return
+    for el in root:
+        tag = el.tag if isinstance(el.tag, str) else ""
+        if tag == "joint":
+            part, scopes = model.joints.get(el.get("name", "")), [el]
+        elif tag == "link":
+            part = model.links.get(el.get("name", ""))
+            scopes = [el] + [c for c in el if c.tag in ("inertial", "collision", "visual")]
+            scopes += [g for c in el if c.tag == "collision" for g in c if g.tag == "geometry"]
+        else:
+            continue
+        if part is None:
+            continue
+        for scope in scopes:
+            names = _ONCE.get(scope.tag, ("inertial",) if scope.tag == "link" else ())
+            seen = [c.tag for c in scope if isinstance(c.tag, str)]
+            twice = sorted({n for n in names if seen.count(n) > 1})
+            if twice:
+                p = speak(ctx, ("mujoco",),
+                          f"MuJoCo refuses the model: <{scope.tag}> of {tag} '{part.name}' has more than one "
+                          f"<{twice[0]}> (xml_util.cc FindSubElem: \"repeated element: '{twice[0]}'\"); urdfdom "
+                          "reads the first one only", part)
+                if p is not None:
+                    yield p
+
+
 @check("P003")
 def mimic_becomes_equality(model, ctx):
     if "mujoco" not in ctx.profiles:
