@@ -34,4 +34,4 @@ def inertia_recomputed(model, ctx):
         yield speak(ctx, ("pybullet",),
                     f"PyBullet ignores the <inertia> of {len(given)} link(s) unless loadURDF gets "
                     "flags=p.URDF_USE_INERTIA_FROM_FILE: it recomputes each tensor from the collision shapes "
-                    "(BulletURDFImporter::getMassAndInertia, calculateLocalInertia)", given[0].inertial)
+                    "(BulletURDFImporter getMassAndInertia, calculateLocalInertia)", given[0].inertial)
