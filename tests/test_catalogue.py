@@ -32,16 +32,17 @@ def test_names_are_unique():
 
 def test_every_check_has_an_entry_and_vice_versa():
     checks = rulebook.load_checks()
-    # produced by the loader/engine/verify/recordings, not by checks; C021 by the planner (a deployment it did not
-    # understand)
-    load_time = {c for c in CATALOGUE if c[0] in "XRVB"} | {"C021"}
+    # produced by the loader/engine/verify/recordings/`urdfcheck consumers`, not by checks; C021 by the planner (a
+    # deployment it did not understand)
+    load_time = {c for c in CATALOGUE if c[0] in "XRVB"} | {"C021", "P090", "P091"}
     assert set(checks) - set(CATALOGUE) == set(), "checks without catalogue entry"
     assert set(CATALOGUE) - set(checks) - load_time == set(), "catalogue entries without a check"
 
 
 def test_only_runner_and_verify_rules_lack_examples():
-    # R001 needs a broken rule; V codes come from `urdfcheck verify`, which tests/test_verify.py covers
-    assert sorted(c for c in CATALOGUE if not CATALOGUE[c].examples) == ["R001", "V001", "V002"]
+    # R001 needs a broken rule; V codes come from `urdfcheck verify` (tests/test_verify.py), P090/P091 from
+    # `urdfcheck consumers` (tests/test_consumers.py)
+    assert sorted(c for c in CATALOGUE if not CATALOGUE[c].examples) == ["P090", "P091", "R001", "V001", "V002"]
 
 
 @pytest.mark.parametrize("code", WITH_EXAMPLES)

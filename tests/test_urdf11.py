@@ -21,6 +21,13 @@ from urdfcheck.rules import engine
 Q90 = "0 0 0.7071068 0.7071068"
 
 
+@pytest.fixture(autouse=True)
+def _rolling_without_target(monkeypatch):
+    """These tests are about what Rolling's urdfdom reads; without a target the default is Humble (issue 25,
+    tests/test_profiles.py), which reads URDF 1.0 only."""
+    monkeypatch.setattr(G, "DEFAULT_TARGET", "rolling")
+
+
 def robot(version: str | None, origin: str, limit: str = 'lower="-1" upper="1" effort="1" velocity="1"',
           jtype: str = "revolute") -> str:
     v = f' version="{version}"' if version is not None else ""

@@ -24,7 +24,8 @@ def request_from_flags(ns) -> LintRequest:
         max_elements=ns.max_elements, config=ns.config, use_config=not ns.no_config,
         root=getattr(ns, "root", None), baseline=None if ns.write_baseline else ns.baseline,
         budget=getattr(ns, "budget", None), target=getattr(ns, "target", None),
-        bags=getattr(ns, "bags", None) or None, joint_states=getattr(ns, "joint_states", None))
+        bags=getattr(ns, "bags", None) or None, joint_states=getattr(ns, "joint_states", None),
+        profiles=getattr(ns, "profile", None))
 
 
 def run(ns, usage_error=UsageError) -> int:
@@ -99,6 +100,11 @@ def _list(request: LintRequest) -> int:
         cfg = getattr(t.settings.config, "path", None) if t.settings is not None else None
         out(request.shown(t.path) + (f" [{t.variant}]" if t.variant else "") + args
             + (f"  (config {request.shown(cfg)})" if cfg else ""))
+    from urdfcheck.rules.checks.values import describe_target
+
+    assumed = (describe_target(str(t.path), t.settings.target if t.settings is not None else None) for t in targets)
+    for name, why in dict.fromkeys(assumed):
+        out(f"ROS distribution: {name} ({why})")
     deployments = list({id(t.deployment): t.deployment for t in targets if t.deployment is not None}.values())
     deployments += getattr(targets, "not_understood", [])
     if deployments:

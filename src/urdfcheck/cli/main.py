@@ -44,7 +44,7 @@ def _severity(text: str):
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
-PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify", "diff")
+PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify", "diff", "consumers")
 
 
 def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
@@ -79,7 +79,11 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     lint.add_argument("--no-config", action="store_true", help="ignore config files")
     lint.add_argument("--target", choices=["noetic", "humble", "jazzy", "kilted", "rolling"], default=None,
                       help="ROS distribution whose urdfdom must read the models (URDF versions, U007); default: "
-                           "the config's target, else noetic for a catkin package, else rolling")
+                           "the config's target, else noetic for a catkin package, else what the workspace names "
+                           "(ROS_DISTRO in CI files, .repos, Dockerfile FROM ros:..., branch), else humble")
+    lint.add_argument("--profile", metavar="NAMES", default=None,
+                      help="consumer profiles, comma-separated: mujoco, gazebo, isaac, kdl, pinocchio, pybullet, "
+                           "moveit (what each will reject or silently change; config key profiles)")
     lint.add_argument("--list", action="store_true",
                       help="print what would be linted (models, variants, deployments from launch files) and exit")
     lint.add_argument("--root", metavar="DIR",
@@ -120,6 +124,10 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
         from urdfcheck.cli import diff as cli_diff
 
         cli_diff.add_parser(sub)
+
+        from urdfcheck.cli import consumers as cli_consumers
+
+        cli_consumers.add_parser(sub)
     return parser
 
 

@@ -71,6 +71,8 @@ class Finding(NamedTuple):
     # the same problem at other lines of the same file, in the same models/variants (twelve joints named like
     # their links, six joints with effort 0): one line in the reports, each place kept here
     also: tuple[Also, ...] = ()
+    # the consumer profile (rules/checks/profiles) the finding predicts a behaviour of: "mujoco", "gazebo"... or ""
+    profile: str = ""
 
     def places(self) -> tuple[Place, ...]:
         return self.where or (Place(self.model, self.variant),)

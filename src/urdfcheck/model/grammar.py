@@ -218,3 +218,4 @@ TARGETS: dict[str, Target] = {t.name: t for t in (
     Target("rolling", "6.0", V1_2),
 )}
 NEWEST_TARGET = "rolling"
+DEFAULT_TARGET = "humble"  # without a configured or discoverable target: the oldest supported ROS 2 LTS

@@ -42,6 +42,7 @@ trusted: false                            # stock xacro evaluation (only for you
 allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read
 max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
 target: humble                            # ROS distribution whose urdfdom must read the model (--target)
+profiles: [mujoco, gazebo]                # consumer profiles (--profile): what each consumer rejects or changes
 ```
 
 `[tool.urdfcheck]` in pyproject.toml takes the same keys (`[[tool.urdfcheck.models]]` for the list).
@@ -125,7 +126,8 @@ class Config(FrozenRecord):
     # path: the config file
     # root: its folder; relative paths start here
     _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore',
-               'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target')
+               'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target',
+               'profiles')
 
     def __init__(self, path: str,
                  root: str,
@@ -143,7 +145,8 @@ class Config(FrozenRecord):
                  allow_env: tuple[str, ...] = (),
                  max_elements: int | None = None,
                  locs: Mapping[tuple, Location] | None = None,
-                 target: str | None = None):
+                 target: str | None = None,
+                 profiles: tuple[str, ...] = ()):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
         d["root"] = root
@@ -162,6 +165,7 @@ class Config(FrozenRecord):
         d["allow_env"] = allow_env
         d["max_elements"] = max_elements
         d["locs"] = _ro({}) if locs is None else locs
+        d["profiles"] = profiles  # issue 25: rules/checks/profiles/common.PROFILES
         d["target"] = target  # issue 14: noetic | humble | jazzy | kilted | rolling (model.grammar.TARGETS)
 
     def loc(self, *path) -> Location:
@@ -439,6 +443,7 @@ def load_config(path: str | os.PathLike) -> Config:
         trusted=bool(data.get("trusted", False)), allow_env=tuple(data.get("allow_env") or ()),
         max_elements=int(data["max_elements"]) if data.get("max_elements") is not None else None, locs=_ro(locs),
         target=str(data["target"]) if data.get("target") else None,
+        profiles=tuple(dict.fromkeys(str(p) for p in data.get("profiles") or ())),
     )
 
 

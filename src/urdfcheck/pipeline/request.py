@@ -56,6 +56,7 @@ class LintRequest(Record):
         "target": None,          # ROS distribution the description is meant for (issue 14)
         "bags": (),              # recordings checked against every model linted (urdfcheck.bag)
         "joint_states": None,    # their JointState topic (None: /joint_states, else the only one)
+        "profiles": None,        # consumer profiles (issue 25): mujoco, gazebo, isaac, kdl, pinocchio, pybullet, moveit
     }
     _fields = tuple(_defaults)
 
@@ -88,6 +89,7 @@ class LintRequest(Record):
             trusted=trusted, allow_env=tuple(dict.fromkeys(tuple(self.allow_env) + tuple(get("allow_env") or ()))),
             timeout=self.timeout, max_elements=self.max_elements or get("max_elements"),
             target=self.target or get("target"),
+            profiles=tuple(self.profiles if self.profiles is not None else get("profiles") or ()),
         )
 
     def shown(self, path) -> str:
@@ -100,14 +102,15 @@ class Settings(Record):
 
     # config: pipeline.config.Config or None; selection: rules.engine.Selection
     _fields = ('config', 'selection', 'fail_on', 'packages', 'trusted', 'allow_env', 'timeout', 'max_elements',
-               'target')
+               'target', 'profiles')
 
     def __init__(self, config, selection, fail_on: Severity = Severity.WARNING, packages: Mapping = _EMPTY,
                  trusted: bool = False, allow_env: tuple = (), timeout: float = XACRO_TIMEOUT,
-                 max_elements: int | None = None, target: str | None = None):
+                 max_elements: int | None = None, target: str | None = None, profiles: tuple = ()):
         self.config, self.selection, self.fail_on, self.packages = config, selection, fail_on, packages
         self.trusted, self.allow_env, self.timeout, self.max_elements = trusted, allow_env, timeout, max_elements
         self.target = target
+        self.profiles = profiles
 
     def load_options(self) -> dict:
         """Keyword arguments of `load.loader.begin`."""
@@ -164,6 +167,8 @@ def make_request(paths=(), **options) -> LintRequest:
                 "target", "joint_states"):
         if options.get(key) is not None:
             kw[key] = options[key]
+    if options.get("profiles") is not None:
+        kw["profiles"] = _profiles(options["profiles"])
     if kw.get("target") is not None:
         from urdfcheck.model.grammar import TARGETS
 
@@ -179,6 +184,17 @@ def make_request(paths=(), **options) -> LintRequest:
     if kw.get("config") is not None and not os.path.isfile(kw["config"]):
         raise UsageError(f"no such config file: {kw['config']}")
     return LintRequest(**kw)
+
+
+def _profiles(value) -> tuple[str, ...]:
+    from urdfcheck.rules.checks.profiles.common import PROFILES
+
+    names = [p.strip().lower() for p in ([value] if isinstance(value, str) else value) for p in str(p).split(",")]
+    names = [p for p in names if p]
+    for p in names:
+        if p not in PROFILES:
+            raise UsageError(f"unknown profile {p!r} (use one of {', '.join(PROFILES)})")
+    return tuple(dict.fromkeys(names))
 
 
 def _severity(v) -> Severity:

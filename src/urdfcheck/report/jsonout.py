@@ -50,6 +50,8 @@ def as_dict(result) -> dict:
                 # the same problem at other lines of the file (one finding, each place kept)
                 **({"also": [{"location": location(a.location), "message": clean_text(a.message)}
                              for a in f.also]} if f.also else {}),
+                # the consumer whose behaviour the finding predicts (--profile; rules/checks/profiles)
+                **({"profile": f.profile} if f.profile else {}),
             }
             for f in result.findings
         ],

@@ -26,6 +26,8 @@ def _example(ex: dict) -> str:
         out.append(f"`{name}`\n\n```{lang}\n{str(content).rstrip()}\n```\n")
     if ex.get("args"):
         out.append("xacro arguments: " + ", ".join(f"`{k}:={v}`" for k, v in ex["args"].items()) + "\n")
+    if ex.get("flags"):
+        out.append("linted with: `urdfcheck lint " + " ".join(str(f) for f in ex["flags"]) + "`\n")
     return "\n".join(out)
 
 
@@ -40,6 +42,8 @@ def _example_text(ex: dict) -> str:
         out += ["    " + ln if ln.strip() else "" for ln in str(content).rstrip().splitlines()]
     if ex.get("args"):
         out.append("  xacro arguments: " + " ".join(f"{k}:={v}" for k, v in ex["args"].items()))
+    if ex.get("flags"):
+        out.append("  linted with: urdfcheck lint " + " ".join(str(f) for f in ex["flags"]))
     return "\n".join(out) + "\n"
 
 

@@ -47,7 +47,8 @@ class Context(Record):
     # contracts: the consumers read for this model (controllers, launch files...)
     # options: the running rule's options (catalogue defaults + config)
     # target: the ROS distribution the model is checked for (flag over config; None: the checks decide, U007)
-    _fields = ('selection', 'expanded', 'config', 'contracts', 'variant', 'options', 'target')
+    # profiles: the consumer profiles asked for (--profile / `profiles:`), e.g. ("mujoco", "gazebo")
+    _fields = ('selection', 'expanded', 'config', 'contracts', 'variant', 'options', 'target', 'profiles')
 
     def __init__(self, selection: Selection | None = None,
                  expanded: object = None,
@@ -55,7 +56,9 @@ class Context(Record):
                  contracts: object = None,
                  variant: str = "",
                  options: dict | None = None,
-                 target: str | None = None):
+                 target: str | None = None,
+                 profiles: tuple = ()):
+        self.profiles = tuple(profiles or ())
         self.selection = Selection() if selection is None else selection
         self.expanded = expanded
         self.config = config
@@ -129,7 +132,17 @@ def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
         location=_loc(p.at, model.loc),
         name=info.name if info else "",
         related=related,
+        profile=p.data.get("profile") or _annotated(code, ctx),
     )
+
+
+def _annotated(code: str, ctx: Context) -> str:
+    """The active profile that reads a general rule's finding as its own rejection (rules/checks/profiles)."""
+    if not ctx.profiles:
+        return ""
+    from urdfcheck.rules.checks.profiles.common import annotates
+
+    return annotates(code, ctx.profiles)
 
 
 def _listing(items, shown: int = 3) -> str:
@@ -168,7 +181,8 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
                 continue
         kept.append(Finding(f.code, sev, f.message.replace(here, ""), _shown(f.location),
                             f.name or (info.name if info else ""),
-                            tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant))
+                            tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant,
+                            profile=f.profile))
     if selection.enabled("R002"):
         for i, s in enumerate(suppressions):
             if i in used:

@@ -12,7 +12,7 @@ import sys
 from pathlib import Path
 
 FAMILIES = {"X": "loading", "U": "syntax", "S": "structure", "J": "joints", "I": "inertial", "G": "geometry",
-            "F": "frames", "C": "contracts", "T": "tf", "V": "verify", "R": "runner"}
+            "F": "frames", "C": "contracts", "T": "tf", "V": "verify", "R": "runner", "P": "profiles"}
 
 ENTRY = """\
 code: {code}

@@ -20,14 +20,37 @@ def unreadable_values(model, ctx):
 # --- U007: the declared URDF version ----------------------------------------------------------------------------
 def target_of(model, ctx) -> tuple[G.Target, str]:
     """The target distribution and why: the config/command line (`target`), else what the enclosing package
-    tells (a catkin package is ROS 1, i.e. Noetic), else the newest."""
+    tells (a catkin package is ROS 1, i.e. Noetic), else what the workspace names, else Humble."""
     # the request's merged target (flag over config) when the engine hands it over, else the config's key
     name = getattr(ctx, "target", None) or getattr(getattr(ctx, "config", None), "target", None)
     if name in G.TARGETS:
         return G.TARGETS[name], "the configured target (--target or the config key)"
     if _catkin_package(model.source):
         return G.TARGETS["noetic"], "the enclosing package.xml builds with catkin (ROS 1)"
-    return G.TARGETS[G.NEWEST_TARGET], "the newest distribution (no target configured)"
+    return assumed_target(model.source)
+
+
+def describe_target(source: str, configured: str | None = None) -> tuple[str, str]:
+    """(distribution, why) for a model file, as U007 and the profiles decide it (`lint --list` prints it)."""
+    if configured in G.TARGETS:
+        return configured, "the configured target (--target or the config key)"
+    if _catkin_package(source):
+        return "noetic", "the enclosing package.xml builds with catkin (ROS 1)"
+    t, why = assumed_target(source)
+    return t.name, why
+
+
+def assumed_target(source: str) -> tuple[G.Target, str]:
+    """Without a configured target: what the workspace names (CI files, Dockerfiles, .repos, the branch in
+    .git/HEAD), else Humble, the oldest supported ROS 2 LTS (issue 25: the newest was the least likely one)."""
+    if source and not source.startswith("<"):
+        from urdfcheck.load.distro import workspace_distro
+
+        found = workspace_distro(os.path.dirname(os.path.abspath(source)))
+        if found is not None and found[0] in G.TARGETS:
+            return G.TARGETS[found[0]], f"assumed: {found[1]}; set target: to change it"
+    return G.TARGETS[G.DEFAULT_TARGET], ("assumed: the oldest supported ROS 2 LTS, as nothing in the workspace names "
+                                         "a distribution; set target: or --target to change it")
 
 
 _CATKIN: dict[str, bool] = {}

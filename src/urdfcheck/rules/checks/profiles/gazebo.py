@@ -1,0 +1,114 @@
+"""Gazebo: sdformat's URDF converter (gazebosim/sdformat src/parser_urdf.cc), and the Isaac Sim URDF importer
+(isaac-sim/urdf-importer-extension, documentation "URDF Importer Extension").
+
+parser_urdf.cc first lumps every link attached by a fixed joint into its parent (ReduceFixedJoints; kept when
+the joint has <gazebo reference="joint"><preserveFixedJoint>true</preserveFixedJoint></gazebo> or
+<disableFixedJointLumping>), then CreateSDF skips a link that has no <inertial> or a mass of exactly 0 ("has no
+inertia, not modeled in sdf"), together with its parent joint and every child link and joint."""
+from __future__ import annotations
+
+import re
+
+from urdfcheck.rules.catalogue import check
+from urdfcheck.rules.checks.profiles.common import actuated, fixed_groups, is_tree, names, speak
+
+_KEEP = re.compile(r"<\s*(preserveFixedJoint|disableFixedJointLumping)\s*>\s*(true|1)\s*<", re.I)
+
+
+def kept_fixed_joints(model) -> set[str]:
+    """Fixed joints sdformat does not lump: <gazebo reference="J"> with preserveFixedJoint/disableFixedJointLumping."""
+    return {b.attrib.get("reference", "") for b in model.blocks
+            if b.tag == "gazebo" and b.parent_tag == "robot" and _KEEP.search(b.xml)}
+
+
+def _massless(link) -> bool:
+    inr = link.inertial
+    return inr is None or inr.mass is None or inr.mass == 0.0
+
+
+@check("P010")
+def fixed_joint_lumping(model, ctx):
+    if "gazebo" not in ctx.profiles or len(model.roots) != 1:
+        return
+    group = fixed_groups(model, kept_fixed_joints(model))
+    lumped = [n for n, g in group.items() if n != g]
+    if lumped:
+        yield speak(ctx, ("gazebo",),
+                    f"Gazebo lumps {len(lumped)} link(s) attached by fixed joints into their parents (sdformat "
+                    f"parser_urdf.cc ReduceFixedJoints): {names(lumped)} become frames of the parent link, and "
+                    "sensors, plugins and <gazebo reference> blocks naming them move to it (keep one with <gazebo "
+                    "reference=\"JOINT\"><preserveFixedJoint>true</preserveFixedJoint></gazebo>)", model)
+
+
+@check("P011")
+def massless_link_dropped(model, ctx):
+    if not is_tree(model):
+        return
+    group = fixed_groups(model, kept_fixed_joints(model))
+    members: dict[str, list[str]] = {}
+    for n, g in group.items():
+        members.setdefault(g, []).append(n)
+    root = model.roots[0]
+    gone: set[str] = set()  # below a dropped link: already named by its finding
+    for body in model.descendants_in_order(root):
+        links = members.get(body)
+        if links is None or body == root or body == "world" or body not in model.links or body in gone:
+            continue
+        if not all(_massless(model.links[n]) for n in links):
+            continue
+        below = [d for d in model.descendants_in_order(body)[1:] if group.get(d) != body]
+        gone.update(below)
+        j = model.parent_joint.get(body)
+        p = speak(ctx, ("gazebo",),
+                  f"Gazebo drops link '{body}'" + (f" and the {len(below)} link(s) below it ({names(below)})"
+                                                   if below else "")
+                  + f": it has no <inertial> or a mass of 0 (sdformat parser_urdf.cc CreateSDF: \"has no inertia, "
+                  f"not modeled in sdf\"), so joint '{j.name if j else '?'}' and everything attached below it are "
+                  "missing from the simulation; give it an <inertial> with a small positive mass",
+                  model.links[body].inertial or model.links[body], quiet=True)  # P001's info names Gazebo too
+        if p is not None:
+            yield p
+
+
+@check("P013")
+def undrivable_joint(model, ctx):
+    """effort="0" on a movable joint nothing actuates. Gazebo copies the limit into SDFormat, where 0 clamps every
+    commanded force to 0; Isaac Sim's importer reads 0 as no limit (configureDriveAPI: maxForce FLT_MAX). ROS-Industrial
+    arms write effort 0 because their driver commands positions: a <transmission> or <ros2_control> joint tells them
+    apart (J004 covers those)."""
+    driven = actuated(model)
+    zero = [j for j in model.joint_list if j.type in ("revolute", "prismatic", "continuous") and j.limit is not None
+            and j.limit.effort == 0 and j.mimic is None and j.name not in driven]
+    if not zero:
+        return
+    p = speak(ctx, ("gazebo", "isaac"),
+              f"joint(s) {names([j.name for j in zero])} have effort=\"0\" and no actuator (<transmission> or "
+              "<ros2_control>): Gazebo copies the limit into SDFormat (<effort>0</effort>), so any force or torque "
+              "a plugin or controller commands is clamped to 0 and the joint cannot be driven, while Isaac Sim's "
+              "URDF importer reads 0 as no limit at all (drive maxForce FLT_MAX); a position-controlled "
+              "ROS-Industrial arm or a passive joint (moved by a spring or gravity) can ignore this, a joint meant "
+              "to be driven in simulation needs its real effort limit", zero[0].limit)
+    if p is not None:
+        yield p
+
+
+@check("P020")
+def isaac_merges_fixed_joints(model, ctx):
+    if "isaac" not in ctx.profiles or len(model.roots) != 1:
+        return
+    keep = _dont_collapse(ctx)
+    group = fixed_groups(model, keep)
+    merged = [n for n, g in group.items() if n != g]
+    if merged:
+        yield speak(ctx, ("isaac",),
+                    f"Isaac Sim's URDF importer, with \"Merge Fixed Joints\" on, merges {len(merged)} link(s) into "
+                    f"their parents: {names(merged)} are no prims of their own (sensors and TF frames published "
+                    "from them are lost); keep one with dont_collapse=\"true\" on its fixed joint", model)
+
+
+def _dont_collapse(ctx) -> set[str]:
+    """Fixed joints written with dont_collapse="true" (the builder keeps no extension attributes)."""
+    root = getattr(ctx.expanded, "root", None)
+    if root is None:
+        return set()
+    return {el.get("name", "") for el in root.iterfind("joint") if el.get("dont_collapse", "").lower() == "true"}

@@ -1,0 +1,22 @@
+"""KDL: kdl_parser (ros/kdl_parser kdl_parser/src/kdl_parser.cpp), used by robot_state_publisher and KDL solvers.
+
+toKdl(joint): FLOATING and PLANAR (and any other type) fall to the default branch, "Converting unknown joint type
+of joint '%s' into a fixed joint": the tree has no degree of freedom there. treeFromUrdfModel: a root link with
+inertia gets "The root link %s has an inertia specified in the URDF, but KDL does not support a root link with an
+inertia" (I005)."""
+from __future__ import annotations
+
+from urdfcheck.rules.catalogue import check
+from urdfcheck.rules.checks.profiles.common import speak
+
+
+@check("P030")
+def floating_or_planar_fixed(model, ctx):
+    for j in model.joint_list:
+        if j.type in ("floating", "planar"):
+            p = speak(ctx, ("kdl",),
+                      f"KDL makes {j.type} joint '{j.name}' a fixed joint (kdl_parser: \"Converting unknown joint "
+                      f"type of joint '{j.name}' into a fixed joint\"): KDL solvers see no degree of freedom there",
+                      j, quiet=True)  # J010/J011 report it for robot_state_publisher
+            if p is not None:
+                yield p

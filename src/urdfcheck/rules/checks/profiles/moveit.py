@@ -1,0 +1,41 @@
+"""MoveIt: moveit_core's RobotModel (moveit/moveit2 moveit_core/robot_model/src/robot_model.cpp).
+
+RobotModel::buildJointModel -> getVariableBoundsFromURDF: a joint with <safety_controller> gets its position
+bounds narrowed to soft_lower_limit/soft_upper_limit (max/min with lower/upper), so planning never reaches the
+range between the soft and the hard limits; a velocity limit of 0 becomes "no velocity bound"
+(velocity_bounded_ = false when the URDF value is 0)."""
+from __future__ import annotations
+
+from urdfcheck.rules.catalogue import check
+from urdfcheck.rules.checks.profiles.common import speak
+
+
+def _number(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return None
+
+
+@check("P060")
+def soft_limits_narrow_bounds(model, ctx):
+    if "moveit" not in ctx.profiles:
+        return
+    root = getattr(ctx.expanded, "root", None)
+    if root is None:
+        return
+    for el in root.iterfind("joint"):
+        j = model.joints.get(el.get("name", ""))
+        sc = el.find("safety_controller")
+        if j is None or sc is None or j.limit is None or j.type not in ("revolute", "prismatic"):
+            continue
+        lo, hi = _number(sc.get("soft_lower_limit")), _number(sc.get("soft_upper_limit"))
+        narrowed = []
+        if lo is not None and j.limit.lower is not None and lo > j.limit.lower:
+            narrowed.append(f"lower {j.limit.lower:g} -> {lo:g}")
+        if hi is not None and j.limit.upper is not None and hi < j.limit.upper:
+            narrowed.append(f"upper {j.limit.upper:g} -> {hi:g}")
+        if narrowed:
+            yield speak(ctx, ("moveit",),
+                        f"MoveIt plans joint '{j.name}' within its <safety_controller> soft limits, not <limit> ("
+                        + ", ".join(narrowed) + "; robot_model.cpp getVariableBoundsFromURDF)", j.limit)
