@@ -86,6 +86,9 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
                       help="show paths relative to DIR (default: the working directory)")
     lint.add_argument("--baseline", metavar="FILE", help="only fail on findings not in this baseline")
     lint.add_argument("--write-baseline", metavar="FILE", help="write current findings as a baseline and exit 0")
+    lint.add_argument("--no-cache", action="store_true", help="neither read nor write the lint cache (cli/cache.py)")
+    lint.add_argument("--cache-dir", metavar="DIR", help="the lint cache's folder (default: the user's cache folder)")
+    lint.add_argument("--quiet", "-q", action="store_true", help="no progress on a terminal")
     lint.set_defaults(func=cmd_lint)
 
     exp = sub.add_parser("expand", help="print the expanded URDF exactly as the rules see it")
@@ -194,13 +197,16 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
             sys.modules["urdfcheck.core.worker"].drop_spares()
 
 
-def run() -> None:
+def run(after=None) -> None:
     """The console entry point: `main`, then exit without tearing the interpreter down.
 
     Teardown frees a big model object by object (0.1 s for 10,000 links) and nothing needs it: every file
     we write is closed by then, atexit handlers are run and the standard streams are flushed here.
+    `after(code) -> code`: the lint cache storing the run (cli/cache.py).
     """
     code = main(one_shot=True)
+    if after is not None:
+        code = after(code)
     import atexit
 
     try:
