@@ -35,12 +35,17 @@ _NOT_STORED = ("--list", "--write-baseline", "--output", "--report", "--help", "
 _COMMANDS = ("lint", "expand", "rules", "help", "tree", "tf", "publish", "verify")
 
 
+MAX_VERSIONS = 4  # entries kept per key: the states a pre-commit user goes back and forth between
+
+
 class Spec:
-    __slots__ = ("folder", "key", "path", "trace")
+    """`folder`: the cache's folder for this schema; `key`: the settings' hash; `versions`: the folder holding
+    this key's entries, one per state of the files it read (newest used first)."""
+    __slots__ = ("folder", "key", "versions", "trace")
 
     def __init__(self, folder: str, key: str, trace: bool):
         self.folder, self.key, self.trace = folder, key, trace
-        self.path = os.path.join(folder, f"{key}.json")
+        self.versions = os.path.join(folder, key)
 
 
 def digest(data: bytes) -> str:
@@ -145,31 +150,50 @@ def _say(spec: Spec, what: str) -> None:
 # --- hit ----------------------------------------------------------------------------------------------------------
 def replay(spec: Spec) -> int | None:
     """Write the stored report and return its exit code, or None (no usable entry: run)."""
-    entry = _load(spec)
-    if entry is None:
-        _say(spec, "miss")
-        return None
     from urdfcheck.core.observe import fingerprint
 
-    for kind, path, fp in entry["observed"]:
-        if fingerprint(kind, path, digest) != fp:
-            _say(spec, f"miss ({path} changed)")
-            return None
+    why = "miss"
+    for path in _versions(spec)[:MAX_VERSIONS]:
+        entry = _load(path, spec.key)
+        if entry is None:
+            continue
+        changed = next((p for kind, p, fp in entry["observed"] if fingerprint(kind, p, digest) != fp), None)
+        if changed is not None:
+            why = f"miss ({changed} changed)"
+            continue
+        try:
+            os.utime(path)  # least recently used goes first when the folder is pruned
+        except OSError:
+            pass
+        sys.stdout.write(entry["stdout"])
+        sys.stderr.write(entry["stderr"])
+        _say(spec, "hit")
+        return entry["code"]
+    _say(spec, why)
+    return None
+
+
+def _versions(spec: Spec) -> list[str]:
+    """This key's entries, most recently used first."""
+    found = []
     try:
-        os.utime(spec.path)  # least recently used goes first when the folder is pruned
+        with os.scandir(spec.versions) as it:
+            for e in it:
+                if e.name.endswith(".json"):
+                    try:
+                        found.append((e.stat(follow_symlinks=False).st_mtime_ns, e.path))
+                    except OSError:
+                        continue
     except OSError:
-        pass
-    sys.stdout.write(entry["stdout"])
-    sys.stderr.write(entry["stderr"])
-    _say(spec, "hit")
-    return entry["code"]
+        return []
+    return [p for _, p in sorted(found, reverse=True)]
 
 
-def _load(spec: Spec) -> dict | None:
+def _load(path: str, key: str) -> dict | None:
     from urdfcheck.core.safeio import read_file
 
     try:
-        data = read_file(spec.path, MAX_ENTRY)
+        data = read_file(path, MAX_ENTRY)
     except OSError:
         return None
     if len(data) > MAX_ENTRY:
@@ -178,7 +202,7 @@ def _load(spec: Spec) -> dict | None:
         entry = json.loads(data.decode("utf-8"))
     except (UnicodeDecodeError, ValueError, RecursionError):
         return None
-    return entry if _valid(entry, spec.key) else None
+    return entry if _valid(entry, key) else None
 
 
 def _valid(entry, key: str) -> bool:
@@ -215,6 +239,10 @@ class _Tee:
     def write(self, text):
         self.parts.append(text)
         return self._stream.write(text)
+
+    @property
+    def untee(self):  # what must not be replayed (core/progress) writes here
+        return self._stream
 
     def __getattr__(self, name):
         return getattr(self._stream, name)
@@ -265,20 +293,24 @@ def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
     data = json.dumps(entry, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape")
     if len(data) > MAX_ENTRY:
         return "not stored (too large)"
-    os.makedirs(spec.folder, mode=0o700, exist_ok=True)
+    os.makedirs(spec.versions, mode=0o700, exist_ok=True)
     _tag(os.path.dirname(spec.folder))
-    tmp = os.path.join(spec.folder, f".{spec.key}.{os.getpid()}.{id(entry):x}.tmp")
+    version = digest(json.dumps(observed, separators=(",", ":")).encode("utf-8", "surrogateescape"))
+    final = os.path.join(spec.versions, f"{version}.json")
+    tmp = os.path.join(spec.versions, f".{version}.{os.getpid()}.{id(entry):x}.tmp")
     fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o600)
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data)
-        os.replace(tmp, spec.path)  # atomic: a parallel reader sees the old entry or the new one
+        os.replace(tmp, final)  # atomic: a parallel reader sees the old entry or the new one
     except BaseException:
         try:
             os.unlink(tmp)
         except OSError:
             pass
         raise
+    for old in _versions(spec)[MAX_VERSIONS:]:
+        _unlink(old)
     prune(spec.folder)
     return "stored"
 
@@ -295,36 +327,47 @@ def _tag(folder: str) -> None:
 
 
 def prune(folder: str, max_bytes: int = MAX_BYTES, max_entries: int = MAX_ENTRIES) -> int:
-    """Remove the least recently used entries (and stale temporary files) until the folder is under both
-    bounds; returns how many files were removed."""
+    """Remove the least recently used entries (and temporary files left by a killed run) until the folder
+    (one sub-folder per key) is under both bounds; returns how many files were removed."""
     import time
 
     entries, total, removed = [], 0, 0
+    stale = time.time() - 3600
     try:
-        with os.scandir(folder) as it:
-            for e in it:
-                try:
-                    st = e.stat(follow_symlinks=False)
-                except OSError:
-                    continue
-                if e.name.endswith(".tmp") and st.st_mtime < time.time() - 3600:  # left by a killed run
-                    _unlink(e.path)
-                    removed += 1
-                elif e.name.endswith(".json"):
-                    entries.append((st.st_mtime_ns, st.st_size, e.path))
-                    total += st.st_size
+        with os.scandir(folder) as keys:
+            subs = [k.path for k in keys if k.is_dir(follow_symlinks=False)]
     except OSError:
         return removed
-    if total <= max_bytes and len(entries) <= max_entries:
-        return removed
-    entries.sort()
-    keep_bytes, keep_entries = max_bytes * 3 // 4, max_entries * 3 // 4
-    for _, size, path in entries:
-        if total <= keep_bytes and len(entries) - removed <= keep_entries:
-            break
-        if _unlink(path):
-            total -= size
-            removed += 1
+    for sub in subs:
+        try:
+            with os.scandir(sub) as it:
+                for e in it:
+                    try:
+                        st = e.stat(follow_symlinks=False)
+                    except OSError:
+                        continue
+                    if e.name.endswith(".tmp") and st.st_mtime < stale:
+                        removed += _unlink(e.path)
+                    elif e.name.endswith(".json"):
+                        entries.append((st.st_mtime_ns, st.st_size, e.path))
+                        total += st.st_size
+        except OSError:
+            continue
+    if total > max_bytes or len(entries) > max_entries:
+        entries.sort()
+        keep_bytes, keep_entries, left = max_bytes * 3 // 4, max_entries * 3 // 4, len(entries)
+        for _, size, path in entries:
+            if total <= keep_bytes and left <= keep_entries:
+                break
+            if _unlink(path):
+                total -= size
+                left -= 1
+                removed += 1
+    for sub in subs:  # an emptied key's folder
+        try:
+            os.rmdir(sub)
+        except OSError:
+            pass
     return removed
 
 

@@ -7,8 +7,8 @@ kept, and is not parsed: example-robot-data's 69 models share one package whose 
 UR5's joints, and linting the UR5 imported PyYAML and parsed them for nothing.
 
 What the bytes cannot rule out passes: an escape sequence (`"shoulder\\x5fpan_joint"` is a joint name), a NUL
-byte or a UTF-16/32 byte-order mark (text in another encoding), a name with a space or a quote (YAML can write
-it folded or doubled), a file that cannot be read or is over the
+byte or a UTF-16/32 byte-order mark (text in another encoding), an empty name, a name with a space or a quote (YAML
+can write it folded or doubled), a file that cannot be read or is over the
 readers' cap. A file that passes is parsed and judged exactly as before. A package with one model keeps every
 parameter file and reports the ones it cannot read (C007), so there every file is parsed as before.
 
@@ -27,9 +27,7 @@ def may_name(data: bytes, names) -> bool:
     if data.startswith(_WIDE_BOMS) or any(u in data for u in _UNSURE):
         return True
     for n in names:
-        if not n:
-            continue
-        if any(c.isspace() or c in "'\"" for c in n):  # folded lines, '' in quotes: written otherwise
+        if not n or any(c.isspace() or c in "'\"" for c in n):  # "", folded lines, '' in quotes: not in bytes
             return True
         if n.encode("utf-8", "surrogateescape") in data:
             return True
