@@ -183,6 +183,10 @@ def test_cache_dir_flag_and_config_cannot_set_it(pkg, tmp_path):
     code, _, err, _ = cli(["lint", "urdf/agv.urdf.xacro"], pkg, tmp_path / "env")
     assert code == 2 and "cache_dir" in err
     assert not list(pkg.rglob("*.json"))
+    # ...but it can turn the cache off
+    cfg.write_text(cfg.read_text().replace("\ncache_dir: .\n", "\ncache: false\n"))
+    said = cli(["lint", "urdf/agv.urdf.xacro"], pkg, tmp_path / "env")[3]
+    assert said == ["urdfcheck: cache miss", "urdfcheck: cache not stored (the config says cache: false)"]
 
 
 def test_parallel_runs_share_an_entry(pkg, tmp_path):
@@ -237,6 +241,7 @@ def test_plan_reads_the_command_line():
     assert cache.plan(["lint", "--cache-dir=/tmp/x", "m.urdf"]).folder == os.path.join("/tmp/x", "v1")
 
 
+@pytest.mark.slow
 def test_whole_corpus_same_json_with_and_without_cache(tmp_path):
     """The corpus root, zero-config: no cache, then a cold cache (stores), then a hit: the same bytes."""
     if not CORPUS.is_dir():

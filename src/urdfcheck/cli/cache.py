@@ -278,7 +278,7 @@ def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
     if code not in (0, 1):
         return "not stored (exit code)"
     if observe.tainted():
-        return "not stored (a worker failed or the time budget ran out)"
+        return f"not stored ({observe.tainted()})"
     if len(stdout) + len(stderr) > MAX_ENTRY // 2:
         return "not stored (too large)"
     folder = os.path.join(spec.folder, "")

@@ -21,7 +21,7 @@ import stat
 import sys
 
 _SEEN: set | None = None
-_TAINTED = False
+_TAINTED = ""
 _LIB: tuple[str, ...] = ()
 _STAT = os.stat
 _LSTAT = os.lstat
@@ -46,12 +46,13 @@ def start(library_roots=()) -> None:
     os.lstat = _lstat
 
 
-def taint() -> None:
+def taint(why: str = "a worker failed or the time budget ran out") -> None:
     global _TAINTED
-    _TAINTED = True
+    _TAINTED = _TAINTED or why
 
 
-def tainted() -> bool:
+def tainted() -> str:
+    """Why this run must not be stored ("" when it may be)."""
     return _TAINTED
 
 
