@@ -255,3 +255,25 @@ def test_whole_corpus_same_json_with_and_without_cache(tmp_path):
     assert cold[3][-1] == "urdfcheck: cache stored" and warm[3] == ["urdfcheck: cache hit"]
     assert plain[:3] == cold[:3] == warm[:3]
     assert json.loads(warm[1])["findings"]
+
+
+@pytest.mark.parametrize("argv, expected", [
+    (["lint", "m.urdf.xacro"], (False, (), 20.0)),
+    (["m.urdf.xacro", "--trusted", "--allow-env", "HOME", "--timeout=5"], (True, ("HOME",), 5.0)),
+    (["lint", "--format", "json", "--arg", "a:=b", "m.urdf.xacro"], (False, (), 20.0)),
+    (["lint", "plain.urdf"], None),  # no xacro, no folder: no worker
+    (["lint", "--list", "m.urdf.xacro"], None),  # an option it does not know: cli.main decides
+    (["lint", "--tim", "5", "m.urdf.xacro"], None),  # an abbreviation
+    (["rules"], None),
+])
+def test_fork_early_reads_the_limits(monkeypatch, argv, expected):
+    from urdfcheck.core import worker
+
+    got = []
+    monkeypatch.setattr(worker, "keep_spare", lambda key, limits, preload: got.append(limits))
+    cache.fork_early(argv)
+    if expected is None:
+        assert got == []
+    else:
+        (lim,) = got
+        assert (not lim.scrub_env, tuple(lim.env_keep), lim.timeout) == expected

@@ -390,9 +390,55 @@ def console() -> None:
         if code is not None:
             _exit(code)
         finish = record(spec)
+    fork_early(sys.argv[1:])
     from urdfcheck.cli import main
 
     main.run(after=finish)
+
+
+# lint options that take a value (a value is not a path); any option not known here leaves the fork to cli.main
+_VALUED = frozenset(("--arg", "--package", "--allow-env", "--timeout", "--max-elements", "--budget", "--select",
+                     "--ignore", "--fail-on", "--format", "--output", "-o", "--report", "--color", "--config",
+                     "--target", "--root", "--baseline", "--cache-dir"))
+_FLAGS = frozenset(("--trusted", "--no-config", "--no-cache", "--quiet", "-q"))
+
+
+def fork_early(argv: list[str]) -> None:
+    """Fork the xacro worker before argparse and cli.main are imported, with the limits the flags give, so it
+    imports xacro meanwhile (cli.main would fork it a few milliseconds later: `_fork_xacro_worker`). The worker
+    is used only when its limits equal the job's; an option this reading does not know leaves it to cli.main."""
+    argv = lint_argv(list(argv))
+    if not argv or argv[0] != "lint":
+        return
+    trusted, allow_env, timeout, paths = False, [], None, []
+    it = iter(argv[1:])
+    for a in it:
+        if not a.startswith("-") or a == "-":
+            paths.append(a)
+            continue
+        name, eq, value = a.partition("=")
+        if name in _FLAGS and not eq:
+            trusted = trusted or name == "--trusted"
+            continue
+        if name not in _VALUED:
+            return
+        if not eq:
+            value = next(it, None)
+            if value is None:
+                return
+        if name == "--allow-env":
+            allow_env.append(value)
+        elif name == "--timeout":
+            try:
+                timeout = float(value)
+            except ValueError:
+                return
+    if not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths or ["."]):
+        return
+    from urdfcheck.core import worker
+    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, XACRO_TIMEOUT, worker_limits
+
+    worker.keep_spare(SPARE, worker_limits(trusted, allow_env, timeout or XACRO_TIMEOUT), SPARE_PRELOAD)
 
 
 def _exit(code: int) -> None:
