@@ -39,7 +39,7 @@ def start(library_roots=()) -> None:
         return
     _SEEN = set()
     _CWD = os.getcwd()
-    roots = {sys.prefix, sys.base_prefix, sys.exec_prefix, *library_roots}
+    roots = {sys.prefix, sys.base_prefix, sys.exec_prefix, getattr(sys, "pycache_prefix", None), *library_roots}
     _LIB = tuple(sorted({os.path.join(os.path.abspath(r), "") for r in roots if r}))
     sys.addaudithook(_hook)
     os.stat = _stat
@@ -91,7 +91,7 @@ def _note(kind: str, p) -> None:
     path = _path(p)
     if path is None or _SEEN is None or path.startswith(_SYSTEM):
         return
-    if kind == "r" and path.startswith(_LIB):
+    if kind == "r" and (path.startswith(_LIB) or path.endswith((".pyc", ".so"))):  # code, not the user's tree
         kind = "m"
     _SEEN.add((kind, path))
 
