@@ -20,7 +20,6 @@ is unknown). The folder is kept under MAX_BYTES and MAX_ENTRIES, least recently 
 """
 from __future__ import annotations
 
-import json
 import os
 import sys
 
@@ -106,6 +105,8 @@ def plan(argv: list[str]) -> Spec | None:
             return None
     folder = os.path.abspath(folder or env.get("URDFCHECK_CACHE_DIR") or user_cache_dir())
     folder = os.path.join(folder, f"v{SCHEMA}")
+    import json
+
     import urdfcheck
 
     pkg = os.path.dirname(os.path.abspath(urdfcheck.__file__))
@@ -190,6 +191,8 @@ def _versions(spec: Spec) -> list[str]:
 
 
 def _load(path: str, key: str) -> dict | None:
+    import json
+
     from urdfcheck.core.safeio import read_file
 
     try:
@@ -224,6 +227,8 @@ def _valid(entry, key: str) -> bool:
 
 
 def _checksum(entry: dict) -> str:
+    import json
+
     body = [entry["key"], entry["code"], entry["stdout"], entry["stderr"], entry["observed"]]
     return digest(json.dumps(body, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
 
@@ -273,6 +278,8 @@ def record(spec: Spec):
 
 
 def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
+    import json
+
     from urdfcheck.core import observe
 
     if code not in (0, 1):
