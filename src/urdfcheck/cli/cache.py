@@ -390,13 +390,19 @@ def _unlink(path: str) -> bool:
 def console() -> None:
     """`urdfcheck ...` (console script and `python -m urdfcheck`): a cache hit answers here; anything else runs
     `cli.main` and, for a lint run that may be stored, records it."""
-    spec = plan(sys.argv[1:])
     finish = None
-    if spec is not None:
-        code = replay(spec)
-        if code is not None:
-            _exit(code)
-        finish = record(spec)
+    try:
+        spec = plan(sys.argv[1:])
+        if spec is not None:
+            code = replay(spec)
+            if code is not None:
+                _exit(code)
+            finish = record(spec)
+    except BrokenPipeError:  # `urdfcheck lint | head`: as cli.main answers it
+        _exit(0)
+    except Exception:  # noqa: BLE001 - the cache never stops a run: without it, lint runs as usual
+        if os.environ.get("URDFCHECK_DEBUG"):
+            raise
     fork_early(sys.argv[1:])
     from urdfcheck.cli import main
 
