@@ -1,6 +1,9 @@
 """Wall-clock helpers for the benchmarks (bench/bench.py, left to the lead, builds on these).
 
     best_of(cmd, n=5)                  -> seconds: one warm-up run, then the minimum of n timed runs
+    paired(a, b, n=11)                 -> (median a, median b, median of the pair ratios): A B A B ... on a shared
+                                          machine, after one warm-up of each; each run's wall and CPU seconds
+    peak_kib(cmd)                      -> the child's peak resident memory (KiB, ru_maxrss of that one process)
     ratio_line(label, ours, peer, goal) prints one line: times, ratio ours/peer, goal, PASS/FAIL
 
 Commands run with stdin closed and stdout/stderr discarded (check_urdf prints the whole tree; writing
@@ -25,6 +28,63 @@ def run_once(cmd: Sequence[str], env: Mapping[str, str] | None = None, check: bo
     if check and proc.returncode != 0:
         raise subprocess.CalledProcessError(proc.returncode, list(cmd))
     return dt
+
+
+def run_measured(cmd: Sequence[str], env: Mapping[str, str] | None = None, before=None) -> tuple[float, float, int]:
+    """(wall s, CPU s of the child and what it waited for, peak KiB) of one run. `before()` runs first, untimed."""
+    import os
+
+    if before is not None:
+        before()
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(list(cmd), stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.DEVNULL, env=None if env is None else dict(env))
+    _, _, usage = os.wait4(proc.pid, 0)
+    dt = time.perf_counter() - t0
+    proc.returncode = 0  # reaped above
+    return dt, usage.ru_utime + usage.ru_stime, usage.ru_maxrss
+
+
+def _median(xs):
+    xs = sorted(xs)
+    n = len(xs)
+    return xs[n // 2] if n % 2 else (xs[n // 2 - 1] + xs[n // 2]) / 2
+
+
+def paired(a: list[str], b: list[str], n: int = 11, *, env=None, env_b=None, before_a=None, before_b=None) -> dict:
+    """A and B in turn, n pairs after one warm-up each: medians of wall and CPU, and the medians of the pair
+    ratios (pairing keeps a ratio meaningful while a shared machine's speed drifts)."""
+    run_measured(a, env, before_a)
+    run_measured(b, env_b if env_b is not None else env, before_b)
+    ra, rb = [], []
+    for _ in range(n):
+        ra.append(run_measured(a, env, before_a))
+        rb.append(run_measured(b, env_b if env_b is not None else env, before_b))
+    return {"wall_a": _median([x[0] for x in ra]), "wall_b": _median([x[0] for x in rb]),
+            "cpu_a": _median([x[1] for x in ra]), "cpu_b": _median([x[1] for x in rb]),
+            "wall": _median([x[0] / y[0] for x, y in zip(ra, rb)]),
+            "cpu": _median([x[1] / y[1] for x, y in zip(ra, rb) if y[1] > 0] or [float("inf")])}
+
+
+def peak_kib(cmd: list[str], env: Mapping[str, str] | None = None) -> int:
+    return run_measured(cmd, env)[2]
+
+
+def paired_line(label: str, r: dict, goal_wall: float | None, goal_cpu: float | None = None) -> str:
+    """One line for a `paired` result: medians, the median pair ratios, the goals."""
+    verdict = []
+    if goal_wall is not None:
+        verdict.append(f"wall {r['wall']:.2f}x (goal <= {goal_wall:g}x) {'PASS' if r['wall'] <= goal_wall else 'FAIL'}")
+    else:
+        verdict.append(f"wall {r['wall']:.2f}x")
+    if goal_cpu is not None:
+        verdict.append(f"CPU {r['cpu']:.2f}x (goal <= {goal_cpu:g}x) {'PASS' if r['cpu'] <= goal_cpu else 'FAIL'}")
+    else:
+        verdict.append(f"CPU {r['cpu']:.2f}x")
+    line = (f"{label:<44} {r['wall_a'] * 1000:7.1f} ms vs {r['wall_b'] * 1000:7.1f} ms (CPU {r['cpu_a'] * 1000:.0f} "
+            f"vs {r['cpu_b'] * 1000:.0f} ms) medians: " + "; ".join(verdict))
+    print(line, flush=True)
+    return line
 
 
 def best_of(cmd: list[str], n: int = 5, *, env: Mapping[str, str] | None = None, check: bool = False,

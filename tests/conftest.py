@@ -11,6 +11,13 @@ if os.environ.get("CI"):
     settings.load_profile("ci")
 
 REPO = Path(__file__).resolve().parent.parent
+
+# Runs of the console entry (`python -m urdfcheck` in subprocesses) use the lint cache: never the user's own
+# cache folder from the test suite, locally or in CI.
+if not os.environ.get("URDFCHECK_CACHE_DIR"):
+    import tempfile
+
+    os.environ["URDFCHECK_CACHE_DIR"] = tempfile.mkdtemp(prefix="urdfcheck-test-cache-")
 CORPUS = Path(os.environ.get("URDFCHECK_CORPUS", REPO.parent / "shared" / "corpus"))
 
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 __version__ = "0.1.0"
 __all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadError", "UsageError", "__version__"]
 
-from urdfcheck.core.findings import Finding, Location, Severity  # noqa: E402  (tiny, no heavy imports)
 
 
 def load(path, args=None, **options):
@@ -41,6 +40,11 @@ def lint(paths=(), args=None, **options):
 
 
 def __getattr__(name):
+    # on first use: a cached lint run (cli/cache.py) answers without importing them (enum, re: 15 ms)
+    if name in ("Finding", "Location", "Severity"):
+        from urdfcheck.core import findings
+
+        return getattr(findings, name)
     if name == "LoadError":
         from urdfcheck.load.loader import LoadError
 

@@ -1,3 +1,3 @@
-from urdfcheck.cli.main import run
+from urdfcheck.cli.cache import console
 
-run()
+console()

@@ -52,6 +52,9 @@ def check_recording(model, path: str, options: BagOptions | None = None, progres
     that is a B014 finding. `progress(n)` is called every 10,000 messages. `text`: read it as a YAML/JSON list
     whatever its name (None: by its suffix)."""
     opts = options or BagOptions()
+    from urdfcheck.core import observe
+
+    observe.taint("a recording was read (rosbags and sqlite reads are not observed)")
     states = JointStateChecks(model, tolerance=opts.tolerance)
     tf = TfChecks(model, profile=opts.profile, frame_prefix=opts.frame_prefix, tolerance=opts.replay_tolerance,
                   static_tolerance=opts.static_tolerance)

@@ -36,7 +36,13 @@ def run(ns, usage_error=UsageError) -> int:
         request = request_from_flags(ns)
         if getattr(ns, "list", False):
             return _list(request)
-        result = pipeline.run(request, retain=_UNTIL_EXIT if getattr(ns, "one_shot", False) else None)
+        from urdfcheck.core import progress
+
+        progress.to_terminal(None if getattr(ns, "quiet", False) else sys.stderr)
+        try:
+            result = pipeline.run(request, retain=_UNTIL_EXIT if getattr(ns, "one_shot", False) else None)
+        finally:
+            progress.close()
     except UsageError as e:
         if usage_error is UsageError:
             raise

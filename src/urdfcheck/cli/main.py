@@ -10,6 +10,7 @@ import functools
 import os
 import sys
 
+from urdfcheck.cli.commands import COMMANDS, PUBLISH_COMMANDS  # noqa: F401  (PUBLISH_COMMANDS: read from here)
 from urdfcheck.cli.common import (  # noqa: F401  (EXIT_*, UsageError: also read from here)
     EPILOG,
     EXIT_CLEAN,
@@ -44,7 +45,6 @@ def _severity(text: str):
         raise argparse.ArgumentTypeError(str(e)) from None
 
 
-PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify", "diff", "consumers")
 
 
 def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
@@ -96,6 +96,9 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
                            "form)")
     lint.add_argument("--joint-states", metavar="TOPIC",
                       help="the recordings' JointState topic (default /joint_states, else the only one)")
+    lint.add_argument("--no-cache", action="store_true", help="neither read nor write the lint cache (cli/cache.py)")
+    lint.add_argument("--cache-dir", metavar="DIR", help="the lint cache's folder (default: the user's cache folder)")
+    lint.add_argument("--quiet", "-q", action="store_true", help="no progress on a terminal")
     lint.set_defaults(func=cmd_lint)
 
     bag = sub.add_parser("bag", help="check a recording (/joint_states, /tf, /tf_static) against the model",
@@ -225,8 +228,7 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
             print("urdfcheck bag: error: expected MODEL and RECORDING (`urdfcheck bag --help`)", file=sys.stderr)
             return EXIT_USAGE
         argv = lint_argv
-    if argv and not argv[0].startswith("-") and argv[0] not in ("lint", "expand", "rules", "help", "bag") \
-            and argv[0] not in PUBLISH_COMMANDS:
+    if argv and not argv[0].startswith("-") and argv[0] not in COMMANDS:
         argv = ["lint"] + argv  # `urdfcheck model.urdf` is `urdfcheck lint model.urdf`
     parser = build_parser(with_publish=not argv or argv[0] not in ("lint", "expand", "rules"))
     ns = parser.parse_args(argv)
@@ -254,13 +256,16 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
             sys.modules["urdfcheck.core.worker"].drop_spares()
 
 
-def run() -> None:
+def run(after=None) -> None:
     """The console entry point: `main`, then exit without tearing the interpreter down.
 
     Teardown frees a big model object by object (0.1 s for 10,000 links) and nothing needs it: every file
     we write is closed by then, atexit handlers are run and the standard streams are flushed here.
+    `after(code) -> code`: the lint cache storing the run (cli/cache.py).
     """
     code = main(one_shot=True)
+    if after is not None:
+        code = after(code)
     import atexit
 
     try:

@@ -233,7 +233,11 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     out = Consumers(origin="discovered")
     r = _Reader()
     pfs = []
+    from urdfcheck.contracts.prefilter import worth_parsing
+
     for p in found.params:
+        if not single and not worth_parsing(p, joints):  # names none of the joints: dropped below anyway
+            continue
         errs: list = []
         pf = r.params(p, errs)
         if pf is None:

@@ -33,6 +33,7 @@ import os
 import re
 import shlex
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from lxml import etree
 
@@ -56,10 +57,19 @@ from urdfcheck.contracts.launchinfo import (  # noqa: F401 - the records are par
     parse_static_tf_args,
     record_node,
 )
-from urdfcheck.contracts.yamlsrc import YamlDoc, parse_yaml
 from urdfcheck.core.findings import Location
 
+if TYPE_CHECKING:
+    from urdfcheck.contracts.yamlsrc import YamlDoc
+
 MAX_BYTES = 2 * 1024 * 1024
+
+
+def parse_yaml(text, file: str) -> YamlDoc:
+    """contracts.yamlsrc.parse_yaml, imported when a launch file holds YAML: PyYAML costs 10 ms to import."""
+    from urdfcheck.contracts.yamlsrc import parse_yaml as parse
+
+    return parse(text, file)
 MAX_ELEMENTS = 100_000
 
 

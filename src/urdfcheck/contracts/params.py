@@ -21,11 +21,14 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from urdfcheck.contracts.common import ConsumerError, Value
-from urdfcheck.contracts.yamlsrc import MAX_BYTES, YamlDoc, load_yaml, parse_yaml
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
+
+if TYPE_CHECKING:  # PyYAML is imported when a file is parsed, not with the readers (contracts/prefilter.py)
+    from urdfcheck.contracts.yamlsrc import YamlDoc
 
 ROS2_KEY = "ros__parameters"
 
@@ -186,12 +189,16 @@ def params_from_doc(doc: YamlDoc) -> ParamFile:
     return ParamFile(doc.file, "ros1", nodes, doc, notes)
 
 
-def read_params(path: str | os.PathLike, *, max_bytes: int = MAX_BYTES) -> ParamFile:
-    """Read a parameter file. Raises ConsumerError."""
-    return params_from_doc(load_yaml(path, max_bytes=max_bytes))
+def read_params(path: str | os.PathLike, *, max_bytes: int | None = None) -> ParamFile:
+    """Read a parameter file (at most max_bytes, default yamlsrc.MAX_BYTES). Raises ConsumerError."""
+    from urdfcheck.contracts.yamlsrc import MAX_BYTES, load_yaml
+
+    return params_from_doc(load_yaml(path, max_bytes=MAX_BYTES if max_bytes is None else max_bytes))
 
 
 def parse_params(text: str | bytes, file: str) -> ParamFile:
+    from urdfcheck.contracts.yamlsrc import parse_yaml
+
     return params_from_doc(parse_yaml(text, file))
 
 

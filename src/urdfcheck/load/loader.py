@@ -151,6 +151,7 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     spent = run.spent() if run is not None else None
     if spent is not None:  # what was not linted is a finding, located at the model
         out.findings.append(_finding("X017", f"not linted: {spent}", shown))
+        _unrecordable()
         return Pending(out)
     cut = False
     if run is not None:
@@ -271,6 +272,12 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
     return True
 
 
+def _unrecordable() -> None:
+    from urdfcheck.core import observe
+
+    observe.taint()  # a run cut by its time budget is not stored by the lint cache
+
+
 def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None, grace=None):
     from urdfcheck.core import worker
     from urdfcheck.load import xacro as xacro_pkg
@@ -292,8 +299,13 @@ def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, ma
 
 
 def _finish_xacro(out: Expanded, res, budget_cut: bool = False) -> None:
-    from urdfcheck.core import worker
+    from urdfcheck.core import observe, worker
 
+    if observe.active():  # the lint cache: what the worker read, or that it is unknown (cli/cache.py)
+        if isinstance(res, dict):
+            observe.add(res.get("observed"))
+        else:
+            observe.taint()
     if isinstance(res, worker.Failure):
         if res.kind == "timeout" and budget_cut:
             out.findings.append(_finding("X017", "not linted: the run's time budget ran out during its xacro "

@@ -43,6 +43,7 @@ allow_env: [HOME]                         # environment variables $(env)/$(opten
 max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
 target: humble                            # ROS distribution whose urdfdom must read the model (--target)
 profiles: [mujoco, gazebo]                # consumer profiles (--profile): what each consumer rejects or changes
+cache: false                              # never store these runs in the lint cache (where it is: not here)
 ```
 
 `[tool.urdfcheck]` in pyproject.toml takes the same keys (`[[tool.urdfcheck.models]]` for the list).
@@ -434,6 +435,10 @@ def load_config(path: str | os.PathLike) -> Config:
     for key in ("models", "frames", "tf_owners", "packages", "select", "ignore", "fail_on", "severity", "rules"):
         if key in data:
             locs[(key,)] = key_loc(key)
+    if data.get("cache") is False:  # a config can turn the lint cache off, never point it somewhere (cli/cache.py)
+        from urdfcheck.core import observe
+
+        observe.taint("the config says cache: false")
     return Config(
         path=path, root=root, models=tuple(models),
         frames=_ro({**DEFAULT_FRAMES, **{str(k): str(v) for k, v in (data.get("frames") or {}).items()}}),

@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from urdfcheck.core import progress
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
 from urdfcheck.load import loader as load
@@ -241,6 +242,7 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
         for i, t in enumerate(targets):
             if i + ahead < len(targets):
                 pending[i + ahead] = _begin(targets[i + ahead], kw)
+            progress.step(i, len(targets), t.path if not t.variant else f"{t.path} [{t.variant}]")
             exp = pending.pop(i).result()
             yaml.index = i
             if t.settings is not None:

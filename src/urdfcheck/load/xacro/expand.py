@@ -384,6 +384,9 @@ def expand(path: str, opts: Options) -> dict:
     except Exception as e:
         out["error"] = _describe(e, xacro)
         return out
+    finally:
+        if "urdfcheck.core.observe" in sys.modules:  # what this expansion read, for the lint cache (cli/cache.py)
+            out["observed"] = sys.modules["urdfcheck.core.observe"].take()
     out["xml"] = text
     out["deps"] = sorted(set(xacro.all_includes))
     return out

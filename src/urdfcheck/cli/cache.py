@@ -1,0 +1,465 @@
+"""The lint cache: an unchanged run answers from the user's cache folder without importing the pipeline.
+
+A `urdfcheck lint` run (console entry only, never the API) is stored as its report text, its stderr and its exit
+code, under a key made of everything the command line and the process decide (urdfcheck's version and code, the
+interpreter, the working directory, the arguments, the environment, whether stdout is a terminal), together with
+what the run looked at (core/observe: each file it read by content hash, each folder it listed, each path it
+probed, the installed modules by size and mtime). A later run with the same key replays the entry only when
+every one of those still looks the same; otherwise it runs as if there were no cache and stores anew.
+
+Where: `--cache-dir DIR`, else $URDFCHECK_CACHE_DIR, else the user's cache folder (as platformdirs names it:
+$XDG_CACHE_HOME/urdfcheck or ~/.cache/urdfcheck on Linux). A config file in the checked tree can only turn the
+cache off (`cache: false`), never point it somewhere: every file of a pull request's checkout is the author's.
+Off: `--no-cache`, URDFCHECK_NO_CACHE=1. $URDFCHECK_CACHE_TRACE=1 says on stderr what the cache did.
+
+Safety: entries are JSON (never pickle), written to a temporary file and renamed into place (parallel runs never
+see half an entry), checked field by field and against their own checksum and key before use; a corrupt, foreign
+or unreadable entry is a miss. Not stored: runs with a report file (--output, --report), --list,
+--write-baseline, runs whose worker crashed or timed out or whose time budget ran out (what they would have read
+is unknown). The folder is kept under MAX_BYTES and MAX_ENTRIES, least recently used first out.
+"""
+from __future__ import annotations
+
+import os
+import sys
+
+from urdfcheck.cli.commands import COMMANDS
+
+SCHEMA = 1
+MAX_BYTES = 64 * 1024 * 1024
+MAX_ENTRIES = 2000
+MAX_ENTRY = 16 * 1024 * 1024
+_FIELDS = frozenset(("schema", "key", "code", "stdout", "stderr", "observed", "sum"))
+_VOLATILE = frozenset(("PWD", "OLDPWD", "SHLVL", "_", "URDFCHECK_CACHE_TRACE"))
+# lint options that write files or print something else than the report: such a run is not stored
+# --bag: recordings are read by rosbags and sqlite, whose reads the observer does not see (bag/check.py taints too)
+_NOT_STORED = ("--list", "--write-baseline", "--output", "--report", "--help", "--version", "--bag")
+
+
+MAX_VERSIONS = 4  # entries kept per key: the states a pre-commit user goes back and forth between
+
+
+class Spec:
+    """`folder`: the cache's folder for this schema; `key`: the settings' hash; `versions`: the folder holding
+    this key's entries, one per state of the files it read (newest used first)."""
+    __slots__ = ("folder", "key", "versions", "trace")
+
+    def __init__(self, folder: str, key: str, trace: bool):
+        self.folder, self.key, self.trace = folder, key, trace
+        self.versions = os.path.join(folder, key)
+
+
+def digest(data: bytes) -> str:
+    try:
+        from _blake2 import blake2b  # hashlib would load OpenSSL first: 7 ms at every start
+    except ImportError:  # pragma: no cover - an interpreter without it
+        from hashlib import blake2b
+    return blake2b(data, digest_size=16).hexdigest()
+
+
+def user_cache_dir() -> str:
+    """platformdirs.user_cache_dir("urdfcheck") without importing it."""
+    home = os.path.expanduser("~")
+    if sys.platform == "darwin":
+        return os.path.join(home, "Library", "Caches", "urdfcheck")
+    if os.name == "nt":
+        base = os.environ.get("LOCALAPPDATA") or os.path.join(home, "AppData", "Local")
+        return os.path.join(base, "urdfcheck", "Cache")
+    base = os.environ.get("XDG_CACHE_HOME", "")
+    if not os.path.isabs(base):  # the XDG spec: a relative value is invalid and ignored
+        base = os.path.join(home, ".cache")
+    return os.path.join(base, "urdfcheck")
+
+
+def lint_argv(argv: list[str]) -> list[str]:
+    """argv as `main` reads it: a path first means `lint PATH`."""
+    if argv and not argv[0].startswith("-") and argv[0] not in COMMANDS:
+        return ["lint"] + argv
+    return argv
+
+
+def plan(argv: list[str]) -> Spec | None:
+    """The cache entry this command line would use, or None when the run is not cached."""
+    argv = lint_argv(list(argv))
+    env = os.environ
+    if not argv or argv[0] != "lint" or env.get("URDFCHECK_NO_CACHE", "") not in ("", "0"):
+        return None
+    folder = None
+    it = iter(argv[1:])
+    for a in it:
+        if a == "--":
+            return None
+        if a.startswith("-") and not a.startswith("--") and a[1:2] in ("o", "h"):
+            return None
+        if not a.startswith("--"):
+            continue
+        name = a.split("=", 1)[0]
+        if name == "--no-cache":
+            return None
+        if name == "--cache-dir":
+            folder = a.split("=", 1)[1] if "=" in a else next(it, None)
+            if not folder:
+                return None
+            continue
+        if len(name) > 3 and any(full.startswith(name) for full in _NOT_STORED):
+            return None
+        if name.startswith("--ca") or name.startswith("--no-ca"):  # an abbreviation: leave it to argparse
+            return None
+    folder = os.path.abspath(folder or env.get("URDFCHECK_CACHE_DIR") or user_cache_dir())
+    folder = os.path.join(folder, f"v{SCHEMA}")
+    import json
+
+    import urdfcheck
+
+    pkg = os.path.dirname(os.path.abspath(urdfcheck.__file__))
+    material = [SCHEMA, urdfcheck.__version__, pkg, _code_stamp(pkg), sys.version, sys.executable,
+                os.getcwd(), argv, sorted((k, v) for k, v in env.items() if k not in _VOLATILE),
+                _isatty(sys.stdout)]
+    text = json.dumps(material, ensure_ascii=False, separators=(",", ":"))
+    trace = env.get("URDFCHECK_CACHE_TRACE", "") not in ("", "0")
+    return Spec(folder, digest(text.encode("utf-8", "surrogateescape")), trace)
+
+
+def _isatty(stream) -> bool:
+    try:
+        return bool(stream.isatty())
+    except (AttributeError, ValueError, OSError):
+        return False
+
+
+def _code_stamp(pkg: str) -> str:
+    """An installed release is its version; a source checkout changes under the same version, so there it is
+    the sizes and mtimes of its files."""
+    if os.path.basename(os.path.dirname(pkg)) in ("site-packages", "dist-packages"):
+        return ""
+    parts = []
+    for folder, dirs, files in os.walk(pkg):
+        dirs[:] = sorted(d for d in dirs if d != "__pycache__")
+        for name in sorted(files):
+            if name.endswith((".py", ".json", ".yaml")):
+                try:
+                    st = os.stat(os.path.join(folder, name))
+                except OSError:
+                    continue
+                parts.append(f"{folder}/{name}:{st.st_size}:{st.st_mtime_ns}")
+    return digest("\n".join(parts).encode("utf-8", "surrogateescape"))
+
+
+def _say(spec: Spec, what: str) -> None:
+    if spec.trace:
+        sys.stderr.write(f"urdfcheck: cache {what}\n")
+
+
+# --- hit ----------------------------------------------------------------------------------------------------------
+def replay(spec: Spec) -> int | None:
+    """Write the stored report and return its exit code, or None (no usable entry: run)."""
+    from urdfcheck.core.observe import fingerprint
+
+    why = "miss"
+    for path in _versions(spec)[:MAX_VERSIONS]:
+        entry = _load(path, spec.key)
+        if entry is None:
+            continue
+        changed = next((p for kind, p, fp in entry["observed"] if fingerprint(kind, p, digest) != fp), None)
+        if changed is not None:
+            why = f"miss ({changed} changed)"
+            continue
+        try:
+            os.utime(path)  # least recently used goes first when the folder is pruned
+        except OSError:
+            pass
+        sys.stdout.write(entry["stdout"])
+        sys.stderr.write(entry["stderr"])
+        _say(spec, "hit")
+        return entry["code"]
+    _say(spec, why)
+    return None
+
+
+def _versions(spec: Spec) -> list[str]:
+    """This key's entries, most recently used first."""
+    found = []
+    try:
+        with os.scandir(spec.versions) as it:
+            for e in it:
+                if e.name.endswith(".json"):
+                    try:
+                        found.append((e.stat(follow_symlinks=False).st_mtime_ns, e.path))
+                    except OSError:
+                        continue
+    except OSError:
+        return []
+    return [p for _, p in sorted(found, reverse=True)]
+
+
+def _load(path: str, key: str) -> dict | None:
+    import json
+
+    from urdfcheck.core.safeio import read_file
+
+    try:
+        data = read_file(path, MAX_ENTRY)
+    except OSError:
+        return None
+    if len(data) > MAX_ENTRY:
+        return None
+    try:
+        entry = json.loads(data.decode("utf-8"))
+    except (UnicodeDecodeError, ValueError, RecursionError):
+        return None
+    return entry if _valid(entry, key) else None
+
+
+def _valid(entry, key: str) -> bool:
+    if not isinstance(entry, dict) or set(entry) != _FIELDS:
+        return False
+    if entry["schema"] != SCHEMA or entry["key"] != key or type(entry["code"]) is not int \
+            or entry["code"] not in (0, 1):
+        return False
+    if not isinstance(entry["stdout"], str) or not isinstance(entry["stderr"], str) \
+            or not isinstance(entry["observed"], list) or not isinstance(entry["sum"], str):
+        return False
+    from urdfcheck.core.observe import KINDS
+
+    for item in entry["observed"]:
+        if not (isinstance(item, list) and len(item) == 3 and all(isinstance(x, str) for x in item)
+                and item[0] in KINDS and os.path.isabs(item[1])):
+            return False
+    return entry["sum"] == _checksum(entry)
+
+
+def _checksum(entry: dict) -> str:
+    import json
+
+    body = [entry["key"], entry["code"], entry["stdout"], entry["stderr"], entry["observed"]]
+    return digest(json.dumps(body, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
+
+
+# --- miss ----------------------------------------------------------------------------------------------------------
+class _Tee:
+    """A standard stream that keeps a copy of what is written (the report and stderr lines to replay)."""
+
+    def __init__(self, stream):
+        self._stream = stream
+        self.parts: list[str] = []
+
+    def write(self, text):
+        self.parts.append(text)
+        return self._stream.write(text)
+
+    @property
+    def untee(self):  # what must not be replayed (core/progress) writes here
+        return self._stream
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def record(spec: Spec):
+    """Start recording a run that may be stored; returns `finish(code) -> code`."""
+    import site
+
+    from urdfcheck.core import observe
+
+    pkg = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    roots = [pkg] + [p for p in (getattr(site, "USER_SITE", None),) if p]
+    observe.start(roots)
+    out, err = _Tee(sys.stdout), _Tee(sys.stderr)
+    sys.stdout, sys.stderr = out, err
+
+    def finish(code: int) -> int:
+        sys.stdout, sys.stderr = out._stream, err._stream
+        try:
+            why = _store(spec, code, "".join(out.parts), "".join(err.parts))
+        except (OSError, ValueError, TypeError) as e:  # the cache never changes a run's outcome
+            why = f"not stored ({type(e).__name__}: {e})"
+        _say(spec, why)
+        return code
+
+    return finish
+
+
+def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
+    import json
+
+    from urdfcheck.core import observe
+
+    if code not in (0, 1):
+        return "not stored (exit code)"
+    if observe.tainted():
+        return f"not stored ({observe.tainted()})"
+    if len(stdout) + len(stderr) > MAX_ENTRY // 2:
+        return "not stored (too large)"
+    folder = os.path.join(spec.folder, "")
+    observed = []
+    for kind, path in observe.take():
+        if path.startswith(folder):
+            continue
+        observed.append([kind, path, observe.fingerprint(kind, path, digest)])
+    entry = {"schema": SCHEMA, "key": spec.key, "code": code, "stdout": stdout, "stderr": stderr,
+             "observed": observed}
+    entry["sum"] = _checksum(entry)
+    data = json.dumps(entry, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape")
+    if len(data) > MAX_ENTRY:
+        return "not stored (too large)"
+    os.makedirs(spec.versions, mode=0o700, exist_ok=True)
+    _tag(os.path.dirname(spec.folder))
+    version = digest(json.dumps(observed, separators=(",", ":")).encode("utf-8", "surrogateescape"))
+    final = os.path.join(spec.versions, f"{version}.json")
+    tmp = os.path.join(spec.versions, f".{version}.{os.getpid()}.{id(entry):x}.tmp")
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o600)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, final)  # atomic: a parallel reader sees the old entry or the new one
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+    for old in _versions(spec)[MAX_VERSIONS:]:
+        _unlink(old)
+    prune(spec.folder)
+    return "stored"
+
+
+def _tag(folder: str) -> None:
+    """CACHEDIR.TAG: backup tools skip the folder (https://bford.info/cachedir/)."""
+    tag = os.path.join(folder, "CACHEDIR.TAG")
+    if not os.path.exists(tag):
+        try:
+            with open(tag, "x", encoding="ascii") as f:
+                f.write("Signature: 8a477f597d28d172789f06886806bc55\n# urdfcheck's lint cache\n")
+        except OSError:
+            pass
+
+
+def prune(folder: str, max_bytes: int = MAX_BYTES, max_entries: int = MAX_ENTRIES) -> int:
+    """Remove the least recently used entries (and temporary files left by a killed run) until the folder
+    (one sub-folder per key) is under both bounds; returns how many files were removed."""
+    import time
+
+    entries, total, removed = [], 0, 0
+    stale = time.time() - 3600
+    try:
+        with os.scandir(folder) as keys:
+            subs = [k.path for k in keys if k.is_dir(follow_symlinks=False)]
+    except OSError:
+        return removed
+    for sub in subs:
+        try:
+            with os.scandir(sub) as it:
+                for e in it:
+                    try:
+                        st = e.stat(follow_symlinks=False)
+                    except OSError:
+                        continue
+                    if e.name.endswith(".tmp") and st.st_mtime < stale:
+                        removed += _unlink(e.path)
+                    elif e.name.endswith(".json"):
+                        entries.append((st.st_mtime_ns, st.st_size, e.path))
+                        total += st.st_size
+        except OSError:
+            continue
+    if total > max_bytes or len(entries) > max_entries:
+        entries.sort()
+        keep_bytes, keep_entries, left = max_bytes * 3 // 4, max_entries * 3 // 4, len(entries)
+        for _, size, path in entries:
+            if total <= keep_bytes and left <= keep_entries:
+                break
+            if _unlink(path):
+                total -= size
+                left -= 1
+                removed += 1
+    for sub in subs:  # an emptied key's folder
+        try:
+            os.rmdir(sub)
+        except OSError:
+            pass
+    return removed
+
+
+def _unlink(path: str) -> bool:
+    try:
+        os.unlink(path)
+        return True
+    except OSError:
+        return False
+
+
+# --- the console entry ----------------------------------------------------------------------------------------------
+def console() -> None:
+    """`urdfcheck ...` (console script and `python -m urdfcheck`): a cache hit answers here; anything else runs
+    `cli.main` and, for a lint run that may be stored, records it."""
+    finish = None
+    try:
+        spec = plan(sys.argv[1:])
+        if spec is not None:
+            code = replay(spec)
+            if code is not None:
+                _exit(code)
+            finish = record(spec)
+    except BrokenPipeError:  # `urdfcheck lint | head`: as cli.main answers it
+        _exit(0)
+    except Exception:  # noqa: BLE001 - the cache never stops a run: without it, lint runs as usual
+        if os.environ.get("URDFCHECK_DEBUG"):
+            raise
+    fork_early(sys.argv[1:])
+    from urdfcheck.cli import main
+
+    main.run(after=finish)
+
+
+# lint options that take a value (a value is not a path); any option not known here leaves the fork to cli.main
+_VALUED = frozenset(("--arg", "--package", "--allow-env", "--timeout", "--max-elements", "--budget", "--select",
+                     "--ignore", "--fail-on", "--format", "--output", "-o", "--report", "--color", "--config",
+                     "--target", "--root", "--baseline", "--cache-dir"))
+_FLAGS = frozenset(("--trusted", "--no-config", "--no-cache", "--quiet", "-q"))
+
+
+def fork_early(argv: list[str]) -> None:
+    """Fork the xacro worker before argparse and cli.main are imported, with the limits the flags give, so it
+    imports xacro meanwhile (cli.main would fork it a few milliseconds later: `_fork_xacro_worker`). The worker
+    is used only when its limits equal the job's; an option this reading does not know leaves it to cli.main."""
+    argv = lint_argv(list(argv))
+    if not argv or argv[0] != "lint":
+        return
+    trusted, allow_env, timeout, paths = False, [], None, []
+    it = iter(argv[1:])
+    for a in it:
+        if not a.startswith("-") or a == "-":
+            paths.append(a)
+            continue
+        name, eq, value = a.partition("=")
+        if name in _FLAGS and not eq:
+            trusted = trusted or name == "--trusted"
+            continue
+        if name not in _VALUED:
+            return
+        if not eq:
+            value = next(it, None)
+            if value is None:
+                return
+        if name == "--allow-env":
+            allow_env.append(value)
+        elif name == "--timeout":
+            try:
+                timeout = float(value)
+            except ValueError:
+                return
+    if not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths or ["."]):
+        return
+    from urdfcheck.core import worker
+    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, XACRO_TIMEOUT, worker_limits
+
+    worker.keep_spare(SPARE, worker_limits(trusted, allow_env, timeout or XACRO_TIMEOUT), SPARE_PRELOAD)
+
+
+def _exit(code: int) -> None:
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (BrokenPipeError, OSError, ValueError):
+            pass
+    os._exit(code)
