@@ -225,9 +225,9 @@ def test_run_from_slash_keeps_messages_intact(tmp_path):
 
 
 BRINGUP_LAUNCH = """<launch>
-  <arg name="model" default="$(find my_description)/urdf/robot.urdf.xacro"/>
-  <param name="robot_description" command="$(find xacro)/xacro $(arg model)"/>
-  <node pkg="robot_state_publisher" type="robot_state_publisher" name="rsp"/>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher">
+    <param name="robot_description" value="$(command 'xacro $(find-pkg-share my_description)/urdf/robot.urdf.xacro')"/>
+  </node>
 </launch>
 """
 
@@ -242,7 +242,8 @@ def test_a_sibling_folder_model_prints_no_absolute_path(tmp_path, monkeypatch):
     bringup = tmp_path / "ws" / "src" / "my_bringup"
     (bringup / "launch").mkdir(parents=True)
     (bringup / "package.xml").write_text("<package format='3'><name>my_bringup</name></package>")
-    (bringup / "launch" / "robot.launch").write_text(BRINGUP_LAUNCH)
+    (bringup / "launch" / "robot.launch.xml").write_text(BRINGUP_LAUNCH)
+    (bringup / "urdfcheck.yaml").write_text("packages:\n  my_description: ../my_description\n")
     monkeypatch.chdir(bringup)
     absolute = str(tmp_path)
     code, out, err = run_cli(["lint", "--format", "json", "."])
@@ -252,6 +253,7 @@ def test_a_sibling_folder_model_prints_no_absolute_path(tmp_path, monkeypatch):
     code, out, err = run_cli(["lint", "--list", "."])
     assert code == 0 and "robot.urdf.xacro" in out, out + err
     assert absolute not in out and absolute not in err, out
+    assert os.path.join("..", "my_description", "urdf", "robot.urdf.xacro") in out
     for fmt in ("text", "sarif", "junit", "github", "markdown"):
         code, out, err = run_cli(["lint", "--format", fmt, "."])
-        assert absolute not in out, (fmt, out)
+        assert code == 1 and absolute not in out, (fmt, out)

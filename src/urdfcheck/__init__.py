@@ -4,10 +4,11 @@ Public API (the CLI uses exactly this):
 
     urdfcheck.load(path, args=None, **options) -> Model          # raises LoadError with findings
     urdfcheck.expand(path, args=None, **options) -> Expanded     # expanded XML + source map + findings
+                                                                   # (both: the settings `lint` uses)
     urdfcheck.lint(paths=(), **options) -> Result                  # like `urdfcheck lint`, config included
     urdfcheck.UsageError                                           # an unusable request (the CLI's exit 2)
 
-`lint` options are the `LintRequest` fields (pipeline/request.py): args, packages, select, ignore, severity,
+`lint`, `load` and `expand` options are the `LintRequest` fields (pipeline/request.py): args, packages, select, ignore, severity,
 rules, fail_on, trusted, allow_env, timeout, max_elements, config, no_config, root, baseline.
 """
 from __future__ import annotations
@@ -18,16 +19,32 @@ __all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadErr
 from urdfcheck.core.findings import Finding, Location, Severity  # noqa: E402  (tiny, no heavy imports)
 
 
-def load(path, args=None, **options):
-    from urdfcheck.load.loader import load_model
+import urdfcheck.load  # noqa: E402,F401  (the sub-package first: the function below keeps the name `load`)
 
-    return load_model(path, args, **options)
+
+def load(path, args=None, **options):
+    """The model at `path` as `urdfcheck lint` loads it: the config found upward (its packages and limits),
+    `options` over it (the `lint` options). Raises LoadError with the findings when it does not load."""
+    loaded = _load(path, args, options)
+    findings = loaded.expanded.findings
+    errors = [f for f in findings if f.severity >= Severity.ERROR]
+    if loaded.model is None or errors:
+        from urdfcheck.load.loader import LoadError
+
+        raise LoadError(errors or findings)
+    return loaded.model
 
 
 def expand(path, args=None, **options):
-    from urdfcheck.load.loader import expand as _expand
+    """The expanded document (source map, load findings) the rules of `urdfcheck lint` see."""
+    return _load(path, args, options, build=False).expanded
 
-    return _expand(path, args, **options)
+
+def _load(path, args, options, build=True):
+    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.pipeline.run import load as load_one
+
+    return load_one(make_request([path], args=args, **options), path, build=build)
 
 
 def lint(paths=(), args=None, **options):

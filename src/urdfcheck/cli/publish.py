@@ -14,7 +14,14 @@ import sys
 
 from urdfcheck.cli.common import EXIT_CLEAN as EXIT_OK
 from urdfcheck.cli.common import EXIT_FINDINGS as EXIT_FAIL
-from urdfcheck.cli.common import EXIT_USAGE, add_load_options, load_kwargs, print_findings, usage_message
+from urdfcheck.cli.common import (
+    EXIT_USAGE,
+    add_config_options,
+    add_load_options,
+    load_one,
+    print_findings,
+    usage_message,
+)
 from urdfcheck.cli.common import UsageError as _Usage
 
 # --- shared ---------------------------------------------------------------------------------------------------
@@ -34,43 +41,51 @@ def _joint_value(text: str):
     return k, value
 
 
-_add_load_options = add_load_options
-_load_options = load_kwargs
-_print_findings = print_findings
-
-
-def _loader():
-    from urdfcheck.load import loader
-
-    return loader
+def _add_load_options(p) -> None:
+    add_load_options(p)
+    add_config_options(p)
 
 
 def _load(ns, want_xml: bool = False):
-    """(model, xml or None), or None after printing the load findings."""
-    if not os.path.isfile(ns.model):
-        raise _Usage(f"no such file: {ns.model}")
-    loader = _loader()
-    args = dict(getattr(ns, "args", None) or [])
-    opts = _load_options(ns)
-    if want_xml and hasattr(loader, "expand") and hasattr(loader, "build_model"):
-        exp = loader.expand(ns.model, args, **opts)
-        from urdfcheck.core.findings import Severity
+    """(model, xml or None) as `urdfcheck lint` loads the model (config included), or None after printing
+    the load findings."""
+    from urdfcheck.core.findings import Severity
 
-        errors = [f for f in exp.findings if f.severity >= Severity.ERROR]
-        if exp.root is None or errors:
-            _print_findings(errors or exp.findings)
-            return None
+    model_path = _model_path(ns)
+    loaded = load_one(ns, model_path)
+    exp = loaded.expanded
+    errors = [f for f in exp.findings if f.severity >= Severity.ERROR]
+    if loaded.model is None or errors:
+        print_findings(errors or exp.findings)
+        return None
+    xml = None
+    if want_xml:
         try:
             xml = exp.clean_text()
         except Exception:
             xml = None
-        return loader.build_model(exp), xml
-    try:
-        model = loader.load_model(ns.model, args, **opts)
-    except loader.LoadError as e:
-        _print_findings(e.findings)
-        return None
-    return model, None
+    return loaded.model, xml
+
+
+def _model_path(ns) -> str:
+    """The MODEL argument: a file, or a folder holding exactly one robot (what `urdfcheck lint` plans there)."""
+    if os.path.isfile(ns.model):
+        return ns.model
+    if not os.path.isdir(ns.model):
+        raise _Usage(f"no such file: {ns.model}")
+    from urdfcheck.core.paths import shown
+    from urdfcheck.pipeline.plan import plan
+    from urdfcheck.pipeline.request import make_request
+
+    targets = plan(make_request([ns.model], trusted=True if ns.trusted else None,
+                                use_config=not getattr(ns, "no_config", False), config=getattr(ns, "config", None)))
+    models = list(dict.fromkeys(str(t.path) for t in targets))
+    if len(models) == 1:
+        return models[0]
+    if not models:
+        raise _Usage(f"{ns.model} holds no URDF or xacro robot; name a model file")
+    raise _Usage(f"{ns.model} holds {len(models)} robots; name one: "
+                 + ", ".join(shown(m) for m in models[:10]) + (" ..." if len(models) > 10 else ""))
 
 
 def _run(fn):

@@ -11,6 +11,8 @@ from pathlib import Path
 
 from urdfcheck.core import xmlfront
 from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.core import paths
+from urdfcheck.core.paths import shown as display
 from urdfcheck.core.records import Record
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
 from urdfcheck.core.suppress import Suppression
@@ -23,15 +25,6 @@ MAX_BYTES = xmlfront.MAX_BYTES
 # Severity of load findings; the catalogue may override the names but these codes are fixed here
 # because loading happens before any rule runs.
 _LOAD_SEVERITY = {"X003": Severity.WARNING, "X005": Severity.WARNING, "X016": Severity.WARNING}
-
-
-def display(path: str | os.PathLike) -> str:
-    """Path as shown in reports: relative to the working directory when below it."""
-    p = os.path.abspath(path)
-    cwd = os.getcwd()
-    if p == cwd or p.startswith(cwd.rstrip(os.sep) + os.sep):
-        return os.path.relpath(p, cwd)
-    return p
 
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
@@ -276,7 +269,7 @@ def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, ma
     from urdfcheck.load import xacro as xacro_pkg
 
     options = dict(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
-                   max_evals=max_elements)
+                   max_evals=max_elements, root=paths.showing_root())
     if grace is None:  # a child the console forked at start-up, with xacro imported meanwhile (cli.main)
         spare = worker.take_spare(xacro_pkg.SPARE, worker_limits(trusted, allow_env, timeout, memory))
         if spare is not None:  # the options go as a dict: this process need not import the expander

@@ -42,9 +42,9 @@ KNOWN_PACKAGES = {"robot_state_publisher", "joint_state_publisher", "joint_state
 
 
 def _show(path: str) -> str:
-    from urdfcheck.load.loader import display
+    from urdfcheck.core.paths import shown
 
-    return display(path)
+    return shown(path)
 
 
 class Deployment(Record):

@@ -22,6 +22,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
 from urdfcheck.pipeline.request import LintRequest, Settings, UsageError
 
@@ -154,7 +155,7 @@ class Planner:
                 self._configs[path] = cfgmod.load_config(path)
             except cfgmod.ConfigError as e:
                 where = e.location or cfgmod.Location(path)
-                shown = self.request.shown(where.file) + "".join(
+                shown = shown(where.file) + "".join(
                     f":{n}" for n in (where.line, where.column) if n)
                 raise UsageError(f"invalid config {shown}: {e}") from None
         return self._configs[path]
@@ -203,7 +204,7 @@ class Planner:
             if _is_launch(raw):
                 return self.launch_targets(raw, settings)
             if raw.lower().endswith(".srdf.xacro"):  # the per-file hook passes every *.xacro: not an error
-                self.infos.append(f"{self.request.shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
+                self.infos.append(f"{shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
                 return []
             if raw.lower().endswith(NOT_MODELS):
                 raise UsageError(f"{raw} is not a URDF or xacro model (name the model, its package, or a "
@@ -279,7 +280,7 @@ class Planner:
         for root in roots:
             found = discover(root, trusted=settings.trusted)
             if not found.models and found.libraries and not any(_below(t.path, root) for t in out):
-                self.infos.append(f"{self.request.shown(root)}: xacro libraries only (macros, properties): "
+                self.infos.append(f"{shown(root)}: xacro libraries only (macros, properties): "
                                   "linted through the robots that include them")
             for entry in found.models:
                 if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
@@ -312,7 +313,7 @@ class Planner:
     def deployed(self, d, root: str, settings: Settings) -> Target:
         """A deployment's target: the launch file's xacro arguments, its controllers and localization as the
         consumers, every package of the named tree resolvable (a sibling repository's description)."""
-        label = self.request.shown(d.launch.file) + (f" [{d.variant}]" if d.variant else "")  # like every path
+        label = shown(d.launch.file) + (f" [{d.variant}]" if d.variant else "")  # like every path
         t = self.target(Path(d.model), dict(d.args), label, Later(d.consumers), settings,
                         _packages(root, d.model, settings))
         t.deployment = d
@@ -349,7 +350,7 @@ class Planner:
             if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
                 if not robots:
-                    self.infos.append(f"{self.request.shown(str(path))}: a xacro library that no robot of "
+                    self.infos.append(f"{shown(str(path))}: a xacro library that no robot of "
                                       "its workspace includes: not linted alone")
                 return robots
         return [self.target(path, {}, "", None, settings)]

@@ -109,7 +109,7 @@ def as_dict(result) -> dict:
 
     from urdfcheck.pipeline.collapse import describe, variant_totals
 
-    totals = variant_totals(result.targets)
+    totals = variant_totals(result.targets, result.root)
     seen: Counter = Counter()
     results = []
     for f in result.findings:
