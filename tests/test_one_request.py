@@ -16,13 +16,15 @@ import urdfcheck
 
 ROBOT = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:include filename="$(find my_parts)/urdf/part.xacro"/>
-  <link name="base_link"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <link name="base_link"><inertial><mass value="1"/>
+    <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
   <xacro:part parent="base_link"/>
 </robot>
 """
 PART = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:macro name="part" params="parent">
-    <link name="part_link"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
+    <link name="part_link"><inertial><mass value="1"/>
+      <inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial></link>
     <joint name="part_joint" type="revolute">
       <parent link="${parent}"/><child link="part_link"/><origin xyz="0 0 1"/><axis xyz="0 0 1"/>
       <limit lower="-1" upper="1" effort="1" velocity="1"/>

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import argparse
 import ast
-import os
 import re
 import subprocess
 import sys
@@ -193,8 +192,9 @@ class Rewriter:
                 return self.moves[old] + dotted[len(old):]
         return dotted
 
-    # `from urdfcheck.X import a, b as c` (X absolute or relative, resolved by the caller)
-    def from_import(self, pkg: str, names: list[tuple[str, str | None]], indent: str) -> str | None:
+    # from urdfcheck.X import a, b as c (X absolute or relative, resolved by the caller)
+    def from_import(self, pkg: str, names: list[tuple[str, str | None]], indent: str, comment: str = ""
+                    ) -> str | None:
         groups: dict[str, list[str]] = {}
         changed = False
         for name, alias in names:
@@ -215,9 +215,11 @@ class Rewriter:
         lines = []
         for parent, specs in groups.items():
             mod = "urdfcheck" + (f".{parent}" if parent else "")
-            one = f"{indent}from {mod} import {', '.join(specs)}"
+            note = f"  {comment}" if comment and not lines else ""  # the statement's comment, once
+            one = f"{indent}from {mod} import {', '.join(specs)}{note}"
             if len(one) > 120:
-                one = f"{indent}from {mod} import (\n" + "".join(f"{indent}    {s},\n" for s in specs) + f"{indent})"
+                one = (f"{indent}from {mod} import ({note}\n" + "".join(f"{indent}    {s},\n" for s in specs)
+                       + f"{indent})")
             lines.append(one)
         return "\n".join(lines)
 
@@ -243,16 +245,18 @@ class Rewriter:
                 continue
             first = lines[node.lineno - 1]
             indent = first[:len(first) - len(first.lstrip())]
-            new = self.from_import(pkg, [(a.name, a.asname) for a in node.names], indent)
-            if new is None and node.level:
-                new = self.from_import(pkg, [(a.name, a.asname) for a in node.names], indent) or \
-                    f"{indent}from urdfcheck{'.' + pkg if pkg else ''} import " + \
-                    ", ".join(a.name if a.asname is None else f"{a.name} as {a.asname}" for a in node.names)
+            last = lines[node.end_lineno - 1]
+            tail = last[node.end_col_offset:].strip()  # a comment after the statement stays
+            if node.end_lineno > node.lineno and "#" in first:  # a comment after the opening parenthesis
+                tail = first[first.index("#"):].strip()
+            names = [(a.name, a.asname) for a in node.names]
+            new = self.from_import(pkg, names, indent, tail)
+            if new is None and node.level:  # a moved file's relative import: absolute
+                spec = ", ".join(n if a is None else f"{n} as {a}" for n, a in names)
+                new = f"{indent}from urdfcheck{'.' + pkg if pkg else ''} import {spec}" + (f"  {tail}" if tail else "")
             if new is None:
                 continue
-            last = lines[node.end_lineno - 1]
-            tail = last[node.end_col_offset:]  # a comment after the statement stays
-            edits.append((node.lineno, node.end_lineno, new + tail.rstrip("\n") + "\n"))
+            edits.append((node.lineno, node.end_lineno, new + "\n"))
         for first, last, new in sorted(edits, reverse=True):
             lines[first - 1:last] = [new]
         return self.code("".join(lines))
@@ -367,8 +371,10 @@ def layers_contract(repo: Path, dry: bool) -> None:
                      "(" + ", ".join(f'"{n}"' for n in row) + ")" for row in LAYERS)
     tnew = re.sub(r"LAYERS = \[.*?\]\n", lambda m: _wrap(f"LAYERS = [{rows}]") + "\n", ttext, flags=re.S)
     order = " < ".join(", ".join(r) for r in LAYERS)
-    tnew = re.sub(r"\[tool\.importlinter\]: core < .*?\. Run by", lambda m: _wrap_doc(
-        f"[tool.importlinter]: {order}). Run by"), tnew, flags=re.S)
+    doc = _wrap_doc(f'"""Data flows one way: a lower stage never imports a higher one (the layers contract in '
+                    f'pyproject.toml, [tool.importlinter]: {order}). Run by import-linter when installed, else by '
+                    'an equivalent check on the modules\' imports."""')
+    tnew = re.sub(r'\A""".*?"""', lambda m: doc, tnew, flags=re.S)
     for p, old, fresh in ((py, text, new), (test, ttext, tnew)):
         if fresh != old:
             print(f"layers: {p.relative_to(repo)}")
@@ -401,6 +407,15 @@ def _wrap_doc(text: str, width: int = 116) -> str:
         else:
             cur = f"{cur} {w}" if cur else w
     return "\n".join(lines + [cur])
+
+
+def tidy(repo: Path, files: list[Path]) -> None:
+    """Sort the rewritten imports (ruff's isort rules, as tests/test_style.py checks them)."""
+    try:
+        subprocess.run([sys.executable, "-m", "ruff", "check", "--fix", "--select", "I", "--quiet",
+                        *map(str, files)], cwd=repo, check=False)
+    except OSError as e:
+        print(f"ruff not run ({e}): sort the imports of the rewritten files")
 
 
 def first_line(path: Path) -> str:
@@ -481,6 +496,7 @@ def main(argv=None) -> int:
     layers_contract(repo, ns.dry_run)
     if not ns.dry_run:
         design_picture(repo, src, ns.dry_run)
+        tidy(repo, [p for p in changed if p.suffix == ".py"])
     print(f"{len(moves)} modules moved, {len(changed)} files rewritten, {len(notes)} guessed")
     return 0
 

@@ -4,22 +4,20 @@ Public API (the CLI uses exactly this):
 
     urdfcheck.load(path, args=None, **options) -> Model          # raises LoadError with findings
     urdfcheck.expand(path, args=None, **options) -> Expanded     # expanded XML + source map + findings
-                                                                   # (both: the settings `lint` uses)
     urdfcheck.lint(paths=(), **options) -> Result                  # like `urdfcheck lint`, config included
     urdfcheck.UsageError                                           # an unusable request (the CLI's exit 2)
 
-`lint`, `load` and `expand` options are the `LintRequest` fields (pipeline/request.py): args, packages, select, ignore, severity,
-rules, fail_on, trusted, allow_env, timeout, max_elements, config, no_config, root, baseline.
+`load` and `expand` read the config files `lint` reads (its packages and limits). Their options and `lint`'s
+are the `LintRequest` fields (pipeline/request.py): args, packages, select, ignore, severity, rules, fail_on,
+trusted, allow_env, timeout, max_elements, config, no_config, root, baseline.
 """
 from __future__ import annotations
 
 __version__ = "0.1.0"
 __all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadError", "UsageError", "__version__"]
 
-from urdfcheck.core.findings import Finding, Location, Severity  # noqa: E402  (tiny, no heavy imports)
-
-
 import urdfcheck.load  # noqa: E402,F401  (the sub-package first: the function below keeps the name `load`)
+from urdfcheck.core.findings import Finding, Location, Severity  # noqa: E402  (tiny, no heavy imports)
 
 
 def load(path, args=None, **options):

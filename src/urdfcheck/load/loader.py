@@ -9,9 +9,8 @@ import os
 import re
 from pathlib import Path
 
-from urdfcheck.core import xmlfront
+from urdfcheck.core import paths, xmlfront
 from urdfcheck.core.findings import Finding, Location, Severity
-from urdfcheck.core import paths
 from urdfcheck.core.paths import shown as display
 from urdfcheck.core.records import Record
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file

@@ -155,9 +155,8 @@ class Planner:
                 self._configs[path] = cfgmod.load_config(path)
             except cfgmod.ConfigError as e:
                 where = e.location or cfgmod.Location(path)
-                shown = shown(where.file) + "".join(
-                    f":{n}" for n in (where.line, where.column) if n)
-                raise UsageError(f"invalid config {shown}: {e}") from None
+                at = shown(where.file) + "".join(f":{n}" for n in (where.line, where.column) if n)
+                raise UsageError(f"invalid config {at}: {e}") from None
         return self._configs[path]
 
     def settings(self, cfg) -> Settings:

@@ -14,10 +14,10 @@ import os
 from pathlib import Path
 
 from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
 from urdfcheck.load import loader
 from urdfcheck.pipeline.plan import Later, Target, plan  # noqa: F401  (Later, Target: imported from here too)
-from urdfcheck.core.paths import shown
 from urdfcheck.pipeline.request import LintRequest, UsageError
 from urdfcheck.rules import engine
 

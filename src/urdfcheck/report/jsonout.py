@@ -22,11 +22,12 @@ def as_dict(result) -> dict:
     counts = {"error": 0, "warning": 0, "info": 0}
     for f in result.findings:
         counts[str(f.severity)] += 1
+    root = getattr(result, "root", "")
     return {
         "schema_version": SCHEMA_VERSION,
         "tool": {"name": "urdfcheck", "version": __version__},
-        "models": [{"path": clean_text(shown(t.path, getattr(result, "root", "")), 4096), "variant": clean_text(t.variant),
-                    "args": {k: clean_text(_shown(result, v) if str(v).startswith("/") else v)  # a file: relative
+        "models": [{"path": clean_text(shown(t.path, root), 4096), "variant": clean_text(t.variant),
+                    "args": {k: clean_text(shown(v, root) if str(v).startswith("/") else v)  # a file: relative
                              for k, v in sorted(t.args.items())}} for t in result.targets],
         "summary": counts,
         "findings": [
