@@ -108,7 +108,9 @@ def test_flags_still_win_over_the_config(ws):
 def test_load_stays_a_function_after_lint_and_expand(ws):
     urdfcheck.lint(".")
     urdfcheck.expand(MODEL)
-    assert callable(urdfcheck.load)
+    import urdfcheck.load.packages as packages  # the sub-package's modules stay importable
+
+    assert callable(urdfcheck.load) and packages.Resolver
     assert "part_link" in urdfcheck.load(MODEL).links
 
 

@@ -229,11 +229,17 @@ def test_a_trusted_worker_keeps_the_environment_but_not_argv(monkeypatch):
 
 
 def test_a_job_cut_by_the_run_budget_gets_no_delivery_grace():
-    job = worker.start(time.sleep, 60, timeout=0.2, grace=0.0)
-    time.sleep(0.5)
+    """Against a twin with the usual grace (min(timeout, DELIVERY_GRACE) = 1 s here), collected in the same run:
+    a ratio, not a wall-clock bound (the machine may be loaded)."""
+    cut = worker.start(time.sleep, 60, timeout=1.0, grace=0.0)
+    usual = worker.start(time.sleep, 60, timeout=1.0)
+    time.sleep(1.5)
     t0 = time.monotonic()
-    assert isinstance(job.result(), worker.Failure)
-    assert time.monotonic() - t0 < 0.5
+    assert isinstance(cut.result(), worker.Failure)
+    t1 = time.monotonic()
+    assert isinstance(usual.result(), worker.Failure)
+    t2 = time.monotonic()
+    assert t1 - t0 < (t2 - t1) / 2, (t1 - t0, t2 - t1)
 
 
 # ---- the spare xacro worker the console forks before it imports the planner -----------------------------------

@@ -411,11 +411,17 @@ def _wrap_doc(text: str, width: int = 116) -> str:
 
 def tidy(repo: Path, files: list[Path]) -> None:
     """Sort the rewritten imports (ruff's isort rules, as tests/test_style.py checks them)."""
-    try:
-        subprocess.run([sys.executable, "-m", "ruff", "check", "--fix", "--select", "I", "--quiet",
-                        *map(str, files)], cwd=repo, check=False)
-    except OSError as e:
-        print(f"ruff not run ({e}): sort the imports of the rewritten files")
+    import importlib.util
+    import shutil
+
+    if importlib.util.find_spec("ruff") is not None:
+        cmd = [sys.executable, "-m", "ruff"]
+    elif shutil.which("ruff"):
+        cmd = [shutil.which("ruff")]
+    else:
+        print("ruff not found: sort the imports of the rewritten files (ruff check --fix --select I)")
+        return
+    subprocess.run([*cmd, "check", "--fix", "--select", "I", "--quiet", *map(str, files)], cwd=repo, check=False)
 
 
 def first_line(path: Path) -> str:

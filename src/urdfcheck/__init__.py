@@ -16,14 +16,14 @@ from __future__ import annotations
 __version__ = "0.1.0"
 __all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadError", "UsageError", "__version__"]
 
-import urdfcheck.load  # noqa: E402,F401  (the sub-package first: the function below keeps the name `load`)
+import urdfcheck.load as _load_package  # noqa: E402  (empty __init__: cheap)
 from urdfcheck.core.findings import Finding, Location, Severity  # noqa: E402  (tiny, no heavy imports)
 
 
-def load(path, args=None, **options):
+def _load(path, args=None, **options):
     """The model at `path` as `urdfcheck lint` loads it: the config found upward (its packages and limits),
     `options` over it (the `lint` options). Raises LoadError with the findings when it does not load."""
-    loaded = _load(path, args, options)
+    loaded = _loaded(path, args, options)
     findings = loaded.expanded.findings
     errors = [f for f in findings if f.severity >= Severity.ERROR]
     if loaded.model is None or errors:
@@ -33,12 +33,25 @@ def load(path, args=None, **options):
     return loaded.model
 
 
+class _CallablePackage(type(_load_package)):
+    """`urdfcheck.load` is both the sub-package `load/` and the API function: a package attribute named like a
+    sub-package is replaced by the sub-package whenever one of its modules is imported first, so the package
+    itself is callable (`urdfcheck.load(path)`), and `import urdfcheck.load.packages` keeps working."""
+
+    def __call__(self, path, args=None, **options):
+        return _load(path, args, **options)
+
+
+_load_package.__class__ = _CallablePackage
+load = _load_package
+
+
 def expand(path, args=None, **options):
     """The expanded document (source map, load findings) the rules of `urdfcheck lint` see."""
-    return _load(path, args, options, build=False).expanded
+    return _loaded(path, args, options, build=False).expanded
 
 
-def _load(path, args, options, build=True):
+def _loaded(path, args, options, build=True):
     from urdfcheck.pipeline.request import make_request
     from urdfcheck.pipeline.run import load as load_one
 

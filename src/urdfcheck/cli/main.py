@@ -10,7 +10,7 @@ import functools
 import os
 import sys
 
-from urdfcheck.cli.common import (  # noqa: F401  (EXIT_*, UsageError: also read from here)
+from urdfcheck.cli.common import (
     EPILOG,
     EXIT_CLEAN,
     EXIT_FINDINGS,
@@ -24,8 +24,6 @@ from urdfcheck.cli.common import (  # noqa: F401  (EXIT_*, UsageError: also read
     load_one,
     usage_message,
 )
-
-_kv = kv
 
 
 def _codes(text: str) -> list[str]:
@@ -74,7 +72,7 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     lint.add_argument("--format", default="text", choices=["text", "json", "sarif", "junit", "github", "markdown"],
                       help="report format on stdout (default text)")
     lint.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
-    lint.add_argument("--report", action="append", default=[], type=_kv("=", "FORMAT=FILE"),
+    lint.add_argument("--report", action="append", default=[], type=kv("=", "FORMAT=FILE"),
                       metavar="FORMAT=FILE", help="also write another format to a file (repeatable)")
     lint.add_argument("--color", choices=["auto", "always", "never"], default="auto")
     lint.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")

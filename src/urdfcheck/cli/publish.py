@@ -12,17 +12,17 @@ import math
 import os
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN as EXIT_OK
-from urdfcheck.cli.common import EXIT_FINDINGS as EXIT_FAIL
 from urdfcheck.cli.common import (
+    EXIT_CLEAN,
+    EXIT_FINDINGS,
     EXIT_USAGE,
+    UsageError,
     add_config_options,
     add_load_options,
     load_one,
     print_findings,
     usage_message,
 )
-from urdfcheck.cli.common import UsageError as _Usage
 
 # --- shared ---------------------------------------------------------------------------------------------------
 
@@ -72,7 +72,7 @@ def _model_path(ns) -> str:
     if os.path.isfile(ns.model):
         return ns.model
     if not os.path.isdir(ns.model):
-        raise _Usage(f"no such file: {ns.model}")
+        raise UsageError(f"no such file: {ns.model}")
     from urdfcheck.core.paths import shown
     from urdfcheck.pipeline.plan import plan
     from urdfcheck.pipeline.request import make_request
@@ -83,8 +83,8 @@ def _model_path(ns) -> str:
     if len(models) == 1:
         return models[0]
     if not models:
-        raise _Usage(f"{ns.model} holds no URDF or xacro robot; name a model file")
-    raise _Usage(f"{ns.model} holds {len(models)} robots; name one: "
+        raise UsageError(f"{ns.model} holds no URDF or xacro robot; name a model file")
+    raise UsageError(f"{ns.model} holds {len(models)} robots; name one: "
                  + ", ".join(shown(m) for m in models[:10]) + (" ..." if len(models) > 10 else ""))
 
 
@@ -92,7 +92,7 @@ def _run(fn):
     def wrapped(ns) -> int:
         try:
             return fn(ns)
-        except _Usage as e:
+        except UsageError as e:
             print(usage_message(ns.command, e), file=sys.stderr)
             return EXIT_USAGE
 
@@ -174,16 +174,16 @@ def cmd_tf(ns) -> int:
 
     loaded = _load(ns)
     if loaded is None:
-        return EXIT_FAIL
+        return EXIT_FINDINGS
     model, _ = loaded
     joints = dict(ns.joint)
     unknown = [k for k in joints if k not in model.joints]
     if unknown:
-        raise _Usage("not joints of the model: " + ", ".join(clean_text(k) for k in unknown))
+        raise UsageError("not joints of the model: " + ", ".join(clean_text(k) for k in unknown))
     try:
         m = lookup_matrix(model, ns.source, ns.target, joints, default=0.0 if ns.zero_missing else None)
     except TransformLookupError as e:
-        raise _Usage(clean_text(str(e))) from None
+        raise UsageError(clean_text(str(e))) from None
     t = [m[0][3], m[1][3], m[2][3]]
     q = list(quat_from_matrix(m))
     rpy = list(rpy_from_matrix(m))
@@ -191,7 +191,7 @@ def cmd_tf(ns) -> int:
         print(json.dumps({"source": ns.source, "target": ns.target, "joints": joints, "translation": t,
                           "rotation": q, "rpy": rpy, "rpy_degrees": [math.degrees(a) for a in rpy],
                           "matrix": [list(r) for r in m]}, indent=2))
-        return EXIT_OK
+        return EXIT_CLEAN
     d = max(0, ns.precision)
 
     def vec(v):
@@ -209,7 +209,7 @@ def cmd_tf(ns) -> int:
     if any(x != x for x in t + q):
         print("warning: NaN: a joint on the path has a zero axis (robot_state_publisher publishes NaN too)",
               file=sys.stderr)
-    return EXIT_OK
+    return EXIT_CLEAN
 
 
 # --- publish ----------------------------------------------------------------------------------------------------
@@ -218,9 +218,9 @@ def _read_joint_states(path: str) -> list:
         with open(path, "rb") as f:
             data = f.read(64 * 1024 * 1024 + 1)
     except OSError as e:
-        raise _Usage(f"cannot read {path}: {e.strerror}") from None
+        raise UsageError(f"cannot read {path}: {e.strerror}") from None
     if len(data) > 64 * 1024 * 1024:
-        raise _Usage(f"{path} is larger than 64 MiB")
+        raise UsageError(f"{path} is larger than 64 MiB")
     text = data.decode("utf-8", "replace")
     try:
         doc = json.loads(text)
@@ -231,7 +231,7 @@ def _read_joint_states(path: str) -> list:
         try:
             docs = [d for d in yaml.safe_load_all(text) if d is not None]
         except yaml.YAMLError as e:
-            raise _Usage(f"{path} is neither JSON nor YAML: {e}") from None
+            raise UsageError(f"{path} is neither JSON nor YAML: {e}") from None
     msgs = []
     for d in docs:
         if isinstance(d, dict) and isinstance(d.get("messages"), list):
@@ -254,14 +254,14 @@ def cmd_publish(ns) -> int:
     raw = _read_joint_states(ns.joint_states)
     loaded = _load(ns)
     if loaded is None:
-        return EXIT_FAIL
+        return EXIT_FINDINGS
     model, _ = loaded
     try:
         pub = StatePublisher(model, profile=ns.profile, frame_prefix=ns.frame_prefix,
                              publish_frequency=ns.publish_frequency, ignore_timestamp=ns.ignore_timestamp,
                              use_tf_static=ns.use_tf_static)
     except ValueError as e:
-        raise _Usage(str(e)) from None
+        raise UsageError(str(e)) from None
     first_stamp = 0.0
     for r in raw:
         try:
@@ -313,7 +313,7 @@ def cmd_publish(ns) -> int:
     sys.stdout.write("\n")
     if errors:
         print(f"urdfcheck publish: {errors} message(s) rejected (see \"error\" in the output)", file=sys.stderr)
-    return EXIT_OK
+    return EXIT_CLEAN
 
 
 # --- tree -------------------------------------------------------------------------------------------------------
@@ -322,10 +322,10 @@ def cmd_tree(ns) -> int:
 
     loaded = _load(ns)
     if loaded is None:
-        return EXIT_FAIL
+        return EXIT_FINDINGS
     model, _ = loaded
     print(render(model, ns.format, ns.frame_prefix, ns.profile))
-    return EXIT_OK
+    return EXIT_CLEAN
 
 
 # --- verify -----------------------------------------------------------------------------------------------------
@@ -404,9 +404,9 @@ def cmd_verify(ns) -> int:
     from urdfcheck.verify import compare as V
 
     if ns.n < 1:
-        raise _Usage("-n must be at least 1")
+        raise UsageError("-n must be at least 1")
     if not os.path.isfile(ns.model):
-        raise _Usage(f"no such file: {ns.model}")
+        raise UsageError(f"no such file: {ns.model}")
     peers = ("pinocchio",) if ns.no_yourdfpy else ("pinocchio", "yourdfpy")
     # fork the peers now: they import Pinocchio / yourdfpy while this process loads the model
     pre = {}
@@ -422,7 +422,7 @@ def cmd_verify(ns) -> int:
         raise
     if loaded is None:
         V.cancel(workers)
-        return EXIT_FAIL
+        return EXIT_FINDINGS
     model, xml = loaded
     kwargs = {"workers": workers}
     if ns.yourdfpy_samples is not None:
@@ -445,4 +445,4 @@ def cmd_verify(ns) -> int:
         print(json.dumps(report.to_dict(), indent=2))
     else:
         print(format_report(report))
-    return EXIT_OK if report.passed else EXIT_FAIL
+    return EXIT_CLEAN if report.passed else EXIT_FINDINGS
