@@ -75,6 +75,7 @@ def _rule(r) -> dict:
         "help": {"text": ruledocs.help_text(r), "markdown": ruledocs.help_markdown(r)},
         "defaultConfiguration": {"level": LEVELS[r.severity]},
         "properties": {"tags": [r.family], "problem.severity": str(r.severity)},
+        **({"helpUri": r.references[0]["url"]} if r.references else {}),
     }
 
 
