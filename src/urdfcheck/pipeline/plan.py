@@ -27,7 +27,6 @@ from urdfcheck.core.records import Record
 from urdfcheck.pipeline.request import LintRequest, Settings, UsageError
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")  # config.CONFIG_NAMES (not imported: start-up)
-SKIP_DIRS = {"build", "install", "log", "devel", "node_modules", "__pycache__", "venv"}  # discover.SKIP_DIRS
 MAX_DIRS = 20_000  # folders a workspace walk looks at
 LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml", "_launch.py")
 # files named on the command line that are certainly no robot description (a .xml or odd suffix may be one)
@@ -467,15 +466,13 @@ class _Walk(Record):
 
 def _walk(folder: str) -> _Walk:
     """One pass over a folder tree: nested config files and packages (hidden and build folders skipped)."""
+    from urdfcheck.core import walk
     from urdfcheck.pipeline.config import PYPROJECT, _pyproject_has_table
 
     top = os.path.abspath(folder)
-    configs, packages, loose, seen = [], [], False, 0
-    for here, dirs, files in os.walk(top):
-        seen += 1
-        if seen > MAX_DIRS:
-            break
-        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIP_DIRS)
+    configs, packages, loose = [], [], False
+    for here, entries in walk.folders(top, max_dirs=MAX_DIRS):
+        files = walk.files(entries)
         if here != top:
             name = next((n for n in CONFIG_NAMES if n in files), None)
             if name is None and PYPROJECT in files and _pyproject_has_table(Path(here, PYPROJECT)):
