@@ -444,10 +444,10 @@ def picture(src: Path) -> str:
             continue
         if not p.is_dir():
             continue
-        out.append(f"{name}/")
+        out.append(f"{name + '/':<28} {first_line(p / '__init__.py')}".rstrip())
         for f in sorted(p.rglob("*.py")):
             rel = f.relative_to(p)
-            if f.name == "__init__.py" and not first_line(f):
+            if f.name == "__init__.py" and (rel.parent == Path(".") or not first_line(f)):
                 continue
             if "_generated" in rel.parts:
                 continue
