@@ -375,7 +375,12 @@ def layers_contract(repo: Path, dry: bool) -> None:
                     f'pyproject.toml, [tool.importlinter]: {order}). Run by import-linter when installed, else by '
                     'an equivalent check on the modules\' imports."""')
     tnew = re.sub(r'\A""".*?"""', lambda m: doc, tnew, flags=re.S)
-    for p, old, fresh in ((py, text, new), (test, ttext, tnew)):
+    design = repo / "docs" / "design.md"
+    dtext = design.read_text(encoding="utf-8") if design.is_file() else ""
+    dnew = re.sub(r"- Layers \(low to high\): .*?tests/test_layers\.py\.", lambda m: _wrap_doc(
+        f"- Layers (low to high): {order}; `[tool.importlinter]` in pyproject.toml, run by tests/test_layers.py."
+        ).replace("\n", "\n  "), dtext, flags=re.S)
+    for p, old, fresh in ((py, text, new), (test, ttext, tnew), (design, dtext, dnew)):
         if fresh != old:
             print(f"layers: {p.relative_to(repo)}")
             if not dry:
