@@ -30,9 +30,7 @@ class Result(Record):
     # root: reports show paths relative to this folder ("" = the working directory)
     _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
     infos: tuple = ()  # the planner's info lines (a package of xacro libraries only): not findings
-    # shares: each target's findings after the finish (baseline, one X013 per package, one finding per
-    #   problem): what the pytest plugin's item of that target shows. Set by `run`.
-    shares: list = ()
+    _finished: tuple = ((), {})  # (each target's findings the baseline kept, the run's X013 per package)
 
     def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
                  by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
@@ -42,6 +40,15 @@ class Result(Record):
         self.by_target = [[] for _ in targets] if by_target is None else by_target
         self.fail_on = fail_on
         self.root = root
+
+    @property
+    def shares(self) -> list[list[Finding]]:
+        """Each target's findings after the finish (baseline, one X013 per package, one finding per problem):
+        what the pytest plugin's item of that target shows. Computed on first use, once."""
+        if "_shares" not in self.__dict__:
+            kept, merged = self._finished
+            self._shares = [_dedupe(_merge_x013(fs, merged)) for fs in kept]
+        return self._shares
 
     def raw(self) -> list[Finding]:
         """Every finding before duplicates were collapsed: what a baseline counts, so that a new call of a
@@ -97,8 +104,7 @@ def _run(request: LintRequest, retain, targets) -> Result:
             raise UsageError(f"cannot read baseline {request.baseline}: {e}") from None
         kept = [[f for f in fs if id(f) in new] for fs in kept]
         result.findings = _dedupe([f for fs in kept for f in fs])
-    merged = _missing_packages_once(result)
-    result.shares = [_dedupe(_merge_x013(fs, merged)) for fs in kept]
+    result._finished = (kept, _missing_packages_once(result))
     if request.fail_on is not None:
         result.fail_on = request.fail_on
     elif targets[0].settings is not None:
