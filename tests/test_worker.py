@@ -15,6 +15,7 @@ import importlib  # noqa: E402
 import pytest  # noqa: E402
 
 from urdfcheck.core import worker  # noqa: E402
+from urdfcheck.core.paths import shown  # noqa: E402
 from urdfcheck.load import loader  # noqa: E402
 
 lint = importlib.import_module("urdfcheck.pipeline.run")  # the package's `lint` attribute is the API function
@@ -127,7 +128,7 @@ def test_retain_keeps_each_parsed_document_and_changes_no_finding(tmp_path):
     kept = []
     with_retain = lint.lint_targets(targets, retain=kept).findings
     assert with_retain == lint.lint_targets(targets).findings
-    assert [e.entry for e in kept] == [loader.display(t.path) for t in targets]
+    assert [e.entry for e in kept] == [shown(t.path) for t in targets]
     assert all(e.root is not None for e in kept)
 
 
