@@ -5,7 +5,7 @@ from conftest import run_cli
 from samples import MACROS
 
 from urdfcheck.core.findings import Finding, Location, Severity
-from urdfcheck.report import baseline
+from urdfcheck.pipeline import baseline
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>

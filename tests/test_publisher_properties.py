@@ -65,7 +65,14 @@ def robots(draw):
             "rpy": draw(st.tuples(finite(-4, 4), finite(-4, 4), finite(-4, 4))),
             "axis": draw(axes()), "mimic": None,
             "limit": (draw(finite(-3, 0)), draw(finite(0, 3))),
+            "quat": None,
         }
+        if draw(st.integers(0, 3)) == 0:  # URDF 1.1: the origin as quat_xyzw, any length and sign
+            q = draw(st.tuples(finite(-1, 1), finite(-1, 1), finite(-1, 1), finite(-1, 1)))
+            n = math.sqrt(sum(c * c for c in q))
+            if n > 1e-3:
+                j["quat"] = tuple(c / n * draw(st.sampled_from([1.0, 1.0, -1.0, 0.5])) for c in q)
+                j["rpy"] = rpy_of(quat_matrix(j["quat"]))  # what the peers are given (they read rpy only)
         if jtype in MOVABLE and movable and draw(st.booleans()):  # mimic any earlier movable joint, any branch
             j["mimic"] = (names[draw(st.sampled_from(movable))], draw(finite(-3, 3)), draw(finite(-2, 2)))
         if jtype in MOVABLE:
@@ -76,12 +83,30 @@ def robots(draw):
     return joints, values
 
 
-def to_xml(joints) -> str:
+def quat_matrix(q):
+    """The rotation of a quaternion (x, y, z, w) of any length: numpy, independent of the code under test."""
+    x, y, z, w = np.array(q, dtype=float) / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def rpy_of(r):
+    """URDF roll, pitch, yaw (R = Rz(yaw) Ry(pitch) Rx(roll)) of a rotation matrix."""
+    pitch = math.atan2(-r[2, 0], math.hypot(r[0, 0], r[1, 0]))
+    return (math.atan2(r[2, 1], r[2, 2]), pitch, math.atan2(r[1, 0], r[0, 0]))
+
+
+def to_xml(joints, *, peers: bool = False) -> str:
+    """The model; `peers`: every origin as rpy (Pinocchio's and yourdfpy's readers ignore quat_xyzw)."""
     r = repr
-    out = ['<robot name="random">'] + [f'<link name="l{i}"/>' for i in range(len(joints) + 1)]
+    version = ' version="1.1"' if not peers and any(j["quat"] for j in joints) else ""  # quat_xyzw: URDF 1.1
+    out = [f'<robot name="random"{version}>'] + [f'<link name="l{i}"/>' for i in range(len(joints) + 1)]
     for j in joints:
+        turn = f'quat_xyzw="{" ".join(map(r, j["quat"]))}"' if j["quat"] and not peers else \
+            f'rpy="{" ".join(map(r, j["rpy"]))}"'
         out.append(f'<joint name="{j["name"]}" type="{j["type"]}">'
-                   f'<origin xyz="{" ".join(map(r, j["xyz"]))}" rpy="{" ".join(map(r, j["rpy"]))}"/>'
+                   f'<origin xyz="{" ".join(map(r, j["xyz"]))}" {turn}/>'
                    f'<parent link="{j["parent"]}"/><child link="{j["child"]}"/>'
                    f'<axis xyz="{" ".join(map(r, j["axis"]))}"/>'
                    f'<limit lower="{r(j["limit"][0])}" upper="{r(j["limit"][1])}" effort="1" velocity="1"/>')
@@ -120,12 +145,16 @@ def transitive_values(joints, values):
 
 
 def origin_matrix(j):
+    if j["quat"]:
+        m = np.eye(4)
+        m[:3, :3], m[:3, 3] = quat_matrix(j["quat"]), j["xyz"]
+        return m
     return np.array(pose_matrix(j["xyz"], j["rpy"]))
 
 
 def local_matrix(j, q, *, normalise=True):
     """origin * motion(q) about/along the (normalised) axis, numpy; the URDF meaning of one joint."""
-    o = np.array(pose_matrix(j["xyz"], j["rpy"]))
+    o = origin_matrix(j)
     if j["type"] not in MOVABLE:
         return o
     a = np.array(j["axis"], dtype=float)
@@ -203,7 +232,8 @@ def test_publisher_matches_pinocchio_and_yourdfpy(robot):
             assert np.allclose(tf_matrix(t), local_matrix(j, rsp[j["name"]]), atol=TOL, rtol=0)
 
     # world poses: compose the published transforms per TF tree, compare with Pinocchio
-    pmodel, pdata, full = pinocchio_poses(xml, joints, values)
+    peer_xml = to_xml(joints, peers=True)
+    pmodel, pdata, full = pinocchio_poses(peer_xml, joints, values)
 
     def chain(link):
         out = []
@@ -235,7 +265,7 @@ def test_publisher_matches_pinocchio_and_yourdfpy(robot):
                 assert np.allclose(rel[:3, :3], math.cos(q) * o[:3, :3], atol=TOL)  # cos(q) * I: not a rotation
                 assert np.allclose(rel[:3, 3], o[:3, 3], atol=TOL)
 
-    compared = 0
+    compared = []
     for i in range(1, len(joints) + 1):
         link = f"l{i}"
         ch = chain(link)
@@ -252,7 +282,10 @@ def test_publisher_matches_pinocchio_and_yourdfpy(robot):
             m = m @ tf_matrix(edges[j["child"]])
         expected = np.linalg.inv(frame(root)) @ frame(link)
         assert np.allclose(m, expected, atol=TOL, rtol=0), (link, m, expected)
-        compared += 1
+        compared.append(link)
+    first = joints[0]  # l0 -> l1: nothing above it, so l1 is compared unless the joint itself is excluded
+    if first["type"] != "floating" and not (first["type"] in MOVABLE and not any(first["axis"])):
+        assert "l1" in compared, compared
 
     # yourdfpy, per joint transform (its composition is trimesh's scene graph)
     yourdfpy = pytest.importorskip("yourdfpy")
@@ -260,7 +293,7 @@ def test_publisher_matches_pinocchio_and_yourdfpy(robot):
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            u = yourdfpy.URDF.load(io.BytesIO(xml.encode()), build_scene_graph=True, load_meshes=False,
+            u = yourdfpy.URDF.load(io.BytesIO(peer_xml.encode()), build_scene_graph=True, load_meshes=False,
                                    build_collision_scene_graph=False, load_collision_meshes=False)
             before = {k: v["matrix"].copy() for k, v in u.scene.graph.transforms.edge_data.items()}
             u.update_cfg(dict(values))
@@ -303,4 +336,4 @@ def test_publisher_matches_pinocchio_and_yourdfpy(robot):
             assert ydf_equal(my, local_matrix(j, q * norm), key, atol=TOL * max(1.0, norm * abs(q)))
         else:
             assert ydf_equal(my, local_matrix(j, q), key)
-    assert compared >= 0
+    hypothesis.event(f"quat_xyzw origins: {sum(1 for j in joints if j['quat'])}")

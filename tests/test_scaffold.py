@@ -27,7 +27,7 @@ def test_scaffold_writes_a_readable_entry_and_a_check(checkout):
     entries = read_entries(checkout / "rules")
     assert entries["J099"]["name"] == "joint-name-too-long" and entries["J099"]["family"] == "joints"
     source = (checkout / "src/urdfcheck/rules/checks/joints.py").read_text()
-    assert '@check("J099")\ndef joint_name_too_long(model, ctx):' in source
+    assert '@check("J099")\ndef joint_name_too_long(model: Model, ctx: Context) -> Iterator[Problem]:' in source
     compile(source, "joints.py", "exec")
 
 

@@ -7,26 +7,56 @@ Public API (the CLI uses exactly this):
     urdfcheck.lint(paths=(), **options) -> Result                  # like `urdfcheck lint`, config included
     urdfcheck.UsageError                                           # an unusable request (the CLI's exit 2)
 
-`lint` options are the `LintRequest` fields (pipeline/request.py): args, packages, select, ignore, severity,
-rules, fail_on, trusted, allow_env, timeout, max_elements, config, no_config, root, baseline.
+`load` and `expand` read the config files `lint` reads (its packages and limits). Their options and `lint`'s
+are the `LintRequest` fields (pipeline/request.py): args, packages, select, ignore, severity, rules, fail_on,
+trusted, allow_env, timeout, max_elements, config, no_config, root, baseline.
 """
 from __future__ import annotations
 
 __version__ = "0.1.0"
 __all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadError", "UsageError", "__version__"]
 
+import urdfcheck.load as _load_package  # noqa: E402  (empty __init__: cheap)
 
 
-def load(path, args=None, **options):
-    from urdfcheck.load.loader import load_model
+def _load(path, args=None, **options):
+    """The model at `path` as `urdfcheck lint` loads it: the config found upward (its packages and limits),
+    `options` over it (the `lint` options). Raises LoadError with the findings when it does not load."""
+    from urdfcheck.core.findings import Severity
 
-    return load_model(path, args, **options)
+    loaded = _loaded(path, args, options)
+    findings = loaded.expanded.findings
+    errors = [f for f in findings if f.severity >= Severity.ERROR]
+    if loaded.model is None or errors:
+        from urdfcheck.load.loader import LoadError
+
+        raise LoadError(errors or findings)
+    return loaded.model
+
+
+class _CallablePackage(type(_load_package)):
+    """`urdfcheck.load` is both the sub-package `load/` and the API function: a package attribute named like a
+    sub-package is replaced by the sub-package whenever one of its modules is imported first, so the package
+    itself is callable (`urdfcheck.load(path)`), and `import urdfcheck.load.packages` keeps working."""
+
+    def __call__(self, path, args=None, **options):
+        return _load(path, args, **options)
+
+
+_load_package.__class__ = _CallablePackage
+load = _load_package
 
 
 def expand(path, args=None, **options):
-    from urdfcheck.load.loader import expand as _expand
+    """The expanded document (source map, load findings) the rules of `urdfcheck lint` see."""
+    return _loaded(path, args, options, build=False).expanded
 
-    return _expand(path, args, **options)
+
+def _loaded(path, args, options, build=True):
+    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.pipeline.run import load as load_one
+
+    return load_one(make_request([path], args=args, **options), path, build=build)
 
 
 def lint(paths=(), args=None, **options):

@@ -34,6 +34,8 @@ def pytest_addoption(parser):
     group.addoption("--urdfcheck-fail-on", default=None, choices=("error", "warning", "info"),
                     help="fail a model's item on findings at least this severe (default: config fail_on, "
                          "else warning)")
+    group.addoption("--urdfcheck-baseline", default=None, metavar="FILE",
+                    help="fail only on findings not in this baseline (written by `urdfcheck lint --write-baseline`)")
 
 
 def pytest_configure(config):
@@ -75,17 +77,23 @@ def _prepare(state, config) -> None:
     from urdfcheck.pipeline.request import make_request
 
     level = config.getoption("urdfcheck_fail_on")
-    state.request = make_request([], fail_on=level)
-    state.targets = plan(state.request, here=str(state.rootdir))
+    base = config.getoption("urdfcheck_baseline")
+    state.request = make_request([], fail_on=level, baseline=os.path.abspath(base) if base else None,
+                                 root=str(state.rootdir))
+    from urdfcheck.core.paths import showing
+
+    with showing(state.request.root):
+        state.targets = plan(state.request, here=str(state.rootdir))
     state.fail_on = state.request.fail_on  # None: each item's config decides
 
 
 def _result(state):
-    """The whole run, once (the suppression bookkeeping needs every model); each item shows its share."""
+    """The whole run, once, as `urdfcheck lint` runs it (suppression bookkeeping, one X013 per package, the
+    baseline); each item shows its target's share (`Result.shares`)."""
     if state.result is None:
-        from urdfcheck.pipeline.run import lint_targets
+        from urdfcheck.pipeline.run import run
 
-        state.result = lint_targets(state.targets)
+        state.result = run(state.request, targets=state.targets)
     return state.result
 
 
@@ -153,10 +161,8 @@ class UrdfcheckItem(pytest.Item):
     def runtest(self):
         if self.state.error is not None:
             raise UrdfcheckFailure(f"invalid urdfcheck config: {self.state.error}")
-        from urdfcheck.pipeline.run import _dedupe
-
         result = _result(self.state)
-        findings = _dedupe(result.by_target[self.index])
+        findings = result.shares[self.index]
         fail_on = self.state.fail_on or self.target.settings.fail_on
         failing = [f for f in findings if f.severity >= fail_on]
         below = [f for f in findings if f.severity < fail_on]
@@ -165,10 +171,10 @@ class UrdfcheckItem(pytest.Item):
         if failing:
             n = len(failing)
             from urdfcheck.core.findings import clean_text
-            from urdfcheck.load.loader import display
+            from urdfcheck.core.paths import shown
 
             head = (f"{n} urdfcheck finding{'s' if n != 1 else ''} at or above {fail_on} "
-                    f"in {clean_text(display(self.target.path), 4096)}"
+                    f"in {clean_text(shown(self.target.path, self.state.rootdir), 4096)}"
                     + (f" [{clean_text(self.target.variant)}]" if self.target.variant else ""))
             raise UrdfcheckFailure("\n".join([head] + [_line(f) for f in failing]))
 

@@ -77,10 +77,24 @@ def add_load_options(p: argparse.ArgumentParser) -> None:
                         "URDFCHECK_RUN_BUDGET); what it leaves unlinted is an X017 finding")
 
 
-def load_kwargs(ns) -> dict:
-    """The loader's keyword arguments from the load options (expand, tf, publish, tree, verify)."""
-    return dict(packages=dict(ns.packages), trusted=bool(ns.trusted), allow_env=tuple(ns.allow_env),
-                timeout=ns.timeout, max_elements=ns.max_elements)
+def add_config_options(p: argparse.ArgumentParser) -> None:
+    """The config options of the commands that load one model (expand, tf, publish, tree, verify)."""
+    p.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
+    p.add_argument("--no-config", action="store_true", help="ignore config files")
+
+
+def load_one(ns, path: str, build: bool = True):
+    """The model at `path` as `urdfcheck lint` loads it (the same request: config, packages, limits),
+    the load flags over the config: a `pipeline.run.Loaded`. Raises UsageError."""
+    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.pipeline.run import load
+
+    request = make_request(
+        [path], args=dict(getattr(ns, "args", None) or []), packages=dict(ns.packages),
+        trusted=True if ns.trusted else None, allow_env=tuple(ns.allow_env), timeout=ns.timeout,
+        max_elements=ns.max_elements, config=getattr(ns, "config", None),
+        use_config=not getattr(ns, "no_config", False), budget=getattr(ns, "budget", None))
+    return load(request, path, build=build)
 
 
 def print_findings(findings, stream=None) -> None:

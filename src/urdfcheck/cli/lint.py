@@ -82,30 +82,37 @@ def _list(request: LintRequest) -> int:
     (or --root) are relative, arguments' values included. A target from a launch file shows the xacro
     arguments that tell it apart, files aside (the deployment below lists them; arguments equal to a launch
     argument's default are only counted)."""
+    from urdfcheck.core.paths import showing
+
+    with showing(request.root):
+        return _list_plan(request)
+
+
+def _list_plan(request: LintRequest) -> int:
     from urdfcheck.core.findings import clean_text
+    from urdfcheck.core.paths import shown
     from urdfcheck.pipeline.deployments import describe, show_args
     from urdfcheck.pipeline.plan import plan
 
     targets = plan(request)
     if not targets and not targets.infos:
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
-    base = os.path.abspath(request.root or os.getcwd()).rstrip(os.sep) + os.sep
 
-    def out(text: str) -> None:  # locations inside notes are absolute: relative, like every report's
-        print(clean_text(text.replace(base, ""), 4096))
+    def out(text: str) -> None:
+        print(clean_text(text, 4096))
 
     for line in targets.infos:
         out(f"info: {line}")
     for t in targets:
         d = t.deployment
         if d is not None:  # the launch file's choices (files: in the deployment below), what the request adds
-            args = show_args({**d.chosen_args(), **dict(request.args)}, request.shown,
+            args = show_args({**d.chosen_args(), **dict(request.args)}, shown,
                              len({**d.args, **dict(request.args)}), files=False)
         else:
-            args = show_args(t.args, request.shown)
+            args = show_args(t.args, shown)
         cfg = getattr(t.settings.config, "path", None) if t.settings is not None else None
-        out(request.shown(t.path) + (f" [{t.variant}]" if t.variant else "") + args
-            + (f"  (config {request.shown(cfg)})" if cfg else ""))
+        out(shown(t.path) + (f" [{t.variant}]" if t.variant else "") + args
+            + (f"  (config {shown(cfg)})" if cfg else ""))
     from urdfcheck.rules.checks.values import describe_target
 
     assumed = (describe_target(str(t.path), t.settings.target if t.settings is not None else None) for t in targets)
@@ -115,7 +122,7 @@ def _list(request: LintRequest) -> int:
     deployments += getattr(targets, "not_understood", [])
     if deployments:
         print()
-        for line in describe(deployments, request.shown).splitlines():
+        for line in describe(deployments, shown).splitlines():
             out(line)
     print(f"{len(targets)} target(s)")
     return 0

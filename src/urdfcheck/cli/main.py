@@ -19,13 +19,12 @@ from urdfcheck.cli.common import (  # noqa: F401  (EXIT_*, UsageError: also read
     Formatter,
     RawFormatter,
     UsageError,
+    add_config_options,
     add_load_options,
     kv,
-    load_kwargs,
+    load_one,
     usage_message,
 )
-
-_kv = kv
 
 
 def _codes(text: str) -> list[str]:
@@ -72,7 +71,7 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     lint.add_argument("--format", default="text", choices=["text", "json", "sarif", "junit", "github", "markdown"],
                       help="report format on stdout (default text)")
     lint.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
-    lint.add_argument("--report", action="append", default=[], type=_kv("=", "FORMAT=FILE"),
+    lint.add_argument("--report", action="append", default=[], type=kv("=", "FORMAT=FILE"),
                       metavar="FORMAT=FILE", help="also write another format to a file (repeatable)")
     lint.add_argument("--color", choices=["auto", "always", "never"], default="auto")
     lint.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
@@ -113,6 +112,7 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     exp = sub.add_parser("expand", help="print the expanded URDF exactly as the rules see it")
     exp.add_argument("path", metavar="FILE")
     add_load_options(exp)
+    add_config_options(exp)
     exp.set_defaults(func=cmd_expand)
 
     rules = sub.add_parser("rules", help="list the rules, or show one rule's page")
@@ -134,15 +134,10 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     return parser
 
 
-_load_kwargs = load_kwargs
-
-
 def cmd_expand(ns) -> int:
-    from urdfcheck.load import loader as load
-
     if not os.path.isfile(ns.path):
         raise UsageError(f"no such file: {ns.path}")
-    exp = load.expand(ns.path, dict(ns.args), **_load_kwargs(ns))
+    exp = load_one(ns, ns.path, build=False).expanded
     errors = [f for f in exp.findings if int(f.severity) >= 3]
     for f in exp.findings:
         print(f"{f.location}: {f.code} {f.message}", file=sys.stderr)
@@ -229,6 +224,13 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
             return EXIT_USAGE
         argv = lint_argv
     if argv and not argv[0].startswith("-") and argv[0] not in COMMANDS:
+        if not os.path.exists(argv[0]) and os.sep not in argv[0] and "." not in argv[0]:
+            from urdfcheck.core.findings import closest
+
+            hint = closest(argv[0], list(COMMANDS), cutoff=0.6)
+            print(f"urdfcheck: error: unknown command {argv[0]!r}" + (f" (did you mean {hint!r}?)" if hint else "")
+                  + f"; commands: {', '.join(COMMANDS)}, or name files and folders to lint", file=sys.stderr)
+            return EXIT_USAGE
         argv = ["lint"] + argv  # `urdfcheck model.urdf` is `urdfcheck lint model.urdf`
     parser = build_parser(with_publish=not argv or argv[0] not in ("lint", "expand", "rules"))
     ns = parser.parse_args(argv)

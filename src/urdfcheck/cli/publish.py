@@ -12,10 +12,17 @@ import math
 import os
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN as EXIT_OK
-from urdfcheck.cli.common import EXIT_FINDINGS as EXIT_FAIL
-from urdfcheck.cli.common import EXIT_USAGE, add_load_options, load_kwargs, print_findings, usage_message
-from urdfcheck.cli.common import UsageError as _Usage
+from urdfcheck.cli.common import (
+    EXIT_CLEAN,
+    EXIT_FINDINGS,
+    EXIT_USAGE,
+    UsageError,
+    add_config_options,
+    add_load_options,
+    load_one,
+    print_findings,
+    usage_message,
+)
 
 # --- shared ---------------------------------------------------------------------------------------------------
 
@@ -34,50 +41,58 @@ def _joint_value(text: str):
     return k, value
 
 
-_add_load_options = add_load_options
-_load_options = load_kwargs
-_print_findings = print_findings
-
-
-def _loader():
-    from urdfcheck.load import loader
-
-    return loader
+def _add_load_options(p) -> None:
+    add_load_options(p)
+    add_config_options(p)
 
 
 def _load(ns, want_xml: bool = False):
-    """(model, xml or None), or None after printing the load findings."""
-    if not os.path.isfile(ns.model):
-        raise _Usage(f"no such file: {ns.model}")
-    loader = _loader()
-    args = dict(getattr(ns, "args", None) or [])
-    opts = _load_options(ns)
-    if want_xml and hasattr(loader, "expand") and hasattr(loader, "build_model"):
-        exp = loader.expand(ns.model, args, **opts)
-        from urdfcheck.core.findings import Severity
+    """(model, xml or None) as `urdfcheck lint` loads the model (config included), or None after printing
+    the load findings."""
+    from urdfcheck.core.findings import Severity
 
-        errors = [f for f in exp.findings if f.severity >= Severity.ERROR]
-        if exp.root is None or errors:
-            _print_findings(errors or exp.findings)
-            return None
+    model_path = _model_path(ns)
+    loaded = load_one(ns, model_path)
+    exp = loaded.expanded
+    errors = [f for f in exp.findings if f.severity >= Severity.ERROR]
+    if loaded.model is None or errors:
+        print_findings(errors or exp.findings)
+        return None
+    xml = None
+    if want_xml:
         try:
             xml = exp.clean_text()
         except Exception:
             xml = None
-        return loader.build_model(exp), xml
-    try:
-        model = loader.load_model(ns.model, args, **opts)
-    except loader.LoadError as e:
-        _print_findings(e.findings)
-        return None
-    return model, None
+    return loaded.model, xml
+
+
+def _model_path(ns) -> str:
+    """The MODEL argument: a file, or a folder holding exactly one robot (what `urdfcheck lint` plans there)."""
+    if os.path.isfile(ns.model):
+        return ns.model
+    if not os.path.isdir(ns.model):
+        raise UsageError(f"no such file: {ns.model}")
+    from urdfcheck.core.paths import shown
+    from urdfcheck.pipeline.plan import plan
+    from urdfcheck.pipeline.request import make_request
+
+    targets = plan(make_request([ns.model], trusted=True if ns.trusted else None,
+                                use_config=not getattr(ns, "no_config", False), config=getattr(ns, "config", None)))
+    models = list(dict.fromkeys(str(t.path) for t in targets))
+    if len(models) == 1:
+        return models[0]
+    if not models:
+        raise UsageError(f"{ns.model} holds no URDF or xacro robot; name a model file")
+    raise UsageError(f"{ns.model} holds {len(models)} robots; name one: "
+                 + ", ".join(shown(m) for m in models[:10]) + (" ..." if len(models) > 10 else ""))
 
 
 def _run(fn):
     def wrapped(ns) -> int:
         try:
             return fn(ns)
-        except _Usage as e:
+        except UsageError as e:
             print(usage_message(ns.command, e), file=sys.stderr)
             return EXIT_USAGE
 
@@ -159,16 +174,16 @@ def cmd_tf(ns) -> int:
 
     loaded = _load(ns)
     if loaded is None:
-        return EXIT_FAIL
+        return EXIT_FINDINGS
     model, _ = loaded
     joints = dict(ns.joint)
     unknown = [k for k in joints if k not in model.joints]
     if unknown:
-        raise _Usage("not joints of the model: " + ", ".join(clean_text(k) for k in unknown))
+        raise UsageError("not joints of the model: " + ", ".join(clean_text(k) for k in unknown))
     try:
         m = lookup_matrix(model, ns.source, ns.target, joints, default=0.0 if ns.zero_missing else None)
     except TransformLookupError as e:
-        raise _Usage(clean_text(str(e))) from None
+        raise UsageError(clean_text(str(e))) from None
     t = [m[0][3], m[1][3], m[2][3]]
     q = list(quat_from_matrix(m))
     rpy = list(rpy_from_matrix(m))
@@ -176,7 +191,7 @@ def cmd_tf(ns) -> int:
         print(json.dumps({"source": ns.source, "target": ns.target, "joints": joints, "translation": t,
                           "rotation": q, "rpy": rpy, "rpy_degrees": [math.degrees(a) for a in rpy],
                           "matrix": [list(r) for r in m]}, indent=2))
-        return EXIT_OK
+        return EXIT_CLEAN
     d = max(0, ns.precision)
 
     def vec(v):
@@ -194,7 +209,7 @@ def cmd_tf(ns) -> int:
     if any(x != x for x in t + q):
         print("warning: NaN: a joint on the path has a zero axis (robot_state_publisher publishes NaN too)",
               file=sys.stderr)
-    return EXIT_OK
+    return EXIT_CLEAN
 
 
 # --- publish ----------------------------------------------------------------------------------------------------
@@ -203,9 +218,9 @@ def _read_joint_states(path: str) -> list:
         with open(path, "rb") as f:
             data = f.read(64 * 1024 * 1024 + 1)
     except OSError as e:
-        raise _Usage(f"cannot read {path}: {e.strerror}") from None
+        raise UsageError(f"cannot read {path}: {e.strerror}") from None
     if len(data) > 64 * 1024 * 1024:
-        raise _Usage(f"{path} is larger than 64 MiB")
+        raise UsageError(f"{path} is larger than 64 MiB")
     text = data.decode("utf-8", "replace")
     try:
         doc = json.loads(text)
@@ -216,7 +231,7 @@ def _read_joint_states(path: str) -> list:
         try:
             docs = [d for d in yaml.safe_load_all(text) if d is not None]
         except yaml.YAMLError as e:
-            raise _Usage(f"{path} is neither JSON nor YAML: {e}") from None
+            raise UsageError(f"{path} is neither JSON nor YAML: {e}") from None
     msgs = []
     for d in docs:
         if isinstance(d, dict) and isinstance(d.get("messages"), list):
@@ -239,14 +254,14 @@ def cmd_publish(ns) -> int:
     raw = _read_joint_states(ns.joint_states)
     loaded = _load(ns)
     if loaded is None:
-        return EXIT_FAIL
+        return EXIT_FINDINGS
     model, _ = loaded
     try:
         pub = StatePublisher(model, profile=ns.profile, frame_prefix=ns.frame_prefix,
                              publish_frequency=ns.publish_frequency, ignore_timestamp=ns.ignore_timestamp,
                              use_tf_static=ns.use_tf_static)
     except ValueError as e:
-        raise _Usage(str(e)) from None
+        raise UsageError(str(e)) from None
     first_stamp = 0.0
     for r in raw:
         try:
@@ -298,7 +313,7 @@ def cmd_publish(ns) -> int:
     sys.stdout.write("\n")
     if errors:
         print(f"urdfcheck publish: {errors} message(s) rejected (see \"error\" in the output)", file=sys.stderr)
-    return EXIT_FAIL if _check_states(model, ns.joint_states) else EXIT_OK
+    return EXIT_FINDINGS if _check_states(model, ns.joint_states) else EXIT_CLEAN
 
 
 def _check_states(model, path: str) -> bool:
@@ -309,7 +324,7 @@ def _check_states(model, path: str) -> bool:
 
     found = check_recording(model, path, BagOptions(), text=True)
     found = [f for f in found if f.code != "B015"]  # a list without JointState fields is said above already
-    _print_findings(found)
+    print_findings(found)
     return any(f.severity >= Severity.WARNING for f in found)
 
 
@@ -319,10 +334,10 @@ def cmd_tree(ns) -> int:
 
     loaded = _load(ns)
     if loaded is None:
-        return EXIT_FAIL
+        return EXIT_FINDINGS
     model, _ = loaded
     print(render(model, ns.format, ns.frame_prefix, ns.profile))
-    return EXIT_OK
+    return EXIT_CLEAN
 
 
 # --- verify -----------------------------------------------------------------------------------------------------
@@ -401,9 +416,9 @@ def cmd_verify(ns) -> int:
     from urdfcheck.verify import compare as V
 
     if ns.n < 1:
-        raise _Usage("-n must be at least 1")
+        raise UsageError("-n must be at least 1")
     if not os.path.isfile(ns.model):
-        raise _Usage(f"no such file: {ns.model}")
+        raise UsageError(f"no such file: {ns.model}")
     peers = ("pinocchio",) if ns.no_yourdfpy else ("pinocchio", "yourdfpy")
     # fork the peers now: they import Pinocchio / yourdfpy while this process loads the model
     pre = {}
@@ -419,7 +434,7 @@ def cmd_verify(ns) -> int:
         raise
     if loaded is None:
         V.cancel(workers)
-        return EXIT_FAIL
+        return EXIT_FINDINGS
     model, xml = loaded
     kwargs = {"workers": workers}
     if ns.yourdfpy_samples is not None:
@@ -442,4 +457,4 @@ def cmd_verify(ns) -> int:
         print(json.dumps(report.to_dict(), indent=2))
     else:
         print(format_report(report))
-    return EXIT_OK if report.passed else EXIT_FAIL
+    return EXIT_CLEAN if report.passed else EXIT_FINDINGS

@@ -19,7 +19,7 @@ class ConsumerError(Exception):
         self.location = location
 
     def __str__(self) -> str:
-        return f"{self.location}: {self.message}"
+        return f"{self.location.shown()}: {self.message}"
 
 
 class Value(FrozenRecord):

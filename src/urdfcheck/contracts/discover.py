@@ -21,7 +21,8 @@ from typing import NamedTuple
 
 from lxml import etree
 
-SKIP_DIRS = {"build", "install", "log", "devel", "node_modules", "__pycache__", "venv"}
+from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
+
 PARAM_DIRS = {"config", "params", "param"}
 LAUNCH_DIRS = {"launch"}
 LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml")
@@ -43,10 +44,11 @@ class Discovered(NamedTuple):
 
 
 def _walk(root: str, max_files: int):
+    from urdfcheck.core.walk import files, folders
+
     n = 0
-    for dirpath, dirnames, filenames in os.walk(root, followlinks=False):
-        dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d not in SKIP_DIRS)
-        for f in sorted(filenames):
+    for dirpath, entries in folders(root):
+        for f in files(entries):
             n += 1
             if n > max_files:
                 return

@@ -223,7 +223,7 @@ def add_declared(g: TFGraph, declared: Iterable[TFClaim]) -> TFGraph:
 
 # --- analyses ----------------------------------------------------------------------------------------
 def _who(c: TFClaim) -> str:
-    return f"{c.owner} ({c.kind}, {c.loc})"
+    return f"{c.owner} ({c.kind}, {c.loc.shown()})"
 
 
 def duplicate_owners(g: TFGraph) -> list[TFProblem]:
@@ -404,7 +404,7 @@ def prefix_collisions(publishers: Sequence[PublisherInfo]) -> list[TFProblem]:
         out.append(TFProblem(
             "T006",
             f"{len(ps)} robot_state_publishers run with {what} "
-            f"({', '.join(f'{p.name} in {p.namespace} at {p.loc}' for p in ps)}); their frames collide in /tf",
+            f"({', '.join(f'{p.name} in {p.namespace} at {p.loc.shown()}' for p in ps)}); their frames collide in /tf",
             claims, (), ps[0].loc))
     return out
 

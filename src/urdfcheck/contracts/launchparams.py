@@ -29,6 +29,7 @@ from urdfcheck.contracts.common import Value
 from urdfcheck.contracts.controllers import Controller, ControllerSet, finish_controller
 from urdfcheck.contracts.launch import LaunchInfo, ParamSet, RosparamLoad
 from urdfcheck.contracts.params import ParamFile
+from urdfcheck.core.paths import shown
 
 
 def _ns_join(ns: str, rest: str) -> str:
@@ -109,11 +110,11 @@ def apply_launch_params(cset: ControllerSet, launches: Iterable[LaunchInfo],
                     sets = _file_sets(pf, item.ns, item.order, item.subst, only_substituted=True)
                 else:
                     if not (os.path.isabs(item.file) and os.path.isfile(item.file)):
-                        notes.append((f"rosparam file {item.file} not found; its parameters are not applied",
+                        notes.append((f"rosparam file {shown(item.file)} not found; its parameters are not applied",
                                       item.loc))
                         continue
                     if not _inside(item.file, _allowed_roots(li, packages or {})):
-                        notes.append((f"rosparam file {item.file} is outside the known packages; not read",
+                        notes.append((f"rosparam file {shown(item.file)} is outside the known packages; not read",
                                       item.loc))
                         continue
                     pf = read(item.file)

@@ -24,6 +24,7 @@ from typing import Any, NamedTuple
 from urdfcheck.contracts.common import Value, as_bool
 from urdfcheck.contracts.params import NodeParams, ParamFile
 from urdfcheck.core.findings import Location
+from urdfcheck.core.paths import shown
 
 _RL_INPUT = re.compile(r"^(odom|imu|pose|twist)\d+$")
 
@@ -360,7 +361,7 @@ def read_lua_options(path: str, notes: list | None = None, where: Location | Non
         text = read_capped(path, MAX_LUA_BYTES, "lua file").decode("utf-8", "replace")
     except (ConsumerError, OSError):
         if notes is not None:
-            notes.append((f"cartographer: configuration {path} not read; its transforms are not known",
+            notes.append((f"cartographer: configuration {shown(path)} not read; its transforms are not known",
                           where or Location(path)))
         return None
     start = re.search(r"^\s*options\s*=\s*\{", text, re.M)

@@ -53,7 +53,7 @@ def deployment_unknowns(dep, drivers=()) -> list[tuple[str, Location]]:
     """What the deployment `dep` (pipeline.deployments.Deployment) did not understand, as (what, where).
     `drivers`: the base drivers read from its nodes' parameters (a node whose parameters name joints was read;
     one whose parameters say nothing of joints, a camera's, was not: it may publish its own frames)."""
-    from urdfcheck.load.loader import display
+    from urdfcheck.core.paths import shown as display
 
     out: list[tuple[str, Location]] = []
     read = {d.loc for d in drivers if d.joints}
@@ -142,7 +142,7 @@ def package_unknowns(c) -> list[tuple[str, Location]]:
 def launch_unknowns(c, read=()) -> list[tuple[str, Location]]:
     """Nodes of no known kind in the launch files `c` read (but those given a parameter file in `read`: a
     declared driver), and includes not followed: what a config's launch files run that was not understood."""
-    from urdfcheck.load.loader import display
+    from urdfcheck.core.paths import shown as display
 
     read = {os.path.realpath(f) for f in read}
     out = [(f"{_node_label(n)} in {display(n.loc.file)}", n.loc) for li in c.launch for n in li.nodes
@@ -318,6 +318,6 @@ def _broadcasters(root: str) -> list:
 
 
 def _show(path: str) -> str:
-    from urdfcheck.load.loader import display
+    from urdfcheck.core.paths import shown as display
 
     return display(path)

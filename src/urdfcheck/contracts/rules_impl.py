@@ -31,6 +31,7 @@ from urdfcheck.contracts.graph import (
 )
 from urdfcheck.contracts.wheels import check_drive
 from urdfcheck.core.findings import Location, Problem, closest
+from urdfcheck.core.paths import shown
 
 _UNRESOLVED = re.compile(r"\$\(|\$\{")
 
@@ -399,7 +400,7 @@ def unreadable_consumer(model, ctx) -> Iterator[Problem]:
         yield Problem(e.message, at=e.location)
     for d in c.drivers:
         for key, loc in d.missing:
-            yield Problem(f"driver {d.name}: key {key!r} is not in {d.file}", at=loc)
+            yield Problem(f"driver {d.name}: key {key!r} is not in {shown(d.file)}", at=loc)
 
 
 # --- C010..C014: wheels ------------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import enum
+import os
 import re
 from typing import NamedTuple
 
@@ -29,6 +30,13 @@ class Location(NamedTuple):
     line: int | None = None
     column: int | None = None
     via: tuple[Location, ...] = ()
+
+    def shown(self, root: str | None = None) -> Location:
+        """This location with its files as reports show them (`core.paths.shown`)."""
+        from urdfcheck.core.paths import shown
+
+        file = shown(self.file, root) if os.path.isabs(self.file) else self.file
+        return Location(file, self.line, self.column, tuple(v.shown(root) for v in self.via))
 
     def __str__(self) -> str:
         out = self.file

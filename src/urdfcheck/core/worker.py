@@ -42,12 +42,7 @@ PROGRESS_INTERVAL = 0.1  # seconds between progress messages from a child
 class Failure(FrozenRecord):
     # kind: "timeout", "memory", "crashed", "output", "error"
     _fields = ('kind', 'message', 'stderr')
-
-    def __init__(self, kind: str, message: str, stderr: str = ""):
-        d = self.__dict__  # FrozenRecord forbids setattr
-        d["kind"] = kind
-        d["message"] = message
-        d["stderr"] = stderr
+    _defaults = {"stderr": ""}
 
 
 class Limits(FrozenRecord):

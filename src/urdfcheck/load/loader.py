@@ -9,7 +9,7 @@ import os
 import re
 from pathlib import Path
 
-from urdfcheck.core import xmlfront
+from urdfcheck.core import paths, xmlfront
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
@@ -23,15 +23,6 @@ MAX_BYTES = xmlfront.MAX_BYTES
 # Severity of load findings; the catalogue may override the names but these codes are fixed here
 # because loading happens before any rule runs.
 _LOAD_SEVERITY = {"X003": Severity.WARNING, "X005": Severity.WARNING, "X016": Severity.WARNING}
-
-
-def display(path: str | os.PathLike) -> str:
-    """Path as shown in reports: relative to the working directory when below it."""
-    p = os.path.abspath(path)
-    cwd = os.getcwd()
-    if p == cwd or p.startswith(cwd.rstrip(os.sep) + os.sep):
-        return os.path.relpath(p, cwd)
-    return p
 
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
@@ -139,18 +130,18 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
           memory: int = XACRO_MEMORY, environ: dict | None = None, max_elements: int | None = None) -> Pending:
     """Start `expand`: a xacro file starts expanding in its worker now, and the caller works on meanwhile."""
     p = Path(path)
-    shown = display(p)
+    entry = paths.shown(p)
     escapes = not trusted and _links_outside(p, packages)
     resolver = None if escapes else Resolver(packages, near=p.resolve(), environ=environ)
-    out = Expanded(entry=shown, xacro=False, files=[shown], args=dict(args or {}), resolver=resolver)
+    out = Expanded(entry=entry, xacro=False, files=[entry], args=dict(args or {}), resolver=resolver)
     if escapes:  # a symlink committed in a pull request must not read the runner's files
         out.findings.append(_finding("X014", "the model path is or goes through a symbolic link to outside the "
-                                             "package roots or the working directory; not read", shown))
+                                             "package roots or the working directory; not read", entry))
         return Pending(out)
     run = budget.current()
     spent = run.spent() if run is not None else None
     if spent is not None:  # what was not linted is a finding, located at the model
-        out.findings.append(_finding("X017", f"not linted: {spent}", shown))
+        out.findings.append(_finding("X017", f"not linted: {spent}", entry))
         _unrecordable()
         return Pending(out)
     cut = False
@@ -159,17 +150,17 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     try:
         data = read_file(p, MAX_BYTES)  # a regular file only: a committed FIFO must not block the run
     except OSError as e:
-        out.findings.append(_finding("X001", f"cannot read file: {e.strerror}", shown))
+        out.findings.append(_finding("X001", f"cannot read file: {e.strerror}", entry))
         return Pending(out)
     problem = encoding_problem(data)
     if problem is not None:  # UTF-16/32: urdfdom reads UTF-8 only; never silently skipped or read as garbage
-        out.findings.append(_finding("X001", problem, shown, 1))
+        out.findings.append(_finding("X001", problem, entry, 1))
         return Pending(out)
     if data.startswith(UTF8_BOM):  # read on (urdfdom and xacro skip it), but say so
         out.findings.append(_finding("X003", "the file starts with a UTF-8 byte-order mark: urdfdom and xacro skip "
                                              "it, but a launch file that reads the text into robot_description "
                                              "passes U+FEFF on to every consumer; save it as UTF-8 without BOM",
-                                     shown, 1))
+                                     entry, 1))
     opts = (trusted, allow_env, timeout, memory, max_elements)
     if is_xacro(p):
         out.xacro = True
@@ -178,7 +169,7 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
         return Pending(out, job=job)
     too_big = _too_many_elements(data)
     if too_big is not None:
-        out.findings.append(_finding("X017", too_big, shown, 1))
+        out.findings.append(_finding("X017", too_big, entry, 1))
         return Pending(out)
     return Pending(out, later=lambda: _read_plain(out, p, data, opts))
 
@@ -283,7 +274,7 @@ def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, ma
     from urdfcheck.load import xacro as xacro_pkg
 
     options = dict(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
-                   max_evals=max_elements)
+                   max_evals=max_elements, root=paths.showing_root())
     if grace is None:  # a child the console forked at start-up, with xacro imported meanwhile (cli.main)
         spare = worker.take_spare(xacro_pkg.SPARE, worker_limits(trusted, allow_env, timeout, memory))
         if spare is not None:  # the options go as a dict: this process need not import the expander
@@ -316,7 +307,7 @@ def _finish_xacro(out: Expanded, res, budget_cut: bool = False) -> None:
         code = "X012" if res.kind in ("timeout", "memory", "output") else "X010"
         out.findings.append(_finding(code, f"{what}: {res.message}", out.entry, 1))
         return
-    out.files = [display(f) for f in res["files"]] or [out.entry]
+    out.files = [paths.shown(f) for f in res["files"]] or [out.entry]
     out.declared_args = dict(res.get("args", {}))
     for idx, first, last, codes, cline in res["suppressions"]:
         out.suppressions.append(Suppression(out.files[idx], first, last, codes, cline))

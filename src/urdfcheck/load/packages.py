@@ -12,7 +12,6 @@ import re
 from pathlib import Path
 
 _NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
-_SKIP_DIRS = {".git", "build", "install", "log", "node_modules", "__pycache__", ".venv", ".tox"}
 SCAN_DEPTH = 6
 SCAN_LIMIT = 5000  # directories visited at most
 
@@ -84,24 +83,15 @@ def workspace_root(path: Path) -> Path:
 
 def scan(root: Path, near: Path | None = None) -> dict[str, Path]:
     """name -> package folder below `root`. When a name occurs twice, the folder nearest `near` wins."""
+    from urdfcheck.core.walk import folders
+
     found: dict[str, Path] = {}
-    visited = 0
-    stack = [(root, 0)]
-    while stack and visited < SCAN_LIMIT:
-        d, depth = stack.pop()
-        visited += 1
-        try:
-            entries = sorted(os.scandir(d), key=lambda e: e.name, reverse=True)
-        except OSError:
-            continue
+    for d, entries in folders(root, max_dirs=SCAN_LIMIT, max_depth=SCAN_DEPTH):
         for e in entries:
             if e.name == "package.xml" and e.is_file():
                 name = package_name(Path(e.path))
                 if name and (name not in found or _closer(Path(d), found[name], near)):
                     found[name] = Path(d)
-            elif depth < SCAN_DEPTH and e.is_dir(follow_symlinks=False) and e.name not in _SKIP_DIRS \
-                    and not e.name.startswith("."):
-                stack.append((Path(e.path), depth + 1))
     return found
 
 
@@ -116,23 +106,15 @@ def workspace_packages(root: str | os.PathLike) -> dict[str, list[Path]]:
     got = _WORKSPACES.get(key)
     if got is not None:
         return got
+    from urdfcheck.core.walk import folders
+
     found: dict[str, list[Path]] = {}
-    visited = 0
-    stack = [Path(key)]
-    while stack and visited < WORKSPACE_LIMIT:
-        d = stack.pop()
-        visited += 1
-        try:
-            entries = sorted(os.scandir(d), key=lambda e: e.name, reverse=True)
-        except OSError:
-            continue
+    for d, entries in folders(key, max_dirs=WORKSPACE_LIMIT):
         for e in entries:
             if e.name == "package.xml" and e.is_file(follow_symlinks=False):
                 name = package_name(Path(e.path))
                 if name:
                     found.setdefault(name, []).append(Path(d))
-            elif e.is_dir(follow_symlinks=False) and e.name not in _SKIP_DIRS and not e.name.startswith("."):
-                stack.append(Path(e.path))
     _WORKSPACES[key] = found
     return found
 

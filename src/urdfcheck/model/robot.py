@@ -211,39 +211,11 @@ class Model(FrozenRecord):
     _fields = ('name', 'loc', 'links', 'joints', 'materials', 'link_list', 'joint_list', 'material_list', 'blocks',
                'issues', 'source', 'ros2_control', 'transmissions', 'version', 'declared_version', 'plugins')
 
-    def __init__(self, name: str,
-                 loc: Location,
-                 links: Mapping[str, Link],
-                 joints: Mapping[str, Joint],
-                 materials: Mapping[str, Material],
-                 link_list: tuple[Link, ...],
-                 joint_list: tuple[Joint, ...],
-                 material_list: tuple[Material, ...],
-                 blocks: tuple[Block, ...],
-                 issues: tuple[Issue, ...],
-                 source: str,
-                 ros2_control: tuple[Ros2Control, ...] = (),
-                 transmissions: tuple[Transmission, ...] = (),
-                 version: tuple[int, int] = (1, 0),
-                 declared_version: str | None = None,
-                 plugins: tuple[GazeboPlugin, ...] = ()):
-        d = self.__dict__  # FrozenRecord forbids setattr
-        d["name"] = name
-        d["loc"] = loc
-        d["links"] = links
-        d["joints"] = joints
-        d["materials"] = materials
-        d["link_list"] = link_list
-        d["joint_list"] = joint_list
-        d["material_list"] = material_list
-        d["blocks"] = blocks
-        d["issues"] = issues
-        d["source"] = source
-        d["ros2_control"] = ros2_control
-        d["transmissions"] = transmissions
-        d["version"] = version
-        d["declared_version"] = declared_version
-        d["plugins"] = plugins
+    _defaults = {"ros2_control": (), "transmissions": (), "version": (1, 0), "declared_version": None,
+                 "plugins": ()}
+    # name: str, loc: Location, links/joints/materials: Mapping[str, ...], link_list/joint_list/material_list,
+    # blocks, issues: tuples, source: str, ros2_control, transmissions: tuples, version: (major, minor),
+    # declared_version: str | None; plugins: the <gazebo> plugins (contracts/gazebo.py)
 
     # --- derived structure -------------------------------------------------
     @property

@@ -199,15 +199,12 @@ def describe(f: Finding, totals: dict[str, int] | None = None, limit: int = 3, e
 _LAUNCH = re.compile(r"(\.launch(\.py|\.xml|\.ya?ml)?|_launch\.py)( \[|$)")
 
 
-def variant_totals(targets) -> dict[str, int]:
+def variant_totals(targets, root: str = "") -> dict[str, int]:
     """model display path -> how many variants of it were linted (for "in 3 of 4 variants")."""
-    from urdfcheck.load.loader import display
+    from urdfcheck.core.paths import shown
 
     out: dict[str, int] = {}
     for t in targets:
-        try:
-            shown = display(t.path)
-        except (OSError, ValueError):
-            shown = str(t.path)
-        out[shown] = out.get(shown, 0) + 1
+        where = shown(t.path, root)
+        out[where] = out.get(where, 0) + 1
     return out

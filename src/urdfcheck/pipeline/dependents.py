@@ -12,6 +12,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from urdfcheck.core.paths import shown
+
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")
 
 
@@ -31,7 +33,7 @@ def targets_reading(planner, raw: str, settings) -> list:
         if (own is not None and _below(real, os.path.realpath(own))) or real in _read_by(t):
             out.append(t)
     if not out:
-        planner.infos.append(f"{planner.request.shown(raw)}: a YAML file that no robot or deployment of its "
+        planner.infos.append(f"{shown(raw)}: a YAML file that no robot or deployment of its "
                              "workspace reads: not linted")
     return out
 

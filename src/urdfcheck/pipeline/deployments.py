@@ -36,9 +36,9 @@ _CONTROLLER_EXES = ("ros2_control_node", "spawner", "spawner.py", "controller_ma
 
 
 def _show(path: str) -> str:
-    from urdfcheck.load.loader import display
+    from urdfcheck.core.paths import shown
 
-    return display(path)
+    return shown(path)
 
 
 class Deployment(Record):

@@ -22,11 +22,11 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
 from urdfcheck.pipeline.request import LintRequest, Settings, UsageError
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")  # config.CONFIG_NAMES (not imported: start-up)
-SKIP_DIRS = {"build", "install", "log", "devel", "node_modules", "__pycache__", "venv"}  # discover.SKIP_DIRS
 MAX_DIRS = 20_000  # folders a workspace walk looks at
 LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml", "_launch.py")
 # files named on the command line that are certainly no robot description (a .xml or odd suffix may be one)
@@ -156,9 +156,8 @@ class Planner:
                 self._configs[path] = cfgmod.load_config(path)
             except cfgmod.ConfigError as e:
                 where = e.location or cfgmod.Location(path)
-                shown = self.request.shown(where.file) + "".join(
-                    f":{n}" for n in (where.line, where.column) if n)
-                raise UsageError(f"invalid config {shown}: {e}") from None
+                at = shown(where.file) + "".join(f":{n}" for n in (where.line, where.column) if n)
+                raise UsageError(f"invalid config {at}: {e}") from None
         return self._configs[path]
 
     def settings(self, cfg) -> Settings:
@@ -209,7 +208,7 @@ class Planner:
 
                 return targets_reading(self, raw, settings)  # the per-file hook names a parameter file
             if raw.lower().endswith(".srdf.xacro"):  # the per-file hook passes every *.xacro: not an error
-                self.infos.append(f"{self.request.shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
+                self.infos.append(f"{shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
                 return []
             if raw.lower().endswith(NOT_MODELS):
                 raise UsageError(f"{raw} is not a URDF or xacro model (name the model, its package, or a "
@@ -286,7 +285,7 @@ class Planner:
         for root in roots:
             found = discover(root, trusted=settings.trusted)
             if not found.models and found.libraries and not any(_below(t.path, root) for t in out):
-                self.infos.append(f"{self.request.shown(root)}: xacro libraries only (macros, properties): "
+                self.infos.append(f"{shown(root)}: xacro libraries only (macros, properties): "
                                   "linted through the robots that include them")
             for entry in found.models:
                 if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
@@ -319,7 +318,7 @@ class Planner:
     def deployed(self, d, root: str, settings: Settings) -> Target:
         """A deployment's target: the launch file's xacro arguments, its controllers and localization as the
         consumers, every package of the named tree resolvable (a sibling repository's description)."""
-        label = self.request.shown(d.launch.file) + (f" [{d.variant}]" if d.variant else "")  # like every path
+        label = shown(d.launch.file) + (f" [{d.variant}]" if d.variant else "")  # like every path
         t = self.target(Path(d.model), dict(d.args), label, Later(d.consumers), settings,
                         _packages(root, d.model, settings))
         t.deployment = d
@@ -356,7 +355,7 @@ class Planner:
             if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
                 if not robots:
-                    self.infos.append(f"{self.request.shown(str(path))}: a xacro library that no robot of "
+                    self.infos.append(f"{shown(str(path))}: a xacro library that no robot of "
                                       "its workspace includes: not linted alone")
                 return robots
             if _robot_file(path):  # a robot named by itself (the per-file hook): its variants too
@@ -481,15 +480,13 @@ class _Walk(Record):
 
 def _walk(folder: str) -> _Walk:
     """One pass over a folder tree: nested config files and packages (hidden and build folders skipped)."""
+    from urdfcheck.core import walk
     from urdfcheck.pipeline.config import PYPROJECT, _pyproject_has_table
 
     top = os.path.abspath(folder)
-    configs, packages, loose, seen = [], [], False, 0
-    for here, dirs, files in os.walk(top):
-        seen += 1
-        if seen > MAX_DIRS:
-            break
-        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIP_DIRS)
+    configs, packages, loose = [], [], False
+    for here, entries in walk.folders(top, max_dirs=MAX_DIRS):
+        files = walk.files(entries)
         if here != top:
             name = next((n for n in CONFIG_NAMES if n in files), None)
             if name is None and PYPROJECT in files and _pyproject_has_table(Path(here, PYPROJECT)):

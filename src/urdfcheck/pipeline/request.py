@@ -92,10 +92,6 @@ class LintRequest(Record):
             profiles=tuple(self.profiles if self.profiles is not None else get("profiles") or ()),
         )
 
-    def shown(self, path) -> str:
-        """A path as reports print it: relative to the root (default: the working directory) when below it."""
-        return shown(path, self.root)
-
 
 class Settings(Record):
     """The request as it applies to the models of one config file (made by `LintRequest.settings`)."""
@@ -116,15 +112,6 @@ class Settings(Record):
         """Keyword arguments of `load.loader.begin`."""
         return dict(trusted=self.trusted, allow_env=self.allow_env, timeout=self.timeout,
                     max_elements=self.max_elements)
-
-
-def shown(path, root: str = "") -> str:
-    """Relative to `root` (default: the working directory) when the path is below it, else absolute."""
-    p = os.path.abspath(str(path))
-    base = os.path.abspath(root) if root else os.getcwd()
-    if p == base or p.startswith(base.rstrip(os.sep) + os.sep):
-        return os.path.relpath(p, base)
-    return p
 
 
 def make_request(paths=(), **options) -> LintRequest:

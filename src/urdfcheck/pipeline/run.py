@@ -1,6 +1,8 @@
 """Running: load -> build -> check -> finish, for the targets `pipeline.plan` made from a request.
 
-    run(request) -> Result           # what every front end calls (CLI, urdfcheck.lint, pytest plugin)
+    run(request) -> Result           # `lint`: what every front end calls (CLI, urdfcheck.lint, pytest plugin)
+    load(request, path) -> Loaded    # one model with the settings lint gives it (expand, tree, tf, publish,
+                                     # verify, urdfcheck.load / urdfcheck.expand)
 
 finish = suppressions (in the models and in the YAML files the contract checks read, with the bookkeeping
 of unused ones), one finding per problem across variants and models (`pipeline.collapse`), the baseline,
@@ -13,10 +15,11 @@ from pathlib import Path
 
 from urdfcheck.core import progress
 from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
-from urdfcheck.load import loader as load
+from urdfcheck.load import loader
 from urdfcheck.pipeline.plan import Later, Target, plan  # noqa: F401  (Later, Target: imported from here too)
-from urdfcheck.pipeline.request import LintRequest, UsageError, shown
+from urdfcheck.pipeline.request import LintRequest, UsageError
 from urdfcheck.rules import engine
 
 
@@ -28,6 +31,7 @@ class Result(Record):
     # root: reports show paths relative to this folder ("" = the working directory)
     _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
     infos: tuple = ()  # the planner's info lines (a package of xacro libraries only): not findings
+    _finished: tuple = ((), {})  # (each target's findings the baseline kept, the run's X013 per package)
 
     def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
                  by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
@@ -37,6 +41,15 @@ class Result(Record):
         self.by_target = [[] for _ in targets] if by_target is None else by_target
         self.fail_on = fail_on
         self.root = root
+
+    @property
+    def shares(self) -> list[list[Finding]]:
+        """Each target's findings after the finish (baseline, one X013 per package, one finding per problem):
+        what the pytest plugin's item of that target shows. Computed on first use, once."""
+        if "_shares" not in self.__dict__:
+            kept, merged = self._finished
+            self._shares = [_dedupe(_merge_x013(fs, merged)) for fs in kept]
+        return self._shares
 
     def raw(self) -> list[Finding]:
         """Every finding before duplicates were collapsed: what a baseline counts, so that a new call of a
@@ -59,18 +72,23 @@ class Result(Record):
                 levels[key] = min(levels.get(key, level), level)
         return any(f.severity >= levels.get((f.code, f.location), self.fail_on) for f in self.findings)
 
-    def shown(self, path) -> str:
-        """A path as the reports print it (relative to the root when below it)."""
-        return shown(path, self.root)
+
+def run(request: LintRequest, *, retain: list | None = None, targets: list[Target] | None = None) -> Result:
+    """Plan (unless given the plan of this request: the pytest plugin makes its items from it), lint, finish.
+    Paths are shown relative to the request's root from the start (`core.paths.showing`): nothing is
+    rewritten afterwards. Raises UsageError when there is nothing to lint or an input is unusable."""
+    from urdfcheck.core.paths import showing
+
+    with showing(request.root):
+        return _run(request, retain, targets)
 
 
-def run(request: LintRequest, *, retain: list | None = None) -> Result:
-    """Plan, lint, finish. Raises UsageError when there is nothing to lint or an input is unusable."""
-    targets = plan(request)
+def _run(request: LintRequest, retain, targets) -> Result:
+    targets = plan(request) if targets is None else targets
     infos = list(getattr(targets, "infos", ()))
     if not targets:
         if infos:  # xacro libraries only: nothing to lint alone, not an unusable invocation
-            result = Result([], [], fail_on=request.fail_on or Severity.WARNING)
+            result = Result([], [], fail_on=request.fail_on or Severity.WARNING, root=request.root)
             result.infos = infos
             return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
@@ -78,21 +96,23 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
         _attach_bags(targets, request.bags, request.joint_states)
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
     result.infos = infos
-    _not_understood(result, getattr(targets, "not_understood", ()), request)
-    _missing_packages_once(result)
-    if request.fail_on is not None:
-        result.fail_on = request.fail_on
-    elif targets[0].settings is not None:
-        result.fail_on = targets[0].settings.fail_on
+    result.root = request.root
+    kept = result.by_target
     if request.baseline:
         from urdfcheck.pipeline import baseline
 
         try:
-            result.findings = _dedupe(baseline.filter_new(request.baseline, result.raw()))
+            new = {id(f) for f in baseline.filter_new(request.baseline, result.raw())}
         except (OSError, ValueError) as e:
             raise UsageError(f"cannot read baseline {request.baseline}: {e}") from None
-    if request.root and os.path.abspath(request.root) != os.getcwd():
-        _rebase(result, os.path.abspath(request.root))
+        kept = [[f for f in fs if id(f) in new] for fs in kept]
+        result.findings = _dedupe([f for fs in kept for f in fs])
+    result._finished = (kept, _missing_packages_once(result))
+    _not_understood(result, getattr(targets, "not_understood", ()), request)
+    if request.fail_on is not None:
+        result.fail_on = request.fail_on
+    elif targets[0].settings is not None:
+        result.fail_on = targets[0].settings.fail_on
     return result
 
 
@@ -113,12 +133,28 @@ def _not_understood(result: Result, deployments, request: LintRequest) -> None:
     """Deployments whose model was not understood: C021 infos (issue 20), beside the targets' findings."""
     from urdfcheck.pipeline.understood import findings
 
-    extra = findings(deployments, request.settings(None), request.shown)
+    extra = findings(deployments, request.settings(None), shown)
     if extra:
         result.findings = sorted([*result.findings, *extra], key=Finding.sort_key)
 
 
-def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
+def _merge_x013(found: list[Finding], merged: dict) -> list[Finding]:
+    """A target's findings with its X013 replaced by the run's one X013 per package."""
+    if not merged:
+        return found
+    out, seen = [], set()
+    for f in found:
+        m = _MISSING.search(f.message) if f.code == "X013" else None
+        if m is not None and m.group(1) in merged:
+            if m.group(1) not in seen:
+                seen.add(m.group(1))
+                out.append(merged[m.group(1)])
+        else:
+            out.append(f)
+    return out
+
+
+def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=loader.XACRO_TIMEOUT,
                 config=None, max_elements=None) -> tuple[list[Finding], object]:
     """One target on its own (tests). A run lints all its targets with `lint_targets`."""
     pending = _begin(t, dict(trusted=trusted, allow_env=allow_env, timeout=timeout, max_elements=max_elements))
@@ -159,15 +195,15 @@ def _bag_progress(bag: str):
     return show
 
 
-def _begin(t: Target, kw: dict) -> load.Pending:
+def _begin(t: Target, kw: dict) -> loader.Pending:
     opts = t.settings.load_options() if t.settings is not None else kw
-    return load.begin(t.path, t.args, packages=t.packages, **opts)
+    return loader.begin(t.path, t.args, packages=t.packages, **opts)
 
 
 def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse | None = None
            ) -> tuple[list[Finding], object]:
     findings = list(exp.findings)
-    model = load.build_model(exp)
+    model = loader.build_model(exp)
     if model is not None:
         contracts = t.consumers(model, exp, config)  # planned, or found beside the model: once per target
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
@@ -233,7 +269,7 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     by_target: list[list[Finding]] = [[] for _ in targets]
     models = {}
     ahead = max(1, min(4, os.cpu_count() or 1))
-    pending: dict[int, load.Pending] = {}
+    pending: dict[int, loader.Pending] = {}
     yaml = _YamlUse()
     try:
         for i in range(min(ahead, len(targets))):
@@ -295,7 +331,7 @@ def _dedupe(findings: list[Finding]) -> list[Finding]:
 _MISSING = None
 
 
-def _missing_packages_once(result: Result) -> None:
+def _missing_packages_once(result: Result) -> dict[str, Finding]:
     """One X013 per package the run cannot resolve, naming every place that references it (the first is the
     finding's location, the others its related locations), instead of one per model and variant. An
     expansion stops at its first unknown package; the models that hit one are read as text through their
@@ -303,11 +339,11 @@ def _missing_packages_once(result: Result) -> None:
     import re
 
     global _MISSING
+    _MISSING = _MISSING or re.compile(r"package '([A-Za-z0-9_]+)' not found")
     if not any(f.code == "X013" for f in result.findings):
-        return
+        return {}
     from urdfcheck.load.packages import Resolver, missing_packages
 
-    _MISSING = _MISSING or re.compile(r"package '([A-Za-z0-9_]+)' not found")
     template: dict[str, Finding] = {}
     places: dict[str, list[tuple[str, int]]] = {}
     variants: dict[str, list] = {}  # package -> the (model, variant) places the loader stopped at it
@@ -333,12 +369,12 @@ def _missing_packages_once(result: Result) -> None:
             for f, ln in where:
                 if (os.path.abspath(f), ln) not in known:
                     known.add((os.path.abspath(f), ln))
-                    have.append((load.display(f), ln))  # as the loader's findings show paths
+                    have.append((shown(f), ln))  # as the loader's findings show paths
             if name not in template and hits:
                 template[name] = hits[0]
     if not places:
-        return
-    merged = []
+        return {}
+    merged = {}
     for name, where in places.items():
         base = template[name]
         first = Location(where[0][0], where[0][1] or None)
@@ -347,40 +383,14 @@ def _missing_packages_once(result: Result) -> None:
         msg = (f"package {name!r} not found (pass --package {name}=PATH)"
                + (f"; referenced in {n} places" if n > 1 else ""))
         seen_in = variants.get(name, [])
-        merged.append(base._replace(message=msg, location=first, related=rest,
-                                    where=tuple(seen_in) if len(seen_in) > 1 else ()))
-    result.findings = sorted([f for f in result.findings if f.code != "X013"] + merged, key=Finding.sort_key)
+        merged[name] = base._replace(message=msg, location=first, related=rest,
+                                     where=tuple(seen_in) if len(seen_in) > 1 else ())
+    result.findings = sorted([f for f in result.findings if f.code != "X013"] + list(merged.values()),
+                             key=Finding.sort_key)
+    return merged
 
 
-def _rebase(result: Result, root: str) -> None:
-    """Paths relative to `root` instead of the working directory (--root)."""
-    def path(file: str) -> str:
-        return shown(file, root) if file and not file.startswith("<") else file
-
-    def loc(lc: Location) -> Location:
-        return Location(path(lc.file), lc.line, lc.column, tuple(loc(v) for v in lc.via))
-
-    def finding(f: Finding) -> Finding:
-        places = tuple(p._replace(model=path(p.model)) for p in f.where)
-        return f._replace(location=loc(f.location), related=tuple(loc(r) for r in f.related),
-                          model=path(f.model), where=places,
-                          message=f.message.replace(root.rstrip(os.sep) + os.sep, ""))
-
-    result.findings = [finding(f) for f in result.findings]
-    result.by_target = [[finding(f) for f in fs] for fs in result.by_target]
-    result.root = root
-
-
-# --- compatibility: plain paths without a request (tests, scripts) ---------------------------------------
-def targets_for(paths: list[str], args: dict | None = None, packages: dict | None = None, *,
-                trusted: bool = False) -> list[Target]:
-    """Targets for plain paths (files or package folders), no config."""
-    from urdfcheck.pipeline.request import make_request
-
-    req = make_request(paths, args=args or {}, packages=packages or {}, trusted=trusted, use_config=False)
-    return plan(req)
-
-
+# --- for tests and scripts ---------------------------------------------------------------------------------
 def entry_models(folder: Path, trusted: bool = False) -> list[Path]:
     """Entry models of a package: URDF files, and xacro robots that no other file includes."""
     from urdfcheck.contracts.discover import discover
@@ -388,10 +398,31 @@ def entry_models(folder: Path, trusted: bool = False) -> list[Path]:
     return [Path(m) for m in discover(folder, trusted=trusted).models]
 
 
-def missing_paths(paths: list[str]) -> list[str]:
-    return [p for p in paths if not os.path.exists(p)]
+class Loaded(Record):
+    """One model as `lint` loads it: the expansion (findings, source map), the model (None when it failed to
+    load, or was not asked for) and the settings it was loaded under."""
+
+    _fields = ('expanded', 'model', 'settings')
+
+    def __init__(self, expanded, model, settings):
+        self.expanded, self.model, self.settings = expanded, model, settings
 
 
-def no_models_finding(folder: str) -> Finding:
-    return Finding("X001", Severity.WARNING, "no URDF or xacro entry model found in this folder",
-                   Location(folder), name="xml-syntax")
+def load(request: LintRequest, path, *, build: bool = True) -> Loaded:
+    """The model at `path` with the settings `lint` gives it: the nearest config file (its `packages:`,
+    limits, target; a declared model's xacro arguments), the request's flags over it."""
+    from urdfcheck.core.paths import showing
+    from urdfcheck.pipeline.plan import Planner
+
+    path = os.fsdecode(path)
+    if not os.path.isfile(path):
+        raise UsageError(f"no such file: {path}")
+    with showing(request.root):
+        planner = Planner(request)
+        cfg = planner.nearest(path)
+        settings = planner.settings(cfg)
+        declared = planner.declared(cfg, [path]) if cfg is not None and cfg.model_for(path) is not None else []
+        t = declared[0] if declared else planner.target(Path(path), {}, "", None, settings)
+        exp = loader.begin(t.path, t.args, packages=t.packages, **settings.load_options()).result()
+        model = loader.build_model(exp) if build and exp.root is not None else None
+        return Loaded(exp, model, settings)

@@ -47,7 +47,7 @@ def command(f, totals: dict | None = None) -> str:
 def render(result, **_) -> str:
     from urdfcheck.pipeline.collapse import variant_totals
 
-    totals = variant_totals(result.targets)
+    totals = variant_totals(result.targets, result.root)
     out = [command(f, totals) for f in result.findings]
     n = len(result.findings)
     m = len(result.targets)

@@ -4,6 +4,7 @@ from __future__ import annotations
 import json
 
 from urdfcheck.core.findings import clean_text
+from urdfcheck.core.paths import shown
 
 SCHEMA_VERSION = 1
 
@@ -15,23 +16,18 @@ def location(loc) -> dict:
     return out
 
 
-def _shown(result, path) -> str:
-    """A model path relative to the run's root (the working directory), like every finding's file."""
-    shown = getattr(result, "shown", None)
-    return shown(path) if shown is not None else str(path)
-
-
 def as_dict(result) -> dict:
     from urdfcheck import __version__
 
     counts = {"error": 0, "warning": 0, "info": 0}
     for f in result.findings:
         counts[str(f.severity)] += 1
+    root = getattr(result, "root", "")
     return {
         "schema_version": SCHEMA_VERSION,
         "tool": {"name": "urdfcheck", "version": __version__},
-        "models": [{"path": clean_text(_shown(result, t.path), 4096), "variant": clean_text(t.variant),
-                    "args": {k: clean_text(_shown(result, v) if str(v).startswith("/") else v)  # a file: relative
+        "models": [{"path": clean_text(shown(t.path, root), 4096), "variant": clean_text(t.variant),
+                    "args": {k: clean_text(shown(v, root) if str(v).startswith("/") else v)  # a file: relative
                              for k, v in sorted(t.args.items())}} for t in result.targets],
         "summary": counts,
         "findings": [

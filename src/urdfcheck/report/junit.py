@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 
+from urdfcheck.core import paths
 from urdfcheck.core.findings import Severity, clean_text
 
 # XML 1.0 cannot carry these at all, even escaped (clean_text already removed C0/C1 controls)
@@ -36,15 +37,6 @@ def family_of(code: str) -> str:
     return info.family if info else OTHER_FAMILY
 
 
-def _display(path) -> str:
-    from urdfcheck.load.loader import display
-
-    try:
-        return display(path)
-    except (OSError, ValueError):
-        return str(path)
-
-
 def by_target(result, once: bool = False) -> list[tuple[str, str, list]]:
     """[(model display path, variant, findings)] in target order; findings of no target come last.
     A finding that applies to several models/variants (`Finding.where`) counts in each of them, or with
@@ -52,7 +44,7 @@ def by_target(result, once: bool = False) -> list[tuple[str, str, list]]:
     groups = []
     claimed = set()
     for t in result.targets:
-        shown = result.shown(t.path) if hasattr(result, "shown") else _display(t.path)
+        shown = paths.shown(t.path, result.root)
         mine = []
         for i, f in enumerate(result.findings):
             if once and i in claimed:
@@ -96,7 +88,7 @@ def as_tree(result, fail_on: Severity = Severity.WARNING) -> ET.Element:
     totals = {"tests": 0, "failures": 0}
     from urdfcheck.pipeline.collapse import variant_totals
 
-    vtotals = variant_totals(result.targets)
+    vtotals = variant_totals(result.targets, result.root)
     for model, variant, findings in by_target(result, once=True):  # a collapsed finding: one line, in its first suite
         suite_name = model + (f" [{variant}]" if variant else "")
         classname = model.replace(".", "_").replace("/", ".").replace("\\", ".") + (f"[{variant}]" if variant else "")

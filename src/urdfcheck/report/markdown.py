@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 
+from urdfcheck.core import paths
 from urdfcheck.core.findings import Severity, clean_text
 from urdfcheck.report.junit import by_target
 
@@ -105,7 +106,7 @@ def _findings(result, max_rows: int) -> list[str]:
     lines = ["", "### Findings", "", "| severity | rule | location | message |", "| --- | --- | --- | --- |"]
     from urdfcheck.pipeline.collapse import describe, variant_totals
 
-    totals = variant_totals(result.targets)
+    totals = variant_totals(result.targets, result.root)
     ordered = sorted(result.findings, key=lambda f: (-int(f.severity), f.sort_key()))
     for f in ordered[:max_rows]:
         msg = md(f.message)
@@ -123,7 +124,7 @@ def _trees(result) -> list[str]:
     out = []
     for t in result.targets:
         model = models.get((str(t.path), t.variant))
-        shown = result.shown(t.path) if hasattr(result, "shown") else str(t.path)  # relative, like the findings
+        shown = paths.shown(t.path, result.root)  # relative, like the findings
         title = md(shown, 4096) + (f" \\[{md(t.variant)}\\]" if t.variant else "")
         if model is None:
             out += [f"- {title}: not loaded (see the findings)"]

@@ -75,6 +75,7 @@ def _rule(r) -> dict:
         "help": {"text": ruledocs.help_text(r), "markdown": ruledocs.help_markdown(r)},
         "defaultConfiguration": {"level": LEVELS[r.severity]},
         "properties": {"tags": [r.family], "problem.severity": str(r.severity)},
+        **({"helpUri": r.references[0]["url"]} if r.references else {}),
     }
 
 
@@ -109,7 +110,7 @@ def as_dict(result) -> dict:
 
     from urdfcheck.pipeline.collapse import describe, variant_totals
 
-    totals = variant_totals(result.targets)
+    totals = variant_totals(result.targets, result.root)
     seen: Counter = Counter()
     results = []
     for f in result.findings:

@@ -20,7 +20,7 @@ def render(result, colour: bool = False, **_) -> str:
     if result.findings:  # (a clean run does not need the collapse helpers: start-up time)
         from urdfcheck.pipeline.collapse import chains, describe, variant_totals
 
-        totals = variant_totals(result.targets)
+        totals = variant_totals(result.targets, result.root)
     lines = []
     current = None
     for f in result.findings:

@@ -114,6 +114,15 @@ class RuleInfo(NamedTuple):
     options: dict = {}  # name -> default (what a check gets when the config sets nothing)
     path: str = ""
     option_specs: dict = {}  # name -> OptionSpec
+    # more examples than `examples: {fail:, pass:}`: each {expect: fail|pass, config: {...}, urdf:/files:/...}
+    cases: tuple = ()
+    # the upstream sources the rule relies on: ({"url": ..., "what": ...}, ...); the first is SARIF's helpUri
+    references: tuple = ()
+
+    def all_examples(self) -> list[tuple[str, dict]]:
+        """(expect, example) for the failing and passing example, then the further cases."""
+        out = [(k, self.examples[k]) for k in ("fail", "pass") if self.examples.get(k)]
+        return out + [(str(c["expect"]), c) for c in self.cases]
 
 
 class CatalogueError(Exception):
@@ -150,6 +159,7 @@ def read_entries(folder: Path | None = None) -> dict[str, dict]:
             raise CatalogueError(f"{path.name}: missing {', '.join(missing)}")
         if path.stem != str(data["code"]):
             raise CatalogueError(f"{path.name}: file name must be the code {data['code']}")
+        _check_extras(path.name, data)
         out[str(data["code"])] = data
     return out
 
@@ -200,6 +210,23 @@ def options_schema() -> dict:
     return {"type": "object", "properties": rules, "additionalProperties": False}
 
 
+def _check_extras(name: str, data: dict) -> None:
+    """`cases:` and `references:`, when an entry has them."""
+    for i, case in enumerate(data.get("cases") or ()):
+        if not isinstance(case, dict) or case.get("expect") not in ("fail", "pass"):
+            raise CatalogueError(f"{name}: cases[{i}] needs expect: fail or expect: pass")
+        if case.get("config") is not None and not isinstance(case["config"], dict):
+            raise CatalogueError(f"{name}: cases[{i}].config must be a mapping (the urdfcheck.yaml it lints with)")
+    for kind in ("fail", "pass"):
+        ex = (data.get("examples") or {}).get(kind)
+        if isinstance(ex, dict) and ex.get("config") is not None and not isinstance(ex["config"], dict):
+            raise CatalogueError(f"{name}: examples.{kind}.config must be a mapping")
+    for i, ref in enumerate(data.get("references") or ()):
+        url = ref.get("url") if isinstance(ref, dict) else None
+        if not isinstance(url, str) or not url.startswith("https://") or not str(ref.get("what") or "").strip():
+            raise CatalogueError(f"{name}: references[{i}] needs url: https://... and what: (what it shows)")
+
+
 def _info(data: dict, path: str) -> RuleInfo:
     specs = _option_specs(str(data["code"]), data.get("options"))
     return RuleInfo(
@@ -207,7 +234,8 @@ def _info(data: dict, path: str) -> RuleInfo:
         family=str(data["family"]), summary=str(data["summary"]).strip(),
         rationale=str(data["rationale"]).strip(), fix=str(data["fix"]).strip(),
         examples=dict(data["examples"] or {}), options={n: s.default for n, s in specs.items()}, path=path,
-        option_specs=specs,
+        option_specs=specs, cases=tuple(data.get("cases") or ()),
+        references=tuple(dict(r) for r in data.get("references") or ()),
     )
 
 
@@ -233,6 +261,10 @@ def info(code: str) -> RuleInfo | None:
 def example_files(ex: dict) -> dict[str, str]:
     """The files of a catalogue example: `files:` plus the `urdf:`/`xacro:` shorthands."""
     files = dict(ex.get("files") or {})
+    if ex.get("config") is not None:  # the example runs with this config (its own urdfcheck.yaml)
+        import yaml
+
+        files["urdfcheck.yaml"] = yaml.safe_dump(dict(ex["config"]), sort_keys=False)
     if "urdf" in ex:
         files["robot.urdf"] = ex["urdf"]
     if "xacro" in ex:

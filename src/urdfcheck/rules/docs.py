@@ -59,6 +59,13 @@ def help_markdown(r: rulebook.RuleInfo) -> str:
         parts.append("**Options** (set under `rules: {" + r.code + ": {...}}` in urdfcheck.yaml):\n\n"
                      + "".join(f"- `{s.name}` ({s.type}, default `{s.default}`): {md(s.doc)}\n"
                                for s in r.option_specs.values()))
+    for expect, case in ((e, c) for e, c in r.all_examples() if any(c is x for x in r.cases)):
+        what = f" {md(str(case['title']))}" if case.get("title") else ""
+        parts.append(f"**More: an example that {'fails' if expect == 'fail' else 'passes'}.**{what}\n\n"
+                     + _example(case))
+    if r.references:
+        parts.append("**References** (the upstream sources this rule follows):\n\n"
+                     + "".join(f"- <{ref['url']}>: {md(str(ref['what']).strip())}\n" for ref in r.references))
     return "\n".join(parts)
 
 
@@ -72,6 +79,12 @@ def help_text(r: rulebook.RuleInfo) -> str:
     if r.option_specs:
         lines += ["Options:"] + [f"  {s.name} ({s.type}, default {s.default}): {s.doc}"
                                  for s in r.option_specs.values()]
+    for expect, case in r.all_examples():
+        if any(case is c for c in r.cases):
+            lines += [("Also fails:" if expect == "fail" else "Also passes:")
+                      + (f" {case['title']}" if case.get("title") else ""), _example_text(case)]
+    if r.references:
+        lines += ["References:"] + [f"  {ref['url']}  {' '.join(str(ref['what']).split())}" for ref in r.references]
     return "\n".join(lines).rstrip() + "\n"
 
 
@@ -124,3 +137,30 @@ def rules_markdown() -> str:
     head += [f"| [{r.code}](#{r.code.lower()}-{r.name}) | {r.name} | {r.severity} | {_cell(r.summary)} |"
              for r in rules]
     return "\n".join(head) + "\n\n" + "\n".join(page_markdown(r) for r in rules)
+
+
+DESIGN_HEAD = "| code | name | default |"
+
+
+def design_table() -> str:
+    """The rule table of docs/design.md (generated; tests/test_ruledocs.py keeps the committed one current)."""
+    rules = sorted(rulebook.catalogue().values(), key=lambda r: r.code)
+    return "\n".join([DESIGN_HEAD, "| --- | --- | --- |"]
+                     + [f"| {r.code} | {r.name} | {r.severity} |" for r in rules]) + "\n"
+
+
+def write_design_table(path) -> bool:
+    """Replace the rule table in docs/design.md; True when it changed."""
+    from pathlib import Path
+
+    p = Path(path)
+    text = p.read_text(encoding="utf-8")
+    lines = text.splitlines(keepends=True)
+    start = next(i for i, ln in enumerate(lines) if ln.startswith(DESIGN_HEAD))
+    end = start
+    while end < len(lines) and lines[end].startswith("|"):
+        end += 1
+    new = "".join(lines[:start]) + design_table() + "".join(lines[end:])
+    if new != text:
+        p.write_text(new, encoding="utf-8")
+    return new != text

@@ -163,7 +163,6 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
     cat = rulebook.catalogue()
     kept = []
     used = set()
-    here = os.getcwd().rstrip(os.sep) + os.sep  # messages name files too: show them relative, like locations
     for f in findings:
         if not selection.enabled(f.code):
             continue
@@ -179,7 +178,7 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
                 if yaml_used is not None:  # absolute, like the consumer files `unused_yaml` is given
                     yaml_used.add((os.path.abspath(f.location.file), hit))
                 continue
-        kept.append(Finding(f.code, sev, f.message.replace(here, ""), _shown(f.location),
+        kept.append(Finding(f.code, sev, f.message, _shown(f.location),
                             f.name or (info.name if info else ""),
                             tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant,
                             profile=f.profile))
@@ -215,14 +214,10 @@ def unused_yaml(files, used: set, selection: Selection) -> list[Finding]:
 
 
 def _shown(loc: Location) -> Location:
-    """Every location the way reports show files: relative to the working directory when below it
-    (readers of YAML and launch files record absolute paths)."""
+    """Every location the way reports show files (readers of YAML and launch files record absolute paths)."""
     if not os.path.isabs(loc.file) and not loc.via:
         return loc
-    from urdfcheck.load.loader import display
-
-    file = display(loc.file) if os.path.isabs(loc.file) else loc.file
-    return Location(file, loc.line, loc.column, tuple(_shown(v) for v in loc.via))
+    return loc.shown()
 
 
 def _suppressed(f: Finding, suppressions) -> int | None:

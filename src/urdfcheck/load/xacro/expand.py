@@ -19,6 +19,7 @@ import xml.dom.minidom
 from xml.dom import expatbuilder
 
 from urdfcheck.core import xmlfront
+from urdfcheck.core.paths import showing, shown
 from urdfcheck.core.safeio import encoding_problem, read_file
 from urdfcheck.load.xacro import SRC_ATTR, STRIP_RE  # noqa: F401 - the markers, shared with the loader
 
@@ -52,7 +53,8 @@ class Refusal(Exception):
 
 
 class Options:
-    def __init__(self, mappings=None, trusted=False, allow_env=(), resolver=None, max_evals=None):
+    def __init__(self, mappings=None, trusted=False, allow_env=(), resolver=None, max_evals=None, root=None):
+        self.root = root  # messages show paths relative to it (core.paths.showing); None: the working directory
         self.mappings = dict(mappings or {})
         self.trusted = trusted
         self.allow_env = set(allow_env)
@@ -120,6 +122,11 @@ def expand(path: str, opts: Options) -> dict:
 
     Errors are returned, not raised: {"error": {"code", "message", "marker"}}.
     """
+    with showing(opts.root):
+        return _expand(path, opts)
+
+
+def _expand(path: str, opts: Options) -> dict:
     import xacro
     from xacro import substitution_args as subst
 
@@ -438,13 +445,12 @@ def _text(e: BaseException, limit: int = 4000) -> str:
 
 
 def _shown(path, quote=True) -> str:
-    """A path for a message: relative to the working directory, never the runner's absolute path."""
+    """A path for a message, as reports show paths (core.paths), never the runner's absolute path."""
     text = str(path)
     if os.path.isabs(text):
-        rel = os.path.relpath(os.path.normpath(text), os.getcwd())
-        if rel == ".." or rel.startswith(".." + os.sep):
+        text = shown(os.path.normpath(text))
+        if os.path.isabs(text):
             return "a file outside the working directory"
-        text = rel
     return repr(text) if quote else text
 
 

@@ -54,21 +54,8 @@ class Limits(FrozenRecord):
     # max_total_iter: items iterated by all evaluations of one Evaluator (xacro: one expansion)
     _fields = ('max_bits', 'max_len', 'max_iter', 'max_chars', 'max_depth', 'max_alloc', 'max_total_iter')
 
-    def __init__(self, max_bits: int = 100_000,
-                 max_len: int = 10_000_000,
-                 max_iter: int = 1_000_000,
-                 max_chars: int = 100_000,
-                 max_depth: int = 100,
-                 max_alloc: int = 50_000_000,
-                 max_total_iter: int | None = None):
-        d = self.__dict__  # FrozenRecord forbids setattr
-        d["max_bits"] = max_bits
-        d["max_len"] = max_len
-        d["max_iter"] = max_iter
-        d["max_chars"] = max_chars
-        d["max_depth"] = max_depth
-        d["max_alloc"] = max_alloc
-        d["max_total_iter"] = max_total_iter
+    _defaults = {"max_bits": 100_000, "max_len": 10_000_000, "max_iter": 1_000_000, "max_chars": 100_000,
+                 "max_depth": 100, "max_alloc": 50_000_000, "max_total_iter": None}
 
 
 # --------------------------------------------------------------------------------------------------

@@ -6,6 +6,7 @@ import os
 from pathlib import Path
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.core.paths import shown
 from urdfcheck.rules.catalogue import check
 
 _REMOTE = ("http://", "https://", "ftp://")
@@ -101,8 +102,8 @@ def _mesh_verdict(uri: str, resolver, base: Path, ignore: list[str], listing: di
     if os.path.isfile(path):
         return None
     if os.path.isdir(path):
-        return f"{path} is a folder, not a mesh file"
-    return f"file not found ({path}){_case_hint(Path(path), listing)}"
+        return f"{shown(path)} is a folder, not a mesh file"
+    return f"file not found ({shown(path)}){_case_hint(Path(path), listing)}"
 
 
 # --- G002 ------------------------------------------------------------------------------------------

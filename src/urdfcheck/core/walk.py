@@ -1,0 +1,54 @@
+"""The one walk over a folder tree (discovery, the planner's workspace pass, package scans).
+
+Depth-first in name order (the same order on every machine), hidden folders and build/install spaces skipped,
+a symbolic link to a folder never entered (a committed link must not take the walk out of the checkout).
+"""
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+
+SKIP_DIRS = frozenset({"build", "install", "log", "devel", "node_modules", "__pycache__", "venv"})
+
+
+def folders(top, *, max_dirs: int | None = None, max_depth: int | None = None
+            ) -> Iterator[tuple[str, list[os.DirEntry]]]:
+    """(folder, its entries sorted by name) for `top` and every folder below it, parents first; at most
+    `max_dirs` folders, `max_depth` levels below `top`. An unreadable folder is skipped."""
+    stack = [(os.fspath(top), 0)]
+    seen = 0
+    while stack:
+        if max_dirs is not None and seen >= max_dirs:
+            return
+        here, depth = stack.pop()
+        seen += 1
+        try:
+            with os.scandir(here) as it:
+                entries = sorted(it, key=lambda e: e.name)
+        except OSError:
+            continue
+        yield here, entries
+        if max_depth is not None and depth >= max_depth:
+            continue
+        stack.extend((e.path, depth + 1) for e in reversed(entries)
+                     if not e.name.startswith(".") and e.name not in SKIP_DIRS and _is_folder(e))
+
+
+def _is_folder(e: os.DirEntry) -> bool:
+    try:
+        return e.is_dir(follow_symlinks=False)
+    except OSError:
+        return False
+
+
+def files(entries: list[os.DirEntry]) -> list[str]:
+    """The names of the entries that are not folders (what os.walk lists as files: links to folders count as
+    folders there, so they are left out here too)."""
+    out = []
+    for e in entries:
+        try:
+            if not e.is_dir():
+                out.append(e.name)
+        except OSError:
+            out.append(e.name)
+    return out
