@@ -40,15 +40,18 @@ class Discovered(NamedTuple):
     params: tuple[str, ...]
     launch: tuple[str, ...]
     libraries: tuple[str, ...] = ()  # xacro files skipped as included or macro-only
+    truncated: bool = False  # the walk stopped at max_files: what lies beyond was not looked at
 
 
-def _walk(root: str, max_files: int):
+def _walk(root: str, max_files: int, cut: list | None = None):
     n = 0
     for dirpath, dirnames, filenames in os.walk(root, followlinks=False):
         dirnames[:] = sorted(d for d in dirnames if not d.startswith(".") and d not in SKIP_DIRS)
         for f in sorted(filenames):
             n += 1
             if n > max_files:
+                if cut is not None:
+                    cut.append(dirpath)
                 return
             yield dirpath, f
 
@@ -171,7 +174,8 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
     root = os.path.abspath(str(package_dir))
     urdfs, xacros, params, launches = [], [], [], []
     parts_of: dict[str, list[str]] = {}  # dirpath -> its folders below root (relpath per file was slow)
-    for dirpath, f in _walk(root, max_files):
+    cut: list = []
+    for dirpath, f in _walk(root, max_files, cut):
         path = os.path.join(dirpath, f)
         parts = parts_of.get(dirpath)
         if parts is None:
@@ -216,4 +220,5 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
             libs.append(p)
             continue
         models.append(p)
-    return Discovered(root, tuple(sorted(models)), tuple(sorted(params)), tuple(sorted(launches)), tuple(sorted(libs)))
+    return Discovered(root, tuple(sorted(models)), tuple(sorted(params)), tuple(sorted(launches)), tuple(sorted(libs)),
+                      bool(cut))

@@ -124,7 +124,7 @@ class Config(FrozenRecord):
     # path: the config file
     # root: its folder; relative paths start here
     _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore',
-               'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target')
+               'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target', 'notes')
 
     def __init__(self, path: str,
                  root: str,
@@ -142,7 +142,8 @@ class Config(FrozenRecord):
                  allow_env: tuple[str, ...] = (),
                  max_elements: int | None = None,
                  locs: Mapping[tuple, Location] | None = None,
-                 target: str | None = None):
+                 target: str | None = None,
+                 notes: tuple = ()):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
         d["root"] = root
@@ -162,6 +163,7 @@ class Config(FrozenRecord):
         d["max_elements"] = max_elements
         d["locs"] = _ro({}) if locs is None else locs
         d["target"] = target  # issue 14: noetic | humble | jazzy | kilted | rolling (model.grammar.TARGETS)
+        d["notes"] = notes  # findings about the config itself (pipeline.trust: keys it may not set)
 
     def loc(self, *path) -> Location:
         """Where a key was written (the file when unknown)."""
@@ -255,6 +257,8 @@ def _read_pyproject(path: str):
         data = tomllib.loads(text)
     except OSError as e:
         raise ConfigError(f"cannot read config: {e.strerror}", Location(path)) from None
+    except RecursionError:  # tomllib recurses per nesting level: a hostile file is an error, not a crash
+        raise ConfigError("invalid TOML: nested too deeply", Location(path)) from None
     except (UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
         m = re.search(r"line (\d+)", str(e))
         raise ConfigError(f"invalid TOML: {e}", Location(path, int(m.group(1)) if m else None)) from None
@@ -360,7 +364,11 @@ def _str_args(d) -> dict[str, str]:
     return out
 
 
-def load_config(path: str | os.PathLike) -> Config:
+def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
+    """`trusted`: the person running the tool named this config (--config FILE --trust-config); otherwise
+    what lowers the guard is ignored, with a finding, and its paths stay in the checkout (pipeline.trust)."""
+    from urdfcheck.pipeline import trust
+
     path = os.path.abspath(str(path))
     if not os.path.isfile(path):
         raise ConfigError(f"no such config file: {path}", Location(path))
@@ -370,12 +378,19 @@ def load_config(path: str | os.PathLike) -> Config:
         data, key_loc, val_loc = _read_yaml(path)
     if not isinstance(data, dict):
         raise ConfigError("the config must be a mapping of keys (models, frames, select, ...)", val_loc())
-    _validate(data, path, key_loc, val_loc)
+    try:
+        _validate(data, path, key_loc, val_loc)
+    except RecursionError:
+        raise ConfigError("the config is nested too deeply", Location(path)) from None
+    notes = tuple(trust.screen(data, path, key_loc, trusted))
     root = os.path.dirname(path)
     locs: dict[tuple, Location] = {}
 
     def resolve(p: str, *keypath, must_exist=True, kind="file") -> str:
-        full = os.path.normpath(os.path.join(root, os.path.expanduser(p)))
+        full = os.path.normpath(os.path.join(root, os.path.expanduser(p) if trusted else p))
+        why = trust.confine(full, root, trusted)
+        if why is not None:
+            raise ConfigError(f"'{'.'.join(str(k) for k in keypath)}': {p}: {why}", val_loc(*keypath))
         if must_exist and not os.path.exists(full):
             raise ConfigError(f"'{'.'.join(str(k) for k in keypath)}': no such {kind}: {p}", val_loc(*keypath))
         locs[tuple(keypath)] = val_loc(*keypath)
@@ -436,7 +451,7 @@ def load_config(path: str | os.PathLike) -> Config:
         ignore=tuple(data.get("ignore") or ()), fail_on=fail_on, severity=_ro(severity), rules=_ro(rules),
         trusted=bool(data.get("trusted", False)), allow_env=tuple(data.get("allow_env") or ()),
         max_elements=int(data["max_elements"]) if data.get("max_elements") is not None else None, locs=_ro(locs),
-        target=str(data["target"]) if data.get("target") else None,
+        target=str(data["target"]) if data.get("target") else None, notes=notes,
     )
 
 

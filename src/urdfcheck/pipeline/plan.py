@@ -116,6 +116,8 @@ class TargetList(list):
         super().__init__(targets)
         self.infos = list(infos)
         self.not_understood = []  # deployments whose model was not understood (no target; `--list`)
+        self.findings = []  # about the plan itself: a config's ignored keys, a file walk cut short (issue 19)
+        self.libraries = 0  # xacro libraries seen: "no robot found: N xacro libraries"
 
 
 class _Named(Record):
@@ -142,6 +144,8 @@ class Planner:
         self._closures: dict[tuple, set] = {}  # (model, packages) -> the files it includes literally
         self.infos: list[str] = []
         self.not_understood: list = []  # deployments whose model was not understood (`--list` shows them)
+        self.truncated: list = []  # X019 findings: a file walk that stopped at its limit
+        self.libraries: set = set()  # xacro libraries seen (a run that checked no robot counts them)
 
     # --- configs ----------------------------------------------------------------------------------
     def config(self, path: str | None):
@@ -151,7 +155,8 @@ class Planner:
             from urdfcheck.pipeline import config as cfgmod
 
             try:
-                self._configs[path] = cfgmod.load_config(path)
+                named = self.request.config is not None and os.path.abspath(self.request.config) == path
+                self._configs[path] = cfgmod.load_config(path, trusted=bool(named and self.request.trust_config))
             except cfgmod.ConfigError as e:
                 where = e.location or cfgmod.Location(path)
                 shown = self.request.shown(where.file) + "".join(
@@ -174,6 +179,23 @@ class Planner:
 
         return self.config(find_config(path))
 
+    # --- walks: one that stops at its limit says so (X019), never a silent subset -------------------
+    def walk(self, folder: str) -> _Walk:
+        w = _walk(folder)
+        if w.truncated:
+            self.truncated.append(_cut_short(self.request.shown(folder), f"{MAX_DIRS} folders"))
+        return w
+
+    def discover(self, folder, settings: Settings):
+        from urdfcheck.contracts.discover import MAX_FILES, discover
+
+        limit = self.request.max_files or MAX_FILES
+        found = discover(folder, trusted=settings.trusted, max_files=limit)
+        self.libraries.update(os.path.realpath(p) for p in found.libraries)
+        if getattr(found, "truncated", False):
+            self.truncated.append(_cut_short(self.request.shown(folder), f"{limit} files"))
+        return found
+
     # --- planning ---------------------------------------------------------------------------------
     def plan(self) -> TargetList:
         req = self.request
@@ -181,14 +203,23 @@ class Planner:
         if not paths:
             cfg = self.nearest(os.path.abspath(self.here))
             if cfg is not None and cfg.models:
-                return TargetList(_unique(self.declared(cfg, None)), self.infos)
+                got = TargetList(_unique(self.declared(cfg, None)), self.infos)
+                got.findings, got.libraries = self.plan_findings(), len(self.libraries)
+                return got
             paths = [self.here]  # the package here (a workspace config above it applies to it, not all of it)
         out: list[Target] = []
         for raw in paths:
             out.extend(self.path_targets(raw))
         got = TargetList(_unique(out), dict.fromkeys(self.infos))
         got.not_understood = list(self.not_understood)
+        got.findings, got.libraries = self.plan_findings(), len(self.libraries)
         return got
+
+    def plan_findings(self) -> list:
+        """The configs' own findings (keys a config found in the checkout may not set), then the walks cut
+        short: said in every report, never silently."""
+        out = [f for c in self._configs.values() if c is not None for f in getattr(c, "notes", ())]
+        return out + [f for f in dict.fromkeys(self.truncated)]
 
     def path_targets(self, raw: str) -> list[Target]:
         cfg = self.nearest(raw)
@@ -210,7 +241,7 @@ class Planner:
                                  "launch file that starts robot_state_publisher)")
             return self.file_targets(Path(raw), settings)
         # a folder: nested configs (when not given one explicitly) take their sub-trees
-        walk = _walk(raw)
+        walk = self.walk(raw)
         nested = [] if (self.request.config is not None or not self.request.use_config) else \
             [c for c in walk.configs if cfg is None or os.path.dirname(c) != cfg.root]
         nested_roots = [os.path.dirname(c) for c in nested]
@@ -226,7 +257,7 @@ class Planner:
             if sub.models:
                 out.extend(t for t in self.declared(sub, None) if not _under_any(str(t.path), deeper))
             else:
-                out.extend(self.scope(sub, sub.root, _walk(sub.root), exclude=deeper, named=named))
+                out.extend(self.scope(sub, sub.root, self.walk(sub.root), exclude=deeper, named=named))
         return out
 
     def scope(self, cfg, folder: str, walk, exclude: list[str], named: _Named | None = None) -> list[Target]:
@@ -255,7 +286,7 @@ class Planner:
                 out.append(self.target(Path(m.path), vargs, vname, consumers, settings))
         for raw in rest:
             out.extend(self.file_targets(Path(raw), settings) if not os.path.isdir(raw)
-                       else self.discovered(raw, _walk(raw), settings))
+                       else self.discovered(raw, self.walk(raw), settings))
         return out
 
     def discovered(self, folder: str, walk, settings: Settings, exclude=(), named: _Named | None = None
@@ -264,7 +295,6 @@ class Planner:
         tree, `named`), then the entry models of each package below `folder` that no deployment of the named
         tree loads, each package discovered on its own; `folder` itself when it is inside a package or holds
         none. A package of xacro libraries only gives an info line."""
-        from urdfcheck.contracts.discover import discover
         from urdfcheck.load.packages import enclosing_package
 
         if named is None:
@@ -277,7 +307,7 @@ class Planner:
         roots = [folder] if inside or not walk.packages else \
             [p for p in walk.packages if not _under_any(p, exclude)]  # a package with its own config: its own
         for root in roots:
-            found = discover(root, trusted=settings.trusted)
+            found = self.discover(root, settings)
             if not found.models and found.libraries and not any(_below(t.path, root) for t in out):
                 self.infos.append(f"{self.request.shown(root)}: xacro libraries only (macros, properties): "
                                   "linted through the robots that include them")
@@ -286,7 +316,7 @@ class Planner:
                     out.extend(self.variants(Path(entry), settings, named.root))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
-            for entry in discover(folder, trusted=settings.trusted).models:
+            for entry in self.discover(folder, settings).models:
                 if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
                     out.extend(self.variants(Path(entry), settings, named.root))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
@@ -340,12 +370,11 @@ class Planner:
         file is below it, else its package) that include it, as they are planned from there (deployments
         too): what the per-file pre-commit hook needs. A library no robot includes is an info line."""
         if path.name.endswith(".xacro"):
-            from urdfcheck.contracts.discover import discover
             from urdfcheck.load.packages import enclosing_package
 
             folder = Path(os.path.abspath(path)).parent
             pkg = enclosing_package(folder)
-            found = discover(pkg or folder, trusted=settings.trusted)
+            found = self.discover(pkg or folder, settings)
             if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
                 if not robots:
@@ -413,6 +442,14 @@ def _robot_file(path) -> bool:
     return tag is not None and tag.split(":")[-1] == "robot"
 
 
+def _cut_short(folder: str, limit: str):
+    from urdfcheck.core.findings import Finding, Location, Severity
+
+    return Finding("X019", Severity.ERROR, f"the file walk stopped after {limit}: what lies beyond was not looked "
+                   "at (lint the packages one by one, or remove generated files from the checkout)",
+                   Location(folder), name="walk-truncated")
+
+
 def _is_srdf_name(path: str) -> bool:
     return path.lower().endswith((".srdf", ".srdf.xacro"))
 
@@ -460,6 +497,7 @@ class _Walk(Record):
     # configs: config files strictly below the walked folder; packages: folders holding a package.xml
     # (outermost only); loose: a .urdf/.xacro file outside every package
     _fields = ('configs', 'packages', 'loose')
+    truncated = False  # stopped at MAX_DIRS
 
     def __init__(self, configs: list[str], packages: list[str], loose: bool):
         self.configs, self.packages, self.loose = configs, packages, loose
@@ -470,10 +508,11 @@ def _walk(folder: str) -> _Walk:
     from urdfcheck.pipeline.config import PYPROJECT, _pyproject_has_table
 
     top = os.path.abspath(folder)
-    configs, packages, loose, seen = [], [], False, 0
+    configs, packages, loose, seen, truncated = [], [], False, 0, False
     for here, dirs, files in os.walk(top):
         seen += 1
         if seen > MAX_DIRS:
+            truncated = True
             break
         dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIP_DIRS)
         if here != top:
@@ -488,4 +527,6 @@ def _walk(folder: str) -> _Walk:
             in_pkg = True
         if not in_pkg and not loose:
             loose = any(f.endswith((".urdf", ".xacro")) for f in files)
-    return _Walk(configs, packages, loose)
+    w = _Walk(configs, packages, loose)
+    w.truncated = truncated
+    return w

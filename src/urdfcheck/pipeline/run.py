@@ -27,6 +27,7 @@ class Result(Record):
     # root: reports show paths relative to this folder ("" = the working directory)
     _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
     infos: tuple = ()  # the planner's info lines (a package of xacro libraries only): not findings
+    libraries: int = 0  # xacro libraries the plan saw (not linted alone)
 
     def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
                  by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
@@ -42,12 +43,31 @@ class Result(Record):
         macro with a known problem is new."""
         return [f for fs in self.by_target for f in fs]
 
+    def unchecked(self) -> list[Target]:
+        """The targets whose model did not load: not checked, whatever the selection hid (issue 19)."""
+        return [t for t in self.targets if (str(t.path), t.variant) in self.models
+                and self.models[(str(t.path), t.variant)] is None and not getattr(t, "probe", False)]
+
+    def not_passed(self) -> str | None:
+        """Why a run without findings still is no pass (a report says it instead of "All checks passed"):
+        models that did not load, or no robot at all."""
+        bad = self.unchecked()
+        if bad:
+            n = len({str(t.path) for t in bad})
+            return f"{n} model{'s' if n != 1 else ''} not checked (did not load)"
+        if not [t for t in self.targets if not getattr(t, "probe", False)]:
+            n = self.libraries
+            return "no robot found" + (f": {n} xacro librar{'y' if n == 1 else 'ies'}" if n else "")
+        return None
+
     def worst(self) -> Severity | None:
         return max((f.severity for f in self.findings), default=None)
 
     def failed(self, fail_on: Severity | None = None) -> bool:
         """Any finding at or above `fail_on`; by default the level of the config each finding's model was
         planned under (a workspace run: each package's own `fail_on`; a flag sets them all)."""
+        if self.unchecked():  # a model that did not load was not checked: never a pass
+            return True
         if fail_on is not None:
             return any(f.severity >= fail_on for f in self.findings)
         levels: dict[tuple, Severity] = {}
@@ -67,14 +87,16 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
     """Plan, lint, finish. Raises UsageError when there is nothing to lint or an input is unusable."""
     targets = plan(request)
     infos = list(getattr(targets, "infos", ()))
+    noted = [f._replace(location=f.location._replace(file=request.shown(f.location.file)))
+             for f in getattr(targets, "findings", ())]  # about the plan: a config's ignored keys, a walk cut short
     if not targets:
-        if infos:  # xacro libraries only: nothing to lint alone, not an unusable invocation
-            result = Result([], [], fail_on=request.fail_on or Severity.WARNING)
-            result.infos = infos
+        if infos or noted:  # xacro libraries only: nothing to lint alone, not an unusable invocation
+            result = Result(noted, [], fail_on=request.fail_on or Severity.WARNING)
+            result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
             return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
-    result.infos = infos
+    result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
     _missing_packages_once(result)
     if request.fail_on is not None:
         result.fail_on = request.fail_on
@@ -87,6 +109,8 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
             result.findings = _dedupe(baseline.filter_new(request.baseline, result.raw()))
         except (OSError, ValueError) as e:
             raise UsageError(f"cannot read baseline {request.baseline}: {e}") from None
+    if noted:  # after the baseline: what lowers the guard is never accepted once and for all
+        result.findings = sorted(result.findings + noted, key=Finding.sort_key)
     if request.root and os.path.abspath(request.root) != os.getcwd():
         _rebase(result, os.path.abspath(request.root))
     return result
