@@ -60,6 +60,8 @@ class Target(Record):
     deployment: the launch file that starts this model (label and defining Location), when planned from one."""
 
     _fields = ('path', 'args', 'variant', 'contracts', 'packages', 'settings', 'deployment')
+    probe = False    # may be a library: the expansion decides (pipeline.robots); the run sets `library`
+    library = False  # a probe whose expansion has no link: not a robot, not checked as one
 
     def __init__(self, path: Path,
                  args: dict | None = None,
@@ -118,6 +120,7 @@ class TargetList(list):
         self.not_understood = []  # deployments whose model was not understood (no target; `--list`)
         self.findings = []  # about the plan itself: a config's ignored keys, a file walk cut short (issue 19)
         self.libraries = 0  # xacro libraries seen: "no robot found: N xacro libraries"
+        self.included = []  # libraries by inclusion that may hold links (pipeline.robots.missed)
 
 
 class _Named(Record):
@@ -146,6 +149,7 @@ class Planner:
         self.not_understood: list = []  # deployments whose model was not understood (`--list` shows them)
         self.truncated: list = []  # X019 findings: a file walk that stopped at its limit
         self.libraries: set = set()  # xacro libraries seen (a run that checked no robot counts them)
+        self.included: list = []  # libraries by inclusion that may hold links: a model must read them (robots)
 
     # --- configs ----------------------------------------------------------------------------------
     def config(self, path: str | None):
@@ -192,6 +196,7 @@ class Planner:
         limit = self.request.max_files or MAX_FILES
         found = discover(folder, trusted=settings.trusted, max_files=limit)
         self.libraries.update(os.path.realpath(p) for p in found.libraries)
+        self.included.extend(getattr(found, "included", ()))
         if getattr(found, "truncated", False):
             self.truncated.append(_cut_short(self.request.shown(folder), f"{limit} files"))
         return found
@@ -205,6 +210,7 @@ class Planner:
             if cfg is not None and cfg.models:
                 got = TargetList(_unique(self.declared(cfg, None)), self.infos)
                 got.findings, got.libraries = self.plan_findings(), len(self.libraries)
+                got.included = list(dict.fromkeys(self.included))
                 return got
             paths = [self.here]  # the package here (a workspace config above it applies to it, not all of it)
         out: list[Target] = []
@@ -213,6 +219,7 @@ class Planner:
         got = TargetList(_unique(out), dict.fromkeys(self.infos))
         got.not_understood = list(self.not_understood)
         got.findings, got.libraries = self.plan_findings(), len(self.libraries)
+        got.included = list(dict.fromkeys(self.included))
         return got
 
     def plan_findings(self) -> list:
@@ -308,7 +315,11 @@ class Planner:
             [p for p in walk.packages if not _under_any(p, exclude)]  # a package with its own config: its own
         for root in roots:
             found = self.discover(root, settings)
-            if not found.models and found.libraries and not any(_below(t.path, root) for t in out):
+            for entry in found.probes:  # no link by its text: the expansion decides (pipeline.robots)
+                if os.path.realpath(entry) not in named.covered:
+                    out.append(self.probe(Path(entry), settings, named.root))
+            if not found.models and not found.probes and found.libraries \
+                    and not any(_below(t.path, root) for t in out):
                 self.infos.append(f"{self.request.shown(root)}: xacro libraries only (macros, properties): "
                                   "linted through the robots that include them")
             for entry in found.models:
@@ -377,11 +388,17 @@ class Planner:
             found = self.discover(pkg or folder, settings)
             if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
-                if not robots:
-                    self.infos.append(f"{self.request.shown(str(path))}: a xacro library that no robot of "
-                                      "its workspace includes: not linted alone")
+                if not robots:  # named on the command line: never skipped; its expansion tells what it is
+                    return [self.probe(path, settings)]
+                self.included.append(str(path))  # the run checks that one of them did read it
                 return robots
         return [self.target(path, {}, "", None, settings)]
+
+    def probe(self, path: Path, settings: Settings, root: str | None = None) -> Target:
+        """A file that may be a library: expanded with its defaults; a library when the expansion has no link."""
+        t = self.target(path, {}, "", None, settings, _packages(root, str(path), settings) if root else None)
+        t.probe = True
+        return t
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
         """The targets of the library's workspace whose model includes it (literal includes, read as text)."""

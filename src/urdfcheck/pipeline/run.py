@@ -28,6 +28,7 @@ class Result(Record):
     _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
     infos: tuple = ()  # the planner's info lines (a package of xacro libraries only): not findings
     libraries: int = 0  # xacro libraries the plan saw (not linted alone)
+    read: set = frozenset()  # the files the expansions read
 
     def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
                  by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
@@ -46,7 +47,7 @@ class Result(Record):
     def unchecked(self) -> list[Target]:
         """The targets whose model did not load: not checked, whatever the selection hid (issue 19)."""
         return [t for t in self.targets if (str(t.path), t.variant) in self.models
-                and self.models[(str(t.path), t.variant)] is None and not getattr(t, "probe", False)]
+                and self.models[(str(t.path), t.variant)] is None and not t.library]
 
     def not_passed(self) -> str | None:
         """Why a run without findings still is no pass (a report says it instead of "All checks passed"):
@@ -55,7 +56,7 @@ class Result(Record):
         if bad:
             n = len({str(t.path) for t in bad})
             return f"{n} model{'s' if n != 1 else ''} not checked (did not load)"
-        if not [t for t in self.targets if not getattr(t, "probe", False)]:
+        if not [t for t in self.targets if not t.library]:
             n = self.libraries
             return "no robot found" + (f": {n} xacro librar{'y' if n == 1 else 'ies'}" if n else "")
         return None
@@ -96,6 +97,7 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
             return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    result = _unread_libraries(result, getattr(targets, "included", ()), retain, request)
     result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
     _missing_packages_once(result)
     if request.fail_on is not None:
@@ -114,6 +116,30 @@ def run(request: LintRequest, *, retain: list | None = None) -> Result:
     if request.root and os.path.abspath(request.root) != os.getcwd():
         _rebase(result, os.path.abspath(request.root))
     return result
+
+
+def _unread_libraries(result: Result, included, retain, request: LintRequest) -> Result:
+    """Files taken for included libraries that no model of the run read (the include was commented out,
+    conditional, or in a file that is no robot): expanded now as probes, so that a robot is never hidden by
+    another file claiming to include it."""
+    from urdfcheck.pipeline.robots import missed
+
+    unread = missed(included, result.read)
+    if not unread:
+        return result
+    by_path = {os.path.realpath(t.path): t for t in result.targets}
+    extra = []
+    for path in unread:
+        like = next(iter(by_path.values()), None)
+        t = Target(Path(path), {}, "", None, dict(like.packages) if like is not None else {},
+                   like.settings if like is not None else None)
+        t.probe = True
+        extra.append(t)
+    more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    merged = Result(_dedupe(result.raw() + more.raw()), result.targets + more.targets,
+                    {**result.models, **more.models}, result.by_target + more.by_target)
+    merged.read = set(result.read) | set(more.read)
+    return merged
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
@@ -196,6 +222,9 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     ahead = max(1, min(4, os.cpu_count() or 1))
     pending: dict[int, load.Pending] = {}
     yaml = _YamlUse()
+    read: set = set()  # every file an expansion read (display paths): pipeline.robots.missed
+    from urdfcheck.pipeline.robots import has_links
+
     try:
         for i in range(min(ahead, len(targets))):
             pending[i] = _begin(targets[i], kw)
@@ -205,6 +234,13 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                 pending[i + ahead] = _begin(targets[i + ahead], kw)
             exp = pending.pop(i).result()
             yaml.index = i
+            read.update(exp.files or ())
+            if t.probe and exp.root is not None and not has_links(exp.root):  # a library (pipeline.robots)
+                t.library = True
+                sel = t.settings.selection if t.settings is not None else selection
+                models[(str(t.path), t.variant)] = None
+                by_target[i].extend(engine.finish(list(exp.findings), sel, exp.suppressions, model=exp.entry))
+                continue
             if t.settings is not None:
                 found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
             else:
@@ -218,7 +254,9 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
             p.cancel()
     for i, f in yaml.unused():
         by_target[i].append(f)
-    return Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
+    result = Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
+    result.read = read
+    return result
 
 
 def _warm_up(targets: list[Target], config) -> None:
