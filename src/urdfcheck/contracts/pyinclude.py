@@ -91,10 +91,13 @@ class _Paths:
         return None
 
     def _join(self, sep: str, parts, depth: int) -> str | None:
-        texts = []
+        texts, size = [], 0
         for p in parts:
             t = self.text(p, depth)
             if t is None:  # one unknown piece: the whole is unknown, evaluate no further
+                return None
+            size += len(t)
+            if size > _MAX_LEN:  # too long for a path: stop before joining
                 return None
             texts.append(t)
         if sep == "":

@@ -85,7 +85,19 @@ class Result(Record):
 
 
 def run(request: LintRequest, *, retain: list | None = None) -> Result:
-    """Plan, lint, finish. Raises UsageError when there is nothing to lint or an input is unusable."""
+    """Plan, lint, finish. Raises UsageError when there is nothing to lint or an input is unusable.
+    The run's budget (load.budget) covers the planning too: launch files are read there."""
+    from urdfcheck.load.budget import run_budget
+
+    with run_budget(request.budget):
+        try:
+            return _run(request, retain)
+        except MemoryError:
+            raise UsageError("the run's memory budget was used up while planning (a launch or config file "
+                             "that grows without bound?); nothing was checked") from None
+
+
+def _run(request: LintRequest, retain: list | None) -> Result:
     targets = plan(request)
     infos = list(getattr(targets, "infos", ()))
     noted = [f._replace(location=f.location._replace(file=request.shown(f.location.file)))
@@ -241,10 +253,13 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                 models[(str(t.path), t.variant)] = None
                 by_target[i].extend(engine.finish(list(exp.findings), sel, exp.suppressions, model=exp.entry))
                 continue
-            if t.settings is not None:
-                found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
-            else:
-                found, model = _check(t, exp, selection, config, yaml)
+            try:
+                if t.settings is not None:
+                    found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
+                else:
+                    found, model = _check(t, exp, selection, config, yaml)
+            except MemoryError:  # the run's memory limit (load.budget): this model is not checked
+                found, model = [_over_memory(exp)], None
             if retain is not None:
                 retain.append(exp)
             models[(str(t.path), t.variant)] = model
@@ -257,6 +272,11 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     result = Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
     result.read = read
     return result
+
+
+def _over_memory(exp) -> Finding:
+    return Finding("X017", Severity.ERROR, "not checked: the run's memory budget was used up while checking this "
+                   "model", Location(exp.entry), name="lint-budget")
 
 
 def _warm_up(targets: list[Target], config) -> None:
