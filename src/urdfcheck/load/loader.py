@@ -31,7 +31,9 @@ def display(path: str | os.PathLike) -> str:
     cwd = os.getcwd()
     if p == cwd or p.startswith(cwd.rstrip(os.sep) + os.sep):
         return os.path.relpath(p, cwd)
-    return p
+    from urdfcheck.core.checkout import relative
+
+    return relative(p, cwd) or p  # beside the working directory in its checkout: ../urdf/x.xacro
 
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"

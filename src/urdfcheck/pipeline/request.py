@@ -121,7 +121,9 @@ def shown(path, root: str = "") -> str:
     base = os.path.abspath(root) if root else os.getcwd()
     if p == base or p.startswith(base.rstrip(os.sep) + os.sep):
         return os.path.relpath(p, base)
-    return p
+    from urdfcheck.core.checkout import relative
+
+    return relative(p, base) or p  # beside the base in its checkout: ../urdf/x.xacro (issue 19)
 
 
 def make_request(paths=(), **options) -> LintRequest:
