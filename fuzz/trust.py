@@ -128,14 +128,18 @@ def layout(r: random.Random) -> tuple[dict[str, str], str, list[str]]:
         files[folder + k] = v
     for i in range(r.randrange(0, 4)):
         kind = r.choice(["comment", "if-false", "unless-true", "macro", "real", "cdata"])
-        target = r.choice([name, f"$(find pkg)/{robot[len(pkg):]}", f"./{name}", f"../{folder.rstrip('/').split('/')[-1]}/{name}"])
+        up = folder.rstrip("/").split("/")[-1]
+        target = r.choice([name, f"$(find pkg)/{robot[len(pkg):]}", f"./{name}", f"../{up}/{name}"])
         files[folder + f"decoy{i}.urdf.xacro"] = decoy_text(r, kind, target)
     for i in range(r.randrange(0, 3)):
-        files[folder + f"lib{i}.xacro"] = f'<robot {NS}><xacro:macro name="m{i}"><link name="x"/></xacro:macro></robot>'
+        files[folder + f"lib{i}.xacro"] = (f'<robot {NS}><xacro:macro name="m{i}"><link name="x"/></xacro:macro>'
+                                           "</robot>")
     if r.random() < 0.2:
-        files[folder + "moveit.xacro"] = f'<robot name="r" {NS}><group name="arm"/><disable_collisions link1="a"/></robot>'
+        files[folder + "moveit.xacro"] = (f'<robot name="r" {NS}><group name="arm"/>'
+                                          '<disable_collisions link1="a"/></robot>')
     if r.random() < 0.15:  # a skipped folder with a clean decoy: never the only thing linted
-        files[r.choice([".hidden/", "build/", "install/"]) + "clean.urdf"] = "<robot name='c'><link name='base_link'/></robot>"
+        skipped = r.choice([".hidden/", "build/", "install/"])
+        files[skipped + "clean.urdf"] = "<robot name='c'><link name='base_link'/></robot>"
     cli: list[str] = []
     if r.random() < 0.25:
         for i in range(r.randrange(1, 40)):

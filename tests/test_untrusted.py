@@ -432,3 +432,26 @@ def test_no_absolute_checkout_path_with_the_package_above(tmp_path, fmt):
     code, out, err = lint(pkg / "launch", "--format", fmt, "../urdf/robot.urdf.xacro")
     assert code == 1
     assert str(tmp_path) not in out + err
+
+
+# --- 6. the grammars of fuzz/trust.py, a few inputs on every run ------------------------------------------
+def test_trust_grammar_finds_nothing(monkeypatch, tmp_path):
+    import importlib.util
+
+    from conftest import REPO
+
+    spec = importlib.util.spec_from_file_location("fuzz_trust", REPO / "fuzz" / "trust.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    monkeypatch.chdir(tmp_path)
+    for var in ("URDFCHECK_DEBUG", *mod.SECRET_VARS):  # the fuzzer sets them: restored after the test
+        monkeypatch.setenv(var, "")
+    import signal
+
+    monkeypatch.setattr(signal, "signal", lambda *a: None)  # keep the test runner's handlers
+    monkeypatch.setattr(mod.signal, "setitimer", lambda *a: None)
+    report = tmp_path / "r.json"
+    code = mod.main(["--count", "40", "--seed", "7", "--full-every", "20", "--report", str(report)])
+    counts = json.loads(report.read_text())["counts"]
+    assert code == 0, json.loads(report.read_text())["examples"][:2]
+    assert counts["inputs"] == 40 and counts["full"] == 2

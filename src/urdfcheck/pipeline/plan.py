@@ -388,8 +388,12 @@ class Planner:
             found = self.discover(pkg or folder, settings)
             if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
-                if not robots:  # named on the command line: never skipped; its expansion tells what it is
+                maybe = {os.path.realpath(x) for x in (*found.probes, *found.included)}
+                if not robots and os.path.realpath(path) in maybe:  # named: never skipped when it may be a robot
                     return [self.probe(path, settings)]
+                if not robots:  # macros and properties only: certainly no link
+                    self.infos.append(f"{self.request.shown(str(path))}: a xacro library that no robot of "
+                                      "its workspace includes: not linted alone")
                 self.included.append(str(path))  # the run checks that one of them did read it
                 return robots
         return [self.target(path, {}, "", None, settings)]

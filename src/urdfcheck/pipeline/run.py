@@ -110,6 +110,7 @@ def _run(request: LintRequest, retain: list | None) -> Result:
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
     result = _unread_libraries(result, getattr(targets, "included", ()), retain, request)
+    _drop_libraries(result)
     result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
     _missing_packages_once(result)
     if request.fail_on is not None:
@@ -152,6 +153,19 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
                     {**result.models, **more.models}, result.by_target + more.by_target)
     merged.read = set(result.read) | set(more.read)
     return merged
+
+
+def _drop_libraries(result: Result) -> None:
+    """Probes whose expansion had no link and said nothing are libraries: not models of the report."""
+    keep = [i for i, t in enumerate(result.targets) if not (t.library and not result.by_target[i])]
+    if len(keep) == len(result.targets):
+        return
+    gone = [t for t in result.targets if t.library]
+    result.targets = [result.targets[i] for i in keep]
+    result.by_target = [result.by_target[i] for i in keep]
+    for t in gone:
+        if t not in result.targets:
+            result.models.pop((str(t.path), t.variant), None)
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=load.XACRO_TIMEOUT,
