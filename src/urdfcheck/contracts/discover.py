@@ -95,8 +95,9 @@ def _root_tag(text: str) -> str | None:
         return m.group(1)
 
 
-def _is_library(text: str) -> bool:
-    """Only definitions at the top level (macros, properties, args, includes): expands to an empty robot."""
+def _is_library(text: str, includes: bool = False) -> bool:
+    """Only definitions at the top level (macros, properties, args; with `includes`, includes too): without
+    includes it expands to an empty robot, certainly; with them, the expansion tells (a probe)."""
     try:
         parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False,
                                  remove_comments=True, remove_pis=True, recover=False)
@@ -109,7 +110,7 @@ def _is_library(text: str) -> bool:
     defs = _definitions(kids, 0)
     # macros or properties only (an `xacro:if` holding only definitions counts): a library, certainly (its
     # expansion is an empty robot). An include may bring a robot body: such a file is expanded to tell
-    return defs is not None and bool(defs & {"macro", "property"}) and "include" not in defs
+    return defs is not None and bool(defs & {"macro", "property"}) and (includes or "include" not in defs)
 
 
 def _definitions(kids, depth: int) -> set[str] | None:
@@ -225,7 +226,7 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
         if not robot or _is_library(texts[p]):
             libs.append(p)
             continue
-        if _is_srdf(texts[p]) or _no_links(texts[p]):
+        if _is_srdf(texts[p]) or _no_links(texts[p]) or _is_library(texts[p], includes=True):
             libs.append(p)  # by its text; the expansion decides (pipeline.robots)
             probes.append(p)
             continue
