@@ -2,7 +2,8 @@
 
 Found from a start folder upward (first hit wins, stopping at the filesystem root); in each folder
 `urdfcheck.yaml`, then `.urdfcheck.yaml`, then `pyproject.toml` if it has a `[tool.urdfcheck]` table.
-Validated against `schemas/config.schema.json`; paths are relative to the config file's folder.
+Validated against `schemas/config.schema.json`; paths are relative to the config file's folder and must stay in its
+repository or the working directory unless the config is trusted (`--config FILE --trust-config`; pipeline/trust.py).
 A bad config raises `ConfigError(message, location)` naming the offending key (file:line for YAML).
 
 ```yaml
@@ -38,9 +39,10 @@ ignore: [I005]
 fail_on: warning                          # error | warning | info
 severity: {F002: warning}                 # per code or prefix
 rules: {C010: {tolerance: 0.002}, F002: {expected: [base_link, base_footprint]}}   # rule options
-trusted: false                            # stock xacro evaluation (only for your own files)
-allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read
-max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
+trusted: false                            # stock xacro evaluation (only for your own files) \  honoured only in a
+allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read  > config named with
+max_elements: 20000                       # xacro elements one expansion may evaluate        /  --trust-config when
+                                          #   above the default (pipeline/trust.py; else X018 and ignored)
 target: humble                            # ROS distribution whose urdfdom must read the model (--target)
 ```
 
