@@ -39,10 +39,11 @@ ignore: [I005]
 fail_on: warning                          # error | warning | info
 severity: {F002: warning}                 # per code or prefix
 rules: {C010: {tolerance: 0.002}, F002: {expected: [base_link, base_footprint]}}   # rule options
-trusted: false                            # stock xacro evaluation (only for your own files) \  honoured only in a
-allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read  > config named with
-max_elements: 20000                       # xacro elements one expansion may evaluate        /  --trust-config when
-                                          #   above the default (pipeline/trust.py; else X018 and ignored)
+trusted: false                            # stock xacro evaluation (only for your own files)
+allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read
+max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
+# trusted, allow_env and max_elements above the default count only in a config named with
+# --config FILE --trust-config; elsewhere they are an X018 finding and ignored (pipeline/trust.py)
 target: humble                            # ROS distribution whose urdfdom must read the model (--target)
 ```
 
