@@ -362,6 +362,9 @@ def main(argv=None) -> int:
                 os.chdir(old)
             counts["inputs"] += 1
             counts["full"] += is_full
+            if ns.report and counts["inputs"] % 500 == 0:  # a run stopped early still has its figures
+                Path(ns.report).write_text(json.dumps({"counts": counts, "examples": examples,
+                                                       "seconds": round(time.monotonic() - t0, 1)}, indent=1))
             if kind is not None:
                 counts[{"leak": "leaks", "traceback": "tracebacks", "hang": "hangs", "silent": "silent"}[kind]] += 1
                 if len(examples) < 20:
