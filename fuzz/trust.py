@@ -297,8 +297,16 @@ def fast(root: Path, robot: str, cli: list[str]) -> tuple[str | None, str]:
     return "silent", f"robot {robot} not planned; targets {[str(t.path) for t in targets]}"
 
 
-def full(root: Path, cli: list[str], fmt: str) -> tuple[str | None, str]:
+# what a run that reached the robot says, in every format: the refusal (sandbox or stock xacro), a walk cut short,
+# the budget, a missing package on the way
+REACHED = ("X011", "X010", "X019", "X017", "X013")
+
+
+def full(root: Path, cli: list[str], fmt: str, robot: str) -> tuple[str | None, str]:
     from urdfcheck.cli.main import main
+
+    planned, _ = fast(root, robot, cli)  # the plan alone: does a config's models: list leave the robot out?
+    strict = planned is None and _ == "ok"
 
     out, err = io.StringIO(), io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
@@ -310,6 +318,9 @@ def full(root: Path, cli: list[str], fmt: str) -> tuple[str | None, str]:
         return "traceback", f"exit {code}: {text[-500:]}"
     if code == 0:
         return "silent", text[-500:]
+    named = robot in text or robot.replace("_", "\\_") in text  # Markdown escapes underscores
+    if strict and code == 1 and not named and not any(c in text for c in REACHED):  # failed elsewhere
+        return "silent", f"exit 1 without reaching the robot: {text[-500:]}"
     return None, f"exit {code}"
 
 
@@ -354,7 +365,7 @@ def main(argv=None) -> int:
             is_full = ns.full_every > 0 and i % ns.full_every == 0
             signal.setitimer(signal.ITIMER_REAL, ns.hang)
             try:
-                kind, detail = (full(root, cli, FORMATS[(i // ns.full_every) % len(FORMATS)]) if is_full
+                kind, detail = (full(root, cli, FORMATS[(i // ns.full_every) % len(FORMATS)], robot) if is_full
                                 else fast(root, robot, cli))
             except Hang:
                 kind, detail = "hang", ""
