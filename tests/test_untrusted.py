@@ -273,7 +273,7 @@ def test_a_cut_short_folder_walk_is_a_finding(tmp_path, monkeypatch):
 
 
 @pytest.mark.parametrize("cfg", ["ignore: [X]\n", "ignore: [X011]\n", "select: [F002]\n", "ignore: [ALL]\n",
-                                 "severity: {X: info}\n"])
+                                 "severity: {X: info}\n", "select: [X017, S]\n"])
 def test_a_config_cannot_hide_a_refused_expansion(tmp_path, cfg):
     write(tmp_path, {"urdfcheck.yaml": cfg, "robot.urdf.xacro": PROBE})
     code, out, _ = lint(tmp_path, "--format", "json")
@@ -286,6 +286,15 @@ def test_the_command_line_may_ignore_but_an_unloaded_model_still_fails(tmp_path)
     write(tmp_path, {"robot.urdf.xacro": PROBE})
     code, out, _ = lint(tmp_path, "--ignore", "X")
     assert code == 1 and "All checks passed" not in out and "not checked" in out
+
+
+def test_an_includer_that_failed_did_not_check_what_it_included(tmp_path):
+    # the only file including the robot fails to expand (a lowered limit): the robot is expanded on its own
+    _pkg(tmp_path, {"urdfcheck.yaml": "max_elements: 1\n", "urdf/robot.urdf.xacro": PROBE,
+                    "urdf/decoy.urdf.xacro": f'<robot name="d" {XACRO_NS}>\n  <xacro:include filename="robot.urdf.xacro"/>'
+                                             '\n  <link name="base_link"/>\n</robot>\n'})
+    code, out, _ = lint(tmp_path, "--format", "json")
+    assert code == 1 and any(m["path"].endswith("robot.urdf.xacro") for m in json.loads(out)["models"])
 
 
 # --- 4. bounded everywhere ------------------------------------------------------------------------------

@@ -260,7 +260,8 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                 pending[i + ahead] = _begin(targets[i + ahead], kw)
             exp = pending.pop(i).result()
             yaml.index = i
-            read.update(exp.files or ())
+            if exp.root is not None:  # read *and* expanded: an includer that failed checked nothing it read
+                read.update(exp.files or ())
             if t.probe and exp.root is not None and not has_links(exp.root):  # a library (pipeline.robots)
                 t.library = True
                 sel = t.settings.selection if t.settings is not None else selection

@@ -69,7 +69,7 @@ def _keep_load_findings(data: dict, key_loc) -> list[Finding]:
                             "not hide load and sandbox findings (X0xx); ignore them on the command line",
                             key_loc("ignore")))
     select = data.get("select")
-    if select and not any(_hides_load(p) for p in select):
+    if select and not any(str(p).upper() in ("ALL", "X", LOAD_PREFIX) for p in select):  # X017 alone is not all
         data["select"] = [*select, LOAD_PREFIX]  # selected anyway: silently, as `select` lists what to add
     softened = [k for k in data.get("severity") or {} if _hides_load(k)]
     if softened:
