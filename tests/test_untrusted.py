@@ -290,9 +290,9 @@ def test_the_command_line_may_ignore_but_an_unloaded_model_still_fails(tmp_path)
 
 def test_an_includer_that_failed_did_not_check_what_it_included(tmp_path):
     # the only file including the robot fails to expand (a lowered limit): the robot is expanded on its own
+    decoy = f'<robot name="d" {XACRO_NS}>\n  <xacro:include filename="robot.urdf.xacro"/>\n  <link name="base_link"/>\n'
     _pkg(tmp_path, {"urdfcheck.yaml": "max_elements: 1\n", "urdf/robot.urdf.xacro": PROBE,
-                    "urdf/decoy.urdf.xacro": f'<robot name="d" {XACRO_NS}>\n  <xacro:include filename="robot.urdf.xacro"/>'
-                                             '\n  <link name="base_link"/>\n</robot>\n'})
+                    "urdf/decoy.urdf.xacro": decoy + "</robot>\n"})
     code, out, _ = lint(tmp_path, "--format", "json")
     assert code == 1 and any(m["path"].endswith("robot.urdf.xacro") for m in json.loads(out)["models"])
 
