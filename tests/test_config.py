@@ -90,7 +90,10 @@ def test_full_config(tmp_path):
     assert cfg.select == ("ALL",) and cfg.ignore == ("I005", "G0") and cfg.fail_on == Severity.ERROR
     assert dict(cfg.severity) == {"F002": Severity.WARNING, "J": Severity.INFO}
     assert dict(cfg.rules["C010"]) == {"tolerance": 0.002}
-    assert cfg.allow_env == ("HOME",) and cfg.trusted is False and cfg.max_elements == 5000
+    # found in the checkout: allow_env is the runner's to give (issue 19); a lower limit stays
+    assert cfg.allow_env == () and cfg.trusted is False and cfg.max_elements == 5000
+    assert [(f.code, f.location.line) for f in cfg.notes] == [("X018", 28)]
+    assert load_config(root / "urdfcheck.yaml", trusted=True).allow_env == ("HOME",)
     assert cfg.loc("models", 0, "path").line == 2
     with pytest.raises(AttributeError):
         cfg.trusted = True
@@ -143,7 +146,8 @@ path = "urdf/plain.urdf"
 controllers = ["config/ctrl.yaml"]
 """)
     cfg = load_config(tmp_path / "pyproject.toml")
-    assert cfg.select == ("S", "J002") and cfg.fail_on == Severity.INFO
+    # load and sandbox findings stay selected (issue 19: a config cannot deselect them)
+    assert cfg.select == ("S", "J002", "X0") and cfg.fail_on == Severity.INFO
     assert cfg.frames["base"] == "base_footprint"
     assert cfg.models[0].path == str(tmp_path / "urdf" / "plain.urdf")
 

@@ -37,6 +37,7 @@ PART = """<robot xmlns:xacro="http://www.ros.org/wiki/xacro">
 @pytest.fixture
 def ws(tmp_path, monkeypatch):
     """pkg/ needs the package my_parts, which only its urdfcheck.yaml places (../parts)."""
+    (tmp_path / ".git").mkdir()  # one repository: a config may name its sibling folder (issue 19's confinement)
     (tmp_path / "parts" / "urdf").mkdir(parents=True)
     (tmp_path / "parts" / "urdf" / "part.xacro").write_text(PART)
     pkg = tmp_path / "pkg"
@@ -241,6 +242,7 @@ BRINGUP_LAUNCH = """<launch>
 def test_a_sibling_folder_model_prints_no_absolute_path(tmp_path, monkeypatch):
     desc = tmp_path / "ws" / "src" / "my_description"
     (desc / "urdf").mkdir(parents=True)
+    (tmp_path / "ws" / ".git").mkdir()  # one repository holds both packages (a config may name its sibling)
     (desc / "package.xml").write_text("<package format='3'><name>my_description</name></package>")
     (desc / "urdf" / "robot.urdf.xacro").write_text(
         "<robot name='r' xmlns:xacro='http://www.ros.org/wiki/xacro'><link name='base_link'/>"

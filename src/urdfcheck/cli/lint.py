@@ -22,6 +22,7 @@ def request_from_flags(ns) -> LintRequest:
         select=flat(ns.select) or None, ignore=flat(ns.ignore), fail_on=ns.fail_on,
         trusted=True if ns.trusted else None, allow_env=tuple(ns.allow_env), timeout=ns.timeout,
         max_elements=ns.max_elements, config=ns.config, use_config=not ns.no_config,
+        trust_config=getattr(ns, "trust_config", None), max_files=getattr(ns, "max_files", None),
         root=getattr(ns, "root", None), baseline=None if ns.write_baseline else ns.baseline,
         budget=getattr(ns, "budget", None), target=getattr(ns, "target", None),
         bags=getattr(ns, "bags", None) or None, joint_states=getattr(ns, "joint_states", None),

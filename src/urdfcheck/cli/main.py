@@ -75,6 +75,11 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
                       metavar="FORMAT=FILE", help="also write another format to a file (repeatable)")
     lint.add_argument("--color", choices=["auto", "always", "never"], default="auto")
     lint.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
+    lint.add_argument("--trust-config", action="store_true", default=None,
+                      help="the --config FILE is yours: honour what lowers the guard there (trusted, allow_env, "
+                           "higher limits, paths outside the checkout); a config found in the checkout never is")
+    lint.add_argument("--max-files", type=int, default=None, metavar="N",
+                      help="files the walk of one package looks at (default 20000); a walk cut short is X019")
     lint.add_argument("--no-config", action="store_true", help="ignore config files")
     lint.add_argument("--target", choices=["noetic", "humble", "jazzy", "kilted", "rolling"], default=None,
                       help="ROS distribution whose urdfdom must read the models (URDF versions, U007); default: "

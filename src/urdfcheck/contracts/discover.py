@@ -29,6 +29,7 @@ LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".lau
 MAX_FILES = 20_000
 HEAD_BYTES = 4 * 1024 * 1024
 
+_COMMENT = re.compile(r"<!--.*?(?:-->|\Z)", re.S)
 _INCLUDE = re.compile(r"""<\s*xacro:include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
 _ROOT = re.compile(r"<\s*([A-Za-z_][\w:.-]*)")
 _DEFINITION_TAGS = {"macro", "property", "arg", "include"}
@@ -41,9 +42,15 @@ class Discovered(NamedTuple):
     params: tuple[str, ...]
     launch: tuple[str, ...]
     libraries: tuple[str, ...] = ()  # xacro files skipped as included or macro-only
+    truncated: bool = False  # the walk stopped at max_files: what lies beyond was not looked at
+    # robots by their root whose text suggests no link (fragments, SRDF-like): expanded, a library only when the
+    # expansion has no link (pipeline.robots); never in `models`, never a silent skip
+    probes: tuple[str, ...] = ()
+    # libraries because another file includes them, that may hold links: the run checks that a model read them
+    included: tuple[str, ...] = ()
 
 
-def _walk(root: str, max_files: int):
+def _walk(root: str, max_files: int, cut: list | None = None):
     from urdfcheck.core.walk import files, folders
 
     n = 0
@@ -51,6 +58,8 @@ def _walk(root: str, max_files: int):
         for f in files(entries):
             n += 1
             if n > max_files:
+                if cut is not None:
+                    cut.append(dirpath)
                 return
             yield dirpath, f
 
@@ -88,8 +97,9 @@ def _root_tag(text: str) -> str | None:
         return m.group(1)
 
 
-def _is_library(text: str) -> bool:
-    """Only definitions at the top level (macros, properties, args, includes): expands to an empty robot."""
+def _is_library(text: str, includes: bool = False) -> bool:
+    """Only definitions at the top level (macros, properties, args; with `includes`, includes too): without
+    includes it expands to an empty robot, certainly; with them, the expansion tells (a probe)."""
     try:
         parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False,
                                  remove_comments=True, remove_pis=True, recover=False)
@@ -100,9 +110,9 @@ def _is_library(text: str) -> bool:
     if not kids:
         return False
     defs = _definitions(kids, 0)
-    # macros or properties only (an `xacro:if` holding only definitions counts): a library. A file holding
-    # only includes and args may include a robot body; it stays a model
-    return defs is not None and bool(defs & {"macro", "property"})
+    # macros or properties only (an `xacro:if` holding only definitions counts): a library, certainly (its
+    # expansion is an empty robot). An include may bring a robot body: such a file is expanded to tell
+    return defs is not None and bool(defs & {"macro", "property"}) and (includes or "include" not in defs)
 
 
 def _definitions(kids, depth: int) -> set[str] | None:
@@ -173,7 +183,8 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
     root = os.path.abspath(str(package_dir))
     urdfs, xacros, params, launches = [], [], [], []
     parts_of: dict[str, list[str]] = {}  # dirpath -> its folders below root (relpath per file was slow)
-    for dirpath, f in _walk(root, max_files):
+    cut: list = []
+    for dirpath, f in _walk(root, max_files, cut):
         path = os.path.join(dirpath, f)
         parts = parts_of.get(dirpath)
         if parts is None:
@@ -201,21 +212,26 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
     texts = {p: _read_head(p, trusted, real_dirs) for p in xacros}
     included: set[str] = set()
     for p, t in texts.items():
-        for m in _INCLUDE.finditer(t):
+        for m in _INCLUDE.finditer(_COMMENT.sub("", t)):  # a commented-out include includes nothing
             included |= _included_files(m.group(2), p, xacros) - {p}
-    libs = []
+    libs, probes, maybe = [], [], []
     for p in urdfs:  # a .urdf without any <link> is a fragment (materials, properties) for others to include
         (models if re.search(r"<\s*link\b", _read_head(p, trusted, real_dirs)) else libs).append(p)
     for p in xacros:
+        tag = _root_tag(texts[p])
+        robot = tag is not None and tag.split(":")[-1] == "robot"
         if p in included:
             libs.append(p)
+            if robot and not _is_library(texts[p]):
+                maybe.append(p)
             continue
-        tag = _root_tag(texts[p])
-        if tag is None or tag.split(":")[-1] != "robot":
+        if not robot or _is_library(texts[p]):
             libs.append(p)
             continue
-        if _is_library(texts[p]) or _is_srdf(texts[p]) or _no_links(texts[p]):
-            libs.append(p)
+        if _is_srdf(texts[p]) or _no_links(texts[p]) or _is_library(texts[p], includes=True):
+            libs.append(p)  # by its text; the expansion decides (pipeline.robots)
+            probes.append(p)
             continue
         models.append(p)
-    return Discovered(root, tuple(sorted(models)), tuple(sorted(params)), tuple(sorted(launches)), tuple(sorted(libs)))
+    return Discovered(root, tuple(sorted(models)), tuple(sorted(params)), tuple(sorted(launches)), tuple(sorted(libs)),
+                      bool(cut), tuple(sorted(probes)), tuple(sorted(maybe)))

@@ -71,6 +71,7 @@ def parse_yaml(text, file: str) -> YamlDoc:
 
     return parse(text, file)
 MAX_ELEMENTS = 100_000
+MAX_VALUE = 64 * 1024  # characters of one substituted value: `<let>`s doubling each other stop here (issue 19)
 
 
 # --- substitutions -----------------------------------------------------------------------------------
@@ -114,6 +115,8 @@ class _Subst:
             if rep is None:
                 ok = False
                 rep = "\x00" + kind + "\x00"  # mark, so the loop ends; restored below
+            if len(text) - (m.end() - m.start()) + len(rep) > MAX_VALUE:
+                return None, False  # unknown, not built
             text = text[: m.start()] + rep + text[m.end():]
         if "\x00" in text:
             text = re.sub(r"\x00([\w-]+)\x00", r"$(\1 ?)", text)
@@ -738,6 +741,13 @@ def parse_launch(data: bytes | str, path: str, *, args: Mapping[str, str] | None
     raw = data.encode("utf-8") if isinstance(data, str) else data
     if len(raw) > MAX_BYTES:
         raise ConsumerError(f"launch file is larger than {MAX_BYTES} bytes; refused", Location(path))
+    try:
+        return _parse(raw, path, args, packages)
+    except (RecursionError, MemoryError):  # any reader: a located error, never a traceback (issue 19)
+        raise ConsumerError("launch file nested too deeply or too large to read; refused", Location(path)) from None
+
+
+def _parse(raw: bytes, path: str, args, packages) -> LaunchInfo:
     fmt = launch_format(path)
     if fmt == "yaml":
         return _YamlReader(parse_yaml(raw, path), args, packages).run()

@@ -35,6 +35,9 @@ from urdfcheck.core.findings import Location
 _MAX_DEPTH = 40
 _MAX_STEPS = 50_000
 _MAX_LEN = 64 * 1024
+# strings, lists and mappings the evaluation builds, in items, for the whole file: `[*a, *a]` doubling over
+# names costs as much as a string that doubles (issue 19: a 25 kB file took 3.9 GB)
+_MAX_ITEMS = 1_000_000
 
 
 _SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAMLLaunchDescriptionSource",
@@ -138,6 +141,7 @@ class PyLaunch:
         self.declared_nodes: dict[str, tuple[ast.Call, Location]] = {}
         self.consulted: set[str] = set()
         self.steps = 0
+        self.items = 0  # items of the strings, lists and mappings built so far (_MAX_ITEMS)
         self._values: dict[str, Any] = {}
         self._configs: dict[str, str] = {}
         self._busy: set[str] = set()
@@ -241,8 +245,13 @@ class PyLaunch:
         if node is None or depth > _MAX_DEPTH or self.steps > _MAX_STEPS:
             return None
         out = self._ev(node, depth + 1)
-        if isinstance(out, str) and len(out) > _MAX_LEN:
-            return None
+        if isinstance(out, (str, list, dict)):
+            if len(out) > _MAX_LEN:
+                return None
+            self.items += len(out)
+            if self.items > _MAX_ITEMS:
+                self.steps = _MAX_STEPS + 1  # the budget is spent: nothing more is evaluated
+                return None
         return out
 
     def _ev(self, node: ast.AST, d: int) -> Any:
@@ -273,6 +282,8 @@ class PyLaunch:
                     out.extend(v if isinstance(v, list) else [None])
                 else:
                     out.append(self.ev(e, d))
+                if len(out) > _MAX_LEN:  # before it grows further
+                    return None
             return out
         if isinstance(node, ast.Dict):
             out = {}
@@ -281,6 +292,8 @@ class PyLaunch:
                     more = self.ev(v, d)
                     if isinstance(more, dict):
                         out.update(more)
+                        if len(out) > _MAX_LEN:
+                            return None
                     continue
                 key = self.ev(k, d)
                 if isinstance(key, str):
@@ -295,10 +308,11 @@ class PyLaunch:
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
             a, b = self.ev(node.left, d), self.ev(node.right, d)
             if isinstance(a, list) and isinstance(b, list):
-                return a + b
+                return a + b if len(a) + len(b) <= _MAX_LEN else None
             if isinstance(a, (int, float)) and isinstance(b, (int, float)) and not isinstance(a, bool):
                 return a + b
-            return text_of(a) + text_of(b)
+            ta, tb = text_of(a), text_of(b)
+            return ta + tb if len(ta) + len(tb) <= _MAX_LEN else None
         if isinstance(node, ast.Subscript):
             if _dotted(node.value).endswith("launch_configurations"):
                 key = self.ev(node.slice, d)

@@ -81,7 +81,49 @@ def run_budget(seconds: float | None = None, memory: int | None = None):
         yield _current
         return
     _current = RunBudget(seconds, memory)
+    restore = _limit_memory(_current.memory)
     try:
         yield _current
     finally:
         _current = None
+        restore()
+
+
+def _limit_memory(memory: int):
+    """The memory budget as a limit of this process (RLIMIT_DATA: heap and anonymous mappings), not only a
+    check between models: a reader that grows without bound gets a MemoryError (an X017 or a located error)
+    instead of taking the machine. Returns what restores the previous limit. Never raises the limit."""
+    try:
+        import resource
+    except ImportError:  # pragma: no cover - not POSIX
+        return lambda: None
+    try:
+        soft, hard = resource.getrlimit(resource.RLIMIT_DATA)
+        # what the process uses already, plus the budget: the budget is for the run, not the interpreter
+        want = memory + _data_now()
+        if hard != resource.RLIM_INFINITY:
+            want = min(want, hard)
+        if soft != resource.RLIM_INFINITY and soft <= want:
+            return lambda: None
+        resource.setrlimit(resource.RLIMIT_DATA, (want, hard))
+    except (ValueError, OSError):
+        return lambda: None
+
+    def restore():
+        try:
+            resource.setrlimit(resource.RLIMIT_DATA, (soft, hard))
+        except (ValueError, OSError):
+            pass
+    return restore
+
+
+def _data_now() -> int:
+    """This process's data segment size now (VmData), 0 when unknown."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("VmData:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return 0

@@ -101,19 +101,37 @@ def write(path: str, findings: list[Finding]) -> None:
         f.write(text)
 
 
+MAX_BYTES = 64 * 1024 * 1024
+
+
 def load(path: str) -> Counter:
-    """Counter of keys in a baseline file. Raises OSError or ValueError."""
-    with open(path, encoding="utf-8") as f:
-        data = json.load(f)
+    """Counter of keys in a baseline file. Raises OSError or ValueError, whose messages never quote the file:
+    it may be a link a pull request pointed at a secret (refused when it leaves the working directory), a FIFO
+    (refused, never waited on), too large, or nested to exhaust the parser."""
+    from urdfcheck.core.safeio import read_file
+    from urdfcheck.load.packages import leaves_cwd
+
+    if leaves_cwd(path):
+        raise ValueError("it is a link that leads out of the working directory; refused")
+    raw = read_file(path, MAX_BYTES)
+    if len(raw) > MAX_BYTES:
+        raise ValueError(f"larger than {MAX_BYTES // 2**20} MiB; refused")
+    try:
+        data = json.loads(raw.decode("utf-8"))
+    except RecursionError:
+        raise ValueError("nested too deeply; not a urdfcheck baseline") from None
+    except (UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise ValueError(f"not JSON (line {getattr(e, 'lineno', '?')}); not a urdfcheck baseline") from None
     if not isinstance(data, dict) or data.get("version") != VERSION or not isinstance(data.get("findings"), list):
         raise ValueError(f"not a urdfcheck baseline (version {VERSION})")
     budget: Counter = Counter()
-    for e in data["findings"]:
+    for i, e in enumerate(data["findings"]):
         try:
             k = (str(e["code"]), str(e["file"]), str(e["message"]), str(e.get("context", "")))
             n = int(e.get("count", 1))
-        except (KeyError, TypeError, ValueError, AttributeError):
-            raise ValueError(f"malformed baseline entry: {e!r}") from None
+        except (KeyError, TypeError, ValueError, AttributeError, RecursionError):
+            raise ValueError(f"malformed baseline entry {i + 1} (entries are code, file, message, context, "
+                             "count)") from None
         budget[k] += max(n, 0)
     return budget
 

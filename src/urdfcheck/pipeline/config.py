@@ -2,7 +2,8 @@
 
 Found from a start folder upward (first hit wins, stopping at the filesystem root); in each folder
 `urdfcheck.yaml`, then `.urdfcheck.yaml`, then `pyproject.toml` if it has a `[tool.urdfcheck]` table.
-Validated against `schemas/config.schema.json`; paths are relative to the config file's folder.
+Validated against `schemas/config.schema.json`; paths are relative to the config file's folder and must stay in its
+repository or the working directory unless the config is trusted (`--config FILE --trust-config`; pipeline/trust.py).
 A bad config raises `ConfigError(message, location)` naming the offending key (file:line for YAML).
 
 ```yaml
@@ -41,6 +42,8 @@ rules: {C010: {tolerance: 0.002}, F002: {expected: [base_link, base_footprint]}}
 trusted: false                            # stock xacro evaluation (only for your own files)
 allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read
 max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
+# trusted, allow_env and max_elements above the default count only in a config named with
+# --config FILE --trust-config; elsewhere they are an X018 finding and ignored (pipeline/trust.py)
 target: humble                            # ROS distribution whose urdfdom must read the model (--target)
 profiles: [mujoco, gazebo]                # consumer profiles (--profile): what each consumer rejects or changes
 cache: false                              # never store these runs in the lint cache (where it is: not here)
@@ -128,7 +131,7 @@ class Config(FrozenRecord):
     # root: its folder; relative paths start here
     _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore',
                'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target',
-               'profiles')
+               'profiles', 'notes')
 
     def __init__(self, path: str,
                  root: str,
@@ -147,7 +150,8 @@ class Config(FrozenRecord):
                  max_elements: int | None = None,
                  locs: Mapping[tuple, Location] | None = None,
                  target: str | None = None,
-                 profiles: tuple[str, ...] = ()):
+                 profiles: tuple[str, ...] = (),
+                 notes: tuple = ()):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
         d["root"] = root
@@ -168,6 +172,7 @@ class Config(FrozenRecord):
         d["locs"] = _ro({}) if locs is None else locs
         d["profiles"] = profiles  # issue 25: rules/checks/profiles/common.PROFILES
         d["target"] = target  # issue 14: noetic | humble | jazzy | kilted | rolling (model.grammar.TARGETS)
+        d["notes"] = notes  # findings about the config itself (pipeline.trust: keys it may not set)
 
     def loc(self, *path) -> Location:
         """Where a key was written (the file when unknown)."""
@@ -261,6 +266,8 @@ def _read_pyproject(path: str):
         data = tomllib.loads(text)
     except OSError as e:
         raise ConfigError(f"cannot read config: {e.strerror}", Location(path)) from None
+    except RecursionError:  # tomllib recurses per nesting level: a hostile file is an error, not a crash
+        raise ConfigError("invalid TOML: nested too deeply", Location(path)) from None
     except (UnicodeDecodeError, tomllib.TOMLDecodeError) as e:
         m = re.search(r"line (\d+)", str(e))
         raise ConfigError(f"invalid TOML: {e}", Location(path, int(m.group(1)) if m else None)) from None
@@ -366,7 +373,11 @@ def _str_args(d) -> dict[str, str]:
     return out
 
 
-def load_config(path: str | os.PathLike) -> Config:
+def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
+    """`trusted`: the person running the tool named this config (--config FILE --trust-config); otherwise
+    what lowers the guard is ignored, with a finding, and its paths stay in the checkout (pipeline.trust)."""
+    from urdfcheck.pipeline import trust
+
     path = os.path.abspath(str(path))
     if not os.path.isfile(path):
         raise ConfigError(f"no such config file: {path}", Location(path))
@@ -376,12 +387,19 @@ def load_config(path: str | os.PathLike) -> Config:
         data, key_loc, val_loc = _read_yaml(path)
     if not isinstance(data, dict):
         raise ConfigError("the config must be a mapping of keys (models, frames, select, ...)", val_loc())
-    _validate(data, path, key_loc, val_loc)
+    try:
+        _validate(data, path, key_loc, val_loc)
+    except RecursionError:
+        raise ConfigError("the config is nested too deeply", Location(path)) from None
+    notes = tuple(trust.screen(data, path, key_loc, trusted))
     root = os.path.dirname(path)
     locs: dict[tuple, Location] = {}
 
     def resolve(p: str, *keypath, must_exist=True, kind="file") -> str:
-        full = os.path.normpath(os.path.join(root, os.path.expanduser(p)))
+        full = os.path.normpath(os.path.join(root, os.path.expanduser(p) if trusted else p))
+        why = trust.confine(full, root, trusted)
+        if why is not None:
+            raise ConfigError(f"'{'.'.join(str(k) for k in keypath)}': {p}: {why}", val_loc(*keypath))
         if must_exist and not os.path.exists(full):
             raise ConfigError(f"'{'.'.join(str(k) for k in keypath)}': no such {kind}: {p}", val_loc(*keypath))
         locs[tuple(keypath)] = val_loc(*keypath)
@@ -449,6 +467,7 @@ def load_config(path: str | os.PathLike) -> Config:
         max_elements=int(data["max_elements"]) if data.get("max_elements") is not None else None, locs=_ro(locs),
         target=str(data["target"]) if data.get("target") else None,
         profiles=tuple(dict.fromkeys(str(p) for p in data.get("profiles") or ())),
+        notes=notes,
     )
 
 

@@ -62,6 +62,8 @@ class Target(Record):
     _fields = ('path', 'args', 'variant', 'contracts', 'packages', 'settings', 'deployment')
     bags: tuple = ()  # recordings a config declares for this model (urdfcheck.bag)
     joint_states: str | None = None  # their JointState topic (None: /joint_states, else the only one)
+    probe = False    # may be a library: the expansion decides (pipeline.robots); the run sets `library`
+    library = False  # a probe whose expansion has no link: not a robot, not checked as one
 
     def __init__(self, path: Path,
                  args: dict | None = None,
@@ -118,6 +120,9 @@ class TargetList(list):
         super().__init__(targets)
         self.infos = list(infos)
         self.not_understood = []  # deployments whose model was not understood (no target; `--list`)
+        self.findings = []  # about the plan itself: a config's ignored keys, a file walk cut short (issue 19)
+        self.libraries = 0  # xacro libraries seen: "no robot found: N xacro libraries"
+        self.included = []  # libraries by inclusion that may hold links (pipeline.robots.missed)
 
 
 class _Named(Record):
@@ -144,6 +149,9 @@ class Planner:
         self._closures: dict[tuple, set] = {}  # (model, packages) -> the files it includes literally
         self.infos: list[str] = []
         self.not_understood: list = []  # deployments whose model was not understood (`--list` shows them)
+        self.truncated: list = []  # X019 findings: a file walk that stopped at its limit
+        self.libraries: set = set()  # xacro libraries seen (a run that checked no robot counts them)
+        self.included: list = []  # libraries by inclusion that may hold links: a model must read them (robots)
 
     # --- configs ----------------------------------------------------------------------------------
     def config(self, path: str | None):
@@ -153,7 +161,8 @@ class Planner:
             from urdfcheck.pipeline import config as cfgmod
 
             try:
-                self._configs[path] = cfgmod.load_config(path)
+                named = self.request.config is not None and os.path.abspath(self.request.config) == path
+                self._configs[path] = cfgmod.load_config(path, trusted=bool(named and self.request.trust_config))
             except cfgmod.ConfigError as e:
                 where = e.location or cfgmod.Location(path)
                 at = shown(where.file) + "".join(f":{n}" for n in (where.line, where.column) if n)
@@ -175,6 +184,24 @@ class Planner:
 
         return self.config(find_config(path))
 
+    # --- walks: one that stops at its limit says so (X019), never a silent subset -------------------
+    def walk(self, folder: str) -> _Walk:
+        w = _walk(folder)
+        if w.truncated:
+            self.truncated.append(_cut_short(shown(folder), f"{MAX_DIRS} folders"))
+        return w
+
+    def discover(self, folder, settings: Settings):
+        from urdfcheck.contracts.discover import MAX_FILES, discover
+
+        limit = self.request.max_files or MAX_FILES
+        found = discover(folder, trusted=settings.trusted, max_files=limit)
+        self.libraries.update(os.path.realpath(p) for p in found.libraries)
+        self.included.extend(getattr(found, "included", ()))
+        if getattr(found, "truncated", False):
+            self.truncated.append(_cut_short(shown(folder), f"{limit} files"))
+        return found
+
     # --- planning ---------------------------------------------------------------------------------
     def plan(self) -> TargetList:
         req = self.request
@@ -182,14 +209,25 @@ class Planner:
         if not paths:
             cfg = self.nearest(os.path.abspath(self.here))
             if cfg is not None and cfg.models:
-                return TargetList(_unique(self.declared(cfg, None)), self.infos)
+                got = TargetList(_unique(self.declared(cfg, None)), self.infos)
+                got.findings, got.libraries = self.plan_findings(), len(self.libraries)
+                got.included = list(dict.fromkeys(self.included))
+                return got
             paths = [self.here]  # the package here (a workspace config above it applies to it, not all of it)
         out: list[Target] = []
         for raw in paths:
             out.extend(self.path_targets(raw))
         got = TargetList(_unique(out), dict.fromkeys(self.infos))
         got.not_understood = list(self.not_understood)
+        got.findings, got.libraries = self.plan_findings(), len(self.libraries)
+        got.included = list(dict.fromkeys(self.included))
         return got
+
+    def plan_findings(self) -> list:
+        """The configs' own findings (keys a config found in the checkout may not set), then the walks cut
+        short: said in every report, never silently."""
+        out = [f for c in self._configs.values() if c is not None for f in getattr(c, "notes", ())]
+        return out + [f for f in dict.fromkeys(self.truncated)]
 
     def path_targets(self, raw: str) -> list[Target]:
         cfg = self.nearest(raw)
@@ -215,7 +253,7 @@ class Planner:
                                  "launch file that starts robot_state_publisher)")
             return self.file_targets(Path(raw), settings)
         # a folder: nested configs (when not given one explicitly) take their sub-trees
-        walk = _walk(raw)
+        walk = self.walk(raw)
         nested = [] if (self.request.config is not None or not self.request.use_config) else \
             [c for c in walk.configs if cfg is None or os.path.dirname(c) != cfg.root]
         nested_roots = [os.path.dirname(c) for c in nested]
@@ -231,7 +269,7 @@ class Planner:
             if sub.models:
                 out.extend(t for t in self.declared(sub, None) if not _under_any(str(t.path), deeper))
             else:
-                out.extend(self.scope(sub, sub.root, _walk(sub.root), exclude=deeper, named=named))
+                out.extend(self.scope(sub, sub.root, self.walk(sub.root), exclude=deeper, named=named))
         return out
 
     def scope(self, cfg, folder: str, walk, exclude: list[str], named: _Named | None = None) -> list[Target]:
@@ -261,7 +299,7 @@ class Planner:
                 out[-1].bags = m.bags
         for raw in rest:
             out.extend(self.file_targets(Path(raw), settings) if not os.path.isdir(raw)
-                       else self.discovered(raw, _walk(raw), settings))
+                       else self.discovered(raw, self.walk(raw), settings))
         return out
 
     def discovered(self, folder: str, walk, settings: Settings, exclude=(), named: _Named | None = None
@@ -270,7 +308,6 @@ class Planner:
         tree, `named`), then the entry models of each package below `folder` that no deployment of the named
         tree loads, each package discovered on its own; `folder` itself when it is inside a package or holds
         none. A package of xacro libraries only gives an info line."""
-        from urdfcheck.contracts.discover import discover
         from urdfcheck.load.packages import enclosing_package
 
         if named is None:
@@ -283,8 +320,12 @@ class Planner:
         roots = [folder] if inside or not walk.packages else \
             [p for p in walk.packages if not _under_any(p, exclude)]  # a package with its own config: its own
         for root in roots:
-            found = discover(root, trusted=settings.trusted)
-            if not found.models and found.libraries and not any(_below(t.path, root) for t in out):
+            found = self.discover(root, settings)
+            for entry in found.probes:  # no link by its text: the expansion decides (pipeline.robots)
+                if os.path.realpath(entry) not in named.covered:
+                    out.append(self.probe(Path(entry), settings, named.root))
+            if not found.models and not found.probes and found.libraries \
+                    and not any(_below(t.path, root) for t in out):
                 self.infos.append(f"{shown(root)}: xacro libraries only (macros, properties): "
                                   "linted through the robots that include them")
             for entry in found.models:
@@ -292,7 +333,7 @@ class Planner:
                     out.extend(self.variants(Path(entry), settings, named.root))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
-            for entry in discover(folder, trusted=settings.trusted).models:
+            for entry in self.discover(folder, settings).models:
                 if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
                     out.extend(self.variants(Path(entry), settings, named.root))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
@@ -346,21 +387,30 @@ class Planner:
         file is below it, else its package) that include it, as they are planned from there (deployments
         too): what the per-file pre-commit hook needs. A library no robot includes is an info line."""
         if path.name.endswith(".xacro"):
-            from urdfcheck.contracts.discover import discover
             from urdfcheck.load.packages import enclosing_package
 
             folder = Path(os.path.abspath(path)).parent
             pkg = enclosing_package(folder)
-            found = discover(pkg or folder, trusted=settings.trusted)
+            found = self.discover(pkg or folder, settings)
             if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
-                if not robots:
+                maybe = {os.path.realpath(x) for x in (*found.probes, *found.included)}
+                if not robots and os.path.realpath(path) in maybe:  # named: never skipped when it may be a robot
+                    return [self.probe(path, settings)]
+                if not robots:  # macros and properties only: certainly no link
                     self.infos.append(f"{shown(str(path))}: a xacro library that no robot of "
                                       "its workspace includes: not linted alone")
+                self.included.append(str(path))  # the run checks that one of them did read it
                 return robots
             if _robot_file(path):  # a robot named by itself (the per-file hook): its variants too
                 return self.variants(path, settings)
         return [self.target(path, {}, "", None, settings)]
+
+    def probe(self, path: Path, settings: Settings, root: str | None = None) -> Target:
+        """A file that may be a library: expanded with its defaults; a library when the expansion has no link."""
+        t = self.target(path, {}, "", None, settings, _packages(root, str(path), settings) if root else None)
+        t.probe = True
+        return t
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
         """The targets of the library's workspace whose model includes it (literal includes, read as text)."""
@@ -426,6 +476,14 @@ def _robot_file(path) -> bool:
     return tag is not None and tag.split(":")[-1] == "robot"
 
 
+def _cut_short(folder: str, limit: str):
+    from urdfcheck.core.findings import Finding, Location, Severity
+
+    return Finding("X019", Severity.ERROR, f"the file walk stopped after {limit}: what lies beyond was not looked "
+                   "at (lint the packages one by one, or remove generated files from the checkout)",
+                   Location(folder), name="walk-truncated")
+
+
 def _is_srdf_name(path: str) -> bool:
     return path.lower().endswith((".srdf", ".srdf.xacro"))
 
@@ -473,6 +531,7 @@ class _Walk(Record):
     # configs: config files strictly below the walked folder; packages: folders holding a package.xml
     # (outermost only); loose: a .urdf/.xacro file outside every package
     _fields = ('configs', 'packages', 'loose')
+    truncated = False  # stopped at MAX_DIRS
 
     def __init__(self, configs: list[str], packages: list[str], loose: bool):
         self.configs, self.packages, self.loose = configs, packages, loose
@@ -484,8 +543,12 @@ def _walk(folder: str) -> _Walk:
     from urdfcheck.pipeline.config import PYPROJECT, _pyproject_has_table
 
     top = os.path.abspath(folder)
-    configs, packages, loose = [], [], False
-    for here, entries in walk.folders(top, max_dirs=MAX_DIRS):
+    configs, packages, loose, seen, truncated = [], [], False, 0, False
+    for here, entries in walk.folders(top, max_dirs=MAX_DIRS + 1):
+        seen += 1
+        if seen > MAX_DIRS:  # a tree larger than the walk looks at: said (X019), never a silent partial plan
+            truncated = True
+            break
         files = walk.files(entries)
         if here != top:
             name = next((n for n in CONFIG_NAMES if n in files), None)
@@ -499,4 +562,6 @@ def _walk(folder: str) -> _Walk:
             in_pkg = True
         if not in_pkg and not loose:
             loose = any(f.endswith((".urdf", ".xacro")) for f in files)
-    return _Walk(configs, packages, loose)
+    w = _Walk(configs, packages, loose)
+    w.truncated = truncated
+    return w

@@ -50,6 +50,8 @@ class LintRequest(Record):
         "max_elements": None,
         "config": None,          # an explicit config file (else found upward from each path)
         "use_config": True,      # False: ignore config files (--no-config)
+        "trust_config": False,   # the explicit `config` may lower the guard (--trust-config; pipeline.trust)
+        "max_files": None,       # files one package walk looks at (None: contracts.discover.MAX_FILES)
         "root": "",              # reports show paths relative to this folder (default: working directory)
         "baseline": None,        # only findings not in this baseline file
         "budget": None,          # seconds for the whole run (issue 11: run-wide limits); None = load.budget's default
@@ -151,7 +153,7 @@ def make_request(paths=(), **options) -> LintRequest:
         kw["bags"] = tuple(os.fsdecode(b) for b in ([options["bags"]] if isinstance(options["bags"], str)
                                                      else options["bags"]))
     for key in ("trusted", "timeout", "max_elements", "config", "use_config", "root", "baseline", "budget",
-                "target", "joint_states"):
+                "target", "joint_states", "trust_config", "max_files"):
         if options.get(key) is not None:
             kw[key] = options[key]
     if options.get("profiles") is not None:
@@ -170,6 +172,8 @@ def make_request(paths=(), **options) -> LintRequest:
         raise UsageError(f"no such file or folder: {', '.join(missing)}")
     if kw.get("config") is not None and not os.path.isfile(kw["config"]):
         raise UsageError(f"no such config file: {kw['config']}")
+    if kw.get("trust_config") and kw.get("config") is None:
+        raise UsageError("--trust-config needs --config FILE (a config found in the checkout is never trusted)")
     return LintRequest(**kw)
 
 

@@ -32,6 +32,8 @@ class Result(Record):
     _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
     infos: tuple = ()  # the planner's info lines (a package of xacro libraries only): not findings
     _finished: tuple = ((), {})  # (each target's findings the baseline kept, the run's X013 per package)
+    libraries: int = 0  # xacro libraries the plan saw (not linted alone)
+    read: set = frozenset()  # the files the expansions read
 
     def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
                  by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
@@ -56,12 +58,31 @@ class Result(Record):
         macro with a known problem is new."""
         return [f for fs in self.by_target for f in fs]
 
+    def unchecked(self) -> list[Target]:
+        """The targets whose model did not load: not checked, whatever the selection hid (issue 19)."""
+        return [t for t in self.targets if (str(t.path), t.variant) in self.models
+                and self.models[(str(t.path), t.variant)] is None and not t.library]
+
+    def not_passed(self) -> str | None:
+        """Why a run without findings still is no pass (a report says it instead of "All checks passed"):
+        models that did not load, or no robot at all."""
+        bad = self.unchecked()
+        if bad:
+            n = len({str(t.path) for t in bad})
+            return f"{n} model{'s' if n != 1 else ''} not checked (did not load)"
+        if not [t for t in self.targets if not t.library]:
+            n = self.libraries
+            return "no robot found" + (f": {n} xacro librar{'y' if n == 1 else 'ies'}" if n else "")
+        return None
+
     def worst(self) -> Severity | None:
         return max((f.severity for f in self.findings), default=None)
 
     def failed(self, fail_on: Severity | None = None) -> bool:
         """Any finding at or above `fail_on`; by default the level of the config each finding's model was
         planned under (a workspace run: each package's own `fail_on`; a flag sets them all)."""
+        if self.unchecked():  # a model that did not load was not checked: never a pass
+            return True
         if fail_on is not None:
             return any(f.severity >= fail_on for f in self.findings)
         levels: dict[tuple, Severity] = {}
@@ -76,26 +97,36 @@ class Result(Record):
 def run(request: LintRequest, *, retain: list | None = None, targets: list[Target] | None = None) -> Result:
     """Plan (unless given the plan of this request: the pytest plugin makes its items from it), lint, finish.
     Paths are shown relative to the request's root from the start (`core.paths.showing`): nothing is
-    rewritten afterwards. Raises UsageError when there is nothing to lint or an input is unusable."""
+    rewritten afterwards. The run's budget (load.budget) covers the planning too: launch files are read there.
+    Raises UsageError when there is nothing to lint or an input is unusable."""
     from urdfcheck.core.paths import showing
+    from urdfcheck.load.budget import run_budget
 
-    with showing(request.root):
-        return _run(request, retain, targets)
+    with showing(request.root), run_budget(request.budget):
+        try:
+            return _run(request, retain, targets)
+        except MemoryError:
+            raise UsageError("the run's memory budget was used up while planning (a launch or config file "
+                             "that grows without bound?); nothing was checked") from None
 
 
 def _run(request: LintRequest, retain, targets) -> Result:
     targets = plan(request) if targets is None else targets
     infos = list(getattr(targets, "infos", ()))
+    noted = [f._replace(location=f.location.shown())
+             for f in getattr(targets, "findings", ())]  # about the plan: a config's ignored keys, a walk cut short
     if not targets:
-        if infos:  # xacro libraries only: nothing to lint alone, not an unusable invocation
-            result = Result([], [], fail_on=request.fail_on or Severity.WARNING, root=request.root)
-            result.infos = infos
+        if infos or noted:  # xacro libraries only: nothing to lint alone, not an unusable invocation
+            result = Result(noted, [], fail_on=request.fail_on or Severity.WARNING, root=request.root)
+            result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
             return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     if request.bags:
         _attach_bags(targets, request.bags, request.joint_states)
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
-    result.infos = infos
+    result = _unread_libraries(result, getattr(targets, "included", ()), retain, request)
+    _drop_libraries(result)
+    result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
     result.root = request.root
     kept = result.by_target
     if request.baseline:
@@ -113,6 +144,8 @@ def _run(request: LintRequest, retain, targets) -> Result:
         result.fail_on = request.fail_on
     elif targets[0].settings is not None:
         result.fail_on = targets[0].settings.fail_on
+    if noted:  # after the baseline: what lowers the guard is never accepted once and for all
+        result.findings = sorted(result.findings + noted, key=Finding.sort_key)
     return result
 
 
@@ -136,6 +169,43 @@ def _not_understood(result: Result, deployments, request: LintRequest) -> None:
     extra = findings(deployments, request.settings(None), shown)
     if extra:
         result.findings = sorted([*result.findings, *extra], key=Finding.sort_key)
+
+
+def _unread_libraries(result: Result, included, retain, request: LintRequest) -> Result:
+    """Files taken for included libraries that no model of the run read (the include was commented out,
+    conditional, or in a file that is no robot): expanded now as probes, so that a robot is never hidden by
+    another file claiming to include it."""
+    from urdfcheck.pipeline.robots import missed
+
+    unread = missed(included, result.read)
+    if not unread:
+        return result
+    by_path = {os.path.realpath(t.path): t for t in result.targets}
+    extra = []
+    for path in unread:
+        like = next(iter(by_path.values()), None)
+        t = Target(Path(path), {}, "", None, dict(like.packages) if like is not None else {},
+                   like.settings if like is not None else None)
+        t.probe = True
+        extra.append(t)
+    more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    merged = Result(_dedupe(result.raw() + more.raw()), result.targets + more.targets,
+                    {**result.models, **more.models}, result.by_target + more.by_target)
+    merged.read = set(result.read) | set(more.read)
+    return merged
+
+
+def _drop_libraries(result: Result) -> None:
+    """Probes whose expansion had no link and said nothing are libraries: not models of the report."""
+    keep = [i for i, t in enumerate(result.targets) if not (t.library and not result.by_target[i])]
+    if len(keep) == len(result.targets):
+        return
+    gone = [t for t in result.targets if t.library]
+    result.targets = [result.targets[i] for i in keep]
+    result.by_target = [result.by_target[i] for i in keep]
+    for t in gone:
+        if t not in result.targets:
+            result.models.pop((str(t.path), t.variant), None)
 
 
 def _merge_x013(found: list[Finding], merged: dict) -> list[Finding]:
@@ -168,12 +238,13 @@ def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding
     if not any(selection.enabled(c) for c in CODES):
         return []
 
-    def opt(code, name, default):
-        return selection.options.get(code, {}).get(name, default)
+    from urdfcheck.rules.catalogue import options_for
 
-    options = BagOptions(joint_topic=t.joint_states,
-                         tolerance=opt("B005", "tolerance", 1e-3), replay_tolerance=opt("B013", "tolerance", 1e-5),
-                         static_tolerance=opt("B011", "tolerance", 1e-4))
+    def tolerance(code: str) -> float:  # declared once, in rules/CODE.yaml; the config may set it
+        return options_for((code,), selection.options)["tolerance"]
+
+    options = BagOptions(joint_topic=t.joint_states, tolerance=tolerance("B005"),
+                         replay_tolerance=tolerance("B013"), static_tolerance=tolerance("B011"))
     out = []
     for bag in t.bags:
         out.extend(check_recording(model, bag, options, progress=_bag_progress(bag)))
@@ -271,6 +342,9 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     ahead = max(1, min(4, os.cpu_count() or 1))
     pending: dict[int, loader.Pending] = {}
     yaml = _YamlUse()
+    read: set = set()  # every file an expansion read (display paths): pipeline.robots.missed
+    from urdfcheck.pipeline.robots import has_links
+
     try:
         for i in range(min(ahead, len(targets))):
             pending[i] = _begin(targets[i], kw)
@@ -281,10 +355,21 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
             progress.step(i, len(targets), t.path if not t.variant else f"{t.path} [{t.variant}]")
             exp = pending.pop(i).result()
             yaml.index = i
-            if t.settings is not None:
-                found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
-            else:
-                found, model = _check(t, exp, selection, config, yaml)
+            if exp.root is not None:  # read *and* expanded: an includer that failed checked nothing it read
+                read.update(exp.files or ())
+            if t.probe and exp.root is not None and not has_links(exp.root):  # a library (pipeline.robots)
+                t.library = True
+                sel = t.settings.selection if t.settings is not None else selection
+                models[(str(t.path), t.variant)] = None
+                by_target[i].extend(engine.finish(list(exp.findings), sel, exp.suppressions, model=exp.entry))
+                continue
+            try:
+                if t.settings is not None:
+                    found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
+                else:
+                    found, model = _check(t, exp, selection, config, yaml)
+            except MemoryError:  # the run's memory limit (load.budget): this model is not checked
+                found, model = [_over_memory(exp)], None
             if retain is not None:
                 retain.append(exp)
             models[(str(t.path), t.variant)] = model
@@ -294,7 +379,14 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
             p.cancel()
     for i, f in yaml.unused():
         by_target[i].append(f)
-    return Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
+    result = Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
+    result.read = read
+    return result
+
+
+def _over_memory(exp) -> Finding:
+    return Finding("X017", Severity.ERROR, "not checked: the run's memory budget was used up while checking this "
+                   "model", Location(exp.entry), name="lint-budget")
 
 
 def _warm_up(targets: list[Target], config) -> None:

@@ -80,12 +80,15 @@ def _summary(result, fail_on: Severity, max_rows: int = MAX_ROWS) -> list[str]:
     failing = sum(1 for f in result.findings if f.severity >= fail_on)
     n_models = len(result.targets)
     models = f"{n_models} model{'s' if n_models != 1 else ''}"
+    why_not = getattr(result, "not_passed", lambda: None)()  # no robot, or a model that did not load
     if failing:
         head = (f"❌ **{failing} finding{'s' if failing != 1 else ''} at or above {fail_on}** in {models} "
                 f"({total[Severity.ERROR]} errors, {total[Severity.WARNING]} warnings, "
                 f"{total[Severity.INFO]} info)")
-    elif result.findings:
+    elif result.findings and not why_not:
         head = f"✅ nothing at or above {fail_on} in {models} ({len(result.findings)} below it)"
+    elif why_not:
+        head = f"⚠️ nothing checked: {why_not}"
     else:
         head = f"✅ all checks passed: {models}, no findings"
     lines = ["## urdfcheck", "", head, "", "| model | variant | errors | warnings | info |",

@@ -53,12 +53,17 @@ def render(result, colour: bool = False, **_) -> str:
     # how many of them come from launch files (issue 13: zero config lints a deployed model through them)
     n_dep = len({id(d) for t in result.targets if (d := getattr(t, "deployment", None)) is not None})
     deployed = f" ({n_dep} from launch-file deployment{'s' if n_dep != 1 else ''})" if n_dep else ""
+    why_not = getattr(result, "not_passed", lambda: None)()  # no robot, or a model that did not load
     if result.findings:
         lines.append("")
         parts = [f"{counts[s]} {s}{'s' if counts[s] != 1 else ''}" for s in (Severity.ERROR, Severity.WARNING,
                                                                            Severity.INFO) if counts[s]]
         lines.append(f"Found {len(result.findings)} finding{'s' if len(result.findings) != 1 else ''} "
                      f"({', '.join(parts)}) in {n_models} model{'s' if n_models != 1 else ''}{deployed}.")
+        if why_not:
+            lines.append(f"Not a pass: {why_not}.")
+    elif why_not:
+        lines.append(f"Nothing checked: {why_not}, no findings.")
     else:
         lines.append(f"All checks passed: {n_models} model{'s' if n_models != 1 else ''}{deployed}, no findings.")
     return "\n".join(lines) + "\n"

@@ -1,0 +1,38 @@
+"""The checkout a run works in, for showing paths: never the runner's absolute path for a file of the checkout.
+
+Reports show a path relative to the working directory when it lies below it. Run from a package's sub-folder
+(`cd launch && urdfcheck lint`), the model lies beside, not below: it is shown as `../urdf/robot.urdf.xacro`,
+relative to the working directory, as long as it lies in the same checkout (the nearest folder above holding
+`.git`, else the outermost folder above holding a package.xml). Other files keep their absolute path.
+"""
+from __future__ import annotations
+
+import os
+
+_TOPS: dict[str, str | None] = {}
+
+
+def top(base: str) -> str | None:
+    """The checkout around the folder `base` (absolute), or None when it is in none above it."""
+    if base not in _TOPS:
+        found, d = None, base
+        while True:
+            if os.path.exists(os.path.join(d, ".git")):
+                found = d
+                break
+            if os.path.isfile(os.path.join(d, "package.xml")):
+                found = d  # keep climbing: the outermost package (a repository of several)
+            up = os.path.dirname(d)
+            if up == d:
+                break
+            d = up
+        _TOPS[base] = found if found != base else None
+    return _TOPS[base]
+
+
+def relative(p: str, base: str) -> str | None:
+    """`p` relative to `base` when both lie in one checkout (p above or beside base), else None."""
+    t = top(base)
+    if t is not None and (p == t or p.startswith(t.rstrip(os.sep) + os.sep)):
+        return os.path.relpath(p, base)
+    return None
