@@ -55,9 +55,24 @@ KNOWN = {
     "pipeline.baseline": "finish.baseline",
     "pipeline.collapse": "finish.collapse",
     "pipeline.run": "run",
+    # added in wave 3 by other branches, placed by what they import
+    "pipeline.trust": "request.trust",
+    "pipeline.variants": "plan.variants",
+    "pipeline.dependents": "plan.dependents",
+    "pipeline.robots": "plan.robots",
+    "pipeline.understood": "plan.understood",
+    "pipeline.unread": "plan.unread",
+    "pipeline.diff": "diff.compare",  # two loaded models compared: a stage above run, beside the reports
+    "pipeline.gitside": "diff.gitside",
+    "contracts.catalog": "consumers.catalog",
+    "contracts.uses": "consumers.uses",
+    "contracts.gazebo": "consumers.gazebo",
+    "contracts.openworld": "consumers.openworld",
+    "contracts.prefilter": "consumers.prefilter",
+    "contracts.drives": "rules.contracts.drives",  # wheel sets measured on the model, beside wheels
 }
 GONE = ("contracts", "pipeline")  # packages emptied by the move (their __init__.py is deleted)
-NEW_PACKAGES = ("request", "plan", "consumers", "consumers.launch", "finish", "rules.contracts")
+NEW_PACKAGES = ("request", "plan", "consumers", "consumers.launch", "finish", "rules.contracts", "diff")
 PACKAGE_DOCS = {
     "request": "The request: flags, API arguments and config files merged once (`make_request`, `Settings`).",
     "plan": "Planning: a request becomes targets (models, variants, deployments from launch files).",
@@ -66,6 +81,7 @@ PACKAGE_DOCS = {
     "consumers.launch": "Launch files, one reader per format: XML/YAML (`xml`), Python via `ast` (`python`,\n"
                         "`include`), the records they share (`info`), the parameters they set (`params`).",
     "finish": "The finish stage: one finding per problem (`collapse`), the baseline.",
+    "diff": "`urdfcheck diff`: two revisions of a description planned and loaded like `lint`, then compared.",
     "rules.contracts": "The bodies of the contract (C) and TF-ownership (T) checks, imported on first use by\n"
                        "`rules.checks.contracts`.",
 }
@@ -81,10 +97,10 @@ GUESS_BY_FOLDER = {"contracts": "consumers", "pipeline": "plan"}
 
 # low to high; one row may import each other (import-linter `layers`, and tests/test_layers.py)
 LAYERS = [("core",), ("model",), ("load",), ("consumers",), ("rules",), ("request",), ("plan",), ("finish",),
-          ("publisher", "verify"), ("run",), ("report",), ("cli", "pytest_plugin")]
+          ("publisher", "verify"), ("bag",), ("run",), ("diff",), ("report",), ("cli", "pytest_plugin")]
 # the folder picture, in data order
 PICTURE_ORDER = ["core", "request", "plan", "consumers", "load", "model", "rules", "finish", "run.py",
-                 "publisher", "verify", "report", "cli", "pytest_plugin.py"]
+                 "publisher", "verify", "bag", "diff", "report", "cli", "pytest_plugin.py"]
 TEXT_GLOBS = ["src/**/*.py", "tests/**/*.py", "bench/**/*.py", "fuzz/**/*.py", "tools/**/*.py", "docs/**/*.md",
               "*.md", "fuzz/*.md", "bench/*.md", "tests/**/*.md", ".ci/*", "pyproject.toml", ".pre-commit-hooks.yaml"]
 SKIP_TEXT = {"CHANGELOG.md", "tools/relayout.py"}  # history stays as written; this script names the old paths
