@@ -3,7 +3,7 @@
     python bench/bench_workspace.py [ROOT] [--table]
 
 ROOT defaults to the corpus (../shared/corpus). The workspace is planned the way zero config plans it
-(pipeline.plan, as `urdfcheck lint` run there with no flags: deployments found once for the whole tree,
+(plan.plan, as `urdfcheck lint` run there with no flags: deployments found once for the whole tree,
 with the launch files' arguments; every other entry model with its boolean variants), then linted in one
 process (`--lint-only` runs just that part: the timed command). The peer is the xacro CLI run once per planned
 model and argument set, with $(find) answered from the same package map, one process after another. `--table`
@@ -30,8 +30,8 @@ DEFAULT_ROOT = REPO.parent / "shared" / "corpus"
 def lint_workspace(root: str) -> dict:
     """Plan and lint; returns a summary (per repository) as JSON-able data."""
     from urdfcheck.core.findings import Severity
-    from urdfcheck.pipeline.run import lint_targets
     from urdfcheck.rules import engine
+    from urdfcheck.run import lint_targets
 
     plan = _plan(root)
     targets = list(plan.models)
@@ -79,10 +79,10 @@ class _Plan:
 
 
 def _plan(root: str) -> _Plan:
-    """What `urdfcheck lint` run in `root` with no flags plans (pipeline.plan): the targets, and every
+    """What `urdfcheck lint` run in `root` with no flags plans (plan.plan): the targets, and every
     deployment found (with a model or not)."""
-    from urdfcheck.pipeline.plan import plan
-    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.plan.plan import plan
+    from urdfcheck.request.request import make_request
 
     targets = plan(make_request([root]))
     deps = list({id(t.deployment): t.deployment for t in targets if t.deployment is not None}.values())

@@ -251,10 +251,10 @@ def main(argv: list[str]) -> int:
         import urdfcheck.load.xacro.expand  # noqa: F401
         import urdfcheck.load.xacro.safeeval  # noqa: F401
         import urdfcheck.model.build  # noqa: F401
-        import urdfcheck.pipeline.run  # noqa: F401
         import urdfcheck.report  # noqa: F401
-        for mod in ("urdfcheck.contracts.discover", "urdfcheck.contracts.consumers", "urdfcheck.contracts.launch",
-                    "urdfcheck.contracts.yamlsrc", "urdfcheck.contracts.controllers", "urdfcheck.rules.engine",
+        import urdfcheck.run  # noqa: F401
+        for mod in ("urdfcheck.load.discover", "urdfcheck.consumers.consumers", "urdfcheck.consumers.launch.xml",
+                    "urdfcheck.consumers.yamlsrc", "urdfcheck.consumers.controllers", "urdfcheck.rules.engine",
                     "urdfcheck.rules.checks.structure", "urdfcheck.rules.checks.joints",
                     "urdfcheck.rules.checks.geometry",
                     "urdfcheck.rules.checks.inertial", "urdfcheck.rules.checks.frames", "urdfcheck.rules.checks.values",

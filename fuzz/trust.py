@@ -257,8 +257,8 @@ def build(root: Path, files: dict, outside: Path) -> None:
 
 def fast(root: Path, robot: str, cli: list[str]) -> tuple[str | None, str]:
     """Plan in-process: (problem kind or None, detail)."""
-    from urdfcheck.pipeline.plan import Planner
-    from urdfcheck.pipeline.request import UsageError, make_request
+    from urdfcheck.plan.plan import Planner
+    from urdfcheck.request.request import UsageError, make_request
 
     opts: dict = {}
     if "--config" in cli:

@@ -5,7 +5,7 @@ from conftest import run_cli
 from samples import MACROS
 
 from urdfcheck.core.findings import Finding, Location, Severity
-from urdfcheck.pipeline import baseline
+from urdfcheck.finish import baseline
 
 ROBOT = """<robot name="r">
   <link name="base_link"/>

@@ -9,7 +9,7 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 import pytest  # noqa: E402
 
 from urdfcheck.core.findings import Severity  # noqa: E402
-from urdfcheck.pipeline.config import ConfigError, auto_variants, boolean_args, find_config, load_config  # noqa: E402
+from urdfcheck.request.config import ConfigError, auto_variants, boolean_args, find_config, load_config  # noqa: E402
 
 URDF = '<robot name="r"><link name="base_link"/></robot>\n'
 XACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
@@ -236,8 +236,8 @@ def test_targets(tmp_path):
     (root / "urdfcheck.yaml").write_text(
         "models:\n  - path: urdf/agv.urdf.xacro\n    variants: auto\n    args: {use_lidar: 'true'}\n"
         "    controllers: [config/ctrl.yaml]\npackages: {agv_description: .}\n")
-    from urdfcheck.pipeline.plan import plan
-    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.plan.plan import plan
+    from urdfcheck.request.request import make_request
 
     cfg = str(root / "urdfcheck.yaml")
     ts = plan(make_request([], config=cfg))

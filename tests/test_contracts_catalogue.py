@@ -459,7 +459,7 @@ def test_plugin_and_controller_in_a_launch_file_that_starts_the_simulator(tmp_pa
 def test_ros1_diff_drive_plugin_transform_switches(extra, enabled):
     """gazebo_ros_diff_drive (ROS 1): publishOdomTF (default true) turns the transform on, and publishTf (default
     true) gates all odometry."""
-    from urdfcheck.contracts.gazebo import read_plugins
+    from urdfcheck.consumers.gazebo import read_plugins
     from urdfcheck.model.build import model_from_string
 
     urdf = robot(*WHEELS, gazebo(f"""    <plugin name="dd" filename="libgazebo_ros_diff_drive.so">
@@ -473,7 +473,7 @@ def test_ros1_diff_drive_plugin_transform_switches(extra, enabled):
 def test_a_ros2_plugin_ignores_ros1_element_names():
     """neo_simulation2's mpo_500: a ROS 2 planar_move plugin (it has <ros>) given ROS 1's <robotBaseFrame>: ROS 2
     reads robot_base_frame only, so the transform goes to the default base_footprint, not base_link."""
-    from urdfcheck.contracts.gazebo import read_plugins
+    from urdfcheck.consumers.gazebo import read_plugins
     from urdfcheck.model.build import model_from_string
 
     def owner(inner):

@@ -9,10 +9,10 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 from conftest import flatten, run_cli  # noqa: E402
 
-from urdfcheck.contracts.consumers import Consumers, consumers_for_model, discover_consumers  # noqa: E402
-from urdfcheck.contracts.controllers import read_controllers  # noqa: E402
-from urdfcheck.contracts.launch import parse_launch  # noqa: E402
-from urdfcheck.contracts.params import parse_params  # noqa: E402
+from urdfcheck.consumers.consumers import Consumers, consumers_for_model, discover_consumers  # noqa: E402
+from urdfcheck.consumers.controllers import read_controllers  # noqa: E402
+from urdfcheck.consumers.launch.xml import parse_launch  # noqa: E402
+from urdfcheck.consumers.params import parse_params  # noqa: E402
 from urdfcheck.core.findings import Severity  # noqa: E402
 from urdfcheck.model.build import model_from_string  # noqa: E402
 from urdfcheck.rules import engine  # noqa: E402
@@ -176,7 +176,7 @@ def test_tf_rules_from_launch():
 
 def test_odometry_twice():
     ekf = parse_params("ekf:\n  ros__parameters:\n    world_frame: odom\n    two_d_mode: true\n", "ekf.yaml")
-    from urdfcheck.contracts.localization import localization_from_params
+    from urdfcheck.consumers.localization import localization_from_params
 
     c = Consumers(localization=localization_from_params([ekf]))
     fs = run(robot(), ctrl=ctrl_text(), consumers=c)
@@ -301,7 +301,7 @@ def test_corpus_ros2_demo_is_consistent(corpus):
 
 
 def test_consumers_for_model_reports_unreadable_files(tmp_path):
-    from urdfcheck.pipeline.config import load_config
+    from urdfcheck.request.config import load_config
 
     write_pkg(tmp_path, robot(), {"config/bad.yaml": "x: [\n", "launch/a.launch.xml": "<launch><node</launch>"})
     (tmp_path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/bot.urdf\n    controllers: [config/bad.yaml]\n"

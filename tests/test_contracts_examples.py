@@ -19,12 +19,12 @@ import pytest  # noqa: E402
 from conftest import REPO, flatten, lint_json, run_cli  # noqa: E402
 from test_examples import BROKEN, actual, lint_package, read_expected_full  # noqa: E402
 
-from urdfcheck.contracts.common import Value  # noqa: E402
-from urdfcheck.contracts.controllers import DriveSpec, JointUse  # noqa: E402
-from urdfcheck.contracts.launch import ParamSet, RosparamLoad, parse_launch  # noqa: E402
-from urdfcheck.contracts.wheels import check_drive  # noqa: E402
+from urdfcheck.consumers.common import Value  # noqa: E402
+from urdfcheck.consumers.controllers import DriveSpec, JointUse  # noqa: E402
+from urdfcheck.consumers.launch.xml import ParamSet, RosparamLoad, parse_launch  # noqa: E402
 from urdfcheck.core.findings import Location  # noqa: E402
 from urdfcheck.model.build import model_from_string  # noqa: E402
+from urdfcheck.rules.contracts.wheels import check_drive  # noqa: E402
 
 AGV = REPO / "examples" / "agv"
 CONTRACT_PACKAGES = sorted(p.parent.name for pat in ("contract_*/EXPECTED", "variant_*/EXPECTED")
@@ -66,15 +66,15 @@ def test_agv_zero_config_is_clean():
     assert code == 0
     models = {(Path(m["path"]).name, m["variant"]) for m in report["models"]}
     # the xacro is the model launch/agv.launch.xml starts robot_state_publisher with: linted as that deployment
-    # (the launch file's arguments and consumers), not alone with its boolean variants (pipeline/plan.py)
+    # (the launch file's arguments and consumers), not alone with its boolean variants (plan/plan.py)
     assert models == {("agv.urdf", ""), ("agv.urdf.xacro", "examples/agv/launch/agv.launch.xml")}
 
 
 def test_agv_config_reaches_every_consumer():
-    from urdfcheck.contracts.consumers import consumers_for_model
-    from urdfcheck.contracts.rules_impl import _graph
+    from urdfcheck.consumers.consumers import consumers_for_model
     from urdfcheck.load.loader import load_model
-    from urdfcheck.pipeline.config import load_config
+    from urdfcheck.request.config import load_config
+    from urdfcheck.rules.contracts.impl import _graph
 
     cfg = load_config(AGV / "urdfcheck.yaml")
     assert [Path(m.path).name for m in cfg.models] == ["agv.urdf.xacro", "agv.urdf"]

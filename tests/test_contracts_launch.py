@@ -9,8 +9,8 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 import pytest  # noqa: E402
 
-from urdfcheck.contracts.common import ConsumerError  # noqa: E402
-from urdfcheck.contracts.launch import parse_launch, parse_static_tf_args, read_launch  # noqa: E402
+from urdfcheck.consumers.common import ConsumerError  # noqa: E402
+from urdfcheck.consumers.launch.xml import parse_launch, parse_static_tf_args, read_launch  # noqa: E402
 
 HALF_PI = math.pi / 2
 
@@ -276,7 +276,7 @@ def test_includes_that_cannot_be_decided_or_leave_the_package_are_not_followed(t
 
 
 def test_reading_includes_records_what_the_included_file_is_passed(tmp_path):
-    from urdfcheck.contracts.launch import parse_launch
+    from urdfcheck.consumers.launch.xml import parse_launch
 
     ros1 = parse_launch(b'<launch><arg name="a" default="1"/>'
                         b'<include file="x.launch"><arg name="b" value="$(arg a)"/></include>'
@@ -328,7 +328,7 @@ def generate_launch_description():
 
 
 def test_python_includes_are_read_without_running_anything(tmp_path):
-    from urdfcheck.contracts.launch import parse_launch
+    from urdfcheck.consumers.launch.xml import parse_launch
 
     root = tmp_path / "inc_description"
     (root / "launch").mkdir(parents=True)
@@ -369,7 +369,7 @@ def test_a_static_tf_in_an_included_python_file_is_seen(tmp_path):
     ('p = p + "x"\nx = IncludeLaunchDescription(PythonLaunchDescriptionSource(p))\n', None),  # refers to itself
 ])
 def test_python_include_paths(tmp_path, body, expected):
-    from urdfcheck.contracts.launch import parse_launch
+    from urdfcheck.consumers.launch.xml import parse_launch
 
     root = tmp_path / "inc_description"
     (root / "launch").mkdir(parents=True)

@@ -8,7 +8,7 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 import pytest  # noqa: E402
 
-from urdfcheck.contracts.controllers import (  # noqa: E402
+from urdfcheck.consumers.controllers import (  # noqa: E402
     DIFF_DRIVE,
     FORWARD,
     JSB,
@@ -19,9 +19,9 @@ from urdfcheck.contracts.controllers import (  # noqa: E402
     read_controllers,
     read_driver,
 )
-from urdfcheck.contracts.discover import discover  # noqa: E402
-from urdfcheck.contracts.localization import localization_from_params  # noqa: E402
-from urdfcheck.contracts.params import parse_params, read_params  # noqa: E402
+from urdfcheck.consumers.localization import localization_from_params  # noqa: E402
+from urdfcheck.consumers.params import parse_params, read_params  # noqa: E402
+from urdfcheck.load.discover import discover  # noqa: E402
 
 DDC = "ros-controls+ros_controllers/diff_drive_controller/test"
 

@@ -6,7 +6,7 @@ SRC = Path(__file__).resolve().parent.parent / "src"
 if str(SRC) not in sys.path:  # runnable without an editable install
     sys.path.insert(0, str(SRC))
 
-from urdfcheck.contracts.graph import (  # noqa: E402
+from urdfcheck.consumers.graph import (  # noqa: E402
     DYNAMIC,
     STATIC,
     PublisherInfo,

@@ -8,12 +8,12 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 
 import pytest  # noqa: E402
 
-from urdfcheck.contracts.common import Value  # noqa: E402
-from urdfcheck.contracts.controllers import DriveSpec, JointUse, read_controllers  # noqa: E402
-from urdfcheck.contracts.params import parse_params  # noqa: E402
-from urdfcheck.contracts.wheels import check_drive  # noqa: E402
+from urdfcheck.consumers.common import Value  # noqa: E402
+from urdfcheck.consumers.controllers import DriveSpec, JointUse, read_controllers  # noqa: E402
+from urdfcheck.consumers.params import parse_params  # noqa: E402
 from urdfcheck.core.findings import Location, Severity  # noqa: E402
 from urdfcheck.model.build import model_from_string  # noqa: E402
+from urdfcheck.rules.contracts.wheels import check_drive  # noqa: E402
 
 
 def wheel(name, xyz, rpy, axis, shape='<cylinder radius="0.1" length="0.05"/>', shape_rpy="0 0 0", kind="continuous"):
@@ -192,7 +192,7 @@ def test_diffbot_corpus_geometry(corpus):
     pk = {"ros2_control_demo_description": str(d / "ros2_control_demo_description"),
           "ros2_control_demo_example_2": str(d / "example_2/description")}
     model = load_model(d / "example_2/description/urdf/diffbot.urdf.xacro", packages=pk)
-    from urdfcheck.contracts.controllers import load_controllers
+    from urdfcheck.consumers.controllers import load_controllers
 
     cs, _ = load_controllers([d / "example_2/bringup/config/diffbot_controllers.yaml"])
     rep = check_drive(model, cs.by_name("diffbot_base_controller").drive, base_frame="base_link")

@@ -9,9 +9,9 @@ if str(SRC) not in sys.path:  # runnable without an editable install
 import pytest  # noqa: E402
 from work import counted  # noqa: E402
 
-from urdfcheck.contracts.common import ConsumerError  # noqa: E402
-from urdfcheck.contracts.params import lookup, node_key_matches, parse_params, read_params  # noqa: E402
-from urdfcheck.contracts.yamlsrc import load_yaml, parse_yaml  # noqa: E402
+from urdfcheck.consumers.common import ConsumerError  # noqa: E402
+from urdfcheck.consumers.params import lookup, node_key_matches, parse_params, read_params  # noqa: E402
+from urdfcheck.consumers.yamlsrc import load_yaml, parse_yaml  # noqa: E402
 
 
 # --- yamlsrc -------------------------------------------------------------------------------------------------

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from conftest import CORPUS, REPO, lint_json
 
-from urdfcheck.pipeline.run import entry_models
+from urdfcheck.run import entry_models
 
 _SANDBOX = ("X010", "X011")
 

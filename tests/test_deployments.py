@@ -6,7 +6,7 @@ from work import counted
 
 from urdfcheck.load import loader
 from urdfcheck.load.packages import workspace_map
-from urdfcheck.pipeline.deployments import describe, find_deployments
+from urdfcheck.plan.deployments import describe, find_deployments
 from urdfcheck.rules import engine
 
 XACRO = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'

@@ -1,6 +1,7 @@
 """Data flows one way: a lower stage never imports a higher one (the layers contract in pyproject.toml,
-[tool.importlinter]: core < model < load < rules, contracts < publisher, verify < pipeline < report < cli,
-pytest_plugin). Run by import-linter when installed, else by an equivalent check on the modules' imports."""
+[tool.importlinter]: core < model < load < consumers < rules < request < plan < finish < publisher, verify < bag <
+run < diff < report < cli, pytest_plugin). Run by import-linter when installed, else by an equivalent check on the
+modules' imports."""
 from __future__ import annotations
 
 import ast
@@ -13,8 +14,8 @@ REPO = Path(__file__).resolve().parent.parent
 SRC = REPO / "src" / "urdfcheck"
 
 # low to high; names on one row may import each other
-LAYERS = [("core",), ("model",), ("load",), ("rules", "contracts"), ("publisher", "verify"), ("pipeline",),
-          ("report",), ("cli", "pytest_plugin")]
+LAYERS = [("core",), ("model",), ("load",), ("consumers",), ("rules",), ("request",), ("plan",), ("finish",),
+          ("publisher", "verify"), ("bag",), ("run",), ("diff",), ("report",), ("cli", "pytest_plugin")]
 RANK = {name: i for i, row in enumerate(LAYERS) for name in row}
 
 
@@ -158,5 +159,5 @@ def test_cycle_check_sees_function_local_imports():
     tree_graph = _import_graph()
     # the real graph holds function-level edges too (plan.py imports deployments only inside a method)
     local = [(a, b) for a, deps in tree_graph.items() for b in deps
-             if a == "urdfcheck.pipeline.plan" and b == "urdfcheck.pipeline.deployments"]
-    assert local, "pipeline.plan imports pipeline.deployments inside a function; the graph must see it"
+             if a == "urdfcheck.plan.plan" and b == "urdfcheck.plan.deployments"]
+    assert local, "plan.plan imports plan.deployments inside a function; the graph must see it"

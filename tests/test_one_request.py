@@ -164,8 +164,8 @@ def test_plugin_equals_the_cli_with_a_missing_package_and_a_baseline(tmp_path, m
     cli = sorted((f["code"], f["location"]["file"], f["message"]) for f in json.loads(out)["findings"])
     assert cli and all(c != "X013" for c, _, _ in cli), cli  # the baseline holds the X013
 
-    from urdfcheck.pipeline.request import make_request
-    from urdfcheck.pipeline.run import run
+    from urdfcheck.request.request import make_request
+    from urdfcheck.run import run
 
     req = make_request([], baseline="base.json")
     result = run(req)

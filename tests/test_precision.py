@@ -15,7 +15,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from conftest import lint_json, run_cli  # noqa: E402
 
 from urdfcheck.core.findings import Finding, Location, Place, Severity  # noqa: E402
-from urdfcheck.pipeline.collapse import chains, collapse, describe  # noqa: E402
+from urdfcheck.finish.collapse import chains, collapse, describe  # noqa: E402
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="3"><name>{name}</name><version>0.1.0</version><description>d</description>
@@ -131,7 +131,7 @@ def launch_typed_package(tmp_path, typed: bool) -> Path:
 
 
 def test_controller_types_set_in_a_launch_file(tmp_path):
-    from urdfcheck.contracts.consumers import discover_consumers
+    from urdfcheck.consumers.consumers import discover_consumers
     from urdfcheck.load.loader import load_model
 
     pkg = launch_typed_package(tmp_path, typed=True)

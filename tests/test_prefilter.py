@@ -11,9 +11,9 @@ from pathlib import Path
 import pytest
 from conftest import CORPUS, REPO
 
-from urdfcheck.contracts.consumers import _names_a_joint
-from urdfcheck.contracts.params import parse_params
-from urdfcheck.contracts.prefilter import may_name, worth_parsing
+from urdfcheck.consumers.consumers import _names_a_joint
+from urdfcheck.consumers.params import parse_params
+from urdfcheck.consumers.prefilter import may_name, worth_parsing
 
 
 def _yaml_files() -> list[Path]:

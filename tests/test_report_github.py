@@ -6,9 +6,9 @@ from conftest import run_cli
 from samples import BAD
 
 from urdfcheck.core.findings import Finding, Location, Severity
-from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 from urdfcheck.report.github import escape_data, escape_property
+from urdfcheck.run import Result, Target
 
 COMMAND = re.compile(r"^::(error|warning|notice) ((file|line|col|title)=[^,:]*)(,(file|line|col|title)=[^,:]*)*::.*$")
 

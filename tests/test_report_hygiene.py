@@ -8,8 +8,8 @@ import pytest
 from conftest import run_cli
 
 from urdfcheck.core.findings import Finding, Location, Severity
-from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
+from urdfcheck.run import Result, Target
 
 FORMATS = ["text", "json", "sarif", "junit", "github", "markdown"]
 EVIL = ("x\n::error file=pwned.py,line=1::owned\r\n##[error]vso ##vso[task.setvariable]1 "

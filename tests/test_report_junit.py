@@ -6,9 +6,9 @@ from conftest import run_cli
 from samples import BAD, GOOD
 
 from urdfcheck.core.findings import Finding, Location, Place, Severity
-from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 from urdfcheck.rules import catalogue as rulebook
+from urdfcheck.run import Result, Target
 
 FAMILIES = sorted({r.family for r in rulebook.catalogue().values()})
 

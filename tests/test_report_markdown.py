@@ -5,9 +5,9 @@ from pathlib import Path
 from conftest import run_cli
 
 from urdfcheck.core.findings import Finding, Location, Place, Severity
-from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 from urdfcheck.report.markdown import MAX_CHARS, md, mermaid
+from urdfcheck.run import Result, Target
 
 ARM = """<robot name="r">
   <link name="base_link"/>

@@ -8,9 +8,9 @@ from conftest import run_cli
 from samples import BAD, MACROS
 
 from urdfcheck.core.findings import Finding, Location, Severity
-from urdfcheck.pipeline.run import Result, Target
 from urdfcheck.report import render
 from urdfcheck.rules import catalogue as rulebook
+from urdfcheck.run import Result, Target
 
 SCHEMA = json.loads((Path(__file__).parent / "data" / "sarif-schema-2.1.0.json").read_text(encoding="utf-8"))
 

@@ -1,6 +1,6 @@
 """Rule options are declared once (rules/*.yaml `options:`): the engine hands each check its options with the
 catalogue defaults filled in; no check keeps a fallback of its own. And a check never changes its context:
-the consumers a contract check reads are the planner's (`pipeline.plan.Target.consumers`), found once."""
+the consumers a contract check reads are the planner's (`plan.plan.Target.consumers`), found once."""
 from __future__ import annotations
 
 import re
@@ -62,9 +62,9 @@ def test_no_check_keeps_its_own_option_default():
 def test_checks_do_not_change_their_context(tmp_path):
     """A model in a ROS package with a controller file beside it: the contract checks find the consumers
     through the planner's target (once), and the context they ran with is unchanged."""
-    from urdfcheck.pipeline.plan import plan
-    from urdfcheck.pipeline.request import make_request
-    from urdfcheck.pipeline.run import lint_targets
+    from urdfcheck.plan.plan import plan
+    from urdfcheck.request.request import make_request
+    from urdfcheck.run import lint_targets
 
     pkg = tmp_path / "bot"
     (pkg / "urdf").mkdir(parents=True)

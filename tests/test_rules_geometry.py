@@ -8,8 +8,8 @@ import pytest
 from urdfcheck.core.findings import Severity
 from urdfcheck.core.paths import shown
 from urdfcheck.model.build import model_from_string
-from urdfcheck.pipeline.run import Target, lint_target
 from urdfcheck.rules import engine
+from urdfcheck.run import Target, lint_target
 
 STL = "solid p\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n" \
       "  endloop\n endfacet\nendsolid p\n"

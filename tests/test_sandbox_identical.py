@@ -8,7 +8,7 @@ from conftest import CORPUS, REPO
 from urdfcheck.core import worker
 from urdfcheck.load import loader
 from urdfcheck.load.packages import Resolver
-from urdfcheck.pipeline.run import entry_models
+from urdfcheck.run import entry_models
 
 # Arguments some corpus models need (as their launch files pass them).
 ARGS = {

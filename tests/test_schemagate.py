@@ -14,8 +14,8 @@ import yaml  # noqa: E402
 from hypothesis import HealthCheck, Phase, find, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from urdfcheck.pipeline.config import config_schema  # noqa: E402
-from urdfcheck.pipeline.schemagate import verdict  # noqa: E402
+from urdfcheck.request.config import config_schema  # noqa: E402
+from urdfcheck.request.schemagate import verdict  # noqa: E402
 
 SCHEMA = config_schema()  # the file, with `rules:` built from the catalogue's option declarations
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA)

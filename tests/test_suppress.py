@@ -106,7 +106,7 @@ MACRO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
 
 def test_macro_unsuppressed(tmp_path):
     _, found = lint(tmp_path, "r.urdf.xacro", MACRO.format(in_macro="", at_call=""))
-    assert found == [("U002", 6, [13])]  # one problem in the macro body, shown once (pipeline.collapse)
+    assert found == [("U002", 6, [13])]  # one problem in the macro body, shown once (finish.collapse)
 
 
 def test_inside_a_macro_body_holds_for_every_expansion(tmp_path):

@@ -134,7 +134,7 @@ def test_cartographer_clean_twin_publishes_map_to_odom_only(tmp_path):
 def test_cartographer_lua_is_read_as_text():
     import tempfile
 
-    from urdfcheck.contracts.localization import make_node, read_lua_options
+    from urdfcheck.consumers.localization import make_node, read_lua_options
 
     with tempfile.TemporaryDirectory() as d:
         p = Path(d) / "x.lua"
@@ -372,9 +372,9 @@ def _summary(info):
 def test_config_and_planner_read_every_launch_file_alike(where):
     """The config path (`consumers`: `launch.read_launch`) and the deployment finder (`_Workspace.read`) read
     each launch file of the examples and the corpus into the same record."""
-    from urdfcheck.contracts.common import ConsumerError
-    from urdfcheck.contracts.launch import read_launch
-    from urdfcheck.pipeline.deployments import _Workspace, launch_files
+    from urdfcheck.consumers.common import ConsumerError
+    from urdfcheck.consumers.launch.xml import read_launch
+    from urdfcheck.plan.deployments import _Workspace, launch_files
 
     root = REPO / "examples" if where == "examples" else CORPUS
     if not root.is_dir():

@@ -13,7 +13,7 @@ import time
 import pytest
 from conftest import run_cli
 
-from urdfcheck.pipeline.request import UsageError
+from urdfcheck.request.request import UsageError
 
 SECRET = "ghp_FAKE_SECRET_0123456789"
 XACRO_NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
@@ -93,7 +93,7 @@ def test_allow_env_from_a_found_config_leaks_nothing(tmp_path, place, fmt):
 
 
 def test_raised_limit_from_a_found_config_is_ignored_a_lower_one_kept(tmp_path):
-    from urdfcheck.pipeline.config import load_config
+    from urdfcheck.request.config import load_config
 
     write(tmp_path, {"urdfcheck.yaml": "max_elements: 900000000\n"})
     cfg = load_config(tmp_path / "urdfcheck.yaml")
@@ -263,7 +263,7 @@ def test_a_cut_short_walk_is_a_finding(tmp_path):
 
 
 def test_a_cut_short_folder_walk_is_a_finding(tmp_path, monkeypatch):
-    from urdfcheck.pipeline import plan
+    from urdfcheck.plan import plan
 
     monkeypatch.setattr(plan, "MAX_DIRS", 3)
     for i in range(6):
@@ -311,7 +311,7 @@ def _peak(fn):
 
 
 def test_python_launch_list_doubling_is_bounded():
-    from urdfcheck.contracts import pylaunch
+    from urdfcheck.consumers.launch import python as pylaunch
 
     src = ["a0 = ['x', 'y']"] + [f"a{i} = [*a{i - 1}, *a{i - 1}]" for i in range(1, 60)]
     src += ["b0 = {'k': 1}"] + [f"b{i} = {{**b{i - 1}, 'k{i}': b{i - 1}}}" for i in range(1, 40)]
@@ -329,7 +329,7 @@ def test_python_launch_list_doubling_is_bounded():
 
 @pytest.mark.parametrize("fmt", ["xml", "yaml"])
 def test_let_doubling_is_capped(fmt):
-    from urdfcheck.contracts.launch import MAX_VALUE, parse_launch
+    from urdfcheck.consumers.launch.xml import MAX_VALUE, parse_launch
 
     if fmt == "xml":
         lines = ['<launch>', '<arg name="a0" default="xxxxxxxxxxxxxxxx"/>']
@@ -347,7 +347,7 @@ def test_let_doubling_is_capped(fmt):
 
 
 def test_substitution_growth_stops_at_the_cap():
-    from urdfcheck.contracts.launch import MAX_VALUE, _Subst
+    from urdfcheck.consumers.launch.xml import MAX_VALUE, _Subst
 
     s = _Subst("x.launch.xml", {}, {})
     s.fix("a", "x" * (MAX_VALUE // 2 + 1))
@@ -396,8 +396,8 @@ def test_deep_yaml_config_is_a_located_error(tmp_path):
 
 
 def test_a_reader_recursion_is_a_located_launch_error(monkeypatch):
-    from urdfcheck.contracts import launch
-    from urdfcheck.contracts.common import ConsumerError
+    from urdfcheck.consumers.common import ConsumerError
+    from urdfcheck.consumers.launch import xml as launch
 
     def deep(*a):
         raise RecursionError
@@ -423,7 +423,7 @@ def test_the_memory_budget_is_a_limit_of_the_run():
 
 
 def test_memory_error_while_checking_is_x017(tmp_path, monkeypatch):
-    from urdfcheck.pipeline import run
+    from urdfcheck import run
 
     def boom(*a, **k):
         raise MemoryError

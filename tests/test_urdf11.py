@@ -378,10 +378,10 @@ def test_verify_skips_a_pinocchio_that_cannot_read_the_version(monkeypatch):
 
 # --- the wheel-geometry contract and the URDF writer use the quaternion --------------------------------------------
 def _wheels(version: str, joint_rot: str, shape_rot: str):
-    from urdfcheck.contracts.common import Value
-    from urdfcheck.contracts.controllers import DriveSpec, JointUse
-    from urdfcheck.contracts.wheels import check_drive
+    from urdfcheck.consumers.common import Value
+    from urdfcheck.consumers.controllers import DriveSpec, JointUse
     from urdfcheck.core.findings import Location
+    from urdfcheck.rules.contracts.wheels import check_drive
 
     def wheel(name, y):
         return (f'<link name="{name}_link"><collision><origin {shape_rot}/><geometry><cylinder radius="0.1" '

@@ -8,7 +8,7 @@ import shutil
 import pytest
 from conftest import REPO, run_cli
 
-from urdfcheck.pipeline.variants import _pairs, auto_variants, boolean_args, pairwise
+from urdfcheck.load.variants import _pairs, auto_variants, boolean_args, pairwise
 
 PKG_XML = """<?xml version="1.0"?>
 <package format="3"><name>{name}</name><version>0.0.1</version><description>d</description>

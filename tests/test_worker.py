@@ -18,7 +18,7 @@ from urdfcheck.core import worker  # noqa: E402
 from urdfcheck.core.paths import shown  # noqa: E402
 from urdfcheck.load import loader  # noqa: E402
 
-lint = importlib.import_module("urdfcheck.pipeline.run")  # the package's `lint` attribute is the API function
+lint = importlib.import_module("urdfcheck.run")  # the package's `lint` attribute is the API function
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the worker forks")
 

@@ -4,8 +4,8 @@ macro files are libraries."""
 import os
 from pathlib import Path
 
-from urdfcheck.contracts.discover import discover
 from urdfcheck.load import loader
+from urdfcheck.load.discover import discover
 from urdfcheck.load.packages import Resolver, missing_packages, workspace_map, workspace_packages
 
 XACRO = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
@@ -163,15 +163,15 @@ def arm_workspace(tmp_path: Path) -> Path:
 
 
 def _plan(paths, here=None):
-    from urdfcheck.pipeline.plan import plan
-    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.plan.plan import plan
+    from urdfcheck.request.request import make_request
 
     return plan(make_request([str(p) for p in paths]), here=str(here) if here else None)
 
 
 def test_a_model_another_package_deploys_is_linted_through_that_deployment_only(tmp_path, monkeypatch):
-    from urdfcheck.pipeline.request import make_request
-    from urdfcheck.pipeline.run import run
+    from urdfcheck.request.request import make_request
+    from urdfcheck.run import run
 
     src = arm_workspace(tmp_path)
     monkeypatch.chdir(tmp_path)
@@ -249,8 +249,8 @@ def test_the_per_file_hook_given_a_library_lints_the_robots_that_include_it(tmp_
 
 
 def test_each_missing_package_is_one_finding_with_every_place(tmp_path, monkeypatch):
-    from urdfcheck.pipeline.request import make_request
-    from urdfcheck.pipeline.run import run
+    from urdfcheck.request.request import make_request
+    from urdfcheck.run import run
 
     d = pkg(tmp_path / "desc", "desc")
     write(d / "urdf" / "parts.xacro", f'<robot {XACRO}>\n<xacro:include filename="$(find gone_a)/a.xacro"/>\n'
@@ -271,7 +271,7 @@ def test_each_missing_package_is_one_finding_with_every_place(tmp_path, monkeypa
 
 
 def test_srdf_files_are_never_models(tmp_path):
-    from urdfcheck.pipeline.request import UsageError
+    from urdfcheck.request.request import UsageError
 
     d = pkg(tmp_path / "moveit_config", "moveit_config")
     write(d / "config" / "arm.srdf", '<robot name="a"><group name="arm"><chain base_link="a" tip_link="b"/></group>'

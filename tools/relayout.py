@@ -57,7 +57,7 @@ KNOWN = {
     "pipeline.run": "run",
     # added in wave 3 by other branches, placed by what they import
     "pipeline.trust": "request.trust",
-    "pipeline.variants": "plan.variants",
+    "pipeline.variants": "load.variants",  # the config (variants: auto) and the planner both read it
     "pipeline.dependents": "plan.dependents",
     "pipeline.robots": "plan.robots",
     "pipeline.understood": "plan.understood",

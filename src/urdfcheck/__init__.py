@@ -8,7 +8,7 @@ Public API (the CLI uses exactly this):
     urdfcheck.UsageError                                           # an unusable request (the CLI's exit 2)
 
 `load` and `expand` read the config files `lint` reads (its packages and limits). Their options and `lint`'s
-are the `LintRequest` fields (pipeline/request.py): args, packages, select, ignore, severity, rules, fail_on,
+are the `LintRequest` fields (request/request.py): args, packages, select, ignore, severity, rules, fail_on,
 trusted, allow_env, timeout, max_elements, config, no_config, root, baseline.
 """
 from __future__ import annotations
@@ -53,8 +53,8 @@ def expand(path, args=None, **options):
 
 
 def _loaded(path, args, options, build=True):
-    from urdfcheck.pipeline.request import make_request
-    from urdfcheck.pipeline.run import load as load_one
+    from urdfcheck.request.request import make_request
+    from urdfcheck.run import load as load_one
 
     return load_one(make_request([path], args=args, **options), path, build=build)
 
@@ -62,9 +62,9 @@ def _loaded(path, args, options, build=True):
 def lint(paths=(), args=None, **options):
     """Lint like `urdfcheck lint PATHS...` from the working directory: the same config files (found upward
     from each path, one per package in a workspace), the same findings. Callable any number of times.
-    Returns a `pipeline.run.Result` (`.findings`, `.failed()`); raises UsageError where the CLI exits 2."""
-    from urdfcheck.pipeline.request import make_request
-    from urdfcheck.pipeline.run import run
+    Returns a `run.Result` (`.findings`, `.failed()`); raises UsageError where the CLI exits 2."""
+    from urdfcheck.request.request import make_request
+    from urdfcheck.run import run
 
     return run(make_request(paths, args=args, **options))
 
@@ -80,7 +80,7 @@ def __getattr__(name):
 
         return LoadError
     if name == "UsageError":
-        from urdfcheck.pipeline.request import UsageError
+        from urdfcheck.request.request import UsageError
 
         return UsageError
     raise AttributeError(name)

@@ -10,7 +10,7 @@ The models are what the config declares (each variant is its own item), else the
 below the rootdir. An item fails when the model has findings at or above the fail level
 (`--urdfcheck-fail-on`, else the config's `fail_on`, else `warning`); the failure text lists the located
 findings. The plugin makes the request `urdfcheck lint` run in the rootdir makes and runs the same pipeline
-(pipeline/plan.py, pipeline/run.py) once, on the first item: every item shows its model's share, and an unused
+(plan/plan.py, run.py) once, on the first item: every item shows its model's share, and an unused
 suppression in a YAML file fails the item of the first model that read the file, as R002 fails the CLI.
 Items are marked `urdfcheck`: `pytest -m urdfcheck` runs only them, `-m "not urdfcheck"` skips
 them, `-p no:urdfcheck` turns the plugin off.
@@ -43,7 +43,7 @@ def pytest_configure(config):
 
 
 def _find_config(rootdir: Path) -> str | None:
-    from urdfcheck.pipeline.config import find_config
+    from urdfcheck.request.config import find_config
 
     return find_config(rootdir)
 
@@ -63,7 +63,7 @@ def _setup(config) -> SimpleNamespace | None:
         try:
             _prepare(state, config)
         except Exception as e:  # never break the package's own test session: report it as a failing item
-            from urdfcheck.pipeline.request import UsageError
+            from urdfcheck.request.request import UsageError
 
             state.error = str(e) if isinstance(e, UsageError) else f"{type(e).__name__}: {e}"
     setattr(config, _STATE, state)
@@ -73,8 +73,8 @@ def _setup(config) -> SimpleNamespace | None:
 def _prepare(state, config) -> None:
     """The request `urdfcheck lint` makes when run in the rootdir, planned once; the items lint their targets
     together on first use."""
-    from urdfcheck.pipeline.plan import plan
-    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.plan.plan import plan
+    from urdfcheck.request.request import make_request
 
     level = config.getoption("urdfcheck_fail_on")
     base = config.getoption("urdfcheck_baseline")
@@ -91,7 +91,7 @@ def _result(state):
     """The whole run, once, as `urdfcheck lint` runs it (suppression bookkeeping, one X013 per package, the
     baseline); each item shows its target's share (`Result.shares`)."""
     if state.result is None:
-        from urdfcheck.pipeline.run import run
+        from urdfcheck.run import run
 
         state.result = run(state.request, targets=state.targets)
     return state.result

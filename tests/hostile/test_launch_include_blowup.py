@@ -2,8 +2,8 @@
 cheap (the evaluator remembers variables and has a step budget) and the include is simply not followed."""
 import ast
 
-from urdfcheck.contracts import pylaunch
-from urdfcheck.contracts.launch import parse_launch
+from urdfcheck.consumers.launch import python as pylaunch
+from urdfcheck.consumers.launch.xml import parse_launch
 
 
 def _blowup(n=40, includes=50):

@@ -16,7 +16,7 @@ import os
 import sys
 
 from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, EXIT_USAGE, kv
-from urdfcheck.pipeline.request import UsageError, make_request
+from urdfcheck.request.request import UsageError, make_request
 
 SUFFIXES = (".urdf", ".xacro")
 
@@ -77,7 +77,7 @@ def main(argv=None) -> int:
 
 
 def _main(ns) -> int:
-    from urdfcheck.pipeline import run as pipeline
+    from urdfcheck import run as pipeline
     from urdfcheck.report import escape_bidi, render
 
     paths = list(ns.paths)

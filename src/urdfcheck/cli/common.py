@@ -9,7 +9,7 @@ import argparse
 import os
 import sys
 
-from urdfcheck.pipeline.request import UsageError  # noqa: F401  (the one usage error: API and CLI)
+from urdfcheck.request.request import UsageError  # noqa: F401  (the one usage error: API and CLI)
 
 EXIT_CLEAN, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
 
@@ -85,9 +85,9 @@ def add_config_options(p: argparse.ArgumentParser) -> None:
 
 def load_one(ns, path: str, build: bool = True):
     """The model at `path` as `urdfcheck lint` loads it (the same request: config, packages, limits),
-    the load flags over the config: a `pipeline.run.Loaded`. Raises UsageError."""
-    from urdfcheck.pipeline.request import make_request
-    from urdfcheck.pipeline.run import load
+    the load flags over the config: a `run.Loaded`. Raises UsageError."""
+    from urdfcheck.request.request import make_request
+    from urdfcheck.run import load
 
     request = make_request(
         [path], args=dict(getattr(ns, "args", None) or []), packages=dict(ns.packages),

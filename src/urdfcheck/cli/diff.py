@@ -1,4 +1,4 @@
-"""`urdfcheck diff OLD NEW` and `urdfcheck diff --git REV [PATH...]`: flags -> `pipeline.diff` -> report.
+"""`urdfcheck diff OLD NEW` and `urdfcheck diff --git REV [PATH...]`: flags -> `diff.compare` -> report.
 
 Exit 0 (whatever changed) unless `--fail-on-change`: then 1 when anything changed. A side that does not load
 is reported and exits 1 (nothing was compared); an unusable invocation exits 2.
@@ -38,7 +38,7 @@ def _options(ns) -> dict:
 
 
 def cmd_diff(ns) -> int:
-    from urdfcheck.pipeline import diff as stage
+    from urdfcheck.diff import compare as stage
 
     if ns.seeds < 0 or ns.seeds > 100:
         raise UsageError("--seeds must be between 0 and 100")
@@ -51,7 +51,7 @@ def cmd_diff(ns) -> int:
         old, new = ns.paths
         result = stage.diff([old], [new], _root(old), _root(new), seeds=ns.seeds, **_options(ns))
     else:
-        from urdfcheck.pipeline import gitside
+        from urdfcheck.diff import gitside
 
         paths = ns.paths or ["."]
         repo = gitside.repo_root(os.path.abspath(paths[0]) if os.path.isdir(paths[0])

@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 import sys
 
-from urdfcheck.pipeline.request import LintRequest, UsageError, make_request
+from urdfcheck.request.request import LintRequest, UsageError, make_request
 
 # parsed documents a one-shot process keeps until it exits (run.lint_targets: `retain`)
 _UNTIL_EXIT: list = []
@@ -31,7 +31,7 @@ def request_from_flags(ns) -> LintRequest:
 
 def run(ns, usage_error=UsageError) -> int:
     """`usage_error`: raised (with the message) for an unusable invocation; UsageError by default."""
-    from urdfcheck.pipeline import run as pipeline
+    from urdfcheck import run as pipeline
 
     try:
         request = request_from_flags(ns)
@@ -50,7 +50,7 @@ def run(ns, usage_error=UsageError) -> int:
         raise usage_error(str(e)) from None
 
     if ns.write_baseline:
-        from urdfcheck.pipeline import baseline
+        from urdfcheck.finish import baseline
 
         baseline.write(ns.write_baseline, result.raw())
         print(f"wrote {len(result.raw())} findings to {ns.write_baseline}", file=sys.stderr)
@@ -92,8 +92,8 @@ def _list(request: LintRequest) -> int:
 def _list_plan(request: LintRequest) -> int:
     from urdfcheck.core.findings import clean_text
     from urdfcheck.core.paths import shown
-    from urdfcheck.pipeline.deployments import describe, show_args
-    from urdfcheck.pipeline.plan import plan
+    from urdfcheck.plan.deployments import describe, show_args
+    from urdfcheck.plan.plan import plan
 
     targets = plan(request)
     if not targets and not targets.infos:

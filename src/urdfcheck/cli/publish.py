@@ -74,8 +74,8 @@ def _model_path(ns) -> str:
     if not os.path.isdir(ns.model):
         raise UsageError(f"no such file: {ns.model}")
     from urdfcheck.core.paths import shown
-    from urdfcheck.pipeline.plan import plan
-    from urdfcheck.pipeline.request import make_request
+    from urdfcheck.plan.plan import plan
+    from urdfcheck.request.request import make_request
 
     targets = plan(make_request([ns.model], trusted=True if ns.trusted else None,
                                 use_config=not getattr(ns, "no_config", False), config=getattr(ns, "config", None)))

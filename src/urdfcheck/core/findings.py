@@ -58,7 +58,7 @@ class Place(NamedTuple):
 
 
 class Also(NamedTuple):
-    """Another line of the same file where the same problem is written again (pipeline/collapse.py)."""
+    """Another line of the same file where the same problem is written again (finish/collapse.py)."""
 
     location: Location
     message: str
@@ -73,7 +73,7 @@ class Finding(NamedTuple):
     related: tuple[Location, ...] = ()
     model: str = ""  # the entry model the finding came from
     variant: str = ""  # xacro argument set name, when several were linted
-    # every model/variant the same problem was found in, when several (pipeline/collapse.py); () means just
+    # every model/variant the same problem was found in, when several (finish/collapse.py); () means just
     # `model`/`variant` above, which are always the first of them
     where: tuple[Place, ...] = ()
     # the same problem at other lines of the same file, in the same models/variants (twelve joints named like

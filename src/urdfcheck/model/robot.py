@@ -215,7 +215,7 @@ class Model(FrozenRecord):
                  "plugins": ()}
     # name: str, loc: Location, links/joints/materials: Mapping[str, ...], link_list/joint_list/material_list,
     # blocks, issues: tuples, source: str, ros2_control, transmissions: tuples, version: (major, minor),
-    # declared_version: str | None; plugins: the <gazebo> plugins (contracts/gazebo.py)
+    # declared_version: str | None; plugins: the <gazebo> plugins (consumers/gazebo.py)
 
     # --- derived structure -------------------------------------------------
     @property

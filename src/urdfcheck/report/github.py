@@ -23,7 +23,7 @@ def escape_property(text: str) -> str:
 
 
 def command(f, totals: dict | None = None) -> str:
-    from urdfcheck.pipeline.collapse import describe
+    from urdfcheck.finish.collapse import describe
 
     props = []
     if f.location.file:
@@ -45,7 +45,7 @@ def command(f, totals: dict | None = None) -> str:
 
 
 def render(result, **_) -> str:
-    from urdfcheck.pipeline.collapse import variant_totals
+    from urdfcheck.finish.collapse import variant_totals
 
     totals = variant_totals(result.targets, result.root)
     out = [command(f, totals) for f in result.findings]

@@ -62,7 +62,7 @@ def by_target(result, once: bool = False) -> list[tuple[str, str, list]]:
 
 
 def finding_line(f, totals: dict | None = None) -> str:
-    from urdfcheck.pipeline.collapse import describe
+    from urdfcheck.finish.collapse import describe
 
     where = describe(f, totals, every=True)  # shown in one suite only: name the others
     out = f"{x(str(f.location))}: {f.code} [{f.severity}] {x(f.message)}" + (f" [{x(where)}]" if where else "")
@@ -86,7 +86,7 @@ def as_tree(result, fail_on: Severity = Severity.WARNING) -> ET.Element:
     fams = families()
     root = ET.Element("testsuites", name="urdfcheck")
     totals = {"tests": 0, "failures": 0}
-    from urdfcheck.pipeline.collapse import variant_totals
+    from urdfcheck.finish.collapse import variant_totals
 
     vtotals = variant_totals(result.targets, result.root)
     for model, variant, findings in by_target(result, once=True):  # a collapsed finding: one line, in its first suite

@@ -107,7 +107,7 @@ def _findings(result, max_rows: int) -> list[str]:
     if not result.findings:
         return []
     lines = ["", "### Findings", "", "| severity | rule | location | message |", "| --- | --- | --- | --- |"]
-    from urdfcheck.pipeline.collapse import describe, variant_totals
+    from urdfcheck.finish.collapse import describe, variant_totals
 
     totals = variant_totals(result.targets, result.root)
     ordered = sorted(result.findings, key=lambda f: (-int(f.severity), f.sort_key()))

@@ -85,7 +85,7 @@ def _fallback_rule(code: str, name: str) -> dict:
 
 
 def fingerprint(f) -> str:
-    from urdfcheck.pipeline.baseline import normalise_message, portable_path
+    from urdfcheck.finish.baseline import normalise_message, portable_path
 
     text = "\x1f".join([f.code, portable_path(f.location.file), normalise_message(f.message)])
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
@@ -108,7 +108,7 @@ def as_dict(result) -> dict:
             index[f.code] = len(rules)
             rules.append(_fallback_rule(f.code, f.name))
 
-    from urdfcheck.pipeline.collapse import describe, variant_totals
+    from urdfcheck.finish.collapse import describe, variant_totals
 
     totals = variant_totals(result.targets, result.root)
     seen: Counter = Counter()

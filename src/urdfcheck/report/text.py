@@ -18,7 +18,7 @@ def render(result, colour: bool = False, **_) -> str:
         return f"{code}{text}{_RESET}" if colour else text
 
     if result.findings:  # (a clean run does not need the collapse helpers: start-up time)
-        from urdfcheck.pipeline.collapse import chains, describe, variant_totals
+        from urdfcheck.finish.collapse import chains, describe, variant_totals
 
         totals = variant_totals(result.targets, result.root)
     lines = []

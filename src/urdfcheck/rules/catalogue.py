@@ -15,7 +15,7 @@ from typing import NamedTuple
 from urdfcheck.core.findings import Severity
 
 CHECKS: dict[str, Callable] = {}  # code -> check function (one function may serve several codes)
-_CHECK_PACKAGES = ("urdfcheck.rules.checks", "urdfcheck.contracts.registry")
+_CHECK_PACKAGES = ("urdfcheck.rules.checks", "urdfcheck.rules.checks.contracts")
 
 
 def check(*codes: str):

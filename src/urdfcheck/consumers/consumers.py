@@ -1,0 +1,355 @@
+"""The consumers of one model, read once: what the contract (C) and TF (T) checks look at.
+
+`consumers_for_model(model_config, config)` reads what the config declares for a model;
+`discover_consumers(entry_path, model)` is the zero-config fallback: parameter files and launch files of the
+package enclosing the model (see `discover`), associated with the model when the package has only one
+entry model, or when they name one of its joints (parameter files) / its file name (launch files).
+
+Reading never raises: unreadable files become `errors` (`ConsumerError`, reported as C007).
+"""
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from pathlib import Path
+
+from urdfcheck.consumers.common import ConsumerError
+from urdfcheck.consumers.controllers import ControllerSet, Driver, read_controllers, read_driver
+from urdfcheck.consumers.graph import TFClaim, claims_from_owners
+from urdfcheck.consumers.launch.xml import LaunchInfo, read_launch
+from urdfcheck.consumers.localization import LocalizationNode, localization_from_launch, localization_from_params
+from urdfcheck.consumers.openworld import names_a_joint as _names_a_joint
+from urdfcheck.consumers.params import ParamFile, read_params
+from urdfcheck.core.findings import Location
+from urdfcheck.core.records import Record
+
+DEFAULT_FRAMES = {"map": "map", "odom": "odom", "base": "base_link"}
+
+
+class Consumers(Record):
+    # tf_owners: declared in the config
+    # frames: REP-105 names: map, odom, base
+    # frame_prefix: the config's robot_state_publisher frame_prefix for this model
+    # notes: (message, Location)
+    # origin: "config" or "discovered"
+    # files: kind -> [paths read]
+    _fields = ('controllers', 'drivers', 'launch', 'localization', 'tf_owners', 'frames', 'frame_prefix', 'errors',
+               'notes', 'origin', 'files')
+    # issue 20 (consumers.openworld), set after reading: unknown: (what, Location) not understood, which makes
+    # absence claims infos; package_files: parameter files no deployment reads, checked against the model
+    # (`settle`); elsewhere_localization: localization nodes of those files
+    unknown: list = ()
+    package_files: tuple = ()
+    package_single = True
+    elsewhere_localization: list = ()
+    workspace: str | None = None  # the folder whose joint state broadcasters may run beside this deployment
+
+    def settle(self, model) -> Consumers:
+        """Add the package's unread parameter files, once, now that the model is known."""
+        files, self.package_files = self.package_files, ()
+        if files:
+            from urdfcheck.consumers.openworld import add_package_files
+
+            add_package_files(self, files, model, _Reader(), single=self.package_single,
+                              why="no launch file of this deployment reads its file")
+        return self
+
+    def __init__(self, controllers: ControllerSet | None = None,
+                 drivers: list[Driver] | None = None,
+                 launch: list[LaunchInfo] | None = None,
+                 localization: list[LocalizationNode] | None = None,
+                 tf_owners: list[TFClaim] | None = None,
+                 frames: dict | None = None,
+                 frame_prefix: str = "",
+                 errors: list[ConsumerError] | None = None,
+                 notes: list | None = None,
+                 origin: str = "config",
+                 files: dict | None = None):
+        self.controllers = ControllerSet({}, ()) if controllers is None else controllers
+        self.drivers = [] if drivers is None else drivers
+        self.launch = [] if launch is None else launch
+        self.localization = [] if localization is None else localization
+        self.tf_owners = [] if tf_owners is None else tf_owners
+        self.frames = dict(DEFAULT_FRAMES) if frames is None else frames
+        self.frame_prefix = frame_prefix
+        self.errors = [] if errors is None else errors
+        self.notes = [] if notes is None else notes
+        self.origin = origin
+        self.files = {} if files is None else files
+
+    @property
+    def empty(self) -> bool:
+        return not (len(self.controllers) or self.drivers or self.launch or self.localization or self.tf_owners
+                    or self.errors)
+
+    def joint_uses(self):
+        """Every (JointUse, owner kind) a controller or driver names."""
+        for c in self.controllers:
+            for u in c.joints + c.state_joints:
+                yield u, "controller", c
+        for d in self.drivers:
+            for u in d.joints:
+                yield u, "driver", d
+
+    def launch_frame_prefix(self) -> str | None:
+        """The frame_prefix of the one robot_state_publisher in the launch files, if exactly one (literal)."""
+        rsps = [s for li in self.launch for s in li.state_publishers if not s.condition]
+        if len(rsps) == 1 and rsps[0].frame_prefix is not None:
+            return rsps[0].frame_prefix
+        return None
+
+    @property
+    def rsp_prefix(self) -> str:
+        if self.frame_prefix:
+            return self.frame_prefix
+        return self.launch_frame_prefix() or ""
+
+
+class _Reader:
+    def __init__(self):
+        self.cache: dict[str, ParamFile | ConsumerError] = {}
+
+    def params(self, path: str, errors: list) -> ParamFile | None:
+        got = self.cache.get(path)
+        if got is None:
+            try:
+                got = read_params(path)
+            except ConsumerError as e:
+                got = e
+            self.cache[path] = got
+        if isinstance(got, ConsumerError):
+            if got not in errors:
+                errors.append(got)
+            return None
+        return got
+
+
+MAX_INCLUDE_DEPTH = 8
+MAX_LAUNCH_FILES = 100
+
+
+def _read_launch(paths, out: Consumers, args=None, packages=None, reader: _Reader | None = None,
+                 follow: bool = False) -> None:
+    """Read the launch files `paths`; with `follow`, also the files they include (the files a config names
+    run together, so what they include runs too). Each file is read once, with the arguments of its first
+    appearance; an include is not followed when its file or condition is not literal, or when it lies
+    outside the including file's package and the known packages."""
+    from urdfcheck.consumers.launch.params import _allowed_roots, _inside
+
+    queue = [(str(p), args, 0) for p in paths]
+    seen: set[str] = set()
+    while queue:
+        p, a, depth = queue.pop(0)
+        real = os.path.realpath(p)
+        if real in seen:
+            continue
+        seen.add(real)
+        try:
+            li = read_launch(p, args=a, packages=packages)
+        except ConsumerError as e:
+            out.errors.append(e)
+            continue
+        out.launch.append(li)
+        if not follow:
+            continue
+        for inc in li.includes:
+            why = None
+            if inc.file is None:
+                why = "its file name is not literal"
+            elif inc.condition is not None:
+                why = f"it runs only under a condition that cannot be decided ({inc.condition})"
+            elif depth + 1 > MAX_INCLUDE_DEPTH or len(seen) + len(queue) >= MAX_LAUNCH_FILES:
+                why = "too many nested launch files"
+            elif not _inside(inc.file, _allowed_roots(li, packages or {})):
+                why = "it is outside the including file's package and the known packages"
+            elif not os.path.isfile(inc.file):
+                why = "no such file"
+            if why is not None:
+                out.notes.append((f"include {inc.file or '?'} not followed: {why}", inc.loc))
+                continue
+            queue.append((inc.file, dict(inc.args), depth + 1))
+    for li in out.launch:
+        out.notes.extend(li.notes)
+    if len(out.controllers) and any(li.param_sets for li in out.launch):
+        from urdfcheck.consumers.launch.params import apply_launch_params
+
+        r = reader or _Reader()
+        out.notes.extend(apply_launch_params(out.controllers, out.launch, lambda f: r.params(f, []), packages or {}))
+
+
+def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None = None,
+                        reader: _Reader | None = None) -> Consumers:
+    """Consumers declared in the config for one model (`config.ModelConfig`)."""
+    r = reader or _Reader()
+    out = Consumers(origin="config")
+    if config is not None:
+        out.frames = {**DEFAULT_FRAMES, **dict(config.frames)}
+        out.tf_owners = claims_from_owners(dict(config.tf_owners), dict(config.tf_owner_locs), Location(config.path))
+    out.frame_prefix = mc.frame_prefix
+    pfs = [pf for pf in (r.params(p, out.errors) for p in mc.controllers) if pf is not None]
+    out.controllers = read_controllers(pfs)
+    out.notes.extend(out.controllers.notes)
+    for c in out.controllers:
+        out.notes.extend(c.notes)
+    for d in mc.drivers:
+        pf = r.params(d.file, out.errors)
+        if pf is None:
+            continue
+        drv = read_driver(d, [pf])
+        out.drivers.append(drv)
+    loc_pfs = [pf for pf in (r.params(p, out.errors) for p in mc.localization) if pf is not None]
+    pk = dict(packages or (config.packages if config is not None else {}))
+    _read_launch(mc.launch, out, dict(mc.launch_args), pk, r, follow=True)
+    tf_owners(out, loc_pfs, r)
+    _launch_typed(out, pfs)
+    out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
+                 "launch": list(mc.launch), "localization": list(mc.localization)}
+    from urdfcheck.consumers.openworld import launch_unknowns
+
+    # the config declares the world, but for what its launch files run that was not understood (issue 20)
+    out.unknown = launch_unknowns(out, [d.file for d in mc.drivers])
+    return out
+
+
+# --- zero-config -----------------------------------------------------------------------------------------
+def _package_root(entry: str) -> Path | None:
+    p = Path(os.path.abspath(entry)).parent
+    for d in (p, *p.parents):
+        if (d / "package.xml").is_file():
+            return d
+    return None
+
+
+def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | None = None) -> Consumers | None:
+    """Consumers found next to a model without a config; None when the model is in no ROS package."""
+    from urdfcheck.load.discover import discover
+
+    root = _package_root(entry)
+    if root is None:
+        return None
+    found = discover(root)
+    single = len(found.models) <= 1
+    joints = set(model.joints) if model is not None else set()
+    out = Consumers(origin="discovered")
+    r = _Reader()
+    pfs = []
+    from urdfcheck.consumers.prefilter import worth_parsing
+
+    for p in found.params:
+        if not single and not worth_parsing(p, joints):  # names none of the joints: dropped below anyway
+            continue
+        errs: list = []
+        pf = r.params(p, errs)
+        if pf is None:
+            if single:
+                out.errors.extend(errs)
+            continue
+        if single or _names_a_joint(pf, joints):
+            pfs.append(pf)
+    out.controllers = read_controllers(pfs)
+    for c in out.controllers:
+        out.notes.extend(c.notes)
+    from urdfcheck.consumers.openworld import package_drivers, package_unknowns
+
+    base = os.path.basename(entry)
+    launches = []
+    for p in found.launch:
+        if single or _mentions(p, base):
+            launches.append(p)
+    pk = dict(packages or {})
+    _read_launch(launches, out, None, pk, r)
+    tf_owners(out, pfs, r)
+    out.drivers = package_drivers(pfs, out.controllers, out.localization)  # the base driver's YAML (issue 20)
+    _launch_typed(out, pfs)
+    # every launch file of the package, associated with this model or not: when none starts a
+    # robot_state_publisher, nothing in the package needs joint states (C003)
+    out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found.launch)}
+    out.unknown = package_unknowns(out)
+    return out
+
+
+def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None = None, config=None) -> Consumers:
+    """Zero config (or a config with no entry for this model): the consumers beside the model
+    (`discover_consumers`; none outside a ROS package), with the config's frames and TF owners, which a
+    config names for every model. Discovery is best effort: a failure gives no consumers, never an error."""
+    try:
+        found = discover_consumers(entry, model, packages=packages)
+    except Exception:  # noqa: BLE001 - discovery is best effort; never break the checks
+        found = None
+    c = found or Consumers(origin="none")
+    if config is not None:
+        c.frames = {**c.frames, **dict(getattr(config, "frames", {}) or {})}
+        owners = dict(getattr(config, "tf_owners", {}) or {})
+        if owners and not c.tf_owners:
+            c.tf_owners = claims_from_owners(owners, dict(getattr(config, "tf_owner_locs", {}) or {}),
+                                             Location(getattr(config, "path", "<config>")))
+    return c
+
+
+def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace: str | None = None) -> None:
+    """The localization, SLAM and driver nodes that broadcast transforms: those the launch files start (inline
+    parameters over the files each node is given), then those of parameter files no such node has read.
+    Discovered launch files of a package are often alternatives (sim/real): their nodes count only when one
+    launch file starts them all."""
+    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace)
+    starters = {n.loc.file for n in nodes}
+    if out.origin == "discovered" and len(starters) > 1:
+        out.notes.append((f"TF-owning nodes are started by {len(starters)} launch files of the package, which may "
+                          "be alternatives; only their parameter files are read", Location(sorted(starters)[0])))
+        nodes, used = [], set()
+    from_files = localization_from_params(pfs, skip=used)
+    if out.origin == "discovered":
+        from_files = _one_map_owner(from_files, out.notes)
+    out.localization = nodes + from_files
+    out.notes.extend(notes)
+
+
+_MAP_OWNERS = ("amcl", "slam_toolbox", "cartographer")
+
+
+def _one_map_owner(nodes: list, notes: list) -> list:
+    """A package's parameter files for localization (AMCL) and for mapping (slam_toolbox, cartographer) are
+    alternatives: without a launch file that starts them together, the first one read owns map -> odom."""
+    seen: dict[tuple, LocalizationNode] = {}
+    out = []
+    for n in nodes:
+        if n.kind in _MAP_OWNERS:
+            edges = tuple((e.parent, e.child) for e in n.edges())
+            first = next((seen[e] for e in edges if e in seen and seen[e].kind != n.kind), None)
+            if first is not None:
+                notes.append((f"{n.kind} {n.node} ({os.path.basename(n.file)}) and {first.kind} {first.node} "
+                              f"({os.path.basename(first.file)}) are read as alternatives (mapping or localization): "
+                              "no launch file starts them together", n.loc))
+                continue
+            for e in edges:
+                seen.setdefault(e, n)
+        out.append(n)
+    return out
+
+
+def _launch_typed(out: Consumers, pfs: list) -> None:
+    """Controllers whose type a launch file gives (`spawner NAME -t TYPE`) and whose parameter file does not:
+    read the parameter files again with those types (issue 15: such a diff drive was never checked)."""
+    from urdfcheck.consumers.controllers import spawner_types
+
+    types = spawner_types(out.launch)
+    if not pfs or not types or all(out.controllers.by_name(n) is not None for n in types) \
+            or any(li.param_sets for li in out.launch):  # (ROS 1 launch parameters were applied already)
+        return
+    out.controllers = read_controllers(pfs, launch_types=types)
+    for c in out.controllers:
+        if out.controllers.by_name(c.name) is c and c.name in types:
+            out.notes.extend(c.notes)
+
+
+def _mentions(path: str, name: str) -> bool:
+    from urdfcheck.load.packages import leaves_cwd
+
+    if leaves_cwd(path):
+        return False
+    try:
+        from urdfcheck.core.safeio import read_file
+
+        return name.encode() in read_file(path, 2 * 1024 * 1024)
+    except OSError:
+        return False

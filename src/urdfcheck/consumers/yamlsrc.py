@@ -1,0 +1,362 @@
+"""YAML with line numbers, for untrusted consumer files (parameter files, YAML launch files, the config).
+
+`parse_yaml(text, file)` / `load_yaml(path)` return a `YamlDoc`: plain Python values (`doc.data`) plus the
+`Location` of every key and value by key path (`doc.loc("node", "ros__parameters", "wheel_radius")`).
+
+Safety:
+
+* the pure-Python `yaml.SafeLoader` composer is used (libyaml's C composer recurses on the C stack and
+  crashes the process on deeply nested input; the Python one raises RecursionError, which we catch);
+* only nodes are composed; no constructor runs on collections and no tag is honoured beyond the YAML core
+  schema scalars (an unknown or `!!python/...` tag leaves the scalar as its plain text);
+* aliases are expanded by our own walk, which counts every node it produces and refuses documents that
+  expand beyond `max_nodes` (a "billion laughs" bomb) or refer to themselves;
+* files larger than `max_bytes` are refused before parsing.
+
+Every failure is a `ConsumerError(message, Location)`, never a traceback.
+"""
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterator
+from typing import Any
+
+import yaml
+from yaml.constructor import SafeConstructor
+
+from urdfcheck.consumers.common import ConsumerError
+from urdfcheck.core.findings import Location
+from urdfcheck.core.records import Record
+
+MAX_BYTES = 2 * 1024 * 1024
+MAX_NODES = 100_000
+MAX_DEPTH = 256
+
+_BRACKETS = re.compile(r"[\[\]{}]")
+_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+_RUNS = re.compile(r"[\[{][\[{\s,]*|(?:-[ \t]+)+")  # maximal runs of flow openers / block dashes
+_MERGE_TAG = "tag:yaml.org,2002:merge"
+_STR_TAG = "tag:yaml.org,2002:str"
+_CORE_SCALARS = {
+    "tag:yaml.org,2002:null",
+    "tag:yaml.org,2002:bool",
+    "tag:yaml.org,2002:int",
+    "tag:yaml.org,2002:float",
+    "tag:yaml.org,2002:str",
+    "tag:yaml.org,2002:timestamp",
+}
+
+
+def _mark_loc(file: str, mark) -> Location:
+    if mark is None:
+        return Location(file)
+    return Location(file, mark.line + 1, mark.column + 1)
+
+
+class YamlDoc(Record):
+    """A parsed YAML document: plain values plus the location of every key path.
+
+    A key path is a tuple of mapping keys and sequence indices from the document root.
+    """
+
+    # notes: (message, Location): duplicate keys and the like
+    _fields = ('file', 'data', '_value_locs', '_key_locs', 'notes')
+
+    def __init__(self, file: str,
+                 data: Any,
+                 _value_locs: dict | None = None,
+                 _key_locs: dict | None = None,
+                 notes: list | None = None):
+        self.file = file
+        self.data = data
+        self._value_locs = {} if _value_locs is None else _value_locs
+        self._key_locs = {} if _key_locs is None else _key_locs
+        self.notes = [] if notes is None else notes
+
+    def loc(self, *path) -> Location:
+        """Where the value at `path` was written; the nearest located ancestor otherwise (file-only at worst)."""
+        p = tuple(path)
+        while True:
+            if p in self._value_locs:
+                return self._value_locs[p]
+            if not p:
+                return Location(self.file)
+            p = p[:-1]
+
+    def key_loc(self, *path) -> Location:
+        """Where the mapping key ending `path` was written (falls back to `loc`)."""
+        p = tuple(path)
+        if p in self._key_locs:
+            return self._key_locs[p]
+        return self.loc(*p)
+
+    def has(self, *path) -> bool:
+        return tuple(path) in self._value_locs
+
+    def get(self, *path, default=None):
+        cur = self.data
+        for k in path:
+            if isinstance(cur, dict) and k in cur:
+                cur = cur[k]
+            elif isinstance(cur, list) and isinstance(k, int) and 0 <= k < len(cur):
+                cur = cur[k]
+            else:
+                return default
+        return cur
+
+    def walk(self) -> Iterator[tuple[tuple, Any]]:
+        """(path, value) for every value, parents before children, document order."""
+        yield from _walk((), self.data)
+
+
+def _walk(path, value):
+    yield path, value
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield from _walk(path + (k,), v)
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            yield from _walk(path + (i,), v)
+
+
+class _Builder:
+    def __init__(self, file: str, max_nodes: int):
+        self.file = file
+        self.max_nodes = max_nodes
+        self.count = 0
+        self.value_locs: dict = {}
+        self.key_locs: dict = {}
+        self.notes: list = []
+        self._ctor = SafeConstructor()
+        self._stack: set[int] = set()
+
+    def _tick(self, node) -> None:
+        self.count += 1
+        if self.count > self.max_nodes:
+            raise ConsumerError(
+                f"YAML expands to more than {self.max_nodes} nodes (alias bomb?); refused",
+                _mark_loc(self.file, node.start_mark),
+            )
+
+    def scalar(self, node: yaml.ScalarNode):
+        if node.tag in _CORE_SCALARS:
+            try:
+                return self._ctor.construct_scalar(node) if node.tag == _STR_TAG else self._construct(node)
+            except Exception:  # noqa: BLE001 - odd scalar (bad timestamp...): keep the text
+                return node.value
+        return node.value  # unknown / non-core tag: plain text, never executed
+
+    def _construct(self, node):
+        value = self._ctor.construct_object(node, deep=False)
+        if node.tag == "tag:yaml.org,2002:timestamp":
+            return node.value  # keep the text; a datetime is no use to us
+        return value
+
+    def build(self, node, path: tuple, depth: int = 0):
+        self._tick(node)
+        if depth > MAX_DEPTH:
+            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused",
+                                _mark_loc(self.file, node.start_mark))
+        self.value_locs[path] = _mark_loc(self.file, node.start_mark)
+        if isinstance(node, yaml.ScalarNode):
+            return self.scalar(node)
+        key = id(node)
+        if key in self._stack:
+            raise ConsumerError("YAML alias refers to itself (recursive structure); refused",
+                                _mark_loc(self.file, node.start_mark))
+        self._stack.add(key)
+        try:
+            if isinstance(node, yaml.SequenceNode):
+                return [self.build(item, path + (i,), depth + 1) for i, item in enumerate(node.value)]
+            if isinstance(node, yaml.MappingNode):
+                return self.mapping(node, path, depth)
+        finally:
+            self._stack.discard(key)
+        return None
+
+    def _key(self, knode):
+        self._tick(knode)
+        if isinstance(knode, yaml.ScalarNode):
+            k = self.scalar(knode)
+        else:  # a collection used as a key: keep its text form, unusable as a parameter name anyway
+            k = f"<{type(knode).__name__}>"
+        try:
+            hash(k)
+        except TypeError:
+            k = str(k)
+        return k
+
+    def mapping(self, node: yaml.MappingNode, path: tuple, depth: int, out: dict | None = None) -> dict:
+        """Build a mapping into `out`. Keys already in `out` are kept (that is how merge keys work:
+        explicit keys win, and earlier merged mappings win over later ones)."""
+        merging = out is not None
+        out = {} if out is None else out
+        merges = []
+        for knode, vnode in node.value:
+            if isinstance(knode, yaml.ScalarNode) and knode.tag == _MERGE_TAG:
+                merges.append(vnode)
+                continue
+            k = self._key(knode)
+            if merging and k in out:
+                continue
+            if k in out:
+                if isinstance(out[k], dict) and isinstance(vnode, yaml.MappingNode):
+                    # rcl reads parameter files event by event: a repeated node key adds to the node
+                    self.notes.append((f"duplicate key {k!r}; the two mappings are merged",
+                                       _mark_loc(self.file, knode.start_mark)))
+                    self._tick(vnode)
+                    self.key_locs[path + (k,)] = _mark_loc(self.file, knode.start_mark)
+                    _deep_update(out[k], self.mapping(vnode, path + (k,), depth + 1))
+                    continue
+                self.notes.append((f"duplicate key {k!r}; the last one wins", _mark_loc(self.file, knode.start_mark)))
+                n = len(path) + 1
+                for table in (self.value_locs, self.key_locs):
+                    for p in [p for p in table if p[:n] == path + (k,)]:
+                        del table[p]
+            self.key_locs[path + (k,)] = _mark_loc(self.file, knode.start_mark)
+            out[k] = self.build(vnode, path + (k,), depth + 1)
+        for mnode in merges:
+            sources = mnode.value if isinstance(mnode, yaml.SequenceNode) else [mnode]
+            for src in sources:
+                self._tick(src)
+                if not isinstance(src, yaml.MappingNode):
+                    raise ConsumerError("merge key '<<' needs a mapping or a list of mappings",
+                                        _mark_loc(self.file, src.start_mark))
+                key = id(src)
+                if key in self._stack:
+                    raise ConsumerError("YAML alias refers to itself (recursive structure); refused",
+                                        _mark_loc(self.file, src.start_mark))
+                self._stack.add(key)
+                try:
+                    self.mapping(src, path, depth + 1, out)
+                finally:
+                    self._stack.discard(key)
+        return out
+
+
+def _deep_update(dst: dict, src: dict) -> None:
+    for k, v in src.items():
+        if isinstance(v, dict) and isinstance(dst.get(k), dict):
+            _deep_update(dst[k], v)
+        else:
+            dst[k] = v
+
+
+def _children(node):
+    if isinstance(node, yaml.SequenceNode):
+        return list(node.value)
+    if isinstance(node, yaml.MappingNode):
+        return [n for kv in node.value for n in kv]
+    return []
+
+
+def _refuse_bombs(root, file: str, max_nodes: int) -> None:
+    """Cheap pre-pass: expanded node count with memoisation (aliases share node objects), so a bomb is
+    refused in time proportional to its text, before anything is expanded."""
+    sizes: dict[int, int] = {}
+    state: dict[int, int] = {}  # 1: on the stack, 2: done
+    stack = [(root, False)]
+    while stack:  # iterative post-order over unique nodes
+        node, expanded = stack.pop()
+        key = id(node)
+        if expanded:
+            total = 1 + sum(sizes.get(id(c), 1) for c in _children(node))
+            sizes[key] = min(total, max_nodes + 1)
+            state[key] = 2
+            continue
+        if key in state:
+            continue  # done already, or a cycle (the builder reports cycles)
+        state[key] = 1
+        stack.append((node, True))
+        for c in _children(node):
+            if id(c) not in state:
+                stack.append((c, False))
+    if sizes[id(root)] <= max_nodes:
+        return
+    node = root
+    while True:  # descend to the smallest node that is still too big: that is where the bomb is
+        big = [c for c in _children(node) if sizes.get(id(c), 1) > max_nodes]
+        if not big:
+            break
+        node = big[0]
+    raise ConsumerError(
+        f"YAML expands to more than {max_nodes} nodes through aliases (a YAML bomb); refused",
+        _mark_loc(file, node.start_mark),
+    )
+
+
+def _refuse_deep_events(text: str, file: str) -> None:
+    depth = 0
+    try:
+        for ev in yaml.parse(text, Loader=_LOADER):
+            if isinstance(ev, (yaml.SequenceStartEvent, yaml.MappingStartEvent)):
+                depth += 1
+                if depth > MAX_DEPTH:
+                    raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused",
+                                        _mark_loc(file, ev.start_mark))
+            elif isinstance(ev, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
+                depth -= 1
+    except yaml.YAMLError:
+        pass  # the composer below reports it, located
+
+
+def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES) -> YamlDoc:
+    """Parse one YAML document (the first non-empty one of a stream). Raises ConsumerError."""
+    if isinstance(text, bytes):
+        if len(text) > max_bytes:
+            raise ConsumerError(f"file is larger than {max_bytes} bytes; refused", Location(file))
+        try:
+            text = text.decode("utf-8-sig")
+        except UnicodeDecodeError as e:
+            line = text.count(b"\n", 0, e.start) + 1
+            raise ConsumerError(f"not valid UTF-8 ({e.reason})", Location(file, line)) from None
+    if len(text) > max_bytes:
+        raise ConsumerError(f"file is larger than {max_bytes} bytes; refused", Location(file))
+    for m in _RUNS.finditer(text):  # linear guard for the usual shapes; anything else deep ends in RecursionError
+        run = m.group()
+        if run.count("[") + run.count("{") + run.count("-") > MAX_DEPTH:
+            line = text.count("\n", 0, m.start()) + 1
+            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", Location(file, line))
+    depth = 0
+    for m in _BRACKETS.finditer(text):  # flow nesting with text between the brackets ([a, [b, [c ...)
+        depth += 1 if m.group() in "[{" else -1
+        if depth > MAX_DEPTH:
+            line = text.count("\n", 0, m.start()) + 1
+            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", Location(file, line))
+    # With flow nesting bounded above and block nesting bounded by the file size (indentation grows with
+    # depth), libyaml's recursive C composer is safe, and ~10x faster than the pure-Python one.
+    # Compact block nesting (`? ? ? x`, 2 bytes a level) gets past the guards above and overflows the C stack:
+    # count the depth on libyaml's event stream first (its parser is not recursive).
+    _refuse_deep_events(text, file)
+    try:
+        root = None
+        for node in yaml.compose_all(text, Loader=_LOADER):
+            if node is not None:
+                root = node
+                break
+    except yaml.MarkedYAMLError as e:
+        mark = e.problem_mark or e.context_mark
+        msg = " ".join(x for x in (e.context, e.problem) if x) or "YAML syntax error"
+        raise ConsumerError(f"YAML syntax error: {msg}", _mark_loc(file, mark)) from None
+    except yaml.YAMLError as e:
+        raise ConsumerError(f"YAML error: {e}", Location(file)) from None
+    except RecursionError:
+        raise ConsumerError("YAML nested too deeply; refused", Location(file)) from None
+    if root is None:
+        return YamlDoc(file, None)
+    _refuse_bombs(root, file, max_nodes)
+    b = _Builder(file, max_nodes)
+    try:
+        data = b.build(root, ())
+    except RecursionError:
+        raise ConsumerError("YAML nested too deeply; refused", Location(file)) from None
+    return YamlDoc(file, data, b.value_locs, b.key_locs, b.notes)
+
+
+def load_yaml(path: str | os.PathLike, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES) -> YamlDoc:
+    """Read and parse a YAML file. Raises ConsumerError (unreadable, too large, bad YAML, bomb)."""
+    from urdfcheck.consumers.common import read_capped
+
+    file = str(path)
+    return parse_yaml(read_capped(file, max_bytes), file, max_bytes=max_bytes, max_nodes=max_nodes)

@@ -1,0 +1,2 @@
+"""The finish stage: one finding per problem (`collapse`), the baseline.
+"""

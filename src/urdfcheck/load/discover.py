@@ -1,0 +1,237 @@
+"""Zero-config discovery of what to lint in a package directory.
+
+* entry models: every `.urdf`, and every `.xacro` whose root element is `<robot>`, that is not included by
+  another xacro of the package (`xacro:include filename="..."`, matched on the path tail) and that does more
+  than define macros/properties (a library has only `xacro:macro`/`property`/`arg`/`include` children, also
+  inside `xacro:if`/`unless`, at least one macro or property, and expands to an empty robot; it is linted
+  through the robots that include it, never alone);
+* parameter YAML: `*.yaml`/`*.yml` in any `config/`, `params/` or `param/` directory;
+* launch files: `*.launch`, `*.launch.xml`, `*.launch.py`, `*.launch.yaml`, `*.launch.yml` in any `launch/`
+  directory.
+
+Hidden directories and build output (`build`, `install`, `log`, `devel`, `node_modules`) are skipped; at most
+`max_files` files are looked at. Output lists are sorted. Files are only read (and the xacro ones only their
+first `HEAD_BYTES` for the root check), never expanded.
+"""
+from __future__ import annotations
+
+import os
+import re
+from typing import NamedTuple
+
+from lxml import etree
+
+from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
+
+PARAM_DIRS = {"config", "params", "param"}
+LAUNCH_DIRS = {"launch"}
+LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml")
+MAX_FILES = 20_000
+HEAD_BYTES = 4 * 1024 * 1024
+
+_COMMENT = re.compile(r"<!--.*?(?:-->|\Z)", re.S)
+_INCLUDE = re.compile(r"""<\s*xacro:include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
+_ROOT = re.compile(r"<\s*([A-Za-z_][\w:.-]*)")
+_DEFINITION_TAGS = {"macro", "property", "arg", "include"}
+_XACRO_NS = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro", "http://wiki.ros.org/xacro")
+
+
+class Discovered(NamedTuple):
+    root: str
+    models: tuple[str, ...]
+    params: tuple[str, ...]
+    launch: tuple[str, ...]
+    libraries: tuple[str, ...] = ()  # xacro files skipped as included or macro-only
+    truncated: bool = False  # the walk stopped at max_files: what lies beyond was not looked at
+    # robots by their root whose text suggests no link (fragments, SRDF-like): expanded, a library only when the
+    # expansion has no link (plan.robots); never in `models`, never a silent skip
+    probes: tuple[str, ...] = ()
+    # libraries because another file includes them, that may hold links: the run checks that a model read them
+    included: tuple[str, ...] = ()
+
+
+def _walk(root: str, max_files: int, cut: list | None = None):
+    from urdfcheck.core.walk import files, folders
+
+    n = 0
+    for dirpath, entries in folders(root):
+        for f in files(entries):
+            n += 1
+            if n > max_files:
+                if cut is not None:
+                    cut.append(dirpath)
+                return
+            yield dirpath, f
+
+
+def _read_head(path: str, trusted: bool = False, cache: dict | None = None) -> str:
+    from urdfcheck.load.packages import leaves_cwd
+
+    # a committed symlink out of the checkout: its target is none of our business
+    if not trusted and leaves_cwd(path, cache=cache):
+        return ""
+    try:
+        from urdfcheck.core.safeio import decode_model_text, read_file
+
+        # a regular file only (a FIFO must not block); a UTF-16 model is found, then reported by the loader
+        return decode_model_text(read_file(path, HEAD_BYTES)[:HEAD_BYTES])
+    except OSError:
+        return ""
+
+
+def _root_tag(text: str) -> str | None:
+    i = 0
+    while True:
+        m = _ROOT.search(text, i)
+        if not m:
+            return None
+        # skip <?xml ...?>, <!-- -->, <!DOCTYPE>
+        before = text[m.start(): m.start() + 2]
+        if before.startswith("<?") or before.startswith("<!"):
+            i = m.end()
+            continue
+        start = text.rfind("<!--", 0, m.start())
+        if start != -1 and text.find("-->", start) > m.start():
+            i = text.find("-->", start) + 3
+            continue
+        return m.group(1)
+
+
+def _is_library(text: str, includes: bool = False) -> bool:
+    """Only definitions at the top level (macros, properties, args; with `includes`, includes too): without
+    includes it expands to an empty robot, certainly; with them, the expansion tells (a probe)."""
+    try:
+        parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False,
+                                 remove_comments=True, remove_pis=True, recover=False)
+        root = etree.fromstring(text.encode("utf-8"), parser)
+    except etree.XMLSyntaxError:
+        return False  # let the linter report it
+    kids = [c for c in root if isinstance(c.tag, str)]
+    if not kids:
+        return False
+    defs = _definitions(kids, 0)
+    # macros or properties only (an `xacro:if` holding only definitions counts): a library, certainly (its
+    # expansion is an empty robot). An include may bring a robot body: such a file is expanded to tell
+    return defs is not None and bool(defs & {"macro", "property"}) and (includes or "include" not in defs)
+
+
+def _definitions(kids, depth: int) -> set[str] | None:
+    """The definition tags among `kids`, or None when one of them is not a definition."""
+    found: set[str] = set()
+    for c in kids:
+        q = etree.QName(c)
+        if q.namespace not in _XACRO_NS:
+            return None
+        if q.localname in _DEFINITION_TAGS:
+            found.add(q.localname)
+        elif q.localname in ("if", "unless") and depth < 8:
+            inner = _definitions([k for k in c if isinstance(k.tag, str)], depth + 1)
+            if inner is None:
+                return None
+            found |= inner
+        else:
+            return None
+    return found
+
+
+_SRDF = re.compile(r"<\s*(?:disable_collisions|group|group_state|virtual_joint|end_effector|passive_joint)\b")
+
+
+def _no_links(text: str) -> bool:
+    """A xacro that can produce no <link>: none written and nothing included (materials, colours): a fragment
+    for other files to include, like a .urdf without links (ros2_control_demos' diffbot.materials.xacro)."""
+    return not re.search(r"<\s*link\b", text) and not re.search(r"<\s*xacro:include\b", text)
+
+
+def _is_srdf(text: str) -> bool:
+    """MoveIt SRDF written as xacro (root <robot> too): SRDF elements (<group>, <disable_collisions>, ...)
+    and no <link> of its own. Never a URDF model (`*.srdf.xacro` is skipped by name already)."""
+    return bool(_SRDF.search(text)) and not re.search(r"<\s*link\b", text)
+
+
+def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
+    """Package xacro files an include reference may point at.
+
+    A plain relative reference resolves against the including file. A `$(find pkg)/a/b.xacro` reference
+    matches files whose path ends with `a/b.xacro` (source and install layouts differ, so the package
+    prefix is not used); when none does, any file called `b.xacro`.
+    """
+    ref = ref.strip().replace("\\", "/")
+    if not ref:
+        return set()
+    if "$(" not in ref and "${" not in ref:
+        cand = os.path.normpath(ref if os.path.isabs(ref) else os.path.join(os.path.dirname(includer), ref))
+        return {cand} if cand in xacros else set()
+    tail = re.sub(r"^.*\)", "", ref).lstrip("/")  # text after the last substitution
+    if "${" in tail or not tail:
+        return set()
+    tail_parts = [p for p in tail.split("/") if p not in ("", ".")]
+    if not tail_parts:
+        return set()
+    def ends_with(path: str) -> bool:
+        parts = path.replace("\\", "/").split("/")
+        return parts[-len(tail_parts):] == tail_parts
+    hits = {x for x in xacros if ends_with(x)}
+    if not hits:
+        hits = {x for x in xacros if os.path.basename(x) == tail_parts[-1]}
+    return hits
+
+
+def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trusted: bool = False) -> Discovered:
+    """The package's files by role. Unless `trusted`, nothing is read through a link out of the working
+    directory (`packages.leaves_cwd`)."""
+    root = os.path.abspath(str(package_dir))
+    urdfs, xacros, params, launches = [], [], [], []
+    parts_of: dict[str, list[str]] = {}  # dirpath -> its folders below root (relpath per file was slow)
+    cut: list = []
+    for dirpath, f in _walk(root, max_files, cut):
+        path = os.path.join(dirpath, f)
+        parts = parts_of.get(dirpath)
+        if parts is None:
+            rel = os.path.relpath(dirpath, root)
+            parts = parts_of[dirpath] = [] if rel == os.curdir else rel.replace("\\", "/").split("/")
+        low = f.lower()
+        if low.endswith(".urdf"):
+            urdfs.append(path)
+        elif low.endswith(".xacro"):
+            if not low.endswith(".srdf.xacro"):  # MoveIt's semantic description (also <robot>): not a URDF
+                xacros.append(path)
+        elif low.endswith((".yaml", ".yml")) and not low.endswith((".launch.yaml", ".launch.yml")) \
+                and any(p in PARAM_DIRS for p in parts):
+            params.append(path)
+        if low.endswith(LAUNCH_SUFFIXES) and any(p in LAUNCH_DIRS for p in parts):
+            launches.append(path)
+    from urdfcheck.load.packages import leaves_cwd
+
+    # a model file linked out of the working directory is listed as a model, so that the loader names it
+    # (X014) instead of it silently dropping out of the run; nothing behind the link is read
+    real_dirs: dict = {}  # one realpath per folder, not per file
+    models = [] if trusted else [p for p in urdfs + xacros if leaves_cwd(p, cache=real_dirs)]
+    urdfs = [p for p in urdfs if p not in models]
+    xacros = [p for p in xacros if p not in models]
+    texts = {p: _read_head(p, trusted, real_dirs) for p in xacros}
+    included: set[str] = set()
+    for p, t in texts.items():
+        for m in _INCLUDE.finditer(_COMMENT.sub("", t)):  # a commented-out include includes nothing
+            included |= _included_files(m.group(2), p, xacros) - {p}
+    libs, probes, maybe = [], [], []
+    for p in urdfs:  # a .urdf without any <link> is a fragment (materials, properties) for others to include
+        (models if re.search(r"<\s*link\b", _read_head(p, trusted, real_dirs)) else libs).append(p)
+    for p in xacros:
+        tag = _root_tag(texts[p])
+        robot = tag is not None and tag.split(":")[-1] == "robot"
+        if p in included:
+            libs.append(p)
+            if robot and not _is_library(texts[p]):
+                maybe.append(p)
+            continue
+        if not robot or _is_library(texts[p]):
+            libs.append(p)
+            continue
+        if _is_srdf(texts[p]) or _no_links(texts[p]) or _is_library(texts[p], includes=True):
+            libs.append(p)  # by its text; the expansion decides (plan.robots)
+            probes.append(p)
+            continue
+        models.append(p)
+    return Discovered(root, tuple(sorted(models)), tuple(sorted(params)), tuple(sorted(launches)), tuple(sorted(libs)),
+                      bool(cut), tuple(sorted(probes)), tuple(sorted(maybe)))

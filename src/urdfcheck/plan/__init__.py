@@ -1,0 +1,2 @@
+"""Planning: a request becomes targets (models, variants, deployments from launch files).
+"""

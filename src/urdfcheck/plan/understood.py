@@ -1,0 +1,94 @@
+"""Deployments not understood are findings (issue 20): C021, info, in every report format.
+
+A launch file that starts robot_state_publisher with a model urdfcheck cannot read (a model read with
+`FileContent(...)`, a path built with `$(eval find(pkg) + ...)`, a file name built from a launch argument,
+a robot_description from another package's helper function, a URDF generated at calibration time) is a
+deployment whose contracts go unchecked. Saying so only in `--list` hid it; each becomes one finding at the
+construct, naming the launch file and the config lines that tell urdfcheck which model it runs.
+"""
+from __future__ import annotations
+
+from urdfcheck.core.findings import Finding, Location, Severity, clean_text
+
+CODE, NAME = "C021", "deployment-not-understood"
+
+
+def findings(deployments, settings, shown) -> list[Finding]:
+    """One C021 per deployment without a model (`Deployment.model` None), under `settings`' selection."""
+    sel = settings.selection
+    if not deployments or not sel.enabled(CODE):
+        return []
+    out, seen = [], set()
+    for d in deployments:
+        if d.launch is None:
+            continue
+        why, loc = _construct(d)
+        launch = shown(d.launch.file)
+        key = (launch, why, str(loc))
+        if key in seen:
+            continue
+        seen.add(key)
+        variant = f" [{d.variant}]" if d.variant else ""
+        code = _source_line(loc)
+        if code:
+            why += f" (`{code}`)"
+        model, rel, config = _config_line(d.launch.file, shown)
+        msg = (f"{launch}{variant} starts robot_state_publisher, but {why}: the contracts of this deployment "
+               f"(controllers, drivers, TF owners) are not checked; tell urdfcheck the model it runs in "
+               f"{config}: `models: [{{path: {model}, launch: [{rel}]}}]`")
+        where = loc._replace(file=shown(loc.file)) if loc is not None else Location(launch)
+        out.append(Finding(CODE, sel.severity_of(CODE, Severity.INFO), clean_text(msg, 1000), where, name=NAME,
+                           model=launch, variant=d.variant))
+    return out
+
+
+def _construct(d) -> tuple[str, Location | None]:
+    """What was not understood, and where: the last note about the model (the planner writes it last)."""
+    for msg, loc in reversed(d.notes):
+        if "model" in msg:
+            text = msg.replace("the model robot_state_publisher gets is not understood",
+                               "the model it is given is not understood")
+            return text, loc
+    return "the model it is given is not understood", d.rsp
+
+
+MAX_SNIPPET = 100
+
+
+def _config_line(launch: str, shown) -> tuple[str, str, str]:
+    """(model path, launch path, config file) for the config line that tells urdfcheck: paths relative to the
+    launch file's package, where that config goes; the model named when the package holds exactly one."""
+    import os
+    from pathlib import Path
+
+    from urdfcheck.load.discover import discover
+    from urdfcheck.load.packages import enclosing_package
+
+    pkg = enclosing_package(Path(os.path.abspath(launch)).parent)
+    if pkg is None:
+        return "<the model file>", shown(launch), "urdfcheck.yaml"
+    try:
+        models = discover(str(pkg)).models
+    except OSError:
+        models = ()
+    model = os.path.relpath(models[0], pkg) if len(models) == 1 else "<the model file>"
+    return model, os.path.relpath(os.path.abspath(launch), pkg), shown(os.path.join(pkg, "urdfcheck.yaml"))
+
+
+def _source_line(loc: Location | None) -> str:
+    """The line of the construct that was not understood: the first line from `loc` on (a few lines: the
+    node's call) that names robot_description, else the line at `loc`; trimmed; "" when unreadable."""
+    if loc is None or not loc.line or not loc.file:
+        return ""
+    from urdfcheck.core.safeio import read_file
+
+    try:
+        lines = read_file(loc.file, 4 * 1024 * 1024).decode("utf-8", "replace").splitlines()
+    except (OSError, ValueError):
+        return ""
+    if loc.line > len(lines):
+        return ""
+    near = lines[loc.line - 1:loc.line + 8]
+    line = next((x for x in near if "robot_description" in x or "robot_urdf" in x), near[0])
+    text = " ".join(line.split()).replace("`", "'")
+    return text if len(text) <= MAX_SNIPPET else text[:MAX_SNIPPET - 1] + "\u2026"

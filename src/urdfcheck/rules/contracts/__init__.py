@@ -1,0 +1,3 @@
+"""The bodies of the contract (C) and TF-ownership (T) checks, imported on first use by
+`rules.checks.contracts`.
+"""

@@ -1,0 +1,520 @@
+"""Running: load -> build -> check -> finish, for the targets `plan.plan` made from a request.
+
+    run(request) -> Result           # `lint`: what every front end calls (CLI, urdfcheck.lint, pytest plugin)
+    load(request, path) -> Loaded    # one model with the settings lint gives it (expand, tree, tf, publish,
+                                     # verify, urdfcheck.load / urdfcheck.expand)
+
+finish = suppressions (in the models and in the YAML files the contract checks read, with the bookkeeping
+of unused ones), one finding per problem across variants and models (`finish.collapse`), the baseline,
+and paths shown relative to the request's root.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from urdfcheck.core import progress
+from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.core.paths import shown
+from urdfcheck.core.records import Record
+from urdfcheck.load import loader
+from urdfcheck.plan.plan import Later, Target, plan  # noqa: F401  (Later, Target: imported from here too)
+from urdfcheck.request.request import LintRequest, UsageError
+from urdfcheck.rules import engine
+
+
+class Result(Record):
+    # models: (entry, variant) -> Model (None when it failed to load)
+    # by_target: the findings of each target (index as in `targets`), before merging across targets; an
+    #   unused suppression in a YAML file belongs to the first target that read the file
+    # fail_on: the level at which the run fails (flags, else the config, else warning)
+    # root: reports show paths relative to this folder ("" = the working directory)
+    _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
+    infos: tuple = ()  # the planner's info lines (a package of xacro libraries only): not findings
+    _finished: tuple = ((), {})  # (each target's findings the baseline kept, the run's X013 per package)
+    libraries: int = 0  # xacro libraries the plan saw (not linted alone)
+    read: set = frozenset()  # the files the expansions read
+
+    def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
+                 by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
+        self.findings = findings
+        self.targets = targets
+        self.models = {} if models is None else models
+        self.by_target = [[] for _ in targets] if by_target is None else by_target
+        self.fail_on = fail_on
+        self.root = root
+
+    @property
+    def shares(self) -> list[list[Finding]]:
+        """Each target's findings after the finish (baseline, one X013 per package, one finding per problem):
+        what the pytest plugin's item of that target shows. Computed on first use, once."""
+        if "_shares" not in self.__dict__:
+            kept, merged = self._finished
+            self._shares = [_dedupe(_merge_x013(fs, merged)) for fs in kept]
+        return self._shares
+
+    def raw(self) -> list[Finding]:
+        """Every finding before duplicates were collapsed: what a baseline counts, so that a new call of a
+        macro with a known problem is new."""
+        return [f for fs in self.by_target for f in fs]
+
+    def unchecked(self) -> list[Target]:
+        """The targets whose model did not load: not checked, whatever the selection hid (issue 19)."""
+        return [t for t in self.targets if (str(t.path), t.variant) in self.models
+                and self.models[(str(t.path), t.variant)] is None and not t.library]
+
+    def not_passed(self) -> str | None:
+        """Why a run without findings still is no pass (a report says it instead of "All checks passed"):
+        models that did not load, or no robot at all."""
+        bad = self.unchecked()
+        if bad:
+            n = len({str(t.path) for t in bad})
+            return f"{n} model{'s' if n != 1 else ''} not checked (did not load)"
+        if not [t for t in self.targets if not t.library]:
+            n = self.libraries
+            return "no robot found" + (f": {n} xacro librar{'y' if n == 1 else 'ies'}" if n else "")
+        return None
+
+    def worst(self) -> Severity | None:
+        return max((f.severity for f in self.findings), default=None)
+
+    def failed(self, fail_on: Severity | None = None) -> bool:
+        """Any finding at or above `fail_on`; by default the level of the config each finding's model was
+        planned under (a workspace run: each package's own `fail_on`; a flag sets them all)."""
+        if self.unchecked():  # a model that did not load was not checked: never a pass
+            return True
+        if fail_on is not None:
+            return any(f.severity >= fail_on for f in self.findings)
+        levels: dict[tuple, Severity] = {}
+        for t, found in zip(self.targets, self.by_target):
+            level = t.settings.fail_on if t.settings is not None else self.fail_on
+            for f in found:
+                key = (f.code, f.location)
+                levels[key] = min(levels.get(key, level), level)
+        return any(f.severity >= levels.get((f.code, f.location), self.fail_on) for f in self.findings)
+
+
+def run(request: LintRequest, *, retain: list | None = None, targets: list[Target] | None = None) -> Result:
+    """Plan (unless given the plan of this request: the pytest plugin makes its items from it), lint, finish.
+    Paths are shown relative to the request's root from the start (`core.paths.showing`): nothing is
+    rewritten afterwards. The run's budget (load.budget) covers the planning too: launch files are read there.
+    Raises UsageError when there is nothing to lint or an input is unusable."""
+    from urdfcheck.core.paths import showing
+    from urdfcheck.load.budget import run_budget
+
+    with showing(request.root), run_budget(request.budget):
+        try:
+            return _run(request, retain, targets)
+        except MemoryError:
+            raise UsageError("the run's memory budget was used up while planning (a launch or config file "
+                             "that grows without bound?); nothing was checked") from None
+
+
+def _run(request: LintRequest, retain, targets) -> Result:
+    targets = plan(request) if targets is None else targets
+    infos = list(getattr(targets, "infos", ()))
+    noted = [f._replace(location=f.location.shown())
+             for f in getattr(targets, "findings", ())]  # about the plan: a config's ignored keys, a walk cut short
+    if not targets:
+        if infos or noted:  # xacro libraries only: nothing to lint alone, not an unusable invocation
+            result = Result(noted, [], fail_on=request.fail_on or Severity.WARNING, root=request.root)
+            result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
+            return result
+        raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
+    if request.bags:
+        _attach_bags(targets, request.bags, request.joint_states)
+    result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    result = _unread_libraries(result, getattr(targets, "included", ()), retain, request)
+    _drop_libraries(result)
+    result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
+    result.root = request.root
+    kept = result.by_target
+    if request.baseline:
+        from urdfcheck.finish import baseline
+
+        try:
+            new = {id(f) for f in baseline.filter_new(request.baseline, result.raw())}
+        except (OSError, ValueError) as e:
+            raise UsageError(f"cannot read baseline {request.baseline}: {e}") from None
+        kept = [[f for f in fs if id(f) in new] for fs in kept]
+        result.findings = _dedupe([f for fs in kept for f in fs])
+    result._finished = (kept, _missing_packages_once(result))
+    _not_understood(result, getattr(targets, "not_understood", ()), request)
+    if request.fail_on is not None:
+        result.fail_on = request.fail_on
+    elif targets[0].settings is not None:
+        result.fail_on = targets[0].settings.fail_on
+    if noted:  # after the baseline: what lowers the guard is never accepted once and for all
+        result.findings = sorted(result.findings + noted, key=Finding.sort_key)
+    return result
+
+
+def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
+    """A recording shows one configuration of the robot: it is checked against one target per entry model,
+    the defaults (or the deployment, or the first variant), not against every variant."""
+    chosen: dict[str, Target] = {}
+    for t in targets:
+        best = chosen.get(str(t.path))
+        if best is None or (best.variant not in ("", "defaults") and t.variant in ("", "defaults")):
+            chosen[str(t.path)] = t
+    for t in chosen.values():
+        t.bags = tuple(t.bags) + tuple(b for b in bags if b not in t.bags)
+        t.joint_states = topic
+
+
+def _not_understood(result: Result, deployments, request: LintRequest) -> None:
+    """Deployments whose model was not understood: C021 infos (issue 20), beside the targets' findings."""
+    from urdfcheck.plan.understood import findings
+
+    extra = findings(deployments, request.settings(None), shown)
+    if extra:
+        result.findings = sorted([*result.findings, *extra], key=Finding.sort_key)
+
+
+def _unread_libraries(result: Result, included, retain, request: LintRequest) -> Result:
+    """Files taken for included libraries that no model of the run read (the include was commented out,
+    conditional, or in a file that is no robot): expanded now as probes, so that a robot is never hidden by
+    another file claiming to include it."""
+    from urdfcheck.plan.robots import missed
+
+    unread = missed(included, result.read)
+    if not unread:
+        return result
+    by_path = {os.path.realpath(t.path): t for t in result.targets}
+    extra = []
+    for path in unread:
+        like = next(iter(by_path.values()), None)
+        t = Target(Path(path), {}, "", None, dict(like.packages) if like is not None else {},
+                   like.settings if like is not None else None)
+        t.probe = True
+        extra.append(t)
+    more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    merged = Result(_dedupe(result.raw() + more.raw()), result.targets + more.targets,
+                    {**result.models, **more.models}, result.by_target + more.by_target)
+    merged.read = set(result.read) | set(more.read)
+    return merged
+
+
+def _drop_libraries(result: Result) -> None:
+    """Probes whose expansion had no link and said nothing are libraries: not models of the report."""
+    keep = [i for i, t in enumerate(result.targets) if not (t.library and not result.by_target[i])]
+    if len(keep) == len(result.targets):
+        return
+    gone = [t for t in result.targets if t.library]
+    result.targets = [result.targets[i] for i in keep]
+    result.by_target = [result.by_target[i] for i in keep]
+    for t in gone:
+        if t not in result.targets:
+            result.models.pop((str(t.path), t.variant), None)
+
+
+def _merge_x013(found: list[Finding], merged: dict) -> list[Finding]:
+    """A target's findings with its X013 replaced by the run's one X013 per package."""
+    if not merged:
+        return found
+    out, seen = [], set()
+    for f in found:
+        m = _MISSING.search(f.message) if f.code == "X013" else None
+        if m is not None and m.group(1) in merged:
+            if m.group(1) not in seen:
+                seen.add(m.group(1))
+                out.append(merged[m.group(1)])
+        else:
+            out.append(f)
+    return out
+
+
+def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=loader.XACRO_TIMEOUT,
+                config=None, max_elements=None) -> tuple[list[Finding], object]:
+    """One target on its own (tests). A run lints all its targets with `lint_targets`."""
+    pending = _begin(t, dict(trusted=trusted, allow_env=allow_env, timeout=timeout, max_elements=max_elements))
+    return _check(t, pending.result(), selection, config)
+
+
+def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding]:
+    """The recordings of this target against its model (urdfcheck.bag), with the B rules' options."""
+    from urdfcheck.bag import CODES, BagOptions, check_recording
+
+    if not any(selection.enabled(c) for c in CODES):
+        return []
+
+    from urdfcheck.rules.catalogue import options_for
+
+    def tolerance(code: str) -> float:  # declared once, in rules/CODE.yaml; the config may set it
+        return options_for((code,), selection.options)["tolerance"]
+
+    options = BagOptions(joint_topic=t.joint_states, tolerance=tolerance("B005"),
+                         replay_tolerance=tolerance("B013"), static_tolerance=tolerance("B011"))
+    out = []
+    for bag in t.bags:
+        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag)))
+    return out
+
+
+def _bag_progress(bag: str):
+    """Messages read so far, on a terminal's stderr (a long recording takes minutes); None elsewhere."""
+    import sys
+
+    if not sys.stderr.isatty():
+        return None
+    name = os.path.basename(bag.rstrip(os.sep))
+
+    def show(n: int) -> None:
+        sys.stderr.write(f"\rurdfcheck: {name}: {n:,} messages read\x1b[K")
+        sys.stderr.flush()
+
+    return show
+
+
+def _begin(t: Target, kw: dict) -> loader.Pending:
+    opts = t.settings.load_options() if t.settings is not None else kw
+    return loader.begin(t.path, t.args, packages=t.packages, **opts)
+
+
+def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse | None = None
+           ) -> tuple[list[Finding], object]:
+    findings = list(exp.findings)
+    model = loader.build_model(exp)
+    if model is not None:
+        contracts = t.consumers(model, exp, config)  # planned, or found beside the model: once per target
+        ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
+                             variant=t.variant, target=t.settings.target if t.settings is not None else None,
+                             profiles=t.settings.profiles if t.settings is not None else ())
+        findings.extend(engine.run_checks(model, ctx))
+        if t.bags:
+            findings.extend(_bag_findings(model, t, selection))
+        if yaml is not None:
+            yaml.read(contracts, selection)
+    return engine.finish(findings, selection, exp.suppressions, model=exp.entry, variant=t.variant,
+                         yaml_used=yaml.used if yaml is not None else None), model
+
+
+class _YamlUse:
+    """The YAML files the contract checks read (with the selection they were read under, and the first
+    target that read each), and which of their suppressions hid a finding."""
+
+    def __init__(self):
+        self.files: dict[str, tuple[engine.Selection, int]] = {}
+        self.used: set[tuple[str, int]] = set()
+        self.index = 0  # the target being checked
+
+    def read(self, consumers, selection) -> None:
+        from urdfcheck.core.suppress import is_yaml
+
+        for paths in (getattr(consumers, "files", None) or {}).values():
+            for p in paths:
+                if is_yaml(str(p)):
+                    self.files.setdefault(os.path.abspath(p), (selection, self.index))
+
+    def unused(self) -> list[tuple[int, Finding]]:
+        """(first target that read the file, R002 finding) for each suppression that hid nothing."""
+        out = []
+        for file in sorted(self.files):
+            selection, first = self.files[file]
+            out.extend((first, f) for f in engine.unused_yaml([file], self.used, selection))
+        return out
+
+
+def lint_targets(targets: list[Target], selection: engine.Selection | None = None, *, config=None,
+                 retain: list | None = None, budget: float | None = None, **kw) -> Result:
+    """`_lint_targets` within one time and memory budget for all models and variants (load.budget; `budget`
+    seconds, default 300): what the budget leaves unlinted is an X017 finding at its model."""
+    from urdfcheck.load.budget import run_budget
+
+    with run_budget(budget):
+        return _lint_targets(targets, selection, config=config, retain=retain, **kw)
+
+
+def _lint_targets(targets: list[Target], selection: engine.Selection | None = None, *, config=None,
+                  retain: list | None = None, **kw) -> Result:
+    """Lint every target. Xacro expansions run ahead in their workers (a few at a time), so this process
+    imports the rules and builds the previous model while the next ones expand.
+
+    Each target is linted under its own settings (its config file); targets without settings (made by
+    hand) under `selection`, `config` and the load options `kw`.
+
+    `retain`: a list that keeps each parsed document alive. A process that exits right after (the console
+    command) passes one: freeing a large libxml2 tree costs time, and the allocator's clean-up of its
+    million small blocks on the next large request costs more (~0.1 s for 10,000 links)."""
+    selection = selection or engine.Selection()
+    by_target: list[list[Finding]] = [[] for _ in targets]
+    models = {}
+    ahead = max(1, min(4, os.cpu_count() or 1))
+    pending: dict[int, loader.Pending] = {}
+    yaml = _YamlUse()
+    read: set = set()  # every file an expansion read (display paths): plan.robots.missed
+    from urdfcheck.plan.robots import has_links
+
+    try:
+        for i in range(min(ahead, len(targets))):
+            pending[i] = _begin(targets[i], kw)
+        _warm_up(targets, config)
+        for i, t in enumerate(targets):
+            if i + ahead < len(targets):
+                pending[i + ahead] = _begin(targets[i + ahead], kw)
+            progress.step(i, len(targets), t.path if not t.variant else f"{t.path} [{t.variant}]")
+            exp = pending.pop(i).result()
+            yaml.index = i
+            if exp.root is not None:  # read *and* expanded: an includer that failed checked nothing it read
+                read.update(exp.files or ())
+            if t.probe and exp.root is not None and not has_links(exp.root):  # a library (plan.robots)
+                t.library = True
+                sel = t.settings.selection if t.settings is not None else selection
+                models[(str(t.path), t.variant)] = None
+                by_target[i].extend(engine.finish(list(exp.findings), sel, exp.suppressions, model=exp.entry))
+                continue
+            try:
+                if t.settings is not None:
+                    found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
+                else:
+                    found, model = _check(t, exp, selection, config, yaml)
+            except MemoryError:  # the run's memory limit (load.budget): this model is not checked
+                found, model = [_over_memory(exp)], None
+            if retain is not None:
+                retain.append(exp)
+            models[(str(t.path), t.variant)] = model
+            by_target[i].extend(found)
+    finally:
+        for p in pending.values():
+            p.cancel()
+    for i, f in yaml.unused():
+        by_target[i].append(f)
+    result = Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
+    result.read = read
+    return result
+
+
+def _over_memory(exp) -> Finding:
+    return Finding("X017", Severity.ERROR, "not checked: the run's memory budget was used up while checking this "
+                   "model", Location(exp.entry), name="lint-budget")
+
+
+def _warm_up(targets: list[Target], config) -> None:
+    """What the run needs after loading (model builders, rule modules, the catalogue, the contract readers
+    when there can be consumers), done while the first expansions run in their workers, not after them."""
+    from urdfcheck.model import build  # noqa: F401
+    from urdfcheck.rules import catalogue as rulebook
+
+    if not targets:
+        return
+    rulebook.load_checks()
+    rulebook.catalogue()
+    if config is not None or any(t.settings is not None and t.settings.config is not None for t in targets) \
+            or any(t._contracts is not None for t in targets) or _in_package(targets[0].path):
+        from urdfcheck.rules.contracts import impl as rules_impl  # noqa: F401
+
+
+def _in_package(path) -> bool:
+    from urdfcheck.load.packages import enclosing_package
+
+    # the folder the path names, not where a symlink points: nothing outside the tree is looked at
+    return enclosing_package(Path(os.path.abspath(path)).parent) is not None
+
+
+def _dedupe(findings: list[Finding]) -> list[Finding]:
+    """The same problem seen in several variants or models is reported once, naming where (issue 15)."""
+    if not findings:
+        return []
+    from urdfcheck.finish.collapse import collapse
+
+    return collapse(findings)
+
+
+_MISSING = None
+
+
+def _missing_packages_once(result: Result) -> dict[str, Finding]:
+    """One X013 per package the run cannot resolve, naming every place that references it (the first is the
+    finding's location, the others its related locations), instead of one per model and variant. An
+    expansion stops at its first unknown package; the models that hit one are read as text through their
+    literal includes (`load.packages.missing_packages`), so every missing package is listed in one run."""
+    import re
+
+    global _MISSING
+    _MISSING = _MISSING or re.compile(r"package '([A-Za-z0-9_]+)' not found")
+    if not any(f.code == "X013" for f in result.findings):
+        return {}
+    from urdfcheck.load.packages import Resolver, missing_packages
+
+    template: dict[str, Finding] = {}
+    places: dict[str, list[tuple[str, int]]] = {}
+    variants: dict[str, list] = {}  # package -> the (model, variant) places the loader stopped at it
+    for t, found in zip(result.targets, result.by_target):
+        hits = [f for f in found if f.code == "X013"]
+        if not hits:
+            continue
+        names = {m.group(1) for f in hits if (m := _MISSING.search(f.message))}
+        if not names:
+            continue
+        find = Resolver(dict(t.packages), near=Path(os.path.abspath(t.path))).find
+        missing = missing_packages([str(t.path)], find)
+        for f in hits:
+            m = _MISSING.search(f.message)
+            if m:
+                template.setdefault(m.group(1), f)
+                seen_in = variants.setdefault(m.group(1), [])
+                seen_in.extend(p for p in f.places() if p not in seen_in)
+                missing.setdefault(m.group(1), []).insert(0, (f.location.file, f.location.line or 0))
+        for name, where in missing.items():
+            have = places.setdefault(name, [])
+            known = {(os.path.abspath(f), ln) for f, ln in have}
+            for f, ln in where:
+                if (os.path.abspath(f), ln) not in known:
+                    known.add((os.path.abspath(f), ln))
+                    have.append((shown(f), ln))  # as the loader's findings show paths
+            if name not in template and hits:
+                template[name] = hits[0]
+    if not places:
+        return {}
+    merged = {}
+    for name, where in places.items():
+        base = template[name]
+        first = Location(where[0][0], where[0][1] or None)
+        rest = tuple(Location(f, ln or None) for f, ln in where[1:])
+        n = len(where)
+        msg = (f"package {name!r} not found (pass --package {name}=PATH)"
+               + (f"; referenced in {n} places" if n > 1 else ""))
+        seen_in = variants.get(name, [])
+        merged[name] = base._replace(message=msg, location=first, related=rest,
+                                     where=tuple(seen_in) if len(seen_in) > 1 else ())
+    result.findings = sorted([f for f in result.findings if f.code != "X013"] + list(merged.values()),
+                             key=Finding.sort_key)
+    return merged
+
+
+# --- for tests and scripts ---------------------------------------------------------------------------------
+def entry_models(folder: Path, trusted: bool = False) -> list[Path]:
+    """Entry models of a package: URDF files, and xacro robots that no other file includes."""
+    from urdfcheck.load.discover import discover
+
+    return [Path(m) for m in discover(folder, trusted=trusted).models]
+
+
+class Loaded(Record):
+    """One model as `lint` loads it: the expansion (findings, source map), the model (None when it failed to
+    load, or was not asked for) and the settings it was loaded under."""
+
+    _fields = ('expanded', 'model', 'settings')
+
+    def __init__(self, expanded, model, settings):
+        self.expanded, self.model, self.settings = expanded, model, settings
+
+
+def load(request: LintRequest, path, *, build: bool = True) -> Loaded:
+    """The model at `path` with the settings `lint` gives it: the nearest config file (its `packages:`,
+    limits, target; a declared model's xacro arguments), the request's flags over it."""
+    from urdfcheck.core.paths import showing
+    from urdfcheck.plan.plan import Planner
+
+    path = os.fsdecode(path)
+    if not os.path.isfile(path):
+        raise UsageError(f"no such file: {path}")
+    with showing(request.root):
+        planner = Planner(request)
+        cfg = planner.nearest(path)
+        settings = planner.settings(cfg)
+        declared = planner.declared(cfg, [path]) if cfg is not None and cfg.model_for(path) is not None else []
+        t = declared[0] if declared else planner.target(Path(path), {}, "", None, settings)
+        exp = loader.begin(t.path, t.args, packages=t.packages, **settings.load_options()).result()
+        model = loader.build_model(exp) if build and exp.root is not None else None
+        return Loaded(exp, model, settings)
