@@ -150,6 +150,23 @@ def test_unknown_sensor_or_gpio(tmp_path, type_, key, good, bad):
          ("controllers.yaml", line_of(b, f"{key}:")))
 
 
+def test_sensor_name_prefixed_by_the_namespace_at_run_time(tmp_path):
+    """husarion's imu_sensor_broadcaster puts the node's namespace before sensor_name
+    (use_namespace_as_sensor_name_prefix): `imu_sensor` names `/imu_sensor` or `robot1/imu_sensor` at run time, so
+    it is compared by its last segment; without the switch the name must match, and a wrong one stays C017."""
+    spaced = NS_ARM
+    b = ctrl("bc", "imu_sensor_broadcaster/IMUSensorBroadcaster", sensor_name="imu",
+             use_namespace_as_sensor_name_prefix=True, frame_id="base_link")
+    g = ctrl("bc", "imu_sensor_broadcaster/IMUSensorBroadcaster", sensor_name="imu_sensor",
+             use_namespace_as_sensor_name_prefix=True, frame_id="base_link")
+    twin(tmp_path, "C017", spaced, {"config/controllers.yaml": b}, spaced, {"config/controllers.yaml": g},
+         ("controllers.yaml", line_of(b, "sensor_name:")))
+
+
+NS_ARM = robot(arm_joint("joint1", "base_link", "l1"),
+               r2c({"joint1": (["position"], ["position"])}, sensors=["/imu_sensor"]))
+
+
 @pytest.mark.parametrize("type_,extra", [
     ("imu_sensor_broadcaster/IMUSensorBroadcaster", {"sensor_name": "imu_sensor"}),
     ("force_torque_sensor_broadcaster/ForceTorqueSensorBroadcaster", {"sensor_name": "ft"}),

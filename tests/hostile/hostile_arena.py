@@ -38,8 +38,10 @@ import pytest
 from conftest import flatten, run_cli
 
 DATA = Path(__file__).resolve().parent / "data"
-# wall-clock bound for one whole CLI call on hostile input (URDFCHECK_HOSTILE_TIME_BOUND for slow boxes)
-TIME_BOUND = float(os.environ.get("URDFCHECK_HOSTILE_TIME_BOUND", "2.0"))
+# wall-clock bound for one whole CLI call on hostile input: a guard against hangs, not a speed target (each refusal
+# is asserted by what it counts -- elements, steps, bytes -- and speed lives in bench/). 2 s failed on a busy
+# 2-core machine at 2.1 s; the default timeout of one expansion is 20 s (URDFCHECK_HOSTILE_TIME_BOUND overrides).
+TIME_BOUND = float(os.environ.get("URDFCHECK_HOSTILE_TIME_BOUND", "8.0"))
 CANARY_VAR = "URDFCHECK_CANARY_TOKEN"
 CANARY_ENV = "canary-env-7c1e5d2a90"
 CANARY_FILE = "canary-file-4b9f03e6d1"

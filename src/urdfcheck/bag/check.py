@@ -33,16 +33,9 @@ class BagOptions(FrozenRecord):
     the model's fixed joints; profile and frame_prefix: the robot_state_publisher that ran."""
 
     _fields = ("joint_topic", "tolerance", "replay_tolerance", "static_tolerance", "profile", "frame_prefix")
-
-    def __init__(self, joint_topic: str | None = None, tolerance: float = 1e-3, replay_tolerance: float = 1e-5,
-                 static_tolerance: float = 1e-4, profile: str = "ros2", frame_prefix: str = ""):
-        d = self.__dict__
-        d["joint_topic"] = joint_topic
-        d["tolerance"] = tolerance
-        d["replay_tolerance"] = replay_tolerance
-        d["static_tolerance"] = static_tolerance
-        d["profile"] = profile
-        d["frame_prefix"] = frame_prefix
+    # the tolerances' defaults are the B rules' declared options (rules/B005.yaml, B013, B011): lint reads those
+    _defaults = {"joint_topic": None, "tolerance": 1e-3, "replay_tolerance": 1e-5, "static_tolerance": 1e-4,
+                 "profile": "ros2", "frame_prefix": ""}
 
 
 def check_recording(model, path: str, options: BagOptions | None = None, progress=None, text: bool | None = None

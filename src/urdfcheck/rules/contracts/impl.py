@@ -12,6 +12,7 @@ import os
 import re
 from collections.abc import Iterator
 
+from urdfcheck.consumers.common import as_bool
 from urdfcheck.consumers.consumers import Consumers, consumers_near
 from urdfcheck.consumers.controllers import JSB, JSC
 from urdfcheck.consumers.graph import (
@@ -506,9 +507,14 @@ def unknown_hardware_component(model, ctx) -> Iterator[Problem]:
     for ctrl in c.controllers:
         if ctrl.ros != 2:
             continue
+        # a broadcaster told to put the node's namespace before the name (husarion's imu_sensor_broadcaster:
+        # use_namespace_as_sensor_name_prefix) names `<namespace>/imu` at run time: compared by the last segment
+        spaced = any("namespace" in k and "prefix" in k and as_bool(v.value) for k, v in ctrl.params.items())
         for comp in getattr(ctrl, "components", ()):
             known = items.get(comp.kind, every)
             if _unresolved(comp.name) or comp.name in known or comp.name in every:
+                continue
+            if spaced and any(n.rsplit("/", 1)[-1] == comp.name.rsplit("/", 1)[-1] for n in known | every):
                 continue
             what = {"sensor": "<sensor>", "gpio": "<gpio>"}.get(comp.kind, "item")
             yield Problem(f"controller {ctrl.name} ({ctrl.type}) names {what} {comp.name!r}, which no <ros2_control> "
