@@ -50,7 +50,7 @@ def catalogue() -> dict:
     import yaml
 
     with open(os.path.join(os.path.dirname(__file__), "controller_types.yaml"), encoding="utf-8") as f:
-        return yaml.safe_load(f) or {}
+        return yaml.load(f, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)) or {}
 
 
 def entry(type_name: str, ros: int) -> dict | None:

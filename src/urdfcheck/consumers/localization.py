@@ -35,7 +35,7 @@ def owners() -> dict[str, dict]:
     import yaml
 
     with open(os.path.join(os.path.dirname(__file__), "tfowners.yaml"), encoding="utf-8") as f:
-        return yaml.safe_load(f) or {}
+        return yaml.load(f, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)) or {}
 
 
 def owner_packages() -> set[str]:

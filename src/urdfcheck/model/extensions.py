@@ -29,7 +29,7 @@ def registry() -> dict[tuple[str, str, str], Extension]:
     import yaml  # only when a model has a name URDF does not define
 
     with open(os.path.join(os.path.dirname(__file__), "extensions.yaml"), encoding="utf-8") as f:
-        data = yaml.safe_load(f) or []
+        data = yaml.load(f, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)) or []
     out: dict[tuple[str, str, str], Extension] = {}
     for entry in data:
         ext = Extension(str(entry["consumer"]), " ".join(str(entry.get("evidence") or "").split()))
