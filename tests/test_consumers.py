@@ -78,3 +78,15 @@ def test_a_hanging_or_crashing_consumer_ends_as_a_finding(tmp_path, monkeypatch)
     assert [o.status for o in outcomes] == ["timeout", "crashed"]
     found = C.findings(outcomes, model)
     assert [f.code for f in found] == ["P091", "P091"]
+
+
+def test_mujoco_log_never_lands_in_the_checked_tree(tmp_path):
+    """MuJoCo writes MUJOCO_LOG.TXT into its working directory on a warning (equal limits here): the consumer
+    runs in the model copy's temporary folder, so the user's tree stays as it was."""
+    pytest.importorskip("mujoco")
+    p = _model(tmp_path, INR)
+    p.write_text(p.read_text().replace('lower="-1" upper="1"', 'lower="0.5" upper="0.5"'))
+    before = sorted(x.name for x in tmp_path.iterdir())
+    code, out, err = run_cli(["consumers", str(p), "--consumer", "mujoco"], cwd=tmp_path)
+    assert code in (0, 1), err
+    assert sorted(x.name for x in tmp_path.iterdir()) == before

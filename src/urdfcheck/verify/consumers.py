@@ -120,6 +120,9 @@ def _box_stl(folder: str, size, index: int) -> str:
 
 # --- the jobs (run in the child; heavy imports happen there) -------------------------------------------------
 def _mujoco_job(path: str) -> dict:
+    # MuJoCo writes MUJOCO_LOG.TXT into the working directory on a warning: this child works in the model copy's
+    # temporary folder, never in the user's tree
+    os.chdir(os.path.dirname(os.path.abspath(path)))
     import mujoco
 
     try:
