@@ -21,3 +21,48 @@ def test_generated_init_takes_positions_keywords_and_defaults():
     with pytest.raises(AttributeError):
         Pair(1, 2).a = 5
     assert repr(Pair(1, 2)) == "Pair(a=1, b=2, c=3)"
+
+
+# --- TupleRecord: typing.NamedTuple's behaviour without evaluating annotations -------------------------------
+from urdfcheck.core.records import TupleRecord  # noqa: E402
+
+
+class _Part(TupleRecord):
+    """A part."""
+
+    name: str
+    size: "UndefinedName" = 1.0  # noqa: F821 - a string annotation is never evaluated (typing would compile it)
+    tags: tuple = ()
+
+    @property
+    def big(self) -> bool:
+        return self.size > 10
+
+    def renamed(self, name: str) -> "_Part":
+        return self._replace(name=name)
+
+
+def test_a_tuple_record_is_a_namedtuple_with_defaults_methods_and_properties():
+    import pickle
+
+    p = _Part("arm")
+    assert p == ("arm", 1.0, ()) and isinstance(p, tuple) and p._fields == ("name", "size", "tags")
+    assert _Part("a", 20).big and not p.big and p.renamed("b").name == "b"
+    assert _Part(name="x", tags=(1,)).tags == (1,) and _Part.__doc__ == "A part."
+    assert pickle.loads(pickle.dumps(p)) == p and _Part.__module__ == __name__
+    with pytest.raises(AttributeError):
+        p.name = "other"
+
+
+def test_a_tuple_record_refuses_what_namedtuple_would_break():
+    with pytest.raises(TypeError):
+        class _Bad(TupleRecord):
+            a: int = 0
+            b: int
+
+    with pytest.raises(AttributeError):
+        class _Worse(TupleRecord):
+            a: int
+
+            def _replace(self):
+                return self

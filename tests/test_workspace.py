@@ -291,3 +291,15 @@ def test_srdf_files_are_never_models(tmp_path):
     assert list(got) == [] and "SRDF" in got.infos[0]
     with pytest.raises(UsageError):
         _plan([d / "config" / "arm.srdf"])
+
+
+def test_several_models_agrees_with_discover_on_every_corpus_package(corpus):
+    """Consumer discovery asks only whether a package holds several models; its short cut (two .urdf files
+    with links) must answer what the full discovery answers, with the same parameter and launch files."""
+    from urdfcheck.load.discover import discover, several_models
+
+    roots = sorted({p.parent for p in corpus.rglob("package.xml")})
+    assert roots
+    for root in roots:
+        found = discover(root)
+        assert several_models(root) == (len(found.models) > 1, found.params, found.launch), root

@@ -101,8 +101,9 @@ def run(request: LintRequest, *, retain: list | None = None, targets: list[Targe
     Raises UsageError when there is nothing to lint or an input is unusable."""
     from urdfcheck.core.paths import showing
     from urdfcheck.load.budget import run_budget
+    from urdfcheck.load.discover import remembering
 
-    with showing(request.root), run_budget(request.budget):
+    with showing(request.root), run_budget(request.budget), remembering():
         try:
             return _run(request, retain, targets)
         except MemoryError:

@@ -10,9 +10,9 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Iterator
-from typing import NamedTuple
 
 from urdfcheck.core import safeio
+from urdfcheck.core.records import TupleRecord
 
 NS = 1_000_000_000
 JOINT_STATE = "sensor_msgs/msg/JointState"
@@ -25,7 +25,7 @@ class RecordingError(Exception):
     """The recording cannot be read (missing, corrupt, truncated, not a recording)."""
 
 
-class JointStateMsg(NamedTuple):
+class JointStateMsg(TupleRecord):
     names: tuple
     position: tuple
     velocity: tuple
@@ -33,7 +33,7 @@ class JointStateMsg(NamedTuple):
     stamp_ns: int
 
 
-class Edge(NamedTuple):
+class Edge(TupleRecord):
     parent: str
     child: str
     translation: tuple
@@ -41,7 +41,7 @@ class Edge(NamedTuple):
     stamp_ns: int
 
 
-class Message(NamedTuple):
+class Message(TupleRecord):
     topic: str
     index: int  # 0-based, per topic
     time_ns: int  # when it was recorded (a text recording: its stamp)

@@ -11,13 +11,13 @@ from __future__ import annotations
 import functools
 import os
 import re
-from typing import NamedTuple
 
 from urdfcheck.consumers.common import Value, as_bool, as_str_list
 from urdfcheck.core.findings import Location
+from urdfcheck.core.records import TupleRecord
 
 
-class Component(NamedTuple):
+class Component(TupleRecord):
     """A <ros2_control> <sensor>/<gpio> (or any hardware item: kind "any") a controller names."""
 
     name: str
@@ -26,7 +26,7 @@ class Component(NamedTuple):
     owner: str
 
 
-class WheelSet(NamedTuple):
+class WheelSet(TupleRecord):
     """The wheels of a drive other than diff_drive (steering controllers, tricycle, mecanum), as configured."""
 
     owner: str
@@ -47,10 +47,11 @@ class WheelSet(NamedTuple):
 
 @functools.lru_cache(maxsize=1)
 def catalogue() -> dict:
-    import yaml
+    import json
 
-    with open(os.path.join(os.path.dirname(__file__), "controller_types.yaml"), encoding="utf-8") as f:
-        return yaml.load(f, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)) or {}
+    # the JSON twin of controller_types.yaml (tools/catalogues.py writes it): no PyYAML import for our own data
+    with open(os.path.join(os.path.dirname(__file__), "controller_types.json"), encoding="utf-8") as f:
+        return json.load(f)
 
 
 def entry(type_name: str, ros: int) -> dict | None:

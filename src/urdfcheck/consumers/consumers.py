@@ -222,20 +222,20 @@ def _package_root(entry: str) -> Path | None:
 
 def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | None = None) -> Consumers | None:
     """Consumers found next to a model without a config; None when the model is in no ROS package."""
-    from urdfcheck.load.discover import discover
+    from urdfcheck.load.discover import several_models
 
     root = _package_root(entry)
     if root is None:
         return None
-    found = discover(root)
-    single = len(found.models) <= 1
+    several, found_params, found_launch = several_models(root)
+    single = not several
     joints = set(model.joints) if model is not None else set()
     out = Consumers(origin="discovered")
     r = _Reader()
     pfs = []
     from urdfcheck.consumers.prefilter import worth_parsing
 
-    for p in found.params:
+    for p in found_params:
         if not single and not worth_parsing(p, joints):  # names none of the joints: dropped below anyway
             continue
         errs: list = []
@@ -253,7 +253,7 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
 
     base = os.path.basename(entry)
     launches = []
-    for p in found.launch:
+    for p in found_launch:
         if single or _mentions(p, base):
             launches.append(p)
     pk = dict(packages or {})
@@ -263,7 +263,7 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     _launch_typed(out, pfs)
     # every launch file of the package, associated with this model or not: when none starts a
     # robot_state_publisher, nothing in the package needs joint states (C003)
-    out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found.launch)}
+    out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found_launch)}
     out.unknown = package_unknowns(out)
     return out
 

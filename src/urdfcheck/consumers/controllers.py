@@ -31,13 +31,12 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterable, Mapping, Sequence
-from typing import NamedTuple
 
 from urdfcheck.consumers.common import ConsumerError, Value, as_bool, as_float, as_str_list
 from urdfcheck.consumers.params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
 from urdfcheck.consumers.uses import JointUse, OdomTF, _joint_uses, _norm_frame, _tf_prefix  # noqa: F401
 from urdfcheck.core.findings import Location
-from urdfcheck.core.records import Record
+from urdfcheck.core.records import Record, TupleRecord
 
 # --- controller kinds --------------------------------------------------------------------------------
 DIFF_DRIVE = "diff_drive"
@@ -91,7 +90,7 @@ def _catalogue_kind(type_name: str, ros: int) -> str | None:
     return None if kind == "catalogue" else kind
 
 
-class DriveSpec(NamedTuple):
+class DriveSpec(TupleRecord):
     """What a differential drive (controller or driver) believes about the wheels."""
 
     owner: str
@@ -570,7 +569,7 @@ def spawner_types(launch_infos) -> dict[str, Value]:
 
 
 # --- custom drivers ----------------------------------------------------------------------------------
-class DriverSpec(NamedTuple):
+class DriverSpec(TupleRecord):
     """How to read a custom driver's parameter file: key paths (dotted) into the node's parameters."""
 
     file: str

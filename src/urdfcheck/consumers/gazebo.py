@@ -12,17 +12,17 @@ from __future__ import annotations
 
 import os
 import re
-from typing import NamedTuple
 
 from urdfcheck.consumers.catalog import catalogue
 from urdfcheck.consumers.common import Value, as_bool, as_float
 from urdfcheck.consumers.controllers import DriveSpec, JointUse, OdomTF
+from urdfcheck.core.records import TupleRecord
 
 SOURCE = "gazebo"  # TFClaim.source of a plugin's transform
 _CONTROL_PLUGINS = ("gazebo_ros2_control", "gz_ros2_control", "ign_ros2_control", "gazebo_ros_control")
 
 
-class PluginOwner(NamedTuple):
+class PluginOwner(TupleRecord):
     plugin: object  # model.robot.GazeboPlugin
     key: str
     label: str

@@ -24,17 +24,16 @@ layer turns them into T001..T006.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
-from typing import NamedTuple
 
 from urdfcheck.core.findings import Location
-from urdfcheck.core.records import Record
+from urdfcheck.core.records import Record, TupleRecord
 
 STATIC = "static"
 DYNAMIC = "dynamic"
 RSP = "robot_state_publisher"
 
 
-class TFClaim(NamedTuple):
+class TFClaim(TupleRecord):
     parent: str
     child: str
     owner: str  # "robot_state_publisher", "static_transform_publisher <name>", a controller name, "amcl", ...
@@ -47,7 +46,7 @@ class TFClaim(NamedTuple):
         return (self.parent, self.child)
 
 
-class TFProblem(NamedTuple):
+class TFProblem(TupleRecord):
     code: str  # T001..T006
     message: str
     claims: tuple[TFClaim, ...] = ()
@@ -379,7 +378,7 @@ def not_one_tree(g: TFGraph, frames: Mapping[str, str] | None = None, at: Locati
                       claims, tuple(roots), at)]
 
 
-class PublisherInfo(NamedTuple):
+class PublisherInfo(TupleRecord):
     """A robot_state_publisher instance (from a launch file or the config)."""
 
     name: str

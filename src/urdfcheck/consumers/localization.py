@@ -19,12 +19,13 @@ import functools
 import os
 import re
 from collections.abc import Callable, Iterable
-from typing import Any, NamedTuple
+from typing import Any
 
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.consumers.params import NodeParams, ParamFile
 from urdfcheck.core.findings import Location
 from urdfcheck.core.paths import shown
+from urdfcheck.core.records import TupleRecord
 
 _RL_INPUT = re.compile(r"^(odom|imu|pose|twist)\d+$")
 
@@ -32,10 +33,11 @@ _RL_INPUT = re.compile(r"^(odom|imu|pose|twist)\d+$")
 @functools.lru_cache(maxsize=1)
 def owners() -> dict[str, dict]:
     """The TF owner table (`tfowners.yaml`)."""
-    import yaml
+    import json
 
-    with open(os.path.join(os.path.dirname(__file__), "tfowners.yaml"), encoding="utf-8") as f:
-        return yaml.load(f, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)) or {}
+    # the JSON twin of tfowners.yaml (tools/catalogues.py writes it): no PyYAML import for our own data
+    with open(os.path.join(os.path.dirname(__file__), "tfowners.json"), encoding="utf-8") as f:
+        return json.load(f)
 
 
 def owner_packages() -> set[str]:
@@ -43,14 +45,14 @@ def owner_packages() -> set[str]:
     return {p for spec in owners().values() for p in spec.get("packages") or ()}
 
 
-class Edge(NamedTuple):
+class Edge(TupleRecord):
     parent: str
     child: str
     kind: str  # "static" or "dynamic"
     loc: Location
 
 
-class LocalizationNode(NamedTuple):
+class LocalizationNode(TupleRecord):
     node: str
     kind: str  # "ekf", "ukf", "amcl", "slam_toolbox", "cartographer", "realsense2_camera"
     file: str

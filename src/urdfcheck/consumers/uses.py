@@ -4,13 +4,13 @@ and the controller catalogue (`catalog`)."""
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import NamedTuple
 
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.core.findings import Location
+from urdfcheck.core.records import TupleRecord
 
 
-class JointUse(NamedTuple):
+class JointUse(TupleRecord):
     """A joint a controller or driver commands, and the hardware interfaces it needs on it."""
 
     joint: str
@@ -23,7 +23,7 @@ class JointUse(NamedTuple):
     written: str = ""  # the name as written, when it differs (chained)
 
 
-class OdomTF(NamedTuple):
+class OdomTF(TupleRecord):
     """An odom -> base transform a controller or driver broadcasts."""
 
     parent: str

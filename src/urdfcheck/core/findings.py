@@ -4,7 +4,8 @@ from __future__ import annotations
 import enum
 import os
 import re
-from typing import NamedTuple
+
+from urdfcheck.core.records import TupleRecord
 
 
 class Severity(enum.IntEnum):
@@ -23,7 +24,7 @@ class Severity(enum.IntEnum):
         return self.name.lower()
 
 
-class Location(NamedTuple):
+class Location(TupleRecord):
     """Where something was written. `via` holds the xacro macro call sites, innermost first."""
 
     file: str
@@ -47,7 +48,7 @@ class Location(NamedTuple):
         return out
 
 
-class Place(NamedTuple):
+class Place(TupleRecord):
     """One model (and variant) a collapsed finding applies to; `message` when it reads differently there
     (a macro used with another prefix names other links)."""
 
@@ -57,14 +58,14 @@ class Place(NamedTuple):
     via: tuple = ()  # the macro call chain of this instance (Location.via), when it has one
 
 
-class Also(NamedTuple):
+class Also(TupleRecord):
     """Another line of the same file where the same problem is written again (finish/collapse.py)."""
 
     location: Location
     message: str
 
 
-class Finding(NamedTuple):
+class Finding(TupleRecord):
     code: str
     severity: Severity
     message: str

@@ -6,12 +6,13 @@
 from __future__ import annotations
 
 import re
-from typing import NamedTuple
+
+from urdfcheck.core.records import TupleRecord
 
 _RE = re.compile(r"urdfcheck:\s*(ignore|ignore-file)\[([A-Za-z0-9_,\s]*)\]")
 
 
-class Suppression(NamedTuple):
+class Suppression(TupleRecord):
     file: str
     first: int  # first line of the element it covers (0 for the whole file)
     last: int  # last line it covers

@@ -11,9 +11,10 @@ each is an X005 warning where yourdfpy, urdf_parser_py or xacro read it differen
 from __future__ import annotations
 
 import re
-from typing import NamedTuple
 
 from lxml import etree
+
+from urdfcheck.core.records import TupleRecord
 
 MAX_BYTES = 32 * 1024 * 1024
 MAX_ELEMENTS = 2_000_000
@@ -32,7 +33,7 @@ _DOCTYPE_MSG = ("DOCTYPE declarations are not allowed in robot descriptions "
                 "(entities expand differently in each ROS parser)")
 
 
-class XmlIssue(NamedTuple):
+class XmlIssue(TupleRecord):
     code: str
     message: str
     line: int | None = None

@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import os
 import re
-from typing import NamedTuple
 
 from lxml import etree
 
+from urdfcheck.core.records import TupleRecord
 from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
 
 PARAM_DIRS = {"config", "params", "param"}
@@ -36,7 +36,7 @@ _DEFINITION_TAGS = {"macro", "property", "arg", "include"}
 _XACRO_NS = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro", "http://wiki.ros.org/xacro")
 
 
-class Discovered(NamedTuple):
+class Discovered(TupleRecord):
     root: str
     models: tuple[str, ...]
     params: tuple[str, ...]
@@ -177,9 +177,28 @@ def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
     return hits
 
 
-def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trusted: bool = False) -> Discovered:
-    """The package's files by role. Unless `trusted`, nothing is read through a link out of the working
-    directory (`packages.leaves_cwd`)."""
+def several_models(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trusted: bool = False
+                   ) -> tuple[bool, tuple[str, ...], tuple[str, ...]]:
+    """(more than one entry model, parameter files, launch files) of a package: what consumer discovery needs.
+    Two `.urdf` files with links already make it several, which `discover` would find by reading every xacro
+    of the package (a collection of robots such as example-robot-data: 70 files read and parsed)."""
+    root, urdfs, xacros, params, launches, _ = _scan(package_dir, max_files)
+    from urdfcheck.load.packages import leaves_cwd
+
+    real_dirs: dict = {}
+    seen = 0
+    for p in urdfs:  # a model, as `discover` decides: linked out of the working directory, or with a <link>
+        if (not trusted and leaves_cwd(p, cache=real_dirs)) or re.search(r"<\s*link\b",
+                                                                         _read_head(p, trusted, real_dirs)):
+            seen += 1
+            if seen > 1:
+                return True, tuple(sorted(params)), tuple(sorted(launches))
+    found = discover(package_dir, max_files=max_files, trusted=trusted)
+    return len(found.models) > 1, found.params, found.launch
+
+
+def _scan(package_dir, max_files: int):
+    """(root, urdfs, xacros, params, launches, cut): the package's files by name and folder, none read."""
     root = os.path.abspath(str(package_dir))
     urdfs, xacros, params, launches = [], [], [], []
     parts_of: dict[str, list[str]] = {}  # dirpath -> its folders below root (relpath per file was slow)
@@ -201,6 +220,39 @@ def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trus
             params.append(path)
         if low.endswith(LAUNCH_SUFFIXES) and any(p in LAUNCH_DIRS for p in parts):
             launches.append(path)
+    return root, urdfs, xacros, params, launches, cut
+
+
+_REMEMBERED: list[dict] = []  # one memo per run in progress (see `remembering`)
+
+
+class remembering:
+    """Within this block, `discover` walks and reads each package once: the planner, consumer discovery and the
+    open-world checks ask about the same packages in one run (the run enters it; files do not change under
+    it). Outside, every call looks afresh (a long-lived process lints again after edits)."""
+
+    def __enter__(self):
+        _REMEMBERED.append({})
+
+    def __exit__(self, *exc):
+        _REMEMBERED.pop()
+
+
+def discover(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trusted: bool = False) -> Discovered:
+    """The package's files by role. Unless `trusted`, nothing is read through a link out of the working
+    directory (`packages.leaves_cwd`)."""
+    if not _REMEMBERED:
+        return _discover(package_dir, max_files, trusted)
+    memo = _REMEMBERED[-1]
+    key = (os.path.abspath(str(package_dir)), max_files, trusted)
+    found = memo.get(key)
+    if found is None:
+        found = memo[key] = _discover(package_dir, max_files, trusted)
+    return found
+
+
+def _discover(package_dir, max_files: int, trusted: bool) -> Discovered:
+    root, urdfs, xacros, params, launches, cut = _scan(package_dir, max_files)
     from urdfcheck.load.packages import leaves_cwd
 
     # a model file linked out of the working directory is listed as a model, so that the loader names it

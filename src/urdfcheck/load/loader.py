@@ -78,7 +78,7 @@ class Expanded(Record):
 
     def locate(self, el) -> Location:
         """Source location of an element of `root` (xacro markers or lxml line numbers)."""
-        if not self.xacro:  # a 10,000-link URDF asks 180,000 times: skip NamedTuple's keyword handling
+        if not self.xacro:  # a 10,000-link URDF asks 180,000 times: skip namedtuple's keyword handling
             return _new_location(Location, (self.entry, el.sourceline, None, ()))
         from urdfcheck.load.xacro import SRC_ATTR
 

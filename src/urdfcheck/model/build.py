@@ -50,7 +50,7 @@ POSE0 = Pose()
 NO_DYNAMICS = MappingProxyType({})
 TOLERATED = G.TOLERATED
 _SHAPE_SINCE = {tag: G.GRAMMAR[tag].since for tag in G.SHAPES}
-_new = tuple.__new__  # parts filled in field order, without NamedTuple's keyword handling (half the cost)
+_new = tuple.__new__  # parts filled in field order, without namedtuple's keyword handling (half the cost)
 
 
 class _Reading:

@@ -15,10 +15,11 @@ from __future__ import annotations
 
 import functools
 import os
-from typing import NamedTuple
+
+from urdfcheck.core.records import TupleRecord
 
 
-class Extension(NamedTuple):
+class Extension(TupleRecord):
     consumer: str  # who reads it ("MuJoCo", "PyBullet")
     evidence: str = ""
 

@@ -1,6 +1,7 @@
 """The robot model: immutable, built from the parsed XML, every part carrying its source location.
 
-Parts are NamedTuples: immutable and cheap to create (a 10,000-link model builds ~150,000 of them).
+Parts are tuple records (`core.records.TupleRecord`): immutable and cheap to create (a 10,000-link model builds
+~150,000 of them).
 
 Only plain Python here (no numpy) so that `lint` stays fast; poses are composed with `urdfcheck.core.geometry`.
 """
@@ -8,10 +9,9 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from types import MappingProxyType
-from typing import NamedTuple
 
 from urdfcheck.core.findings import Location, Severity
-from urdfcheck.core.records import FrozenRecord
+from urdfcheck.core.records import FrozenRecord, TupleRecord
 
 Vec3 = tuple[float, float, float]
 
@@ -19,7 +19,7 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 MOVABLE_TYPES = ("revolute", "continuous", "prismatic")
 
 
-class Pose(NamedTuple):
+class Pose(TupleRecord):
     """An <origin> as written: rpy, or (URDF >= 1.1) a quaternion. `core.geometry.origin_quaternion` and
     `origin_matrix` turn it into the rotation urdfdom reads; nothing else should interpret rpy or quat."""
 
@@ -29,7 +29,7 @@ class Pose(NamedTuple):
     quat: tuple[float, float, float, float] | None = None  # quat_xyzw as written (x, y, z, w), not normalised
 
 
-class Inertial(NamedTuple):
+class Inertial(TupleRecord):
     loc: Location
     origin: Pose = Pose()
     mass: float | None = None  # None: no <mass> element or no value
@@ -39,7 +39,7 @@ class Inertial(NamedTuple):
     inertia_loc: Location | None = None
 
 
-class Geometry(NamedTuple):
+class Geometry(TupleRecord):
     kind: str  # box, cylinder, sphere, mesh, capsule, or the unknown tag name; "" when empty
     loc: Location
     size: Vec3 | None = None  # box
@@ -49,14 +49,14 @@ class Geometry(NamedTuple):
     scale: Vec3 | None = None  # mesh
 
 
-class MaterialRef(NamedTuple):
+class MaterialRef(TupleRecord):
     name: str
     loc: Location
     rgba: tuple[float, ...] | None = None  # given inline
     texture: str | None = None
 
 
-class Shape(NamedTuple):
+class Shape(TupleRecord):
     """A <visual> or <collision>."""
 
     kind: str  # "visual" or "collision"
@@ -67,7 +67,7 @@ class Shape(NamedTuple):
     material: MaterialRef | None = None  # visual only
 
 
-class Link(NamedTuple):
+class Link(TupleRecord):
     name: str
     loc: Location
     inertial: Inertial | None = None
@@ -75,7 +75,7 @@ class Link(NamedTuple):
     collisions: tuple[Shape, ...] = ()
 
 
-class Limit(NamedTuple):
+class Limit(TupleRecord):
     """A <limit> as written (None: not given, or not read by the model's URDF version)."""
 
     loc: Location
@@ -88,14 +88,14 @@ class Limit(NamedTuple):
     jerk: float | None = None  # URDF 1.2
 
 
-class Mimic(NamedTuple):
+class Mimic(TupleRecord):
     loc: Location
     joint: str
     multiplier: float = 1.0
     offset: float = 0.0
 
 
-class Joint(NamedTuple):
+class Joint(TupleRecord):
     name: str
     type: str
     loc: Location
@@ -115,14 +115,14 @@ class Joint(NamedTuple):
         return self.type in MOVABLE_TYPES
 
 
-class Material(NamedTuple):
+class Material(TupleRecord):
     name: str
     loc: Location
     rgba: tuple[float, ...] | None = None
     texture: str | None = None
 
 
-class Block(NamedTuple):
+class Block(TupleRecord):
     """A raw extension block (<ros2_control>, <transmission>, <gazebo>) kept for later rules."""
 
     tag: str
@@ -132,12 +132,12 @@ class Block(NamedTuple):
     parent_tag: str = "robot"
 
 
-class Interface(NamedTuple):
+class Interface(TupleRecord):
     name: str
     loc: Location
 
 
-class HardwareItem(NamedTuple):
+class HardwareItem(TupleRecord):
     """A <joint>, <sensor> or <gpio> inside <ros2_control>."""
 
     kind: str
@@ -149,7 +149,7 @@ class HardwareItem(NamedTuple):
     mimic: bool = False
 
 
-class Ros2Control(NamedTuple):
+class Ros2Control(TupleRecord):
     name: str
     type: str
     loc: Location
@@ -160,13 +160,13 @@ class Ros2Control(NamedTuple):
     in_gazebo: bool = False  # written inside a <gazebo> block, where ros2_control never reads it
 
 
-class PluginParam(NamedTuple):
+class PluginParam(TupleRecord):
     tag: str
     text: str
     loc: Location
 
 
-class GazeboPlugin(NamedTuple):
+class GazeboPlugin(TupleRecord):
     """A <plugin> directly inside a <gazebo> block (Gazebo classic model plugins, gz-sim systems)."""
 
     filename: str
@@ -187,13 +187,13 @@ class GazeboPlugin(NamedTuple):
         return tuple(p for p in self.params if p.tag in tags)
 
 
-class Transmission(NamedTuple):
+class Transmission(TupleRecord):
     name: str
     loc: Location
     joints: tuple[Interface, ...] = ()  # joint names with their locations
 
 
-class Issue(NamedTuple):
+class Issue(TupleRecord):
     """A problem found while building the model (bad number, unknown element...), reported by its rule."""
 
     code: str

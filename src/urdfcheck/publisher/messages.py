@@ -9,14 +9,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import NamedTuple
 
 from urdfcheck.core import geometry
+from urdfcheck.core.records import TupleRecord
 
 NS = 1_000_000_000
 
 
-class Stamp(NamedTuple):
+class Stamp(TupleRecord):
     sec: int
     nanosec: int
 
@@ -58,7 +58,7 @@ def to_ns(stamp) -> int:
     raise TypeError(f"cannot read a stamp from {stamp!r}: use float seconds or (sec, nanosec)")
 
 
-class JointState(NamedTuple):
+class JointState(TupleRecord):
     """sensor_msgs/JointState reduced to what robot_state_publisher reads."""
 
     names: Sequence[str]
@@ -96,7 +96,7 @@ class JointState(NamedTuple):
         return cls(names, pos, stamp if stamp is not None else 0.0)
 
 
-class Transform(NamedTuple):
+class Transform(TupleRecord):
     """geometry_msgs/TransformStamped: the pose of ``child`` expressed in ``parent``."""
 
     parent: str

@@ -10,9 +10,9 @@ import importlib
 import pkgutil
 from collections.abc import Callable
 from pathlib import Path
-from typing import NamedTuple
 
 from urdfcheck.core.findings import Severity
+from urdfcheck.core.records import TupleRecord
 
 CHECKS: dict[str, Callable] = {}  # code -> check function (one function may serve several codes)
 _CHECK_PACKAGES = ("urdfcheck.rules.checks", "urdfcheck.rules.checks.contracts")
@@ -42,7 +42,7 @@ OPTION_TYPES = {
 }
 
 
-class OptionSpec(NamedTuple):
+class OptionSpec(TupleRecord):
     """One rule option, declared once in the catalogue entry: `options: {name: {type, default, doc}}`."""
 
     name: str
@@ -102,7 +102,7 @@ def options_for(codes, given=None, cat=None) -> dict:
     return out
 
 
-class RuleInfo(NamedTuple):
+class RuleInfo(TupleRecord):
     code: str
     name: str
     severity: Severity
@@ -110,7 +110,7 @@ class RuleInfo(NamedTuple):
     summary: str
     rationale: str = ""
     fix: str = ""
-    examples: dict = {}  # always given by _info(); NamedTuple: cheap to define, immutable
+    examples: dict = {}  # always given by _info(); a tuple record: cheap to define, immutable
     options: dict = {}  # name -> default (what a check gets when the config sets nothing)
     path: str = ""
     option_specs: dict = {}  # name -> OptionSpec

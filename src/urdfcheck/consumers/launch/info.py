@@ -9,12 +9,12 @@ import ast
 import math
 import os
 from collections.abc import Mapping
-from typing import Any, NamedTuple
+from typing import Any
 
 from urdfcheck.consumers.common import Value
 from urdfcheck.core import geometry
 from urdfcheck.core.findings import Location
-from urdfcheck.core.records import FrozenRecord, Record
+from urdfcheck.core.records import FrozenRecord, Record, TupleRecord
 
 UNKNOWN = "\x00"  # a piece of a string decided at launch time
 
@@ -36,7 +36,7 @@ def dotted(node: ast.AST) -> str:
     return ".".join(reversed(parts))
 
 
-class ModelRef(NamedTuple):
+class ModelRef(TupleRecord):
     """The model a robot_state_publisher gets: `path` (may hold UNKNOWN pieces), xacro `args` (values may hold
     UNKNOWN), `how`: "xacro" (expanded) or "file" (read as is)."""
     path: str
@@ -71,7 +71,7 @@ def command_model(text: str, loc: Location) -> ModelRef | None:
 
 
 # --- results -----------------------------------------------------------------------------------------
-class StaticTF(NamedTuple):
+class StaticTF(TupleRecord):
     parent: str
     child: str
     xyz: tuple[float, float, float]
@@ -82,7 +82,7 @@ class StaticTF(NamedTuple):
     node_name: str = ""
 
 
-class StatePublisher(NamedTuple):
+class StatePublisher(TupleRecord):
     """A robot_state_publisher node."""
 
     name: str
@@ -96,7 +96,7 @@ class StatePublisher(NamedTuple):
     description_key: str | None = None  # ROS 1: the global parameter it reads the model from, when not found
 
 
-class JointStatePublisher(NamedTuple):
+class JointStatePublisher(TupleRecord):
     name: str
     package: str
     loc: Location
@@ -130,7 +130,7 @@ class LaunchNode(FrozenRecord):
         d["condition"] = condition
 
 
-class ParamSet(NamedTuple):
+class ParamSet(TupleRecord):
     """A literal parameter written by a ROS 1 launch file: `name` is global ("/ns/ctrl/wheel_separation")."""
 
     name: str
@@ -138,7 +138,7 @@ class ParamSet(NamedTuple):
     order: int
 
 
-class RosparamLoad(NamedTuple):
+class RosparamLoad(TupleRecord):
     """`<rosparam command="load" file=... ns=...>` in a ROS 1 launch file; `ns` is global ("/" at the top)."""
 
     file: str
@@ -148,7 +148,7 @@ class RosparamLoad(NamedTuple):
     subst: tuple | None = None  # subst_value="true": ((arg, value), ...) its $(arg ...) take
 
 
-class Include(NamedTuple):
+class Include(TupleRecord):
     """An <include> of another launch file. `file`: None when not literal. `args`: what the included file sees
     (value None: not literal). `condition`: an if/unless, its own or a group's, that could not be decided.
     `package` and `name`: where a file outside the workspace would be (a known driver's launch file)."""

@@ -16,7 +16,7 @@ from __future__ import annotations
 import ast
 import os
 from collections.abc import Callable, Mapping
-from typing import Any, NamedTuple
+from typing import Any
 
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.consumers.launch.info import (  # noqa: F401 - UNKNOWN, ModelRef, command_model: read here too
@@ -31,6 +31,7 @@ from urdfcheck.consumers.launch.info import (  # noqa: F401 - UNKNOWN, ModelRef,
 from urdfcheck.consumers.launch.info import callee as _callee
 from urdfcheck.consumers.launch.info import dotted as _dotted
 from urdfcheck.core.findings import Location
+from urdfcheck.core.records import TupleRecord
 
 _MAX_DEPTH = 40
 _MAX_STEPS = 50_000
@@ -44,27 +45,27 @@ _SOURCES = {"PythonLaunchDescriptionSource", "XMLLaunchDescriptionSource", "YAML
             "AnyLaunchDescriptionSource", "FrontendLaunchDescriptionSource"}
 
 
-class Cmd(NamedTuple):
+class Cmd(TupleRecord):
     """`Command([...])`: the command line robot_state_publisher's parameter gets the output of."""
     text: str
 
 
-class XacroDoc(NamedTuple):
+class XacroDoc(TupleRecord):
     """`xacro.process_file(path, mappings=...)` (and its `.toxml()`)."""
     path: str
     mappings: dict
 
 
-class FileOpen(NamedTuple):
+class FileOpen(TupleRecord):
     path: str
 
 
-class FileText(NamedTuple):
+class FileText(TupleRecord):
     """The text of a file (`open(path).read()`)."""
     path: str
 
 
-class MoveItBuilder(NamedTuple):
+class MoveItBuilder(TupleRecord):
     """`MoveItConfigsBuilder(robot_name, package_name=...)` and its `.robot_description(file_path, mappings)`."""
     robot_name: str
     package: str
@@ -72,7 +73,7 @@ class MoveItBuilder(NamedTuple):
     mappings: dict
 
 
-class Declared(NamedTuple):
+class Declared(TupleRecord):
     default: str | None  # None: no default
     choices: tuple | None
     loc: Location

@@ -28,17 +28,16 @@ rule code they belong to. Unknown or non-movable wheel joints are left to the ge
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
 
 from urdfcheck.consumers.controllers import DriveSpec, JointUse, number, number_text
 from urdfcheck.core import geometry as G
 from urdfcheck.core.findings import Location, Severity
-from urdfcheck.core.records import FrozenRecord, Record
+from urdfcheck.core.records import FrozenRecord, Record, TupleRecord
 
 MIN_FORWARD_SIGN = 0.5  # |mean left a_y + mean right a_y| below this: mixed axis signs, turning sense undefined
 
 
-class Wheel(NamedTuple):
+class Wheel(TupleRecord):
     use: JointUse
     side: str  # "left" / "right"
     link: str
