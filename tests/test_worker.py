@@ -292,3 +292,98 @@ def test_the_console_sends_the_first_expansion_to_its_spare_and_finds_the_same(t
     assert [t is not None for t in taken] == [False, True]  # only the console entry forks a spare
     assert out[0] == out[1] and '"findings"' in out[0]
     assert not worker._SPARES
+
+
+# --- a batch: the run's first xacro models expanded in children of the console's spare -------------------------
+def _xacro(tmp_path, name: str, body: str) -> Path:
+    p = tmp_path / name
+    p.write_text('<?xml version="1.0"?>\n<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                 f'{body}\n</robot>\n')
+    return p
+
+
+def _expanded_in_batch(paths, timeout=loader.XACRO_TIMEOUT):
+    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, worker_limits
+
+    worker.keep_spare(SPARE, worker_limits(False, (), timeout), SPARE_PRELOAD)
+    try:
+        batch = loader.Batch()
+        pending = [loader.begin(p, timeout=timeout, batch=batch) for p in paths]
+        assert batch.items and len(batch.items) == len(paths)  # the spare takes them all
+        batch.send()
+        return [p.result() for p in pending], batch
+    finally:
+        worker.drop_spares()
+
+
+def _same(a, b) -> bool:
+    return (a.text, a.files, a.findings, a.suppressions, a.declared_args) == \
+        (b.text, b.files, b.findings, b.suppressions, b.declared_args)
+
+
+def test_a_batch_finds_what_lone_expansions_find(tmp_path):
+    paths = [_xacro(tmp_path, "a.urdf.xacro", '<xacro:property name="w" value="2"/><link name="${w}"/>'),
+             _xacro(tmp_path, "b.urdf.xacro", '<link name="b"/><xacro:bogus/>'),  # an error: located the same
+             _xacro(tmp_path, "c.urdf.xacro", '<link name="${undefined_name}"/>')]
+    got, _ = _expanded_in_batch(paths)
+    for p, exp in zip(paths, got):
+        assert _same(exp, loader.expand(p)), p
+    assert got[0].root is not None and got[1].findings and got[2].findings
+
+
+def test_a_hung_expansion_in_a_batch_times_out_alone(tmp_path, monkeypatch):
+    from urdfcheck.load.xacro import expand as xexpand
+
+    real = xexpand.expand_with
+
+    def hangs_on_slow(path, options):  # the spare is forked after this patch: its children run it
+        if "slow" in path:
+            time.sleep(60)
+        return real(path, options)
+
+    monkeypatch.setattr(xexpand, "expand_with", hangs_on_slow)
+    ok = _xacro(tmp_path, "ok.urdf.xacro", '<link name="fine"/>')
+    slow = _xacro(tmp_path, "slow.urdf.xacro", '<link name="never"/>')
+    start = time.monotonic()
+    (good, bad), _ = _expanded_in_batch([ok, slow], timeout=1.0)
+    assert time.monotonic() - start < 8.0
+    assert good.root is not None and not good.findings  # its neighbour's time-out is not its own
+    assert [f.code for f in bad.findings] == ["X012"] and "timed out" in bad.findings[0].message
+
+
+def test_cancelling_a_batch_ends_the_spare_and_its_children(tmp_path, monkeypatch):
+    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, worker_limits
+    from urdfcheck.load.xacro import expand as xexpand
+
+    monkeypatch.setattr(xexpand, "expand_with", lambda path, options: time.sleep(60))  # inherited by the spare
+    worker.keep_spare(SPARE, worker_limits(False, (), 30.0), SPARE_PRELOAD)
+    spare_pid = worker._SPARES[SPARE].pid
+    try:
+        batch = loader.Batch()
+        for name in ("a", "b"):
+            loader.begin(_xacro(tmp_path, f"{name}.urdf.xacro", '<link name="x"/>'), timeout=30.0, batch=batch)
+        batch.send()
+        assert batch.job is not None and batch.job.pid == spare_pid and batch.job.group
+        end = time.monotonic() + 10
+        while len(_group_alive(spare_pid)) < 3 and time.monotonic() < end:  # the spare and one child per model
+            time.sleep(0.02)
+        assert len(_group_alive(spare_pid)) == 3
+        batch.shares[0].cancel()
+        assert _gone(spare_pid)
+        assert _group_alive(spare_pid) == []  # its children were killed with it (init reaps what is left)
+    finally:
+        worker.drop_spares()
+
+
+def _group_alive(pgid: int) -> list[int]:
+    """Processes of the group that still run (a killed orphan is a zombie until init reaps it)."""
+    out = []
+    for d in os.listdir("/proc"):
+        if d.isdigit():
+            try:
+                fields = Path(f"/proc/{d}/stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[2]) == pgid and fields[0] != "Z":
+                out.append(int(d))
+    return out

@@ -267,9 +267,9 @@ def _bag_progress(bag: str):
     return show
 
 
-def _begin(t: Target, kw: dict) -> loader.Pending:
+def _begin(t: Target, kw: dict, batch: loader.Batch | None = None) -> loader.Pending:
     opts = t.settings.load_options() if t.settings is not None else kw
-    return loader.begin(t.path, t.args, packages=t.packages, **opts)
+    return loader.begin(t.path, t.args, packages=t.packages, batch=batch, **opts)
 
 
 def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse | None = None
@@ -347,8 +347,10 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     from urdfcheck.plan.robots import has_links
 
     try:
+        first = loader.Batch()  # the first xacro models go to the console's spare together
         for i in range(min(ahead, len(targets))):
-            pending[i] = _begin(targets[i], kw)
+            pending[i] = _begin(targets[i], kw, first)
+        first.send()
         _warm_up(targets, config)
         for i, t in enumerate(targets):
             if i + ahead < len(targets):

@@ -14,7 +14,8 @@ Two ways in, one child:
 * ``keep_spare(key, limits, preload)`` then ``take_spare(key, limits)``: a prepared child forked before the
   caller knows its job (the console lint forks the xacro worker before it imports the planner, so the two
   imports run at once); the job names its function as ``"module:function"``. A spare whose limits differ from
-  the job's is not used.
+  the job's is not used. A spare leads its own process group: a job that forks children of its own (a batch of
+  expansions, each in a child of the spare) is ended with them.
 
 Every child gets the same limits (`Limits`): an address-space allowance on top of what it inherits, a CPU
 limit and a wall clock per job, core dumps off, and (unless trusted) a scrubbed environment and argv.
@@ -184,7 +185,7 @@ def prepare(fn, *, limits: Limits | None = None, preload=(), progress: bool = Fa
 
 
 def _fork(fn, lim: Limits, *, call=None, preload=(), progress=False, capture="", name="",
-          grace=DELIVERY_GRACE) -> Job:
+          grace=DELIVERY_GRACE, group: bool = False) -> Job:
     rfd, wfd = os.pipe()
     efd_r = efd_w = prog_r = prog_w = go_r = go_w = job_file = None
     if capture:
@@ -200,6 +201,8 @@ def _fork(fn, lim: Limits, *, call=None, preload=(), progress=False, capture="",
     if pid == 0:  # child
         code = 0
         try:
+            if group:
+                os.setpgid(0, 0)
             for fd in (rfd, efd_r, prog_r, go_w):
                 if fd is not None:
                     os.close(fd)
@@ -211,7 +214,13 @@ def _fork(fn, lim: Limits, *, call=None, preload=(), progress=False, capture="",
     for fd in (wfd, efd_w, prog_w, go_r):
         if fd is not None:
             os.close(fd)
+    if group:
+        try:  # here too: a kill sent before the child ran must reach its group (the usual two-sided call)
+            os.setpgid(pid, pid)
+        except OSError:
+            pass
     job = Job(pid, rfd, efd_r, None, timeout=lim.timeout, grace=grace)
+    job.group = group
     job.limits, job.name, job.prog_fd, job.go_fd, job.job_file = lim, name, prog_r, go_w, job_file
     return job
 
@@ -318,7 +327,13 @@ def _by_name(ref: str, *args):
 def keep_spare(key: str, limits: Limits, preload=()) -> None:
     """Fork a child now that imports `preload` and waits; `take_spare` hands it a job, `drop_spares` ends it."""
     if hasattr(os, "fork") and key not in _SPARES:
-        _SPARES[key] = _fork(_by_name, limits, preload=preload)
+        _SPARES[key] = _fork(_by_name, limits, preload=preload, group=True)
+
+
+def spare_limits(key: str) -> Limits | None:
+    """The limits of the spare kept under `key` (None: there is none): whether a job may go to it."""
+    job = _SPARES.get(key)
+    return job.limits if job is not None else None
 
 
 def take_spare(key: str, limits: Limits):
@@ -348,6 +363,7 @@ class Job:
         self.grace = grace
         self.name = ""
         self.limits = None
+        self.group = False  # the child leads a process group: kills reach the children it forked
         self.prog_fd = self.go_fd = self.job_file = None
         self.progress = (0, 0)
         self.started = time.monotonic()
@@ -370,11 +386,20 @@ class Job:
     def cancel(self) -> None:
         if self.pid is None:
             return
+        self._kill()
+        self._reap()
+
+    def _kill(self) -> None:
+        if self.group:
+            try:
+                os.killpg(self.pid, signal.SIGKILL)
+                return
+            except OSError:  # no group (yet, or any more): the child alone
+                pass
         try:
             os.kill(self.pid, signal.SIGKILL)
         except ProcessLookupError:
             pass
-        self._reap()
 
     def _close(self, attr: str) -> None:
         fd = getattr(self, attr)
@@ -429,10 +454,7 @@ class Job:
 
     def _finish(self) -> None:
         if self._failure is not None:
-            try:
-                os.kill(self.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+            self._kill()
         if self.efd is not None and self._failure is None:  # what the child wrote just before it exited
             while self.efd is not None and select.select([self.efd], [], [], 0)[0]:
                 self._read(self.efd)

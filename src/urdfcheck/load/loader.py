@@ -127,8 +127,10 @@ def expand(path: str | os.PathLike, args: dict | None = None, **kwargs) -> Expan
 
 def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict | None = None,
           trusted: bool = False, allow_env=(), timeout: float = XACRO_TIMEOUT,
-          memory: int = XACRO_MEMORY, environ: dict | None = None, max_elements: int | None = None) -> Pending:
-    """Start `expand`: a xacro file starts expanding in its worker now, and the caller works on meanwhile."""
+          memory: int = XACRO_MEMORY, environ: dict | None = None, max_elements: int | None = None,
+          batch: Batch | None = None) -> Pending:
+    """Start `expand`: a xacro file starts expanding in its worker now, and the caller works on meanwhile.
+    With `batch`, a xacro file the console's spare can take waits for `batch.send()` (see `Batch`)."""
     p = Path(path)
     entry = paths.shown(p)
     escapes = not trusted and _links_outside(p, packages)
@@ -164,6 +166,8 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     opts = (trusted, allow_env, timeout, memory, max_elements)
     if is_xacro(p):
         out.xacro = True
+        if batch is not None and not cut and batch.takes(opts):
+            return Pending(out, job=batch.add(out, p, opts))
         job = _start_xacro(out, p, *opts, grace=0.0 if cut else None)
         job.budget_cut = cut
         return Pending(out, job=job)
@@ -222,6 +226,89 @@ class Pending:
         self._job = self._later = None
 
 
+class Batch:
+    """Xacro models begun together (the run's first few) go to the console's spare as one job: each is expanded
+    in a child forked from the spare, where xacro is already imported. Without it, the second model of a run
+    (a package's argument variant) made this process import xacro before forking its worker: 40 ms on the
+    critical path and the import done twice. Models the spare cannot take (other limits, no spare) start alone."""
+
+    def __init__(self):
+        self.items: list[tuple[Expanded, Path, tuple]] = []
+        self.shares: list[_Share] = []
+        self.job = None
+
+    def takes(self, opts: tuple) -> bool:
+        from urdfcheck.core import worker
+        from urdfcheck.load import xacro as xacro_pkg
+
+        kept = worker.spare_limits(xacro_pkg.SPARE)
+        return kept is not None and kept == worker_limits(*opts[:4])
+
+    def add(self, out: Expanded, p: Path, opts: tuple) -> _Share:
+        share = _Share(self, len(self.items))
+        self.items.append((out, p, opts))
+        self.shares.append(share)
+        return share
+
+    def send(self) -> None:
+        """Hand the models to the spare: one alone as a lone expansion, several as a batch."""
+        from urdfcheck.core import worker
+        from urdfcheck.load import xacro as xacro_pkg
+
+        if not self.items:
+            return
+        lim = worker_limits(*self.items[0][2][:4])
+        spare = worker.take_spare(xacro_pkg.SPARE, lim)
+        if spare is None:  # gone meanwhile: each starts alone (`_Share.result`)
+            return
+        if len(self.items) == 1:
+            out, p, opts = self.items[0]
+            spare.send(xacro_pkg.EXPAND, str(p), _options(out, opts))
+        else:
+            spare.send(xacro_pkg.EXPAND_BATCH, [(str(p), _options(out, opts), worker_limits(*opts[:4]))
+                                                for out, p, opts in self.items])
+            spare.deadline += xacro_pkg.BATCH_GRACE  # the expansions' own time-outs come first
+        self.job = spare
+
+    def outcome(self, index: int):
+        """The outcome of model `index`, None when the spare did not deliver it (then it is expanded alone)."""
+        if self.job is None:
+            return None
+        value = self.job.result()
+        if len(self.items) == 1:  # the spare expanded it itself: whatever happened is the model's outcome
+            return value
+        if isinstance(value, list) and len(value) == len(self.items):
+            return value[index]
+        return None  # the spare itself failed (not an expansion: each of those has its outcome in the list)
+
+
+class _Share:
+    """One model's part of a `Batch`, standing in for its worker job in `Pending`."""
+
+    budget_cut = False
+
+    def __init__(self, batch: Batch, index: int):
+        self.batch, self.index = batch, index
+
+    def result(self):
+        got = self.batch.outcome(self.index)
+        if got is None:
+            out, p, opts = self.batch.items[self.index]
+            got = _start_xacro(out, p, *opts, grace=None, spare=False).result()
+        return got
+
+    def cancel(self) -> None:
+        job, self.batch.job = self.batch.job, None
+        if job is not None:
+            job.cancel()
+
+
+def _options(out: Expanded, opts: tuple) -> dict:
+    trusted, allow_env, _, _, max_elements = opts
+    return dict(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
+                max_evals=max_elements, root=paths.showing_root())
+
+
 def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple) -> None:
     shown = out.entry
     try:
@@ -269,13 +356,13 @@ def _unrecordable() -> None:
     observe.taint()  # a run cut by its time budget is not stored by the lint cache
 
 
-def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None, grace=None):
+def _start_xacro(out: Expanded, p: Path, trusted, allow_env, timeout, memory, max_elements=None, grace=None,
+                 spare: bool = True):
     from urdfcheck.core import worker
     from urdfcheck.load import xacro as xacro_pkg
 
-    options = dict(mappings=out.args, trusted=trusted, allow_env=allow_env, resolver=out.resolver,
-                   max_evals=max_elements, root=paths.showing_root())
-    if grace is None:  # a child the console forked at start-up, with xacro imported meanwhile (cli.main)
+    options = _options(out, (trusted, allow_env, timeout, memory, max_elements))
+    if grace is None and spare:  # a child the console forked at start-up, with xacro imported meanwhile (cli.main)
         spare = worker.take_spare(xacro_pkg.SPARE, worker_limits(trusted, allow_env, timeout, memory))
         if spare is not None:  # the options go as a dict: this process need not import the expander
             spare.send(xacro_pkg.EXPAND, str(p), options)

@@ -117,6 +117,19 @@ def expand_with(path: str, options: dict) -> dict:
     return expand(path, Options(**options))
 
 
+def expand_batch(jobs: list) -> list:
+    """In the console's spare, where xacro is imported: each (path, options, limits) expanded in a child of its
+    own forked from here, all at once, under the limits the loader gives a lone expansion (`core.worker.start`);
+    their outcomes (a result dict or a `Failure`) in order. A fresh child per expansion, as everywhere: the
+    expander patches xacro's module state and is never run twice in one process."""
+    from urdfcheck.core import worker
+
+    started = [worker.start(expand_with, path, options, timeout=lim.timeout, memory=lim.memory,
+                            env_keep=lim.env_keep, scrub_env=lim.scrub_env) for path, options, lim in jobs]
+    worker.wait(started)
+    return [j.value for j in started]
+
+
 def expand(path: str, opts: Options) -> dict:
     """Expand `path`. Returns a dict (picklable): xml (marked), files, suppressions, warnings, args.
 
