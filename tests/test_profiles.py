@@ -148,3 +148,72 @@ def test_target_read_from_the_workspace(tmp_path, name, text, expect):
     assert code == 0 and f"ROS distribution: {expect} (assumed: {expect} named in {name}" in out
     _, report = lint_json(["pkg/urdf/r.urdf", "--select", "U007"], cwd=tmp_path)
     assert bool(report["findings"]) == (expect != "rolling")
+
+
+def _repeated_cases():
+    """One model per (scope, element) of P006's table, that element written twice, and one with none."""
+    from urdfcheck.rules.checks.profiles.mujoco import _ONCE
+
+    parts = {
+        "joint": ('<joint name="j" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>'
+                  '<dynamics damping="0.1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><origin/></joint>'),
+        "inertial": f'<inertial><mass value="1"/>{INR[INR.index("<inertia "):INR.index("</inertial>")]}<origin/>'
+                    '</inertial>',
+        "collision": '<collision><geometry><box size="1 1 1"/></geometry><origin/></collision>',
+        "visual": '<visual><geometry><box size="1 1 1"/></geometry><material name="m"/></visual>',
+    }
+
+    def robot(p, extra=""):
+        return (f'<robot name="r"><link name="a">{p["inertial"]}{extra}{p["collision"]}{p["visual"]}</link>'
+                f'<link name="b">{p["inertial"]}</link>{p["joint"]}</robot>')
+
+    def twice(text, tag):  # the first <tag .../> or <tag>...</tag> written twice
+        import re
+
+        start = re.search(rf"<{tag}[\s/>]", text).start()
+        close = text.index(">", start)
+        end = close + 1 if text[close - 1] == "/" else text.index(f"</{tag}>", start) + len(tag) + 3
+        return text[:end] + text[start:end] + text[end:]
+
+    yield "none", robot(parts), False
+    yield "link/inertial", robot(parts, extra=parts["inertial"]), True
+    for scope, names in _ONCE.items():
+        for name in names:
+            where = "collision" if scope == "geometry" else scope
+            if scope == "geometry" and name != "box":
+                continue  # one geometry case: the model's geometry is a box
+            yield f"{scope}/{name}", robot({**parts, where: twice(parts[where], name)}), True
+
+
+@pytest.mark.parametrize("label, text, repeated", list(_repeated_cases()))
+def test_every_repeated_element_mujoco_refuses_is_found(tmp_path, label, text, repeated):
+    """P006 reads the repeats the model builder noted: every (scope, element) of MuJoCo's table, and nothing in a
+    model without one."""
+    _, report = lint_json([str(_write(tmp_path, text)), "--select", "P006"], cwd=tmp_path)
+    found = [f for f in report["findings"] if f["code"] == "P006"]
+    assert bool(found) == repeated, (label, found)
+
+
+def test_the_quick_mass_bound_never_passes_a_body_mujoco_refuses():
+    """P001 skips the eigenvalues of a link when Gershgorin's bound already clears mjMINVAL: wherever the bound
+    says so, the exact smallest principal moment says so too."""
+    from hypothesis import given, settings
+    from hypothesis import strategies as st
+
+    from urdfcheck.model.robot import Inertial, Link
+    from urdfcheck.rules.checks.inertial import principal_moments
+    from urdfcheck.rules.checks.profiles.mujoco import MJMINVAL, _surely_massive
+
+    scale = st.sampled_from([1e-18, 1e-15, 1e-9, 1e-3, 1.0, 1e3])
+    value = st.floats(-1.0, 1.0, allow_nan=False)
+
+    @settings(max_examples=400, deadline=None)
+    @given(scale, st.tuples(*[value] * 6), st.floats(0.0, 10.0))
+    def check(k, moments, mass):
+        xx, xy, xz, yy, yz, zz = (k * v for v in moments)
+        inertia = (abs(xx), xy, xz, abs(yy), yz, abs(zz))
+        link = Link("l", None, Inertial(None, None, mass, None, inertia, None), (), ())
+        if _surely_massive(link):
+            assert mass >= MJMINVAL and principal_moments(inertia)[0] >= MJMINVAL * (1 - 1e-9)
+
+    check()

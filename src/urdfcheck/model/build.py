@@ -131,6 +131,12 @@ def _named(el) -> str:
     return f"<{el.tag}> of <{parent.tag} name={pname!r}>" if pname else f"<{el.tag}>"
 
 
+def _again(twice: set | None, tag: str) -> set:
+    """`tag` read a second time where a reader takes one (MuJoCo's xml_urdf.cc FindSubElem throws "repeated
+    element"): noticed by what the first reading left behind, so the common case costs nothing."""
+    return (twice or set()) | {tag}
+
+
 class _Builder:
     def __init__(self, locate: Callable[[object], Location], source: str, version: G.Version, declared: str | None):
         self.locate = locate
@@ -139,6 +145,9 @@ class _Builder:
         self.declared = declared
         self.R = readers(version)
         self.issues: list[Issue] = []
+        # sub-elements written twice where one is read: (owner kind, owner name, scope tag, element tag)
+        self.repeated: list[tuple[str, str, str, str]] = []
+        self.owner = ""  # the link whose parts are being read
         # vector text -> values: real models repeat "0 0 0", "1 0 0" and the shared origin of a link's
         # visual, collision and inertial; splitting and converting is the costly part of reading them
         self.vectors: dict[str, tuple] = {}
@@ -230,13 +239,17 @@ class _Builder:
         # both rpy and quat_xyzw (U009) stay in the model as written; core.geometry prefers the quaternion
         return _new(Pose, (v[0], v[1], self.locate(el), v[2] if len(v) == 3 else None))
 
-    def geometry(self, g) -> Geometry:
+    def geometry(self, g, kind: str = "") -> Geometry:
         self.R["geometry"](self, g)
         shapes = [c for c in g if isinstance(c.tag, str) and not c.tag.startswith("{")]
         if not shapes:
             return Geometry("", self.locate(g))
         if len(shapes) > 1:
             self.issue("U002", f"<geometry> holds {len(shapes)} shapes; URDF parsers use only the first", shapes[1])
+            tags = [c.tag for c in shapes]
+            twice = {t for t in tags if t in _SHAPE_SINCE and tags.count(t) > 1}
+            if twice and kind == "collision":
+                self.repeated.append(("link", self.owner, "geometry", min(twice)))
         s = shapes[0]
         tag = s.tag
         loc = self.locate(s)
@@ -282,37 +295,57 @@ class _Builder:
         R, locate = self.R, self.locate
         name = R[kind](self, el)[0]
         origin, geometry, mat = POSE0, None, None
+        twice = None  # the tags seen again, of those read once (a repeat is rare: noticed by the first's trace)
         for c in el:
             tag = c.tag
             if tag == "origin":
+                if origin is not POSE0:
+                    twice = _again(twice, "origin")
                 v = R["origin"](self, c)
                 origin = _new(Pose, (v[0], v[1], locate(c), v[2] if len(v) == 3 else None))  # = self.pose(c)
             elif tag == "geometry":
-                geometry = self.geometry(c)
+                if geometry is not None:
+                    twice = _again(twice, "geometry")
+                geometry = self.geometry(c, kind)
             elif tag == "material" and kind == "visual":
+                if mat is not None:
+                    twice = _again(twice, "material")
                 # urdfdom rejects the visual (and stops reading the link) when its material has no name
                 mname = R["material"](self, c)[0]
                 rgba, texture = self._colour_texture(c) if len(c) else (None, None)
                 mat = _new(MaterialRef, (mname or "", locate(c), rgba, texture))
             else:
                 self.unknown(kind, c)
+        if twice:
+            once = ("geometry", "origin") if kind == "collision" else ("material",)  # what MuJoCo reads
+            if twice & set(once):
+                self.repeated.append(("link", self.owner, kind, min(twice & set(once))))
         return _new(Shape, (kind, locate(el), name or "", origin, geometry, mat))
 
     def inertial(self, el) -> Inertial:
         R, locate = self.R, self.locate
         R["inertial"](self, el)
         origin, mass, mass_loc, inertia, inertia_loc = POSE0, None, None, None, None
+        twice = None
         for c in el:
             tag = c.tag
             if tag == "mass":
+                if mass_loc is not None:
+                    twice = _again(twice, "mass")
                 mass, mass_loc = R["mass"](self, c)[0], locate(c)
             elif tag == "inertia":
+                if inertia_loc is not None:
+                    twice = _again(twice, "inertia")
                 inertia, inertia_loc = R["inertia"](self, c), locate(c)
             elif tag == "origin":
+                if origin is not POSE0:
+                    twice = _again(twice, "origin")
                 v = R["origin"](self, c)
                 origin = _new(Pose, (v[0], v[1], locate(c), v[2] if len(v) == 3 else None))  # = self.pose(c)
             else:
                 self.unknown("inertial", c)
+        if twice:
+            self.repeated.append(("link", self.owner, "inertial", min(twice)))
         return _new(Inertial, (locate(el), origin, mass, mass_loc, inertia, inertia_loc))
 
     def link(self, el) -> Link | None:
@@ -320,6 +353,8 @@ class _Builder:
         if not name:
             return None
         inertial, visuals, collisions = None, [], []
+        extra_inertial = False
+        self.owner = name
         for c in el:
             tag = c.tag
             if tag == "visual":
@@ -331,9 +366,19 @@ class _Builder:
                     inertial = self.inertial(c)
                 else:
                     self.issue("U002", f"link {name!r} has more than one <inertial>; only the first is used", c)
+                    if not extra_inertial:
+                        self.repeated.append(("link", name, "link", "inertial"))
+                    extra_inertial = True
+                    self._repeats_in(c, "inertial", ("mass", "inertia", "origin"))  # not read, but MuJoCo looks
             else:
                 self.unknown("link", c)
         return _new(Link, (name, self.locate(el), inertial, tuple(visuals), tuple(collisions)))
+
+    def _repeats_in(self, el, scope: str, once: tuple[str, ...]) -> None:
+        tags = [c.tag for c in el]
+        twice = {t for t in once if tags.count(t) > 1}
+        if twice:
+            self.repeated.append(("link", self.owner, scope, min(twice)))
 
     def joint(self, el) -> Joint | None:
         R, locate = self.R, self.locate
@@ -344,18 +389,29 @@ class _Builder:
             jtype = ""
         parent = child = parent_loc = child_loc = None
         origin, axis, axis_loc, limit, mimic, dyn = POSE0, X_AXIS, None, None, None, None
+        twice = None  # the tags seen again, of those MuJoCo reads once
         for c in el:
             tag = c.tag
             if tag == "parent":
+                if parent_loc is not None:
+                    twice = _again(twice, tag)
                 parent, parent_loc = R["parent"](self, c)[0], locate(c)
             elif tag == "child":
+                if child_loc is not None:
+                    twice = _again(twice, tag)
                 child, child_loc = R["child"](self, c)[0], locate(c)
             elif tag == "origin":
+                if origin is not POSE0:
+                    twice = _again(twice, tag)
                 v = R["origin"](self, c)
                 origin = _new(Pose, (v[0], v[1], locate(c), v[2] if len(v) == 3 else None))  # = self.pose(c)
             elif tag == "axis":
+                if axis_loc is not None:
+                    twice = _again(twice, tag)
                 axis, axis_loc = R["axis"](self, c)[0], locate(c)
             elif tag == "limit":
+                if limit is not None:
+                    twice = _again(twice, tag)
                 v = R["limit"](self, c)
                 if len(v) == 4:  # acceleration, deceleration, jerk: not read before URDF 1.2
                     v += (None, None, None)
@@ -365,6 +421,8 @@ class _Builder:
                 if target:
                     mimic = _new(Mimic, (locate(c), target, multiplier, offset))
             elif tag == "dynamics":
+                if dyn is not None:
+                    twice = _again(twice, tag)
                 damping, friction = R["dynamics"](self, c)
                 dyn = dyn or {}
                 if damping is not None:
@@ -375,6 +433,8 @@ class _Builder:
                 R[tag](self, c)
             else:
                 self.unknown("joint", c)
+        if twice:
+            self.repeated.append(("joint", name, "joint", min(twice)))
         if parent_loc is None:
             self.issue("U006", f"joint {name!r} has no <parent> element", el)
         if child_loc is None:
@@ -499,6 +559,7 @@ def _build(root, locate: Callable[[object], Location], source: str) -> Model:
         material_list=tuple(materials),
         blocks=tuple(blocks),
         issues=tuple(b.issues),
+        repeated=tuple(b.repeated),
         source=source,
         ros2_control=tuple(r2c),
         transmissions=tuple(trans),

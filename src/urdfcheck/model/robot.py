@@ -209,13 +209,15 @@ class Model(FrozenRecord):
     # version: the URDF version the model is read as (the declared one; 1.0 when none is declared; the newest
     #   when the declared one is one no urdfdom reads); declared_version: <robot version> as written
     _fields = ('name', 'loc', 'links', 'joints', 'materials', 'link_list', 'joint_list', 'material_list', 'blocks',
-               'issues', 'source', 'ros2_control', 'transmissions', 'version', 'declared_version', 'plugins')
+               'issues', 'source', 'ros2_control', 'transmissions', 'version', 'declared_version', 'plugins',
+               'repeated')
 
     _defaults = {"ros2_control": (), "transmissions": (), "version": (1, 0), "declared_version": None,
-                 "plugins": ()}
+                 "plugins": (), "repeated": ()}
     # name: str, loc: Location, links/joints/materials: Mapping[str, ...], link_list/joint_list/material_list,
     # blocks, issues: tuples, source: str, ros2_control, transmissions: tuples, version: (major, minor),
-    # declared_version: str | None; plugins: the <gazebo> plugins (consumers/gazebo.py)
+    # declared_version: str | None; plugins: the <gazebo> plugins (consumers/gazebo.py); repeated: sub-elements
+    # written twice where readers take one, as (owner kind, owner name, scope tag, element tag), in reading order
 
     # --- derived structure -------------------------------------------------
     @property
@@ -287,8 +289,16 @@ class Model(FrozenRecord):
         down = list(reversed(down[: tgt_anc.index(common)]))
         return up, down
 
-    def descendants_in_order(self, root: str) -> list[str]:
-        """Depth-first, children in document order (cycle-safe)."""
+    def descendants_in_order(self, root: str) -> tuple[str, ...]:
+        """Depth-first, children in document order (cycle-safe). Computed once per root: several rules walk the
+        whole tree from its root (0.03 s a walk on 10,000 links)."""
+        walks = self._derived().setdefault("descendants", {})
+        got = walks.get(root)
+        if got is None:
+            got = walks[root] = tuple(self._descendants(root))
+        return got
+
+    def _descendants(self, root: str) -> list[str]:
         out, seen, stack = [], set(), [root]
         while stack:
             name = stack.pop()

@@ -83,10 +83,11 @@ def fixed_groups(model, keep=frozenset()) -> dict[str, str]:
     """link -> the link it is lumped into when fixed joints are merged (itself when its parent joint moves, it
     is a root, or its fixed joint is in `keep`). Cycle-safe."""
     out: dict[str, str] = {}
+    children = model.child_joints.get  # a property: read once, not once per link
     for root in model.roots:
         out[root] = root
         for name in model.descendants_in_order(root):
-            for j in model.child_joints.get(name, ()):
+            for j in children(name, ()):
                 if j.child is None or j.child in out:
                     continue
                 lumped = j.type == "fixed" and j.name not in keep

@@ -50,11 +50,12 @@ def massless_link_dropped(model, ctx):
         members.setdefault(g, []).append(n)
     root = model.roots[0]
     gone: set[str] = set()  # below a dropped link: already named by its finding
+    known = model.links
     for body in model.descendants_in_order(root):
         links = members.get(body)
-        if links is None or body == root or body == "world" or body not in model.links or body in gone:
+        if links is None or body == root or body == "world" or body not in known or body in gone:
             continue
-        if not all(_massless(model.links[n]) for n in links):
+        if not _massless(known[body]) or not all(_massless(known[n]) for n in links):
             continue
         below = [d for d in model.descendants_in_order(body)[1:] if group.get(d) != body]
         gone.update(below)
