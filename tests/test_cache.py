@@ -278,3 +278,21 @@ def test_fork_early_reads_the_limits(monkeypatch, argv, expected):
     else:
         (lim,) = got
         assert (not lim.scrub_env, tuple(lim.env_keep), lim.timeout) == expected
+
+
+def test_a_parameter_file_parsed_in_the_worker_is_still_part_of_the_key(pkg, tmp_path):
+    """Zero config: the package's parameter files are parsed in the xacro worker (consumers.params.parse_ahead),
+    where the console's audit hook cannot see the reads: the worker hands back what it read (and the console reads
+    the files' suppression comments itself), so an edit is a miss."""
+    c = tmp_path / "cache"
+    zero = ["lint", "--no-config", "--format", "json", "urdf/agv.urdf.xacro"]
+    clean = cli(zero, pkg, c)
+    assert clean[3][-1] == "urdfcheck: cache stored" and cli(zero, pkg, c)[3] == ["urdfcheck: cache hit"]
+    params = pkg / "config" / "agv_controllers.yaml"
+    text = params.read_text()
+    assert "wheel_radius" in text
+    params.write_text(text.replace("wheel_radius:", "wheel_radius: 0.5\n    old_wheel_radius:", 1))
+    edited = cli(zero, pkg, c)
+    assert edited[3][0].startswith("urdfcheck: cache miss (")
+    assert edited[1] != clean[1]  # the wheel geometry no longer matches the URDF
+    assert edited[:3] == cli(zero, pkg, c, env={"URDFCHECK_NO_CACHE": "1"})[:3]

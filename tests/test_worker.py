@@ -387,3 +387,38 @@ def _group_alive(pgid: int) -> list[int]:
             if int(fields[2]) == pgid and fields[0] != "Z":
                 out.append(int(d))
     return out
+
+
+CONSOLE = """
+import sys
+from urdfcheck.cli import main
+from urdfcheck.cli.cache import fork_early
+fork_early(sys.argv[1:])
+main.run(after=lambda code: (sys.stderr.write("yaml-in-console=%s\\n" % ("yaml" in sys.modules)), code)[1])
+"""
+
+
+def test_the_console_parses_no_yaml_itself_and_finds_the_same(tmp_path):
+    """The AGV package's parameter files are parsed in the xacro worker (PyYAML is imported there for xacro): the
+    console never imports PyYAML, and reports what a run that parses them itself reports."""
+    import json
+    import shutil
+    import subprocess
+
+    pkg = tmp_path / "agv"
+    shutil.copytree(Path(__file__).resolve().parent.parent / "examples" / "agv", pkg)
+    params = pkg / "config" / "agv_controllers.yaml"
+    params.write_text(params.read_text().replace("wheel_radius: 0.10", "wheel_radius: 0.5", 1))  # a finding
+    (pkg / "config" / "broken.yaml").write_text("controller_manager:\n  ros__parameters: [1, 2\n")  # an error back
+    args = ["lint", "--no-config", "--no-cache", "--format", "json", "urdf/agv.urdf.xacro"]
+    env = {**os.environ, "PYTHONPATH": str(SRC)}
+    proc = subprocess.run([sys.executable, "-c", CONSOLE, *args], cwd=pkg, env=env, capture_output=True, text=True,
+                          timeout=120)
+    assert "yaml-in-console=False" in proc.stderr, proc.stderr
+    alone = subprocess.run([sys.executable, "-c", "import sys; from urdfcheck.cli.main import main; "
+                            "sys.exit(main(sys.argv[1:]))", *args], cwd=pkg, env=env, capture_output=True,
+                           text=True, timeout=120)  # no spare: parsed in this process
+    assert proc.returncode == alone.returncode == 1
+    ours, theirs = json.loads(proc.stdout), json.loads(alone.stdout)
+    assert ours["findings"] == theirs["findings"]
+    assert "C011" in {f["code"] for f in ours["findings"]}  # the wheel radius, read from the worker's parse

@@ -344,47 +344,85 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     pending: dict[int, loader.Pending] = {}
     yaml = _YamlUse()
     read: set = set()  # every file an expansion read (display paths): plan.robots.missed
+    from urdfcheck.consumers.params import parsed_ahead
     from urdfcheck.plan.robots import has_links
 
-    try:
-        first = loader.Batch()  # the first xacro models go to the console's spare together
-        for i in range(min(ahead, len(targets))):
-            pending[i] = _begin(targets[i], kw, first)
-        first.send()
-        _warm_up(targets, config)
-        for i, t in enumerate(targets):
-            if i + ahead < len(targets):
-                pending[i + ahead] = _begin(targets[i + ahead], kw)
-            progress.step(i, len(targets), t.path if not t.variant else f"{t.path} [{t.variant}]")
-            exp = pending.pop(i).result()
-            yaml.index = i
-            if exp.root is not None:  # read *and* expanded: an includer that failed checked nothing it read
-                read.update(exp.files or ())
-            if t.probe and exp.root is not None and not has_links(exp.root):  # a library (plan.robots)
-                t.library = True
-                sel = t.settings.selection if t.settings is not None else selection
-                models[(str(t.path), t.variant)] = None
-                by_target[i].extend(engine.finish(list(exp.findings), sel, exp.suppressions, model=exp.entry))
-                continue
-            try:
-                if t.settings is not None:
-                    found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
-                else:
-                    found, model = _check(t, exp, selection, config, yaml)
-            except MemoryError:  # the run's memory limit (load.budget): this model is not checked
-                found, model = [_over_memory(exp)], None
-            if retain is not None:
-                retain.append(exp)
-            models[(str(t.path), t.variant)] = model
-            by_target[i].extend(found)
-    finally:
-        for p in pending.values():
-            p.cancel()
+    with parsed_ahead() as parsed:
+        try:
+            first = loader.Batch()  # the first xacro models go to the console's spare together
+            for i in range(min(ahead, len(targets))):
+                pending[i] = _begin(targets[i], kw, first)
+            if first.items:
+                first.also = _params_ahead(targets[:len(first.items)])
+            first.send()
+            _warm_up(targets, config)
+            for i, t in enumerate(targets):
+                if i + ahead < len(targets):
+                    pending[i + ahead] = _begin(targets[i + ahead], kw)
+                progress.step(i, len(targets), t.path if not t.variant else f"{t.path} [{t.variant}]")
+                exp = pending.pop(i).result()
+                if i == 0:
+                    _take_params(first, parsed)
+                yaml.index = i
+                if exp.root is not None:  # read *and* expanded: an includer that failed checked nothing it read
+                    read.update(exp.files or ())
+                if t.probe and exp.root is not None and not has_links(exp.root):  # a library (plan.robots)
+                    t.library = True
+                    sel = t.settings.selection if t.settings is not None else selection
+                    models[(str(t.path), t.variant)] = None
+                    by_target[i].extend(engine.finish(list(exp.findings), sel, exp.suppressions, model=exp.entry))
+                    continue
+                try:
+                    if t.settings is not None:
+                        found, model = _check(t, exp, t.settings.selection, t.settings.config, yaml)
+                    else:
+                        found, model = _check(t, exp, selection, config, yaml)
+                except MemoryError:  # the run's memory limit (load.budget): this model is not checked
+                    found, model = [_over_memory(exp)], None
+                if retain is not None:
+                    retain.append(exp)
+                models[(str(t.path), t.variant)] = model
+                by_target[i].extend(found)
+        finally:
+            for p in pending.values():
+                p.cancel()
     for i, f in yaml.unused():
         by_target[i].append(f)
     result = Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
     result.read = read
     return result
+
+
+def _params_ahead(targets: list[Target]) -> tuple[str, tuple] | None:
+    """The parameter files of the packages around the run's first models (what zero-config consumer discovery
+    reads), for the xacro worker to parse while it expands (`consumers.params.parse_ahead`): PyYAML is imported
+    there already. None when there are none (or too many to be worth sending)."""
+    from urdfcheck.load.discover import discover
+    from urdfcheck.load.packages import enclosing_package
+
+    paths: list[str] = []
+    for t in targets:
+        if t._contracts is not None:  # planned consumers (a config, a deployment): read from their own files
+            continue
+        pkg = enclosing_package(Path(os.path.abspath(t.path)).parent)
+        if pkg is not None:
+            paths.extend(p for p in discover(pkg).params if p not in paths)
+    return ("urdfcheck.consumers.params:parse_ahead", (paths,)) if 0 < len(paths) <= 64 else None
+
+
+def _take_params(batch: loader.Batch, store: dict) -> None:
+    """The worker's parse of the parameter files, for `read_params` to answer from; with the lint cache on, only
+    together with what the worker read (core.observe), so that an edited parameter file is a cache miss."""
+    got = batch.also_result() if batch.also is not None else None
+    if not isinstance(got, dict) or not isinstance(got.get("parsed"), dict):
+        return
+    from urdfcheck.core import observe
+
+    if observe.active():
+        if got.get("observed") is None:
+            return  # the console reads them itself, and sees what it reads
+        observe.add(got["observed"])
+    store.update(got["parsed"])
 
 
 def _over_memory(exp) -> Finding:

@@ -18,6 +18,9 @@ class ConsumerError(Exception):
         self.message = message
         self.location = location
 
+    def __reduce__(self):  # both fields (Exception pickles its args only): a file parsed in the worker comes back
+        return type(self), (self.message, self.location)
+
     def __str__(self) -> str:
         return f"{self.location.shown()}: {self.message}"
 

@@ -191,9 +191,58 @@ def params_from_doc(doc: YamlDoc) -> ParamFile:
 
 def read_params(path: str | os.PathLike, *, max_bytes: int | None = None) -> ParamFile:
     """Read a parameter file (at most max_bytes, default yamlsrc.MAX_BYTES). Raises ConsumerError."""
+    if max_bytes is None and _AHEAD:
+        got = _AHEAD[-1].get(str(path))
+        if got is not None:  # parsed in the xacro worker, where PyYAML was imported already (`parse_ahead`)
+            import pickle
+
+            value = pickle.loads(got)  # a fresh copy for each reader, as a parse would give
+            if isinstance(value, ConsumerError):
+                raise value
+            return value
     from urdfcheck.consumers.yamlsrc import MAX_BYTES, load_yaml
 
     return params_from_doc(load_yaml(path, max_bytes=MAX_BYTES if max_bytes is None else max_bytes))
+
+
+# --- parameter files parsed ahead, in the xacro worker ------------------------------------------------------
+_AHEAD: list[dict] = []  # one store per run in progress: path (as the reader names it) -> pickled outcome
+
+
+class parsed_ahead:
+    """Within this block `read_params` answers from the store it yields (filled when the worker's parse arrives):
+    the console then never imports PyYAML for a package's parameter files (17 ms), which the xacro worker has
+    imported anyway. Outside, every read parses."""
+
+    def __enter__(self) -> dict:
+        _AHEAD.append({})
+        return _AHEAD[-1]
+
+    def __exit__(self, *exc):
+        _AHEAD.pop()
+
+
+def parse_ahead(paths: list[str]) -> dict:
+    """In the xacro worker: each file read as `read_params` reads it, pickled ({path: bytes}); "observed": what
+    was read, for the lint cache (core.observe). A file that fails otherwise than a ConsumerError is left out:
+    the console reads it itself and says what went wrong."""
+    import pickle
+
+    from urdfcheck.core import observe
+
+    out: dict = {}
+    for p in paths:
+        try:
+            value = read_params(p)
+        except ConsumerError as e:
+            value = e
+        except Exception:  # noqa: BLE001 - left to the console's own read
+            continue
+        try:
+            out[p] = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+        except Exception:  # noqa: BLE001
+            continue
+    return {"parsed": out, "observed": observe.take() if observe.active() else None}
 
 
 def parse_params(text: str | bytes, file: str) -> ParamFile:

@@ -236,6 +236,8 @@ class Batch:
         self.items: list[tuple[Expanded, Path, tuple]] = []
         self.shares: list[_Share] = []
         self.job = None
+        # ("module:function", args) the spare runs too, while the expansions run (its value: `also_result`)
+        self.also: tuple[str, tuple] | None = None
 
     def takes(self, opts: tuple) -> bool:
         from urdfcheck.core import worker
@@ -261,25 +263,35 @@ class Batch:
         spare = worker.take_spare(xacro_pkg.SPARE, lim)
         if spare is None:  # gone meanwhile: each starts alone (`_Share.result`)
             return
-        if len(self.items) == 1:
+        if len(self.items) == 1 and self.also is None:
             out, p, opts = self.items[0]
             spare.send(xacro_pkg.EXPAND, str(p), _options(out, opts))
         else:
             spare.send(xacro_pkg.EXPAND_BATCH, [(str(p), _options(out, opts), worker_limits(*opts[:4]))
-                                                for out, p, opts in self.items])
+                                                for out, p, opts in self.items], self.also)
             spare.deadline += xacro_pkg.BATCH_GRACE  # the expansions' own time-outs come first
         self.job = spare
+
+    def _batch(self) -> dict | None:
+        value = self.job.result() if self.job is not None else None
+        if isinstance(value, dict) and isinstance(value.get("outcomes"), list) \
+                and len(value["outcomes"]) == len(self.items):
+            return value
+        return None  # the spare itself failed (not an expansion: each of those has its outcome in the list)
 
     def outcome(self, index: int):
         """The outcome of model `index`, None when the spare did not deliver it (then it is expanded alone)."""
         if self.job is None:
             return None
-        value = self.job.result()
-        if len(self.items) == 1:  # the spare expanded it itself: whatever happened is the model's outcome
-            return value
-        if isinstance(value, list) and len(value) == len(self.items):
-            return value[index]
-        return None  # the spare itself failed (not an expansion: each of those has its outcome in the list)
+        if len(self.items) == 1 and self.also is None:  # the spare expanded it itself: its outcome, whatever it is
+            return self.job.result()
+        got = self._batch()
+        return got["outcomes"][index] if got is not None else None
+
+    def also_result(self):
+        """What `also` returned in the spare; None when it did not run or failed."""
+        got = self._batch() if self.also is not None else None
+        return got.get("also") if got is not None else None
 
 
 class _Share:

@@ -27,5 +27,5 @@ SPARE = "xacro"
 SPARE_PRELOAD = ("xacro", "xacro.substitution_args", "urdfcheck.load.xacro.expand", "urdfcheck.load.xacro.safeeval",
                  "urdfcheck.load.xacro.yamlguard")
 EXPAND = "urdfcheck.load.xacro.expand:expand_with"  # (path, options as a dict)
-EXPAND_BATCH = "urdfcheck.load.xacro.expand:expand_batch"  # ([(path, options, limits), ...])
+EXPAND_BATCH = "urdfcheck.load.xacro.expand:expand_batch"  # ([(path, options, limits), ...], also)
 BATCH_GRACE = 5.0  # seconds the spare has past its expansions' own time-out to report them all

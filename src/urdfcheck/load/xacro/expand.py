@@ -117,17 +117,26 @@ def expand_with(path: str, options: dict) -> dict:
     return expand(path, Options(**options))
 
 
-def expand_batch(jobs: list) -> list:
+def expand_batch(jobs: list, also=None) -> dict:
     """In the console's spare, where xacro is imported: each (path, options, limits) expanded in a child of its
     own forked from here, all at once, under the limits the loader gives a lone expansion (`core.worker.start`);
-    their outcomes (a result dict or a `Failure`) in order. A fresh child per expansion, as everywhere: the
-    expander patches xacro's module state and is never run twice in one process."""
+    "outcomes": theirs (a result dict or a `Failure`) in order. A fresh child per expansion, as everywhere: the
+    expander patches xacro's module state and is never run twice in one process.
+
+    `also`: ("module:function", args) run here meanwhile (the package's parameter files, parsed where PyYAML is
+    imported); "also": its value, None when it failed."""
     from urdfcheck.core import worker
 
     started = [worker.start(expand_with, path, options, timeout=lim.timeout, memory=lim.memory,
                             env_keep=lim.env_keep, scrub_env=lim.scrub_env) for path, options, lim in jobs]
+    extra = None
+    if also is not None:
+        try:
+            extra = worker._by_name(also[0], *also[1])
+        except Exception:  # noqa: BLE001 - the console does it itself
+            extra = None
     worker.wait(started)
-    return [j.value for j in started]
+    return {"outcomes": [j.value for j in started], "also": extra}
 
 
 def expand(path: str, opts: Options) -> dict:
