@@ -370,6 +370,9 @@ def test_cancelling_a_batch_ends_the_spare_and_its_children(tmp_path, monkeypatc
         assert len(_group_alive(spare_pid)) == 3
         batch.shares[0].cancel()
         assert _gone(spare_pid)
+        end = time.monotonic() + 5  # SIGKILL is delivered asynchronously: a child may still be on its way out
+        while _group_alive(spare_pid) and time.monotonic() < end:
+            time.sleep(0.02)
         assert _group_alive(spare_pid) == []  # its children were killed with it (init reaps what is left)
     finally:
         worker.drop_spares()
