@@ -254,11 +254,11 @@ class Batch:
 
     def send(self) -> None:
         """Hand the models to the spare: one alone as a lone expansion, several as a batch."""
+        if not self.items:  # (a plain URDF run imports no worker machinery)
+            return
         from urdfcheck.core import worker
         from urdfcheck.load import xacro as xacro_pkg
 
-        if not self.items:
-            return
         lim = worker_limits(*self.items[0][2][:4])
         spare = worker.take_spare(xacro_pkg.SPARE, lim)
         if spare is None:  # gone meanwhile: each starts alone (`_Share.result`)
