@@ -425,3 +425,23 @@ def test_the_console_parses_no_yaml_itself_and_finds_the_same(tmp_path):
     ours, theirs = json.loads(proc.stdout), json.loads(alone.stdout)
     assert ours["findings"] == theirs["findings"]
     assert "C011" in {f["code"] for f in ours["findings"]}  # the wheel radius, read from the worker's parse
+
+
+def test_only_a_few_small_parameter_files_are_parsed_ahead(tmp_path):
+    """The first results wait for the worker's parse: a package with many (or large) parameter files is read by
+    the console as before, only what the prefilter lets through."""
+    (tmp_path / "package.xml").write_text("<package><name>p</name></package>")
+    (tmp_path / "config").mkdir()
+    model = tmp_path / "r.urdf.xacro"
+    model.write_text("<robot/>")
+    t = lint.Target(model)
+    for i in range(2):
+        (tmp_path / "config" / f"c{i}.yaml").write_text("a: 1\n")
+    func, (paths,) = lint._params_ahead([t])
+    assert func.endswith(":parse_ahead") and sorted(os.path.basename(p) for p in paths) == ["c0.yaml", "c1.yaml"]
+    (tmp_path / "config" / "big.yaml").write_text("a: 1\n" * (lint.PARAMS_AHEAD_BYTES // 4))
+    assert lint._params_ahead([t]) is None
+    (tmp_path / "config" / "big.yaml").unlink()
+    for i in range(2, lint.PARAMS_AHEAD_FILES + 1):
+        (tmp_path / "config" / f"c{i}.yaml").write_text("a: 1\n")
+    assert lint._params_ahead([t]) is None

@@ -396,7 +396,9 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
 def _params_ahead(targets: list[Target]) -> tuple[str, tuple] | None:
     """The parameter files of the packages around the run's first models (what zero-config consumer discovery
     reads), for the xacro worker to parse while it expands (`consumers.params.parse_ahead`): PyYAML is imported
-    there already. None when there are none (or too many to be worth sending)."""
+    there already. Only a few small files: the first results wait for the parse, and in a package of several
+    models discovery parses only the files that name one of the model's joints (consumers.prefilter), which
+    the worker cannot tell before the model exists. None when there is nothing to send."""
     from urdfcheck.load.discover import discover
     from urdfcheck.load.packages import enclosing_package
 
@@ -407,7 +409,18 @@ def _params_ahead(targets: list[Target]) -> tuple[str, tuple] | None:
         pkg = enclosing_package(Path(os.path.abspath(t.path)).parent)
         if pkg is not None:
             paths.extend(p for p in discover(pkg).params if p not in paths)
-    return ("urdfcheck.consumers.params:parse_ahead", (paths,)) if 0 < len(paths) <= 64 else None
+    if not paths or len(paths) > PARAMS_AHEAD_FILES:
+        return None
+    try:
+        if sum(os.stat(p).st_size for p in paths) > PARAMS_AHEAD_BYTES:
+            return None
+    except OSError:
+        return None
+    return ("urdfcheck.consumers.params:parse_ahead", (paths,))
+
+
+PARAMS_AHEAD_FILES = 16
+PARAMS_AHEAD_BYTES = 128 * 1024
 
 
 def _take_params(batch: loader.Batch, store: dict) -> None:
