@@ -412,7 +412,8 @@ def _params_ahead(targets: list[Target]) -> tuple[str, tuple] | None:
     if not paths or len(paths) > PARAMS_AHEAD_FILES:
         return None
     try:
-        if sum(os.stat(p).st_size for p in paths) > PARAMS_AHEAD_BYTES:
+        # lstat: a link is not followed here (the worker's reader refuses one that leads out of the checkout)
+        if sum(os.lstat(p).st_size for p in paths) > PARAMS_AHEAD_BYTES:
             return None
     except OSError:
         return None
