@@ -132,8 +132,8 @@ def _named(el) -> str:
 
 
 def _again(twice: set | None, tag: str) -> set:
-    """`tag` read a second time where a reader takes one (MuJoCo's xml_urdf.cc FindSubElem throws "repeated
-    element"): noticed by what the first reading left behind, so the common case costs nothing."""
+    """`tag` read a second time where readers take one (urdfdom reads the first; MuJoCo refuses the model):
+    noticed by what the first reading left behind, so the common case costs nothing."""
     return (twice or set()) | {tag}
 
 
@@ -145,8 +145,8 @@ class _Builder:
         self.declared = declared
         self.R = readers(version)
         self.issues: list[Issue] = []
-        # sub-elements written twice where one is read: (owner kind, owner name, scope tag, element tag)
-        self.repeated: list[tuple[str, str, str, str]] = []
+        # sub-elements written twice where one is read: (owner kind, owner name, scope path, tags), per scope
+        self.repeated: list[tuple[str, str, str, tuple[str, ...]]] = []
         self.owner = ""  # the link whose parts are being read
         # vector text -> values: real models repeat "0 0 0", "1 0 0" and the shared origin of a link's
         # visual, collision and inertial; splitting and converting is the costly part of reading them
@@ -247,9 +247,7 @@ class _Builder:
         if len(shapes) > 1:
             self.issue("U002", f"<geometry> holds {len(shapes)} shapes; URDF parsers use only the first", shapes[1])
             tags = [c.tag for c in shapes]
-            twice = {t for t in tags if t in _SHAPE_SINCE and tags.count(t) > 1}
-            if twice and kind == "collision":
-                self.repeated.append(("link", self.owner, "geometry", min(twice)))
+            self._note_repeats(f"link/{kind}/geometry", {t for t in tags if tags.count(t) > 1})
         s = shapes[0]
         tag = s.tag
         loc = self.locate(s)
@@ -317,9 +315,7 @@ class _Builder:
             else:
                 self.unknown(kind, c)
         if twice:
-            once = ("geometry", "origin") if kind == "collision" else ("material",)  # what MuJoCo reads
-            if twice & set(once):
-                self.repeated.append(("link", self.owner, kind, min(twice & set(once))))
+            self._note_repeats(f"link/{kind}", twice)
         return _new(Shape, (kind, locate(el), name or "", origin, geometry, mat))
 
     def inertial(self, el) -> Inertial:
@@ -345,7 +341,7 @@ class _Builder:
             else:
                 self.unknown("inertial", c)
         if twice:
-            self.repeated.append(("link", self.owner, "inertial", min(twice)))
+            self._note_repeats("link/inertial", twice)
         return _new(Inertial, (locate(el), origin, mass, mass_loc, inertia, inertia_loc))
 
     def link(self, el) -> Link | None:
@@ -367,18 +363,17 @@ class _Builder:
                 else:
                     self.issue("U002", f"link {name!r} has more than one <inertial>; only the first is used", c)
                     if not extra_inertial:
-                        self.repeated.append(("link", name, "link", "inertial"))
+                        self._note_repeats("link", {"inertial"})
                     extra_inertial = True
-                    self._repeats_in(c, "inertial", ("mass", "inertia", "origin"))  # not read, but MuJoCo looks
+                    tags = [k.tag for k in c if isinstance(k.tag, str)]  # not read here, but other readers look
+                    self._note_repeats("link/inertial", {t for t in tags if tags.count(t) > 1})
             else:
                 self.unknown("link", c)
         return _new(Link, (name, self.locate(el), inertial, tuple(visuals), tuple(collisions)))
 
-    def _repeats_in(self, el, scope: str, once: tuple[str, ...]) -> None:
-        tags = [c.tag for c in el]
-        twice = {t for t in once if tags.count(t) > 1}
-        if twice:
-            self.repeated.append(("link", self.owner, scope, min(twice)))
+    def _note_repeats(self, path: str, tags: set, kind: str = "link", owner: str | None = None) -> None:
+        if tags:
+            self.repeated.append((kind, self.owner if owner is None else owner, path, tuple(sorted(tags))))
 
     def joint(self, el) -> Joint | None:
         R, locate = self.R, self.locate
@@ -434,7 +429,7 @@ class _Builder:
             else:
                 self.unknown("joint", c)
         if twice:
-            self.repeated.append(("joint", name, "joint", min(twice)))
+            self._note_repeats("joint", twice, "joint", name)
         if parent_loc is None:
             self.issue("U006", f"joint {name!r} has no <parent> element", el)
         if child_loc is None:

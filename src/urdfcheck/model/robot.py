@@ -216,8 +216,9 @@ class Model(FrozenRecord):
                  "plugins": (), "repeated": ()}
     # name: str, loc: Location, links/joints/materials: Mapping[str, ...], link_list/joint_list/material_list,
     # blocks, issues: tuples, source: str, ros2_control, transmissions: tuples, version: (major, minor),
-    # declared_version: str | None; plugins: the <gazebo> plugins (consumers/gazebo.py); repeated: sub-elements
-    # written twice where readers take one, as (owner kind, owner name, scope tag, element tag), in reading order
+    # declared_version: str | None; plugins: the <gazebo> plugins (consumers/gazebo.py); repeated: per element
+    # that holds a sub-element twice where readers take one, (owner kind, owner name, its path such as
+    # "link/collision/geometry", the repeated tags sorted), in reading order
 
     # --- derived structure -------------------------------------------------
     @property

@@ -177,18 +177,25 @@ _ONCE = {
 }
 
 
+# the scopes whose sub-elements MuJoCo reads (the builder notes repeats in visual geometry too, which it drops)
+_SCOPES = ("joint", "link", "link/inertial", "link/collision", "link/visual", "link/collision/geometry")
+
+
 @check("P006")
 def repeated_element(model, ctx):
     # the builder noted every repeat while reading (model.repeated): a second walk over the XML cost 0.15 s on
     # 10,000 links, for a finding almost no model has
     parts = {"joint": model.joints, "link": model.links}
-    for kind, owner, scope, tag in model.repeated:
+    for kind, owner, path, tags in model.repeated:
+        scope = path.rsplit("/", 1)[-1]
+        once = _ONCE.get(scope, ("inertial",) if scope == "link" else ())
+        twice = [t for t in tags if t in once]
         part = parts[kind].get(owner)
-        if part is None or tag not in _ONCE.get(scope, ("inertial",) if scope == "link" else ()):
+        if path not in _SCOPES or not twice or part is None:
             continue
         p = speak(ctx, ("mujoco",),
                   f"MuJoCo refuses the model: <{scope}> of {kind} '{part.name}' has more than one "
-                  f"<{tag}> (xml_util.cc FindSubElem: \"repeated element: '{tag}'\"); urdfdom "
+                  f"<{twice[0]}> (xml_util.cc FindSubElem: \"repeated element: '{twice[0]}'\"); urdfdom "
                   "reads the first one only", part)
         if p is not None:
             yield p
