@@ -464,3 +464,27 @@ def test_trust_grammar_finds_nothing(monkeypatch, tmp_path):
     counts = json.loads(report.read_text())["counts"]
     assert code == 0, json.loads(report.read_text())["examples"][:2]
     assert counts["inputs"] == 40 and counts["full"] == 2
+
+
+# --- 7. "did you mean" hints are bounded per run --------------------------------------------------------
+def test_hints_stop_once_the_run_has_compared_its_share(tmp_path):
+    from urdfcheck.core import findings as F
+
+    n = 4000  # links; every joint's parent is misspelt: one hint per joint, each against every link
+    links = "\n".join(f'<link name="link_{i:05d}"/>' for i in range(n))
+    joints = "\n".join(f'<joint name="j{i}" type="fixed"><parent link="lnk_{i - 1:05d}"/>'
+                       f'<child link="link_{i:05d}"/></joint>' for i in range(1, n))
+    p = tmp_path / "m.urdf"
+    p.write_text(f'<robot name="r">\n{links}\n{joints}\n</robot>')  # a line each: a finding each
+    code, out, _ = run_cli(["lint", "--no-config", "--format", "json", str(p)])
+    found = [f for f in json.loads(out)["findings"] if f["code"] == "S003"]
+    messages = [f["message"] for f in found] + [a["message"] for f in found for a in f.get("also", ())]
+    hinted = [m for m in messages if "did you mean" in m]
+    assert code == 1 and len(messages) >= n - 1
+    assert 0 < len(hinted) <= F.HINT_CANDIDATES // n + 1
+    assert F.closest("lnk_00001", [f"link_{i:05d}" for i in range(100)]) is None  # spent: until the next run
+    F.reset_hints()
+    assert F.closest("lnk_00001", [f"link_{i:05d}" for i in range(100)]) == "link_00001"
+    F._hints_left[0] = 0
+    assert F.closest("revolut", ["revolute", "prismatic"]) == "revolute"  # a small set is never refused
+    F.reset_hints()

@@ -99,10 +99,12 @@ def run(request: LintRequest, *, retain: list | None = None, targets: list[Targe
     Paths are shown relative to the request's root from the start (`core.paths.showing`): nothing is
     rewritten afterwards. The run's budget (load.budget) covers the planning too: launch files are read there.
     Raises UsageError when there is nothing to lint or an input is unusable."""
+    from urdfcheck.core.findings import reset_hints
     from urdfcheck.core.paths import showing
     from urdfcheck.load.budget import run_budget
     from urdfcheck.load.discover import remembering
 
+    reset_hints()
     with showing(request.root), run_budget(request.budget), remembering():
         try:
             return _run(request, retain, targets)

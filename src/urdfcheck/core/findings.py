@@ -134,9 +134,27 @@ class Problem:
         return f"Problem({self.code or ''} {self.message!r})"
 
 
+# "Did you mean" compares a name with every option: a model with thousands of links and as many dangling
+# references would spend minutes on hints alone. A run (`reset_hints`) compares at most this many candidates
+# from the model's names (a fraction of a second); past it, findings come without hints, the same ones on every
+# run of the same input. A small set (the grammar's names, a rule's options) costs little and is not counted.
+HINT_CANDIDATES = 100_000
+SMALL_SET = 64
+_hints_left = [HINT_CANDIDATES]
+
+
+def reset_hints() -> None:
+    _hints_left[0] = HINT_CANDIDATES
+
+
 def closest(word: str, options, cutoff: float = 0.75) -> str | None:
-    """The option most like `word` (for "did you mean"), or None."""
+    """The option most like `word` (for "did you mean"), or None (also once the run's hints are spent)."""
+    options = list(options)
+    if len(options) > SMALL_SET:
+        if len(options) > _hints_left[0]:
+            return None
+        _hints_left[0] -= len(options)
     import difflib  # only when something is misspelt: its import costs more than most lint runs spend here
 
-    close = difflib.get_close_matches(word, list(options), n=1, cutoff=cutoff)
+    close = difflib.get_close_matches(word, options, n=1, cutoff=cutoff)
     return close[0] if close else None
