@@ -271,13 +271,14 @@ def _bag_progress(bag: str):
 
 def _begin(t: Target, kw: dict, batch: loader.Batch | None = None) -> loader.Pending:
     opts = t.settings.load_options() if t.settings is not None else kw
-    return loader.begin(t.path, t.args, packages=t.packages, batch=batch, **opts)
+    # a probe's tree is looked at before any model is built (plan.robots: a library or a robot?)
+    return loader.begin(t.path, t.args, packages=t.packages, batch=batch, stream=not t.probe, **opts)
 
 
 def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse | None = None
            ) -> tuple[list[Finding], object]:
+    model = loader.build_model(exp)  # first: a document read as it is built may add its load findings
     findings = list(exp.findings)
-    model = loader.build_model(exp)
     if model is not None:
         contracts = t.consumers(model, exp, config)  # planned, or found beside the model: once per target
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
@@ -366,7 +367,7 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                 if i == 0:
                     _take_params(first, parsed)
                 yaml.index = i
-                if exp.root is not None:  # read *and* expanded: an includer that failed checked nothing it read
+                if exp.readable:  # read *and* expanded: an includer that failed checked nothing it read
                     read.update(exp.files or ())
                 if t.probe and exp.root is not None and not has_links(exp.root):  # a library (plan.robots)
                     t.library = True

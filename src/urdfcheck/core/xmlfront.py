@@ -122,8 +122,9 @@ def _prolog_doctype(data: bytes, max_items: int = 1000) -> int | None:
     return None
 
 
-def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
-    """Parse untrusted bytes. Returns (root, warnings); raises XmlRefused for unusable documents."""
+def precheck(data: bytes) -> tuple[list[XmlIssue], bytes]:
+    """What `parse` checks on the bytes before libxml2 reads them (size, UTF-8, the declaration, a DOCTYPE):
+    (warnings, the bytes to parse); raises XmlRefused."""
     if len(data) > MAX_BYTES:
         raise XmlRefused(XmlIssue("X004", f"file is {len(data)} bytes; the limit is {MAX_BYTES}"))
     try:
@@ -135,6 +136,12 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
     at = _prolog_doctype(data) if b"<!DOCTYPE" in data else None
     if at is not None:  # refuse before libxml2 reads entity declarations (amplification, external ones)
         raise XmlRefused(XmlIssue("X002", _DOCTYPE_MSG, _line_of(data, at)))
+    return warnings, data
+
+
+def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
+    """Parse untrusted bytes. Returns (root, warnings); raises XmlRefused for unusable documents."""
+    warnings, data = precheck(data)
     try:
         parser = _parser()
         try:
@@ -170,6 +177,71 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
     if _DEFAULT_NS.search(data):
         warnings = warnings + _drop_default_namespace(root)
     return root, warnings
+
+
+# --- large documents, read as they are parsed -------------------------------------------------------------------
+# libxml2's tree of a URDF takes about 13 KiB per link (some 630 bytes an element), twice what the model takes:
+# a large model is built from the document's top-level elements as the parser completes them, each dropped
+# once read, so the whole tree never exists. Only where that reads the same as `parse`: nothing `parse` would
+# refuse, warn about or rewrite after libxml2 is done may be in the bytes; any error of libxml2's on the way
+# is the caller's cue to read the document whole with `parse`, which reports it as usual.
+STREAM_BYTES = 2_000_000  # about 2,000 links: below, the tree costs little and `parse` is faster
+
+
+def streamable(data: bytes) -> bool:
+    """Whether `stream` reads `data` as `parse` would (the caller has passed it through `precheck`)."""
+    if len(data) < STREAM_BYTES or b"<!DOCTYPE" in data or _DEFAULT_NS.search(data):
+        return False
+    decl = _DECL.match(data)
+    if data.find(b"<?", decl.end() if decl else 0) >= 0:  # processing instructions: refused by `parse`
+        return False
+    return data.count(b"<") <= MAX_ELEMENTS
+
+
+# the root's children a model is built from: lxml tests tags in C, so only these cost a Python object each
+_PARTS = ("link", "joint", "material", "transmission", "gazebo", "ros2_control")
+
+
+def stream(data: bytes):
+    """The root element (its attributes read; its children still coming), then each child of the root, in
+    document order, once it is whole; a child is removed when the next one is asked for. Raises
+    etree.XMLSyntaxError."""
+    import io
+
+    events = etree.iterparse(io.BytesIO(data), events=("end",), tag=_PARTS, recover=False, resolve_entities=False,
+                             no_network=True, load_dtd=False, dtd_validation=False, huge_tree=False,
+                             remove_comments=False, remove_pis=False, collect_ids=False)
+    root = None
+    for _, el in events:
+        parent = el.getparent()
+        if root is None:
+            root = _top(el)
+            yield root
+        if parent is None or parent is not root:  # nested (a <joint> of a <transmission>), or the root itself
+            continue
+        yield from _drain(root, el)  # children of other names before it (U002's), then it
+    if root is None:
+        root = events.root
+        yield root
+    yield from _drain(root, None)
+
+
+def _top(el):
+    while True:
+        parent = el.getparent()
+        if parent is None:
+            return el
+        el = parent
+
+
+def _drain(root, last):
+    """Hand out and remove the root's children up to `last` (all of them with None)."""
+    while len(root):
+        first = root[0]
+        yield first
+        del root[0]
+        if first is last:
+            return
 
 
 def _undeclared_prefixes(data: bytes, err: etree.XMLSyntaxError, log) -> tuple[etree._Element, list[XmlIssue]]:

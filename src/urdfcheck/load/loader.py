@@ -67,6 +67,13 @@ class Expanded(Record):
         self.text = text
         self.resolver = resolver
         self._cache = {} if _cache is None else _cache
+        # a large plain document not parsed yet: read as its model is built (`build_model`), never whole
+        self.stream: bytes | None = None
+
+    @property
+    def readable(self) -> bool:
+        """Read and (for xacro) expanded; a document read as its model is built counts until it fails."""
+        return self.root is not None or self.stream is not None
 
     def clean_text(self) -> str:
         """The expanded document exactly as stock xacro prints it (no source markers)."""
@@ -128,9 +135,11 @@ def expand(path: str | os.PathLike, args: dict | None = None, **kwargs) -> Expan
 def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict | None = None,
           trusted: bool = False, allow_env=(), timeout: float = XACRO_TIMEOUT,
           memory: int = XACRO_MEMORY, environ: dict | None = None, max_elements: int | None = None,
-          batch: Batch | None = None) -> Pending:
+          batch: Batch | None = None, stream: bool = False) -> Pending:
     """Start `expand`: a xacro file starts expanding in its worker now, and the caller works on meanwhile.
-    With `batch`, a xacro file the console's spare can take waits for `batch.send()` (see `Batch`)."""
+    With `batch`, a xacro file the console's spare can take waits for `batch.send()` (see `Batch`).
+    `stream`: a large plain URDF is left unparsed for `build_model` to read as it builds (no `root`): for a
+    caller that only wants the model."""
     p = Path(path)
     entry = paths.shown(p)
     escapes = not trusted and _links_outside(p, packages)
@@ -175,7 +184,7 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     if too_big is not None:
         out.findings.append(_finding("X017", too_big, entry, 1))
         return Pending(out)
-    return Pending(out, later=lambda: _read_plain(out, p, data, opts))
+    return Pending(out, later=lambda: _read_plain(out, p, data, opts, stream))
 
 
 # Elements of one document that the main process builds a model from. The largest real robots have hundreds of
@@ -321,8 +330,19 @@ def _options(out: Expanded, opts: tuple) -> dict:
                 max_evals=max_elements, root=paths.showing_root())
 
 
-def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple) -> None:
+def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple, stream: bool = False) -> None:
     shown = out.entry
+    # not for xacro (its namespace may be in the bytes), nor suppression comments (read from the whole tree)
+    if stream and not (b"xacro" in data or b"&#" in data or b"urdfcheck" in data):
+        try:
+            warnings, checked = xmlfront.precheck(data)
+        except xmlfront.XmlRefused as r:
+            out.findings.append(_finding(r.issue.code, r.issue.message, shown, r.issue.line, r.issue.column))
+            return
+        if xmlfront.streamable(checked):
+            out.findings.extend(_finding(w.code, w.message, shown, w.line) for w in warnings)
+            out.stream = checked
+            return
     try:
         root, warnings = xmlfront.parse(data)
     except xmlfront.XmlRefused as r:
@@ -447,7 +467,25 @@ class LoadError(Exception):
 
 
 def build_model(exp: Expanded):
-    """Model for an expanded document, or None when there is no document."""
+    """Model for an expanded document, or None when there is no document. A document left unparsed (`begin`'s
+    `stream`) is read as the model is built; where libxml2 stops on the way, it is read again whole, which
+    reports what is wrong with it as a finding of `exp` (none of the half-built model's issues is kept)."""
+    if exp.stream is not None:
+        data, exp.stream = exp.stream, None
+        from lxml import etree
+
+        from urdfcheck.model.build import build_streamed
+
+        try:
+            return build_streamed(xmlfront.stream(data), exp.locate, exp.entry)
+        except etree.XMLSyntaxError:
+            pass
+        try:
+            exp.root, warnings = xmlfront.parse(data)  # `data` passed `precheck`: only what libxml2 found
+        except xmlfront.XmlRefused as r:
+            exp.findings.append(_finding(r.issue.code, r.issue.message, exp.entry, r.issue.line, r.issue.column))
+            return None
+        exp.findings.extend(_finding(w.code, w.message, exp.entry, w.line) for w in warnings)
     if exp.root is None:
         return None
     from urdfcheck.model.build import build

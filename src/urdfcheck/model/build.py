@@ -11,7 +11,7 @@ and what is read come from the same code and the same table.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from math import isfinite
 from types import MappingProxyType
 
@@ -383,7 +383,7 @@ class _Builder:
         if jtype is None:
             jtype = ""
         parent = child = parent_loc = child_loc = None
-        origin, axis, axis_loc, limit, mimic, dyn = POSE0, X_AXIS, None, None, None, None
+        origin, axis, axis_loc, limit, mimic, dyn, safety = POSE0, X_AXIS, None, None, None, None, None
         twice = None  # the tags seen again, of those MuJoCo reads once
         for c in el:
             tag = c.tag
@@ -424,7 +424,11 @@ class _Builder:
                     dyn["damping"] = damping
                 if friction is not None:
                     dyn["friction"] = friction
-            elif tag == "calibration" or tag == "safety_controller":  # read only to report unreadable values
+            elif tag == "safety_controller":  # read to report unreadable values; the soft limits kept as written
+                R[tag](self, c)
+                if safety is None:
+                    safety = (c.get("soft_lower_limit"), c.get("soft_upper_limit"))
+            elif tag == "calibration":  # read only to report unreadable values
                 R[tag](self, c)
             else:
                 self.unknown("joint", c)
@@ -434,8 +438,10 @@ class _Builder:
             self.issue("U006", f"joint {name!r} has no <parent> element", el)
         if child_loc is None:
             self.issue("U006", f"joint {name!r} has no <child> element", el)
+        keep = el.get("dont_collapse")
         return _new(Joint, (name, jtype, locate(el), parent, child, origin, axis, axis_loc, limit, mimic,
-                            MappingProxyType(dyn) if dyn else NO_DYNAMICS, parent_loc, child_loc))
+                            MappingProxyType(dyn) if dyn else NO_DYNAMICS, parent_loc, child_loc, safety,
+                            keep is not None and keep.lower() == "true"))
 
     # --- extension blocks kept for the contract rules --------------------------------------------------------
     def ros2_control(self, el, in_gazebo: bool) -> Ros2Control:
@@ -501,10 +507,18 @@ def _raw_xml(el) -> str:
 
 
 def build(root, locate: Callable[[object], Location], source: str) -> Model:
-    return nogc.call(_build, root, locate, source, long_lived=True)
+    return nogc.call(_build, root, iter(root), locate, source, long_lived=True)
 
 
-def _build(root, locate: Callable[[object], Location], source: str) -> Model:
+def build_streamed(elements: Iterator, locate: Callable[[object], Location], source: str) -> Model:
+    """The model of a document read as it is parsed (`core.xmlfront.stream`: the root element first, then each
+    of its children once whole, each dropped once read), so that a large model and its whole libxml2 tree never
+    share the memory. The parse's errors propagate (the caller reads the document again, whole, to report them)."""
+    root = next(elements)
+    return nogc.call(_build, root, elements, locate, source, long_lived=True)
+
+
+def _build(root, children: Iterator, locate: Callable[[object], Location], source: str) -> Model:
     is_robot = root.tag == "robot"
     declared = root.get("version") if is_robot else None
     parsed, _ = G.parse_version(declared)
@@ -517,7 +531,7 @@ def _build(root, locate: Callable[[object], Location], source: str) -> Model:
     else:
         b.R["robot"](b, root)
     links, joints, materials, blocks, r2c, trans, plugins = [], [], [], [], [], [], []
-    for el in root:
+    for el in children:
         tag = el.tag
         if tag == "link":
             part = b.link(el)

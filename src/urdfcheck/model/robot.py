@@ -109,6 +109,10 @@ class Joint(TupleRecord):
     dynamics: Mapping[str, float] = MappingProxyType({})
     parent_loc: Location | None = None
     child_loc: Location | None = None
+    # the first <safety_controller>'s soft_lower_limit and soft_upper_limit as written (None: not written);
+    # None: no <safety_controller>. MoveIt plans within them (rules/checks/profiles/moveit.py)
+    safety: tuple[str | None, str | None] | None = None
+    dont_collapse: bool = False  # dont_collapse="true" (an extension: sdformat, Isaac Sim keep the fixed joint)
 
     @property
     def movable(self) -> bool:

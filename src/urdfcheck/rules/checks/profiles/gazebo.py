@@ -97,7 +97,7 @@ def undrivable_joint(model, ctx):
 def isaac_merges_fixed_joints(model, ctx):
     if "isaac" not in ctx.profiles or len(model.roots) != 1:
         return
-    keep = _dont_collapse(ctx)
+    keep = _dont_collapse(model)
     group = fixed_groups(model, keep)
     merged = [n for n, g in group.items() if n != g]
     if merged:
@@ -107,9 +107,6 @@ def isaac_merges_fixed_joints(model, ctx):
                     "from them are lost); keep one with dont_collapse=\"true\" on its fixed joint", model)
 
 
-def _dont_collapse(ctx) -> set[str]:
-    """Fixed joints written with dont_collapse="true" (the builder keeps no extension attributes)."""
-    root = getattr(ctx.expanded, "root", None)
-    if root is None:
-        return set()
-    return {el.get("name", "") for el in root.iterfind("joint") if el.get("dont_collapse", "").lower() == "true"}
+def _dont_collapse(model) -> set[str]:
+    """Joints written with dont_collapse="true"."""
+    return {j.name for j in model.joint_list if j.dont_collapse}

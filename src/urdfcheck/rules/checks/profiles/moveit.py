@@ -21,15 +21,10 @@ def _number(text):
 def soft_limits_narrow_bounds(model, ctx):
     if "moveit" not in ctx.profiles:
         return
-    root = getattr(ctx.expanded, "root", None)
-    if root is None:
-        return
-    for el in root.iterfind("joint"):
-        j = model.joints.get(el.get("name", ""))
-        sc = el.find("safety_controller")
-        if j is None or sc is None or j.limit is None or j.type not in ("revolute", "prismatic"):
+    for j in model.joints.values():  # urdfdom keeps the first joint of a name
+        if j.safety is None or j.limit is None or j.type not in ("revolute", "prismatic"):
             continue
-        lo, hi = _number(sc.get("soft_lower_limit")), _number(sc.get("soft_upper_limit"))
+        lo, hi = _number(j.safety[0]), _number(j.safety[1])
         narrowed = []
         if lo is not None and j.limit.lower is not None and lo > j.limit.lower:
             narrowed.append(f"lower {j.limit.lower:g} -> {lo:g}")
