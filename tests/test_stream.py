@@ -160,3 +160,24 @@ def test_large_broken_file_reports_what_the_whole_read_reports(tmp_path, monkeyp
     whole = lint_json([str(p)])[1]
     assert json.dumps(streamed, sort_keys=True) == json.dumps(whole, sort_keys=True)
     assert {f["code"] for f in streamed["findings"]} & {"X001", "X002", "X003", "X005"}
+
+
+XACRO_ROOT = '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+
+
+def test_exported_xacro_output_streams(tmp_path):
+    """`xacro robot.urdf.xacro > robot.urdf` keeps xmlns:xacro on <robot>: no xacro element, so it streams."""
+    p = tmp_path / "big.urdf"
+    p.write_text(large().replace('<robot name="r">', XACRO_ROOT, 1))
+    exp = loader.begin(p, stream=True).result()
+    assert exp.stream is not None and not exp.xacro
+
+
+@pytest.mark.parametrize("element", ['<xacro:property name="a" value="1"/>',
+                                     '<x:property xmlns:x="http://www.ros.org/wiki/xacro" name="a" value="1"/>'])
+def test_a_xacro_element_is_never_streamed(tmp_path, element):
+    p = tmp_path / "big.urdf"
+    text = large().replace('<robot name="r">', XACRO_ROOT, 1)
+    p.write_text(text.replace('<link name="L0"/>', '<link name="L0"/>' + element, 1))
+    exp = loader.begin(p, stream=True).result()
+    assert exp.stream is None and exp.xacro  # read whole, found to be xacro, expanded as such

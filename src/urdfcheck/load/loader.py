@@ -28,6 +28,20 @@ _LOAD_SEVERITY = {"X003": Severity.WARNING, "X005": Severity.WARNING, "X016": Se
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 
 
+_XACRO_PREFIX = re.compile(rb"""xmlns:([A-Za-z_][\w.-]*)\s*=\s*["']""" + re.escape(XACRO_NS.encode()) + rb"""["']""")
+
+
+def _no_xacro_elements(data: bytes) -> bool:
+    """What `is_xacro(path, root)` would say of the parsed bytes, said of the bytes: no element in the xacro
+    namespace. URDF exported with xacro keeps xmlns:xacro on <robot> and uses no xacro element. Sound because
+    the bytes are UTF-8 with no character reference (`&#`), no DOCTYPE (so no entity) and no default namespace
+    (the caller's `xmlfront.streamable`): an element in the namespace is spelled `<prefix:` with a prefix
+    declared for its URI, literally."""
+    if b"xacro" not in data:
+        return True
+    return not any(b"<" + p + b":" in data for p in set(_XACRO_PREFIX.findall(data)))
+
+
 def is_xacro(path: Path, root=None) -> bool:
     """A .xacro file, or a file whose parsed tree uses xacro elements (some packages name them .urdf)."""
     if path.name.endswith(".xacro"):
@@ -332,8 +346,8 @@ def _options(out: Expanded, opts: tuple) -> dict:
 
 def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple, stream: bool = False) -> None:
     shown = out.entry
-    # not for xacro (its namespace may be in the bytes), nor suppression comments (read from the whole tree)
-    if stream and not (b"xacro" in data or b"&#" in data or b"urdfcheck" in data):
+    # not for xacro, nor suppression comments (read from the whole tree)
+    if stream and b"&#" not in data and b"urdfcheck" not in data and _no_xacro_elements(data):
         try:
             warnings, checked = xmlfront.precheck(data)
         except xmlfront.XmlRefused as r:
