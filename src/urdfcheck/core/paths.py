@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 from contextlib import contextmanager
+from functools import lru_cache
 
 _root: str | None = None  # the root of the run in progress (`showing`)
 
@@ -17,8 +18,17 @@ def shown(path, root: str | None = None) -> str:
     text = os.fspath(path) if not isinstance(path, str) else path
     if not text or text.startswith("<"):  # "<string>", "<stdin>": no file
         return text
-    p = os.path.abspath(text)
-    base = os.path.abspath(root or _root or os.getcwd())
+    base = root or _root
+    # the working directory only where it matters (one that was removed still shows absolute paths)
+    cwd = "" if os.path.isabs(text) and base and os.path.isabs(base) else os.getcwd()
+    return _shown(text, base, cwd)
+
+
+@lru_cache(maxsize=1024)  # a broken large model has thousands of findings in one file
+def _shown(text: str, root: str | None, cwd: str) -> str:
+    p = os.path.join(cwd, text) if not os.path.isabs(text) else text
+    p = os.path.normpath(p)
+    base = os.path.normpath(os.path.join(cwd, root or cwd))
     rel = os.path.relpath(p, base)
     if rel != ".." and not rel.startswith(".." + os.sep):
         return rel
