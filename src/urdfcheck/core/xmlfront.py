@@ -217,7 +217,7 @@ def stream(data: bytes):
         if root is None:
             root = _top(el)
             yield root
-        if parent is None or parent is not root:  # nested (a <joint> of a <transmission>), or the root itself
+        if parent is not root:  # nested (a <joint> of a <transmission>), or the root itself
             continue
         yield from _drain(root, el)  # children of other names before it (U002's), then it
     if root is None:

@@ -356,8 +356,10 @@ def _options(out: Expanded, opts: tuple) -> dict:
 
 def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple, stream: bool = False) -> None:
     shown = out.entry
-    # not for xacro, nor suppression comments (read from the whole tree)
-    if stream and b"&#" not in data and b"urdfcheck" not in data and _no_xacro_elements(data):
+    # large files only (the byte checks are not run twice on every model), not xacro, nor suppression comments
+    # (read from the whole tree)
+    if stream and len(data) >= xmlfront.STREAM_BYTES and b"&#" not in data and b"urdfcheck" not in data \
+            and _no_xacro_elements(data):
         try:
             warnings, checked = xmlfront.precheck(data)
         except xmlfront.XmlRefused as r:
