@@ -73,6 +73,23 @@ def test_passing_example_does_not_report_the_code(code, tmp_path):
 def test_index_is_up_to_date():
     import json
 
-    index = json.loads((rulebook.catalogue_dir() / rulebook.INDEX).read_text(encoding="utf-8"))
-    assert index == json.loads(json.dumps(rulebook.read_entries())), \
-        "rules/index.json is stale: regenerate it with `PYTHONPATH=src python -m urdfcheck.rules.catalogue`"
+    folder = rulebook.catalogue_dir()
+    written = [json.loads((folder / name).read_text(encoding="utf-8")) for name in (rulebook.INDEX, rulebook.DETAILS)]
+    assert written == json.loads(json.dumps(list(rulebook.split_entries(rulebook.read_entries())))), \
+        "rules/index.json or details.json is stale: regenerate them with " \
+        "`PYTHONPATH=src python -m urdfcheck.rules.catalogue`"
+
+
+def test_a_lint_run_reads_the_small_index_only():
+    """The run path reads names, severities and options; the long texts and examples come only when asked."""
+    rulebook._details.cache_clear()
+    rulebook.catalogue.cache_clear()
+    cat = rulebook.catalogue()
+    assert cat["J001"].severity and cat["J001"].summary
+    assert rulebook._details.cache_info().currsize == 0
+    assert cat["J001"].rationale and cat["J001"].examples.get("fail")
+    assert rulebook._details.cache_info().currsize == 1
+    entries = rulebook.read_entries()
+    for code, r in cat.items():
+        assert r.rationale == str(entries[code]["rationale"]).strip()
+        assert r.cases == tuple(entries[code].get("cases") or ())

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import functools
 import os
-import re
 
 from urdfcheck.consumers.common import Value, as_bool, as_str_list
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import TupleRecord
 
@@ -196,8 +196,8 @@ def _wheelset(c, spec: dict, uses: dict) -> WheelSet:
 
 
 # --- controllers of no known type --------------------------------------------------------------------------
-_JOINT_KEY = re.compile(r"(^|_)joints?$|_joint_names?$|_wheel_names$|^joint_names$")
-_FRAME_KEY = re.compile(r"_frame_id$|^frame_id$")
+_JOINT_KEY = lazyre.compile(r"(^|_)joints?$|_joint_names?$|_wheel_names$|^joint_names$")
+_FRAME_KEY = lazyre.compile(r"_frame_id$|^frame_id$")
 _REP105 = ("map", "odom", "earth", "world")  # published by localization and odometry, not by the model
 
 

@@ -29,12 +29,12 @@ the config (`DriverSpec`) and read with `read_driver`.
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Iterable, Mapping, Sequence
 
 from urdfcheck.consumers.common import ConsumerError, Value, as_bool, as_float, as_str_list
 from urdfcheck.consumers.params import NodeParams, ParamFile, lookup, merge_nodes, node_key_matches, read_params
 from urdfcheck.consumers.uses import JointUse, OdomTF, _joint_uses, _norm_frame, _tf_prefix  # noqa: F401
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record, TupleRecord
 
@@ -143,7 +143,7 @@ class DriveSpec(TupleRecord):
 
 # a ROS 1 parameter written `$(optenv NAME default)` (rosparam subst_value, <param value=...>): the default
 # is what the controller gets unless the environment sets NAME
-_OPTENV = re.compile(r"^\s*\$\(optenv\s+(\S+)\s+([^()\s]+)\s*\)\s*$")
+_OPTENV = lazyre.compile(r"^\s*\$\(optenv\s+(\S+)\s+([^()\s]+)\s*\)\s*$")
 
 
 def number(v: Value | None) -> float | None:

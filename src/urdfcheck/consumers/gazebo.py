@@ -16,6 +16,7 @@ import re
 from urdfcheck.consumers.catalog import catalogue
 from urdfcheck.consumers.common import Value, as_bool, as_float
 from urdfcheck.consumers.controllers import DriveSpec, JointUse, OdomTF
+from urdfcheck.core import lazyre
 from urdfcheck.core.records import TupleRecord
 
 SOURCE = "gazebo"  # TFClaim.source of a plugin's transform
@@ -168,7 +169,7 @@ def controllers_in_sim(model) -> bool:
 
 
 _SIM_PACKAGES = ("gazebo_ros", "ros_gz_sim", "ros_ign_gazebo", "gazebo_ros2_control")
-_SIM_INCLUDE = re.compile(r"(gazebo|gz_sim|ign_gazebo)[^/]*\.launch", re.I)
+_SIM_INCLUDE = lazyre.compile(r"(gazebo|gz_sim|ign_gazebo)[^/]*\.launch", re.I)
 
 
 def launch_starts_sim(launch_infos) -> bool:

@@ -23,11 +23,12 @@ from typing import Any
 
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.consumers.params import NodeParams, ParamFile
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 from urdfcheck.core.paths import shown
 from urdfcheck.core.records import TupleRecord
 
-_RL_INPUT = re.compile(r"^(odom|imu|pose|twist)\d+$")
+_RL_INPUT = lazyre.compile(r"^(odom|imu|pose|twist)\d+$")
 
 
 @functools.lru_cache(maxsize=1)
@@ -329,7 +330,7 @@ def _driver_include(inc) -> LocalizationNode | None:
 
 
 # --- cartographer's .lua options, read as text --------------------------------------------------------------
-_LUA_PAIR = re.compile(r"""^\s*(\w+)\s*=\s*("([^"\\]*)"|'([^'\\]*)'|true|false|-?[\d.]+(?:[eE][-+]?\d+)?)\s*,?""",
+_LUA_PAIR = lazyre.compile(r"""^\s*(\w+)\s*=\s*("([^"\\]*)"|'([^'\\]*)'|true|false|-?[\d.]+(?:[eE][-+]?\d+)?)\s*,?""",
                        re.M)
 MAX_LUA_BYTES = 256 * 1024
 

@@ -22,8 +22,8 @@ so and does not fail), and they claim no transform in this deployment's TF graph
 from __future__ import annotations
 
 import os
-import re
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 
 LOCALIZATION_PACKAGES = ("robot_localization", "nav2_amcl", "amcl", "slam_toolbox", "nav2_bringup",
@@ -76,7 +76,7 @@ def deployment_unknowns(dep, drivers=()) -> list[tuple[str, Location]]:
 
 
 # what a node's own script would contain if it published joint states, transforms or a model
-_SUPPLIES = re.compile(rb"JointState|TransformBroadcaster|sendTransform|TFMessage|tf2_ros|\btf\b|robot_description"
+_SUPPLIES = lazyre.compile(rb"JointState|TransformBroadcaster|sendTransform|TFMessage|tf2_ros|\btf\b|robot_description"
                        rb"|urdf|xacro")
 _SCRIPTS: dict[tuple, bool] = {}
 MAX_SCRIPT_FILES = 5000
@@ -153,8 +153,8 @@ def launch_unknowns(c, read=()) -> list[tuple[str, Location]]:
 
 
 # --- parameter files no deployment reads -------------------------------------------------------------------
-_JOINT_KEY = re.compile(r"(^|[._])(\w*_)?joints?$|_wheel_names$|_joint_names$")
-_FRAME_KEY = re.compile(r"_frame(_id)?$|^frame_id$")
+_JOINT_KEY = lazyre.compile(r"(^|[._])(\w*_)?joints?$|_wheel_names$|_joint_names$")
+_FRAME_KEY = lazyre.compile(r"_frame(_id)?$|^frame_id$")
 _GEOMETRY = ("wheel_separation", "track_width", "wheel_radius")
 
 
@@ -267,7 +267,8 @@ def elsewhere(item) -> str | None:
     return getattr(item, "elsewhere", None)
 
 
-_BROADCASTER = re.compile(rb"joint_state_broadcaster|joint_state_controller|JointStateBroadcaster|JointStateController")
+_BROADCASTER = lazyre.compile(
+    rb"joint_state_broadcaster|joint_state_controller|JointStateBroadcaster|JointStateController")
 _WORKSPACE: dict[str, list] = {}  # workspace root -> its broadcaster files' controllers (read once per run)
 
 

@@ -18,22 +18,22 @@ Every failure is a `ConsumerError(message, Location)`, never a traceback.
 from __future__ import annotations
 
 import os
-import re
 
 import yaml
 from yaml.constructor import SafeConstructor
 
 from urdfcheck.consumers.common import ConsumerError
 from urdfcheck.consumers.yamldoc import YamlDoc
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 
 MAX_BYTES = 2 * 1024 * 1024
 MAX_NODES = 100_000
 MAX_DEPTH = 256
 
-_BRACKETS = re.compile(r"[\[\]{}]")
+_BRACKETS = lazyre.compile(r"[\[\]{}]")
 _LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-_RUNS = re.compile(r"[\[{][\[{\s,]*|(?:-[ \t]+)+")  # maximal runs of flow openers / block dashes
+_RUNS = lazyre.compile(r"[\[{][\[{\s,]*|(?:-[ \t]+)+")  # maximal runs of flow openers / block dashes
 _MERGE_TAG = "tag:yaml.org,2002:merge"
 _STR_TAG = "tag:yaml.org,2002:str"
 _CORE_SCALARS = {

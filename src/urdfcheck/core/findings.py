@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import enum
 import os
-import re
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.records import TupleRecord
 
 
@@ -91,8 +91,8 @@ class Finding(TupleRecord):
         return (loc.file, loc.line or 0, loc.column or 0, self.code, self.message, self.variant)
 
 
-_CONTROL = re.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|[\x00-\x08\x0b-\x1f\x7f-\x9f]")
-_WORKFLOW = re.compile(r"::|##vso\[|##\[")
+_CONTROL = lazyre.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+_WORKFLOW = lazyre.compile(r"::|##vso\[|##\[")
 MAX_TEXT = 500
 
 

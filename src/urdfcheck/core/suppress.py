@@ -5,11 +5,10 @@
 """
 from __future__ import annotations
 
-import re
-
+from urdfcheck.core import lazyre
 from urdfcheck.core.records import TupleRecord
 
-_RE = re.compile(r"urdfcheck:\s*(ignore|ignore-file)\[([A-Za-z0-9_,\s]*)\]")
+_RE = lazyre.compile(r"urdfcheck:\s*(ignore|ignore-file)\[([A-Za-z0-9_,\s]*)\]")
 
 
 class Suppression(TupleRecord):

@@ -14,6 +14,7 @@ import re
 
 from lxml import etree
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.records import TupleRecord
 
 MAX_BYTES = 32 * 1024 * 1024
@@ -21,14 +22,14 @@ MAX_ELEMENTS = 2_000_000
 # libxml2's own caps (no XML_PARSE_HUGE): nesting depth 256, a text or attribute value 10 MB
 _LIMIT_ERRORS = ("Excessive depth", "too long", "Huge input lookup", "huge text node", "Resource limit exceeded")
 
-_DECL = re.compile(rb"^(\xef\xbb\xbf)?\s*<\?xml(\s[^?]*)?\?>")
-_DECL_ATTR = re.compile(rb"([A-Za-z_:][-\w.:]*)\s*=\s*[\"']([^\"']*)[\"']")
-_SPACE = re.compile(rb"\s*")
-_DEFAULT_NS = re.compile(rb"xmlns\s*=")  # a literal start: a fast scan of large files
-_UNDECLARED = re.compile(r"Namespace prefix (\S+) (?:for \S+ )?on \S+ is not defined\s*")
+_DECL = lazyre.compile(rb"^(\xef\xbb\xbf)?\s*<\?xml(\s[^?]*)?\?>")
+_DECL_ATTR = lazyre.compile(rb"([A-Za-z_:][-\w.:]*)\s*=\s*[\"']([^\"']*)[\"']")
+_SPACE = lazyre.compile(rb"\s*")
+_DEFAULT_NS = lazyre.compile(rb"xmlns\s*=")  # a literal start: a fast scan of large files
+_UNDECLARED = lazyre.compile(r"Namespace prefix (\S+) (?:for \S+ )?on \S+ is not defined\s*")
 _NS_UNDEFINED = etree.ErrorTypes.NS_ERR_UNDEFINED_NAMESPACE
-_NCNAME = re.compile(r"[A-Za-z_][\w.-]*", re.ASCII)
-_START_NAME = re.compile(rb"<[^\s/>!?]+")
+_NCNAME = lazyre.compile(r"[A-Za-z_][\w.-]*", re.ASCII)
+_START_NAME = lazyre.compile(rb"<[^\s/>!?]+")
 _DOCTYPE_MSG = ("DOCTYPE declarations are not allowed in robot descriptions "
                 "(entities expand differently in each ROS parser)")
 

@@ -25,12 +25,13 @@ import os
 import re
 from collections import Counter
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Finding
 
 VERSION = 1
 
-_LINE_REF = re.compile(r"\b(lines?)\s+\d+(\s*(?:-|–|to|and)\s*\d+)?", re.IGNORECASE)
-_FILE_LINE = re.compile(r"((?:\.[A-Za-z0-9_]+)|\]):\d+(?::\d+)?")
+_LINE_REF = lazyre.compile(r"\b(lines?)\s+\d+(\s*(?:-|–|to|and)\s*\d+)?", re.IGNORECASE)
+_FILE_LINE = lazyre.compile(r"((?:\.[A-Za-z0-9_]+)|\]):\d+(?::\d+)?")
 
 
 def normalise_message(message: str) -> str:

@@ -17,19 +17,18 @@ each place (JSON `also`, SARIF related locations).
 """
 from __future__ import annotations
 
-import re
-
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Also, Finding, Place
 
 # a quoted name: no blank inside, so that "('link 'x' is not unique')" (urdfdom's words quoted) pairs up right
-_QUOTED = re.compile(r"'[^'\s]*'|\"[^\"\s]*\"")
-_HINT = re.compile(r" \(did you mean [^)]*\)")
+_QUOTED = lazyre.compile(r"'[^'\s]*'|\"[^\"\s]*\"")
+_HINT = lazyre.compile(r" \(did you mean [^)]*\)")
 
 
 # names as urdfdom's messages quote them: "parent link [fer_link8] of joint [fer_hand_joint] not found"
-_BRACKETED = re.compile(r"\[[^\]\s]*\]")
+_BRACKETED = lazyre.compile(r"\[[^\]\s]*\]")
 # a file path written without quotes ("file not found (pkg/meshes/a.dae)", "No such file or directory: x/y.yaml")
-_PATH = re.compile(r"[^\s'\"()\[\]]*/[^\s'\"()\[\]]*\.\w+")
+_PATH = lazyre.compile(r"[^\s'\"()\[\]]*/[^\s'\"()\[\]]*\.\w+")
 
 
 def _shape(message: str) -> str:
@@ -196,7 +195,7 @@ def describe(f: Finding, totals: dict[str, int] | None = None, limit: int = 3, e
     return "; ".join(parts)
 
 
-_LAUNCH = re.compile(r"(\.launch(\.py|\.xml|\.ya?ml)?|_launch\.py)( \[|$)")
+_LAUNCH = lazyre.compile(r"(\.launch(\.py|\.xml|\.ya?ml)?|_launch\.py)( \[|$)")
 
 
 def variant_totals(targets, root: str = "") -> dict[str, int]:

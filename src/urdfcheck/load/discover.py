@@ -20,6 +20,7 @@ import re
 
 from lxml import etree
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.records import TupleRecord
 from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
 
@@ -29,9 +30,9 @@ LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".lau
 MAX_FILES = 20_000
 HEAD_BYTES = 4 * 1024 * 1024
 
-_COMMENT = re.compile(r"<!--.*?(?:-->|\Z)", re.S)
-_INCLUDE = re.compile(r"""<\s*xacro:include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
-_ROOT = re.compile(r"<\s*([A-Za-z_][\w:.-]*)")
+_COMMENT = lazyre.compile(r"<!--.*?(?:-->|\Z)", re.S)
+_INCLUDE = lazyre.compile(r"""<\s*xacro:include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
+_ROOT = lazyre.compile(r"<\s*([A-Za-z_][\w:.-]*)")
 _DEFINITION_TAGS = {"macro", "property", "arg", "include"}
 _XACRO_NS = ("http://www.ros.org/wiki/xacro", "http://ros.org/wiki/xacro", "http://wiki.ros.org/xacro")
 
@@ -134,7 +135,7 @@ def _definitions(kids, depth: int) -> set[str] | None:
     return found
 
 
-_SRDF = re.compile(r"<\s*(?:disable_collisions|group|group_state|virtual_joint|end_effector|passive_joint)\b")
+_SRDF = lazyre.compile(r"<\s*(?:disable_collisions|group|group_state|virtual_joint|end_effector|passive_joint)\b")
 
 
 def _no_links(text: str) -> bool:

@@ -12,14 +12,17 @@ import glob
 import os
 import re
 
+from urdfcheck.core import lazyre
+
 ROS2 = ("humble", "jazzy", "kilted", "rolling")  # oldest first: the strictest urdfdom is the oldest
 DISTROS = ("noetic",) + ROS2
 _NAME = "|".join(DISTROS)
-_CI = re.compile(rf"\b(?:ROS_DISTRO|ros_distro|rosdistro|ROS_DISTRIBUTION)\b\s*[:=]\s*\[?\s*[\"']?({_NAME})\b")
-_CI_LIST = re.compile(r"\b(?:ROS_DISTRO|ros_distro|rosdistro)\b\s*:\s*\[([^\]]*)\]")
-_DOCKER = re.compile(rf"^\s*FROM\s+(?:\S+/)?(?:ros|ros2)?:?({_NAME})\b|^\s*FROM\s+\S*ros\S*:({_NAME})\b", re.M | re.I)
-_REPOS = re.compile(rf"^\s*version:\s*[\"']?(?:ros2-)?({_NAME})(?:-devel)?[\"']?\s*$", re.M)
-_HEAD = re.compile(rf"ref:\s*refs/heads/(?:.*[/-])?({_NAME})(?:[-/].*)?\s*$")
+_CI = lazyre.compile(rf"\b(?:ROS_DISTRO|ros_distro|rosdistro|ROS_DISTRIBUTION)\b\s*[:=]\s*\[?\s*[\"']?({_NAME})\b")
+_CI_LIST = lazyre.compile(r"\b(?:ROS_DISTRO|ros_distro|rosdistro)\b\s*:\s*\[([^\]]*)\]")
+_DOCKER = lazyre.compile(rf"^\s*FROM\s+(?:\S+/)?(?:ros|ros2)?:?({_NAME})\b|^\s*FROM\s+\S*ros\S*:({_NAME})\b",
+                         re.M | re.I)
+_REPOS = lazyre.compile(rf"^\s*version:\s*[\"']?(?:ros2-)?({_NAME})(?:-devel)?[\"']?\s*$", re.M)
+_HEAD = lazyre.compile(rf"ref:\s*refs/heads/(?:.*[/-])?({_NAME})(?:[-/].*)?\s*$")
 LIMIT = 256 * 1024
 MAX_FILES = 40
 

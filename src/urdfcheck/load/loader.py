@@ -9,7 +9,7 @@ import os
 import re
 from pathlib import Path
 
-from urdfcheck.core import paths, xmlfront
+from urdfcheck.core import lazyre, paths, xmlfront
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
@@ -28,7 +28,8 @@ _LOAD_SEVERITY = {"X003": Severity.WARNING, "X005": Severity.WARNING, "X016": Se
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 
 
-_XACRO_PREFIX = re.compile(rb"""xmlns:([A-Za-z_][\w.-]*)\s*=\s*["']""" + re.escape(XACRO_NS.encode()) + rb"""["']""")
+_XACRO_PREFIX = lazyre.compile(rb"""xmlns:([A-Za-z_][\w.-]*)\s*=\s*["']""" + re.escape(XACRO_NS.encode())
+                               + rb"""["']""")
 
 
 def _no_xacro_elements(data: bytes) -> bool:
@@ -217,7 +218,7 @@ MAX_LINKS_JOINTS = 100_000
 MAX_ELEMENTS = 2_000_000
 
 
-_LINK_OR_JOINT = re.compile(rb"<(?:link|joint)[\s>/]")
+_LINK_OR_JOINT = lazyre.compile(rb"<(?:link|joint)[\s>/]")
 
 
 def _too_many_elements(data) -> str | None:

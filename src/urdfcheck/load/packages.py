@@ -11,7 +11,9 @@ import os
 import re
 from pathlib import Path
 
-_NAME = re.compile(rb"<name>\s*([^<\s]+)\s*</name>")
+from urdfcheck.core import lazyre
+
+_NAME = lazyre.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 SCAN_DEPTH = 6
 SCAN_LIMIT = 5000  # directories visited at most
 
@@ -287,8 +289,8 @@ class Resolver:
 
 
 # --- unresolved packages, all of them in one run -------------------------------------------------------
-_PKG_REF = re.compile(r"\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)|package://([A-Za-z0-9_]+)/")
-_XINCLUDE = re.compile(r"""<\s*xacro:include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
+_PKG_REF = lazyre.compile(r"\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)|package://([A-Za-z0-9_]+)/")
+_XINCLUDE = lazyre.compile(r"""<\s*xacro:include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
 MAX_REF_FILES = 500
 MAX_REF_BYTES = 4 * 1024 * 1024
 

@@ -19,10 +19,12 @@ import re
 from collections.abc import Mapping
 from pathlib import Path
 
+from urdfcheck.core import lazyre
+
 MAX_AUTO_ARGS = 4  # every combination up to 2**4 variants; beyond, pairwise
 MAX_ROWS = 64
-_ARG = re.compile(r"<\s*xacro:arg\b([^>]*)/?>", re.S)
-_ATTR = re.compile(r"""(\w+)\s*=\s*(["'])(.*?)\2""", re.S)
+_ARG = lazyre.compile(r"<\s*xacro:arg\b([^>]*)/?>", re.S)
+_ATTR = lazyre.compile(r"""(\w+)\s*=\s*(["'])(.*?)\2""", re.S)
 _BOOLS = {"true": "false", "false": "true", "True": "False", "False": "True", "1": "0", "0": "1"}
 
 

@@ -25,6 +25,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 from urdfcheck.consumers.openworld import KNOWN_PACKAGES, LOCALIZATION_PACKAGES, known_kind  # noqa: F401
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 
@@ -489,9 +490,9 @@ def _beside(ws: _Workspace, infos, namespace: str | None):
     return ctrl, loc_files, spawned, js, tfs, notes, drivers
 
 
-_PLUGIN = re.compile(r"""<plugin\b[^>]*filename\s*=\s*["'][^"']*ros2_control[^"']*["'][^>]*>(.*?)</plugin>""", re.S)
-_PARAMS = re.compile(r"<parameters>\s*([^<]+?)\s*</parameters>")
-_FIND = re.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)(/[^$]*)$")
+_PLUGIN = lazyre.compile(r"""<plugin\b[^>]*filename\s*=\s*["'][^"']*ros2_control[^"']*["'][^>]*>(.*?)</plugin>""", re.S)
+_PARAMS = lazyre.compile(r"<parameters>\s*([^<]+?)\s*</parameters>")
+_FIND = lazyre.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)(/[^$]*)$")
 
 
 def plugin_parameter_files(ws: _Workspace, model: str, max_files: int = 200) -> tuple[list[str], list[str]]:

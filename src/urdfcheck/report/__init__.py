@@ -2,7 +2,8 @@
 from __future__ import annotations
 
 import importlib
-import re
+
+from urdfcheck.core import lazyre
 
 FORMATS = {
     "text": "text",
@@ -26,8 +27,8 @@ def render(fmt: str, result, **opts) -> str:
 # as the visible escape `\u202e`; in JSON formats the escape is itself escaped, so a parsed string holds the six
 # visible characters, not the control.
 _BIDI = "\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069"
-_BIDI_RE = re.compile(f"[{_BIDI}]")
-_BIDI_JSON_ESCAPE = re.compile(r"(?<!\\)((?:\\\\)*)\\u(061[cC]|200[eEfF]|202[a-eA-E]|206[6-9])")
+_BIDI_RE = lazyre.compile(f"[{_BIDI}]")
+_BIDI_JSON_ESCAPE = lazyre.compile(r"(?<!\\)((?:\\\\)*)\\u(061[cC]|200[eEfF]|202[a-eA-E]|206[6-9])")
 
 
 def escape_bidi(text: str, json: bool = False) -> str:

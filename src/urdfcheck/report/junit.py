@@ -9,14 +9,13 @@ Counts (`tests`, `failures`, `errors`, `skipped`) are computed from the cases wr
 """
 from __future__ import annotations
 
-import re
 import xml.etree.ElementTree as ET
 
-from urdfcheck.core import paths
+from urdfcheck.core import lazyre, paths
 from urdfcheck.core.findings import Severity, clean_text
 
 # XML 1.0 cannot carry these at all, even escaped (clean_text already removed C0/C1 controls)
-_NOT_XML = re.compile("[^\u0009\u000a\u000d\u0020-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+_NOT_XML = lazyre.compile("[^\u0009\u000a\u000d\u0020-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
 OTHER_FAMILY = "other"
 
 

@@ -10,9 +10,7 @@ under GitHub's 65 536 character limit: diagrams are dropped first, then findings
 """
 from __future__ import annotations
 
-import re
-
-from urdfcheck.core import paths
+from urdfcheck.core import lazyre, paths
 from urdfcheck.core.findings import Severity, clean_text
 from urdfcheck.report.junit import by_target
 
@@ -20,7 +18,7 @@ MAX_CHARS = 60_000
 MAX_ROWS = 200
 MAX_TREE_JOINTS = 300
 _ICON = {Severity.ERROR: "🔴 error", Severity.WARNING: "🟠 warning", Severity.INFO: "🔵 info"}
-_MD_SPECIAL = re.compile(r"([\\`*_\[\]|~#!$])")
+_MD_SPECIAL = lazyre.compile(r"([\\`*_\[\]|~#!$])")
 
 
 def md(text: object, limit: int = 500) -> str:
@@ -32,7 +30,7 @@ def md(text: object, limit: int = 500) -> str:
     return s
 
 
-_MERMAID_SAFE = re.compile(r"[A-Za-z0-9_ ]")
+_MERMAID_SAFE = lazyre.compile(r"[A-Za-z0-9_ ]")
 
 
 def mermaid(text: object, limit: int = 200) -> str:

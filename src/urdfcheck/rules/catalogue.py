@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import functools
 import importlib
+import os
 import pkgutil
 from collections.abc import Callable
 from pathlib import Path
@@ -103,26 +104,46 @@ def options_for(codes, given=None, cat=None) -> dict:
 
 
 class RuleInfo(TupleRecord):
+    """A rule's catalogue entry. What a lint run needs is read with the catalogue (`index.json`); the long
+    texts and the examples (nine tenths of the catalogue's bytes) only when asked for (`details.json`), by
+    the docs, SARIF's rule metadata, `urdfcheck rules` and the tests."""
+
     code: str
     name: str
     severity: Severity
     family: str
     summary: str
-    rationale: str = ""
-    fix: str = ""
-    examples: dict = {}  # always given by _info(); a tuple record: cheap to define, immutable
     options: dict = {}  # name -> default (what a check gets when the config sets nothing)
     path: str = ""
     option_specs: dict = {}  # name -> OptionSpec
-    # more examples than `examples: {fail:, pass:}`: each {expect: fail|pass, config: {...}, urdf:/files:/...}
-    cases: tuple = ()
     # the upstream sources the rule relies on: ({"url": ..., "what": ...}, ...); the first is SARIF's helpUri
     references: tuple = ()
 
+    @property
+    def rationale(self) -> str:
+        return str(self._details()["rationale"]).strip()
+
+    @property
+    def fix(self) -> str:
+        return str(self._details()["fix"]).strip()
+
+    @property
+    def examples(self) -> dict:
+        return dict(self._details()["examples"] or {})
+
+    @property
+    def cases(self) -> tuple:
+        """More examples than `examples: {fail:, pass:}`: each {expect: fail|pass, config: {...}, urdf:/files:/...}"""
+        return tuple(self._details().get("cases") or ())
+
+    def _details(self) -> dict:
+        return _details(os.path.dirname(self.path))[self.code]
+
     def all_examples(self) -> list[tuple[str, dict]]:
         """(expect, example) for the failing and passing example, then the further cases."""
-        out = [(k, self.examples[k]) for k in ("fail", "pass") if self.examples.get(k)]
-        return out + [(str(c["expect"]), c) for c in self.cases]
+        examples, cases = self.examples, self.cases
+        out = [(k, examples[k]) for k in ("fail", "pass") if examples.get(k)]
+        return out + [(str(c["expect"]), c) for c in cases]
 
 
 class CatalogueError(Exception):
@@ -142,6 +163,8 @@ _REQUIRED = ("code", "name", "severity", "family", "summary", "rationale", "fix"
 
 
 INDEX = "index.json"
+DETAILS = "details.json"
+DETAIL_KEYS = ("rationale", "fix", "examples", "cases")
 
 
 def read_entries(folder: Path | None = None) -> dict[str, dict]:
@@ -165,15 +188,35 @@ def read_entries(folder: Path | None = None) -> dict[str, dict]:
 
 
 def write_index(folder: Path | None = None) -> Path:
-    """rules/index.json: the parsed catalogue, so a lint run reads one JSON file instead of ~70 YAML
-    files. Generated; tests/test_catalogue.py fails when it is stale."""
+    """rules/index.json and rules/details.json: the parsed catalogue, so a lint run reads one small JSON file
+    instead of ~80 YAML files. Generated; tests/test_catalogue.py fails when they are stale. Returns the
+    index's path."""
     import json
 
     folder = folder or catalogue_dir()
-    path = folder / INDEX
-    path.write_text(json.dumps(read_entries(folder), indent=1, sort_keys=True, ensure_ascii=False) + "\n",
-                    encoding="utf-8")
-    return path
+    index, details = split_entries(read_entries(folder))
+    for name, data in ((INDEX, index), (DETAILS, details)):
+        (folder / name).write_text(json.dumps(data, indent=1, sort_keys=True, ensure_ascii=False) + "\n",
+                                   encoding="utf-8")
+    return folder / INDEX
+
+
+def split_entries(entries: dict[str, dict]) -> tuple[dict, dict]:
+    """(index, details): each entry without and with only the fields a lint run does not read."""
+    index = {code: {k: v for k, v in data.items() if k not in DETAIL_KEYS} for code, data in entries.items()}
+    details = {code: {k: v for k, v in data.items() if k in DETAIL_KEYS} for code, data in entries.items()}
+    return index, details
+
+
+@functools.cache
+def _details(folder: str) -> dict[str, dict]:
+    index, details = Path(folder) / INDEX, Path(folder) / DETAILS
+    if index.is_file() and details.is_file():
+        import json
+
+        with open(details, encoding="utf-8") as f:
+            return json.load(f)
+    return split_entries(read_entries(Path(folder)))[1]
 
 
 @functools.cache
@@ -182,7 +225,7 @@ def catalogue() -> dict[str, RuleInfo]:
 
     folder = catalogue_dir()
     index = folder / INDEX
-    if index.is_file():
+    if index.is_file() and (folder / DETAILS).is_file():
         with open(index, encoding="utf-8") as f:
             entries = json.load(f)
     else:
@@ -232,9 +275,7 @@ def _info(data: dict, path: str) -> RuleInfo:
     return RuleInfo(
         code=str(data["code"]), name=str(data["name"]), severity=Severity.parse(data["severity"]),
         family=str(data["family"]), summary=str(data["summary"]).strip(),
-        rationale=str(data["rationale"]).strip(), fix=str(data["fix"]).strip(),
-        examples=dict(data["examples"] or {}), options={n: s.default for n, s in specs.items()}, path=path,
-        option_specs=specs, cases=tuple(data.get("cases") or ()),
+        options={n: s.default for n, s in specs.items()}, path=path, option_specs=specs,
         references=tuple(dict(r) for r in data.get("references") or ()),
     )
 
@@ -296,5 +337,5 @@ def matches(code: str, patterns) -> bool:
     return any(p == "ALL" or code.startswith(p) for p in patterns)
 
 
-if __name__ == "__main__":  # python -m urdfcheck.rules.catalogue: regenerate rules/index.json
+if __name__ == "__main__":  # python -m urdfcheck.rules.catalogue: regenerate rules/index.json and details.json
     print(write_index())

@@ -2,11 +2,11 @@
 from __future__ import annotations
 
 import json
-import re
 
+from urdfcheck.core import lazyre
 from urdfcheck.rules import catalogue as rulebook
 
-_CODE_SPAN = re.compile(r"(`[^`\n]*`)")
+_CODE_SPAN = lazyre.compile(r"(`[^`\n]*`)")
 
 
 def md(text: str) -> str:

@@ -3,8 +3,8 @@
 Writes the catalogue entry `rules/J013.yaml` (every required field; its failing example does not fail yet, so
 tests/test_catalogue.py stays red until the rule and its examples are written), appends a typed check function
 that yields nothing to `src/urdfcheck/rules/checks/<module>.py`, and regenerates what is generated from the
-catalogue: rules/index.json, docs/rules.md and the rule table of docs/design.md. Refuses to overwrite an
-existing entry or a registered code.
+catalogue: rules/index.json and details.json, docs/rules.md and the rule table of docs/design.md. Refuses to
+overwrite an existing entry or a registered code.
 """
 from __future__ import annotations
 
@@ -112,14 +112,16 @@ def _sort_imports(path: Path) -> None:
 
 
 def regenerate(root: Path) -> list[Path]:
-    """rules/index.json, and (in this source checkout) docs/rules.md and design.md's rule table."""
+    """rules/index.json and details.json, and (in this source checkout) docs/rules.md and design.md's rule table."""
     from urdfcheck.rules import catalogue as rulebook
     from urdfcheck.rules import docs
 
-    out = [rulebook.write_index(root / "rules")]
+    index = rulebook.write_index(root / "rules")
+    out = [index, index.with_name(rulebook.DETAILS)]
     if (root / "rules").resolve() != rulebook.catalogue_dir().resolve():
         return out  # another checkout: its docs are generated from its own catalogue there
     rulebook.catalogue.cache_clear()
+    rulebook._details.cache_clear()
     rules_md = root / "docs" / "rules.md"
     if rules_md.parent.is_dir():
         rules_md.write_text(docs.rules_markdown(), encoding="utf-8")
@@ -137,7 +139,8 @@ def main(argv=None) -> int:
     ap.add_argument("--module", help="check module under src/urdfcheck/rules/checks/")
     ap.add_argument("--root", default=str(Path(__file__).resolve().parents[3]), help="source checkout")
     ap.add_argument("--regenerate", action="store_true",
-                    help="only regenerate rules/index.json, docs/rules.md and design.md's rule table")
+                    help="only regenerate rules/index.json and details.json,"
+                    " docs/rules.md and design.md's rule table")
     ns = ap.parse_args(argv)
     if ns.regenerate:
         for p in regenerate(Path(ns.root)):

@@ -15,7 +15,7 @@ import re
 import shutil
 import tempfile
 
-from urdfcheck.core import worker
+from urdfcheck.core import lazyre, worker
 from urdfcheck.core.findings import Finding, Location, Severity, clean_text
 from urdfcheck.core.records import Record
 
@@ -258,7 +258,7 @@ def _few(items, n: int = 6) -> str:
     return ", ".join(items[:n]) + (f" and {len(items) - n} more" if len(items) > n else "")
 
 
-_NAMED = re.compile(r"""(?:Element name|link|joint|body|Joint|Link)\s*[\[ '"]+([^\]'"]+)[\]'"]""")
+_NAMED = lazyre.compile(r"""(?:Element name|link|joint|body|Joint|Link)\s*[\[ '"]+([^\]'"]+)[\]'"]""")
 
 
 def locate(message: str, model) -> Location | None:

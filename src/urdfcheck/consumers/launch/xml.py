@@ -57,6 +57,7 @@ from urdfcheck.consumers.launch.info import (  # noqa: F401 - the records are pa
     parse_static_tf_args,
     record_node,
 )
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 
 if TYPE_CHECKING:
@@ -75,7 +76,7 @@ MAX_VALUE = 64 * 1024  # characters of one substituted value: `<let>`s doubling 
 
 
 # --- substitutions -----------------------------------------------------------------------------------
-_SUBST = re.compile(r"\$\(\s*([A-Za-z][\w-]*)((?:\s+[^()$]*)?)\)")
+_SUBST = lazyre.compile(r"\$\(\s*([A-Za-z][\w-]*)((?:\s+[^()$]*)?)\)")
 
 
 class _Subst:
@@ -578,7 +579,7 @@ def _typed_param(text: str, type_: str, path: str, loc: Location):
     return text
 
 
-_FIND_FILE = re.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)/(?:[^$]*/)?([^/$]+)$")
+_FIND_FILE = lazyre.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)/(?:[^$]*/)?([^/$]+)$")
 
 
 def _outside(raw: str | None) -> tuple[str | None, str]:

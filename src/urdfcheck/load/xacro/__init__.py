@@ -3,12 +3,13 @@
 The names below are what the console needs to fork the xacro worker before it imports anything else
 (`cli.main`): the spare's key, the modules it imports while waiting, and the function a job calls.
 """
-import re
+
+from urdfcheck.core import lazyre
 
 # the source marker the expander puts on every element (file index, line, macro call chain); the loader reads it
 # and strips it (these live here so that reading them does not import the expander and xacro)
 SRC_ATTR = "__ucsrc"
-STRIP_RE = re.compile(r' __ucsrc="[^"]*"')
+STRIP_RE = lazyre.compile(r' __ucsrc="[^"]*"')
 
 # one xacro expansion's allowance in its worker (the request's default, the loader's, the console's spare)
 XACRO_TIMEOUT = 20.0  # wall-clock seconds

@@ -13,12 +13,11 @@ from __future__ import annotations
 import glob
 import io
 import os
-import re
 import sys
 import xml.dom.minidom
 from xml.dom import expatbuilder
 
-from urdfcheck.core import xmlfront
+from urdfcheck.core import lazyre, xmlfront
 from urdfcheck.core.paths import showing, shown
 from urdfcheck.core.safeio import encoding_problem, read_file
 from urdfcheck.load.xacro import SRC_ATTR, STRIP_RE  # noqa: F401 - the markers, shared with the loader
@@ -40,7 +39,7 @@ MAX_VALUE = 1_000_000  # characters/items of one value
 MAX_TEXT = 8 * 1024 * 1024  # characters of evaluated attribute and text values in all (macro-cloned bulk)
 
 
-_GLOB_MAGIC = re.compile(r"[*?\[]")  # what xacro's get_include_files treats as a pattern
+_GLOB_MAGIC = lazyre.compile(r"[*?\[]")  # what xacro's get_include_files treats as a pattern
 
 
 class Refusal(Exception):

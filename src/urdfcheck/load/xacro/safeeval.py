@@ -26,6 +26,7 @@ import string
 from functools import lru_cache
 from types import BuiltinFunctionType, FunctionType, MethodType, ModuleType
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.records import FrozenRecord
 
 __all__ = ["Refused", "Limits", "Evaluator", "default_evaluator", "evaluate_substitution", "validate"]
@@ -78,7 +79,7 @@ _NAMED_REFUSALS = {
 # python.type / python.vars hand out classes and __dict__s; refuse them already when spelled out
 _DENIED_PYTHON = frozenset({"type", "vars"})
 # a str.format field name may be a plain name or number, never ``.attr`` or ``[index]``
-_PLAIN_FIELD = re.compile(r"[^.\[]*")
+_PLAIN_FIELD = lazyre.compile(r"[^.\[]*")
 
 
 def _is_plain_target(node) -> bool:
@@ -413,7 +414,7 @@ _METHOD_GUARDS = {
 }
 
 # printf-style conversion: (width, precision) may be digits or '*'
-_PRINTF = re.compile(r"%(?:\([^)]*\))?[-#0 +]*(\*|\d+)?(?:\.(\*|\d+))?")
+_PRINTF = lazyre.compile(r"%(?:\([^)]*\))?[-#0 +]*(\*|\d+)?(?:\.(\*|\d+))?")
 
 
 def _guard_binop(run, op, a, b):

@@ -30,11 +30,12 @@ from urdfcheck.consumers.graph import (
     prefix_collisions,
     static_and_dynamic,
 )
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
 from urdfcheck.rules.contracts.wheels import check_drive
 
-_UNRESOLVED = re.compile(r"\$\(|\$\{")
+_UNRESOLVED = lazyre.compile(r"\$\(|\$\{")
 
 
 # --- context helpers ---------------------------------------------------------------------------------------
@@ -57,7 +58,7 @@ def _suggest(name: str, options) -> str:
     return f" (did you mean '{close}'?)" if close else ""
 
 
-_FRAME_SUFFIX = re.compile(r"(_link|_frame)$")
+_FRAME_SUFFIX = lazyre.compile(r"(_link|_frame)$")
 
 
 def _suggest_frame(name: str, options) -> str:

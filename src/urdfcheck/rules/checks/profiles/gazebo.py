@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import re
 
+from urdfcheck.core import lazyre
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import actuated, fixed_groups, is_tree, names, speak
 
-_KEEP = re.compile(r"<\s*(preserveFixedJoint|disableFixedJointLumping)\s*>\s*(true|1)\s*<", re.I)
+_KEEP = lazyre.compile(r"<\s*(preserveFixedJoint|disableFixedJointLumping)\s*>\s*(true|1)\s*<", re.I)
 
 
 def kept_fixed_joints(model) -> set[str]:
