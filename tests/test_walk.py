@@ -34,6 +34,46 @@ def test_limits(tmp_path):
     assert list(folders(root / "missing")) == []
 
 
+def _listings(monkeypatch):
+    from urdfcheck.core import walk
+
+    calls = []
+    real = walk.os.scandir
+    monkeypatch.setattr(walk.os, "scandir", lambda p: calls.append(p) or real(p))
+    return calls
+
+
+def test_a_run_lists_each_folder_once(tmp_path, monkeypatch):
+    """Inside a run (`remembered`), a second walk over the same folders lists none of them again and yields the
+    same entries; outside, every walk lists afresh (an edit between two API calls is seen)."""
+    from urdfcheck.core.walk import remembered
+
+    root = _tree(tmp_path)
+    calls = _listings(monkeypatch)
+    first = [(h, files(e)) for h, e in folders(root)]
+    assert len(calls) == len(first)
+    with remembered():
+        inside = [(h, files(e)) for h, e in folders(root)]
+        again = [(h, files(e)) for h, e in folders(root / "a")]  # a walk of a part of what was walked
+        assert inside == first and again == [x for x in first if x[0].startswith(str(root / "a"))]
+        assert len(calls) == 2 * len(first)
+        (root / "a" / "new.urdf").write_text("x")  # within a run, files do not change: the listing is kept
+        assert "new.urdf" not in files(dict(folders(root))[str(root / "a")])
+    assert "new.urdf" in files(dict(folders(root))[str(root / "a")])
+
+
+def test_the_memo_is_bounded(tmp_path, monkeypatch):
+    from urdfcheck.core import walk
+
+    root = _tree(tmp_path)
+    monkeypatch.setattr(walk, "MEMO_ENTRIES", 3)
+    calls = _listings(monkeypatch)
+    with walk.remembered():
+        n = len(list(folders(root)))
+        list(folders(root))
+    assert n < len(calls) < 2 * n  # the first folders fit, the rest is listed again
+
+
 # --- core.paths.shown: remembered per (path, root, working directory); the same as computing it each time ---------
 def _shown_reference(text, root, run_root):
     if not text or text.startswith("<"):

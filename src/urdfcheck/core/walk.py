@@ -5,10 +5,40 @@ a symbolic link to a folder never entered (a committed link must not take the wa
 """
 from __future__ import annotations
 
+import operator
 import os
 from collections.abc import Iterator
 
 SKIP_DIRS = frozenset({"build", "install", "log", "devel", "node_modules", "__pycache__", "venv"})
+MEMO_ENTRIES = 50_000  # entries one run keeps listed (a few MB); a larger tree is listed again where walked again
+_NAME = operator.attrgetter("name")
+_LISTED: list[dict] = []  # one memo per run in progress (see `remembered`)
+
+
+class remembered:
+    """Within this block each folder is listed once: in a run, consumer discovery walks the model's package and
+    the package resolver walks the folder around it, which holds that package again. Outside, every walk lists
+    afresh (a long-lived process walks again after edits)."""
+
+    def __enter__(self):
+        _LISTED.append({"": 0})
+
+    def __exit__(self, *exc):
+        _LISTED.pop()
+
+
+def _entries(here: str) -> list[os.DirEntry]:
+    memo = _LISTED[-1] if _LISTED else None
+    if memo is not None:
+        got = memo.get(here)
+        if got is not None:
+            return got
+    with os.scandir(here) as it:
+        entries = sorted(it, key=_NAME)
+    if memo is not None and memo[""] + len(entries) <= MEMO_ENTRIES:
+        memo[""] += len(entries)
+        memo[here] = entries
+    return entries
 
 
 def folders(top, *, max_dirs: int | None = None, max_depth: int | None = None
@@ -23,8 +53,7 @@ def folders(top, *, max_dirs: int | None = None, max_depth: int | None = None
         here, depth = stack.pop()
         seen += 1
         try:
-            with os.scandir(here) as it:
-                entries = sorted(it, key=lambda e: e.name)
+            entries = _entries(here)
         except OSError:
             continue
         yield here, entries

@@ -27,6 +27,7 @@ from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
 PARAM_DIRS = {"config", "params", "param"}
 LAUNCH_DIRS = {"launch"}
 LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml")
+_ROLES = (".urdf", ".xacro", ".yaml", ".yml") + LAUNCH_SUFFIXES  # the endings `_scan` sorts by role
 MAX_FILES = 20_000
 HEAD_BYTES = 4 * 1024 * 1024
 
@@ -205,12 +206,14 @@ def _scan(package_dir, max_files: int):
     parts_of: dict[str, list[str]] = {}  # dirpath -> its folders below root (relpath per file was slow)
     cut: list = []
     for dirpath, f in _walk(root, max_files, cut):
+        low = f.lower()
+        if not low.endswith(_ROLES):  # meshes, textures, sources: most of a package's files (half the time)
+            continue
         path = os.path.join(dirpath, f)
         parts = parts_of.get(dirpath)
         if parts is None:
             rel = os.path.relpath(dirpath, root)
             parts = parts_of[dirpath] = [] if rel == os.curdir else rel.replace("\\", "/").split("/")
-        low = f.lower()
         if low.endswith(".urdf"):
             urdfs.append(path)
         elif low.endswith(".xacro"):
@@ -233,9 +236,14 @@ class remembering:
     it). Outside, every call looks afresh (a long-lived process lints again after edits)."""
 
     def __enter__(self):
+        from urdfcheck.core.walk import remembered
+
         _REMEMBERED.append({})
+        self._listed = remembered()
+        self._listed.__enter__()  # and each folder is listed once (core.walk), by whichever walk comes first
 
     def __exit__(self, *exc):
+        self._listed.__exit__(*exc)
         _REMEMBERED.pop()
 
 
