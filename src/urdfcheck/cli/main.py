@@ -46,7 +46,9 @@ def _severity(text: str):
 
 
 
-def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
+def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse.ArgumentParser:
+    """`lint_only`: the other sub-commands are left out (a lint command line never reaches them; each parser costs
+    argparse's message-catalogue lookups, about a millisecond)."""
     from urdfcheck import __version__
 
     parser = argparse.ArgumentParser(
@@ -104,6 +106,8 @@ def build_parser(with_publish: bool = True) -> argparse.ArgumentParser:
     lint.add_argument("--cache-dir", metavar="DIR", help="the lint cache's folder (default: the user's cache folder)")
     lint.add_argument("--quiet", "-q", action="store_true", help="no progress on a terminal")
     lint.set_defaults(func=cmd_lint)
+    if lint_only:
+        return parser
 
     bag = sub.add_parser("bag", help="check a recording (/joint_states, /tf, /tf_static) against the model",
                          description="urdfcheck bag MODEL RECORDING [lint options] is `urdfcheck lint MODEL --bag "
@@ -237,7 +241,8 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
                   + f"; commands: {', '.join(COMMANDS)}, or name files and folders to lint", file=sys.stderr)
             return EXIT_USAGE
         argv = ["lint"] + argv  # `urdfcheck model.urdf` is `urdfcheck lint model.urdf`
-    parser = build_parser(with_publish=not argv or argv[0] not in ("lint", "expand", "rules"))
+    parser = build_parser(with_publish=not argv or argv[0] not in ("lint", "expand", "rules"),
+                          lint_only=bool(argv) and argv[0] == "lint")
     ns = parser.parse_args(argv)
     if ns.command is None:
         parser.print_help()
