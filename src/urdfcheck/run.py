@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from urdfcheck.core import progress
 from urdfcheck.core.findings import Finding, Location, Severity
@@ -20,7 +21,9 @@ from urdfcheck.core.records import Record
 from urdfcheck.load import loader
 from urdfcheck.plan.plan import Later, Target, plan  # noqa: F401  (Later, Target: imported from here too)
 from urdfcheck.request.request import LintRequest, UsageError
-from urdfcheck.rules import engine
+
+if TYPE_CHECKING:  # the rules are imported after the first expansions are sent (`_lint_targets`), not with this module
+    from urdfcheck.rules import engine
 
 
 class Result(Record):
@@ -277,6 +280,8 @@ def _begin(t: Target, kw: dict, batch: loader.Batch | None = None) -> loader.Pen
 
 def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse | None = None
            ) -> tuple[list[Finding], object]:
+    from urdfcheck.rules import engine
+
     model = loader.build_model(exp)  # first: a document read as it is built may add its load findings
     findings = list(exp.findings)
     if model is not None:
@@ -312,6 +317,8 @@ class _YamlUse:
 
     def unused(self) -> list[tuple[int, Finding]]:
         """(first target that read the file, R002 finding) for each suppression that hid nothing."""
+        from urdfcheck.rules import engine
+
         out = []
         for file in sorted(self.files):
             selection, first = self.files[file]
@@ -340,7 +347,6 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     `retain`: a list that keeps each parsed document alive. A process that exits right after (the console
     command) passes one: freeing a large libxml2 tree costs time, and the allocator's clean-up of its
     million small blocks on the next large request costs more (~0.1 s for 10,000 links)."""
-    selection = selection or engine.Selection()
     by_target: list[list[Finding]] = [[] for _ in targets]
     models = {}
     ahead = max(1, min(4, os.cpu_count() or 1))
@@ -358,6 +364,9 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
             if first.items:
                 first.also = _params_ahead(targets[:len(first.items)])
             first.send()
+            from urdfcheck.rules import engine
+
+            selection = selection or engine.Selection()
             _warm_up(targets, config)
             for i, t in enumerate(targets):
                 if i + ahead < len(targets):

@@ -440,7 +440,7 @@ class Planner:
         packages = _packages(root, str(entry), settings) if root is not None else None
         if not entry.name.endswith(".xacro"):
             return [self.target(entry, {}, "", None, settings, packages)]
-        from urdfcheck.request.config import auto_variants
+        from urdfcheck.load.variants import auto_variants  # not the config module: a run without one never imports it
 
         return [self.target(entry, vargs, name, None, settings, packages)
                 for name, vargs in auto_variants(str(entry), dict(self.request.args),

@@ -198,6 +198,8 @@ def _severity(v) -> Severity:
 
 
 def _check_codes(codes) -> None:
+    if not codes:  # the rules are imported after the first expansions are sent
+        return
     from urdfcheck.rules.catalogue import unknown_codes
 
     problems = unknown_codes(codes)

@@ -8,7 +8,6 @@ from __future__ import annotations
 import functools
 import importlib
 import os
-import pkgutil
 from collections.abc import Callable
 from pathlib import Path
 
@@ -282,6 +281,8 @@ def _info(data: dict, path: str) -> RuleInfo:
 
 @functools.cache
 def load_checks() -> dict[str, Callable]:
+    import pkgutil  # 4 ms of imports, not wanted before the first expansions are sent (run._lint_targets)
+
     for pkg_name in _CHECK_PACKAGES:
         try:
             pkg = importlib.import_module(pkg_name)
