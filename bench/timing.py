@@ -51,19 +51,29 @@ def _median(xs):
     return xs[n // 2] if n % 2 else (xs[n // 2 - 1] + xs[n // 2]) / 2
 
 
+def _quartiles(xs) -> tuple[float, float]:
+    """The 25th and 75th percentiles (nearest rank): the spread a median comes from."""
+    xs = sorted(xs)
+    if not xs:
+        return float("inf"), float("inf")
+    return xs[round(0.25 * (len(xs) - 1))], xs[round(0.75 * (len(xs) - 1))]
+
+
 def paired(a: list[str], b: list[str], n: int = 11, *, env=None, env_b=None, before_a=None, before_b=None) -> dict:
     """A and B in turn, n pairs after one warm-up each: medians of wall and CPU, and the medians of the pair
-    ratios (pairing keeps a ratio meaningful while a shared machine's speed drifts)."""
+    ratios (pairing keeps a ratio meaningful while a shared machine's speed drifts), with their quartiles
+    (`wall_q`, `cpu_q`)."""
     run_measured(a, env, before_a)
     run_measured(b, env_b if env_b is not None else env, before_b)
     ra, rb = [], []
     for _ in range(n):
         ra.append(run_measured(a, env, before_a))
         rb.append(run_measured(b, env_b if env_b is not None else env, before_b))
+    walls = [x[0] / y[0] for x, y in zip(ra, rb)]
+    cpus = [x[1] / y[1] for x, y in zip(ra, rb) if y[1] > 0] or [float("inf")]
     return {"wall_a": _median([x[0] for x in ra]), "wall_b": _median([x[0] for x in rb]),
             "cpu_a": _median([x[1] for x in ra]), "cpu_b": _median([x[1] for x in rb]),
-            "wall": _median([x[0] / y[0] for x, y in zip(ra, rb)]),
-            "cpu": _median([x[1] / y[1] for x, y in zip(ra, rb) if y[1] > 0] or [float("inf")])}
+            "wall": _median(walls), "cpu": _median(cpus), "wall_q": _quartiles(walls), "cpu_q": _quartiles(cpus)}
 
 
 def peak_kib(cmd: list[str], env: Mapping[str, str] | None = None) -> int:
@@ -71,16 +81,22 @@ def peak_kib(cmd: list[str], env: Mapping[str, str] | None = None) -> int:
 
 
 def paired_line(label: str, r: dict, goal_wall: float | None, goal_cpu: float | None = None) -> str:
-    """One line for a `paired` result: medians, the median pair ratios, the goals."""
+    """One line for a `paired` result: medians, the median pair ratios [their quartiles], the goals."""
+    def spread(key):
+        q = r.get(f"{key}_q")
+        return f" [{q[0]:.2f}-{q[1]:.2f}]" if q else ""
+
     verdict = []
     if goal_wall is not None:
-        verdict.append(f"wall {r['wall']:.2f}x (goal <= {goal_wall:g}x) {'PASS' if r['wall'] <= goal_wall else 'FAIL'}")
+        verdict.append(f"wall {r['wall']:.2f}x{spread('wall')} (goal <= {goal_wall:g}x) "
+                       f"{'PASS' if r['wall'] <= goal_wall else 'FAIL'}")
     else:
-        verdict.append(f"wall {r['wall']:.2f}x")
+        verdict.append(f"wall {r['wall']:.2f}x{spread('wall')}")
     if goal_cpu is not None:
-        verdict.append(f"CPU {r['cpu']:.2f}x (goal <= {goal_cpu:g}x) {'PASS' if r['cpu'] <= goal_cpu else 'FAIL'}")
+        verdict.append(f"CPU {r['cpu']:.2f}x{spread('cpu')} (goal <= {goal_cpu:g}x) "
+                       f"{'PASS' if r['cpu'] <= goal_cpu else 'FAIL'}")
     else:
-        verdict.append(f"CPU {r['cpu']:.2f}x")
+        verdict.append(f"CPU {r['cpu']:.2f}x{spread('cpu')}")
     line = (f"{label:<44} {r['wall_a'] * 1000:7.1f} ms vs {r['wall_b'] * 1000:7.1f} ms (CPU {r['cpu_a'] * 1000:.0f} "
             f"vs {r['cpu_b'] * 1000:.0f} ms) medians: " + "; ".join(verdict))
     print(line, flush=True)
