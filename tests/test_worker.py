@@ -89,7 +89,9 @@ def _targets(tmp_path, n=5):
 def test_running_ahead_changes_no_finding(tmp_path):
     targets = _targets(tmp_path)
     together = lint.lint_targets(targets).findings
-    one_by_one = lint._dedupe([f for t in targets for f in lint.lint_target(t, lint.engine.Selection())[0]])
+    from urdfcheck.rules.engine import Selection
+
+    one_by_one = lint._dedupe([f for t in targets for f in lint.lint_target(t, Selection())[0]])
     assert together == one_by_one
     assert {f.code for f in together} == {"J002"}  # the revolute ones, in target order
     assert [f.location.file for f in together] == sorted(f.location.file for f in together)

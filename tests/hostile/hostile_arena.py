@@ -91,6 +91,19 @@ def _under_forbidden(path: str | None) -> bool:
     return path is not None and any(path == f or path.startswith(f.rstrip("/") + "/") for f in _Audit.forbidden)
 
 
+def _bytecode_cache(event: str, args) -> bool:
+    """The import system writing a module's bytecode (a module first imported during the lint, with bytecode
+    writing on): `mkdir __pycache__`, then a temporary .pyc renamed into place. The interpreter's cache, never the
+    checked tree (whose listing is compared separately); write-opens there are not counted either."""
+    paths = [_as_path(a) for a in args if isinstance(a, (str, bytes, os.PathLike))]
+    if not paths or any(p is None for p in paths):
+        return False
+    if event == "os.mkdir":
+        return os.path.basename(paths[0]) == "__pycache__"
+    return event in ("os.rename", "os.replace") and all(
+        os.path.basename(os.path.dirname(p)) == "__pycache__" and ".pyc" in os.path.basename(p) for p in paths)
+
+
 def _record(text: str) -> None:
     fd = _Audit.fd
     if fd is not None:
@@ -106,7 +119,8 @@ def _hook(event: str, args) -> None:
     if event.startswith(_EXEC_EVENTS):
         _record(f"{event} {args!r}"[:500])
     elif event.startswith(_MUTATE_EVENTS):
-        _record(f"mutate {event} {args!r}"[:500])
+        if not _bytecode_cache(event, args):
+            _record(f"mutate {event} {args!r}"[:500])
     elif event == "open":
         path = _as_path(args[0]) if args else None
         mode = args[1] if len(args) > 1 else None

@@ -33,3 +33,18 @@ def test_marker_and_leak_checks_fire(arena):
     entry = arena.data("env.urdf.xacro")
     with pytest.raises(AssertionError, match="leaked"):
         arena.lint(entry, extra=["--trusted"])
+
+
+def test_only_the_bytecode_cache_is_exempt(tmp_path):
+    """The import system's .pyc writes (a module first imported during a lint, bytecode writing on) are not
+    counted; any other folder made or file renamed is."""
+    from hostile_arena import _bytecode_cache
+
+    cache = tmp_path / "pkg" / "__pycache__"
+    assert _bytecode_cache("os.mkdir", (str(cache), 0o777, -1))
+    pyc = str(cache / "m.cpython-311.pyc")
+    assert _bytecode_cache("os.rename", (pyc + ".123", pyc, -1, -1))
+    assert not _bytecode_cache("os.mkdir", (str(tmp_path / "pkg" / "evil"), 0o777, -1))
+    assert not _bytecode_cache("os.rename", (str(cache / "m.pyc.1"), str(tmp_path / "pkg" / "m.pyc"), -1, -1))
+    assert not _bytecode_cache("os.rename", (str(tmp_path / "a.txt"), str(tmp_path / "b.txt"), -1, -1))
+    assert not _bytecode_cache("os.remove", (str(cache / "m.cpython-311.pyc"), -1))

@@ -303,7 +303,8 @@ def _expand(path: str, opts: Options) -> dict:
             raise err from None
         for w in warnings:
             state.xml_warnings.append((idx, w.code, w.message, w.line))
-        _collect_suppressions(state, idx, root)
+        if b"urdfcheck" in data:  # comments keep their bytes: no such word, no suppression (as the loader decides)
+            _collect_suppressions(state, idx, root)
         builder = _line_builder(state, idx)
         return builder.parseString(data)
 
