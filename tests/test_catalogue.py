@@ -93,3 +93,13 @@ def test_a_lint_run_reads_the_small_index_only():
     for code, r in cat.items():
         assert r.rationale == str(entries[code]["rationale"]).strip()
         assert r.cases == tuple(entries[code].get("cases") or ())
+
+
+def test_every_check_module_is_loaded():
+    """`load_checks` imports the modules `CHECK_MODULES` names: every module of rules/checks is there."""
+    import pkgutil
+
+    from urdfcheck.rules import checks
+
+    in_folder = sorted(f"urdfcheck.rules.checks.{m.name}" for m in pkgutil.iter_modules(checks.__path__))
+    assert sorted(rulebook.CHECK_MODULES) == in_folder
