@@ -84,9 +84,9 @@ class _State:
 def _line_builder(state: _State, idx: int):
     class LineBuilder(expatbuilder.ExpatBuilderNS):
         def start_element_handler(self, name, attributes):
-            super().start_element_handler(name, attributes)
-            node = self.curNode
-            node.setAttribute(SRC_ATTR, f"{idx}:{self._parser.CurrentLineNumber}")
+            # the marker as one more attribute from the parser (set last, as setAttribute would, without its
+            # node-by-node path; a marker written in the file is replaced, as setAttribute replaces it)
+            super().start_element_handler(name, attributes + [SRC_ATTR, f"{idx}:{self._parser.CurrentLineNumber}"])
 
     return LineBuilder()
 
