@@ -199,3 +199,21 @@ def test_diffbot_corpus_geometry(corpus):
     # a real defect of the demo description: left_wheel_joint sits at y = -0.05 with axis +y (C014)
     assert codes(rep) == ["C014"]
     assert rep.measured_separation == pytest.approx(0.10) and rep.sides_swapped is True
+
+
+def test_world_poses_are_computed_once_per_model(monkeypatch):
+    """Six wheel rules ask for the poses once per drive each: one computation per model, and each caller gets a
+    copy it may change."""
+    from urdfcheck.model.robot import Model
+
+    m = model_from_string('<robot name="r"><link name="a"/><link name="b"/>'
+                          '<joint name="j" type="fixed"><parent link="a"/><child link="b"/>'
+                          '<origin xyz="1 2 3"/></joint></robot>')
+    calls = []
+    real = Model._world_poses
+    monkeypatch.setattr(Model, "_world_poses", lambda self: calls.append(1) or real(self))
+    first = m.world_poses()
+    first["b"] = None
+    second = m.world_poses()
+    assert len(calls) == 1
+    assert second["b"][0][3] == 1.0 and second["b"][2][3] == 3.0 and set(second) == {"a", "b"}

@@ -320,7 +320,16 @@ class Model(FrozenRecord):
         return [j for j in self.joint_list if j.movable]
 
     def world_poses(self) -> dict[str, tuple]:
-        """Pose of every link reachable from the roots at zero configuration, as 4x4 nested tuples."""
+        """Pose of every link reachable from the roots at zero configuration, as 4x4 nested tuples (computed once per
+        model: the wheel checks ask for it once per rule and drive; a copy, so that no caller changes it for the
+        next)."""
+        derived = self._derived()
+        got = derived.get("world_poses")
+        if got is None:
+            got = derived["world_poses"] = self._world_poses()
+        return dict(got)
+
+    def _world_poses(self) -> dict[str, tuple]:
         from urdfcheck.core.geometry import compose, identity, origin_matrix
 
         out: dict[str, tuple] = {}
