@@ -310,7 +310,7 @@ def _expand(path: str, opts: Options) -> dict:
 
     def eval_text(text, symbols):
         # stock lexes every attribute and text, and a text without "$" is one TEXT token returned as it is: most
-        # values, and every source marker, skip the lexer (about a tenth of an expansion)
+        # values, and every source marker, skip the lexer (about a sixth of an expansion)
         result = text if type(text) is str and "$" not in text else orig_eval_text(text, symbols)
         if isinstance(result, str):
             state.text += len(result)
