@@ -14,7 +14,7 @@ import re
 
 from lxml import etree
 
-from urdfcheck.core import lazyre
+from urdfcheck.core import bytescan, lazyre
 from urdfcheck.core.records import TupleRecord
 
 MAX_BYTES = 32 * 1024 * 1024
@@ -134,7 +134,7 @@ def precheck(data: bytes) -> tuple[list[XmlIssue], bytes]:
     except UnicodeDecodeError as e:
         raise XmlRefused(XmlIssue("X001", f"invalid UTF-8 ({e.reason})", _line_of(data, e.start))) from None
     warnings, data = check_declaration(data)
-    at = _prolog_doctype(data) if b"<!DOCTYPE" in data else None
+    at = _prolog_doctype(data) if bytescan.has(data, b"<!DOCTYPE", 1) else None
     if at is not None:  # refuse before libxml2 reads entity declarations (amplification, external ones)
         raise XmlRefused(XmlIssue("X002", _DOCTYPE_MSG, _line_of(data, at)))
     return warnings, data
@@ -191,10 +191,10 @@ STREAM_BYTES = 2_000_000  # about 2,000 links: below, the tree costs little and 
 
 def streamable(data: bytes) -> bool:
     """Whether `stream` reads `data` as `parse` would (the caller has passed it through `precheck`)."""
-    if len(data) < STREAM_BYTES or b"<!DOCTYPE" in data or _DEFAULT_NS.search(data):
+    if len(data) < STREAM_BYTES or bytescan.has(data, b"<!DOCTYPE", 1) or _DEFAULT_NS.search(data):
         return False
     decl = _DECL.match(data)
-    if data.find(b"<?", decl.end() if decl else 0) >= 0:  # processing instructions: refused by `parse`
+    if bytescan.find(data, b"<?", decl.end() if decl else 0, 1) >= 0:  # a processing instruction: `parse` refuses it
         return False
     return data.count(b"<") <= MAX_ELEMENTS
 
@@ -354,7 +354,7 @@ def _check_shape(root: etree._Element, data: bytes) -> None:
     if data.count(b"<") > MAX_ELEMENTS and int(root.xpath("count(//*)")) > MAX_ELEMENTS:
         raise XmlRefused(XmlIssue("X004", f"more than {MAX_ELEMENTS} XML elements"))
     decl = _DECL.match(data)
-    if data.find(b"<?", decl.end() if decl else 0) < 0:
+    if bytescan.find(data, b"<?", decl.end() if decl else 0, 1) < 0:
         return
     for pi in root.iter(etree.ProcessingInstruction):
         raise XmlRefused(XmlIssue("X002", f"processing instruction <?{pi.target}?> inside the document",

@@ -9,7 +9,7 @@ import os
 import re
 from pathlib import Path
 
-from urdfcheck.core import lazyre, paths, xmlfront
+from urdfcheck.core import bytescan, lazyre, paths, xmlfront
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
@@ -359,7 +359,7 @@ def _read_plain(out: Expanded, p: Path, data: bytes, opts: tuple, stream: bool =
     shown = out.entry
     # large files only (the byte checks are not run twice on every model), not xacro, nor suppression comments
     # (read from the whole tree)
-    if stream and len(data) >= xmlfront.STREAM_BYTES and b"&#" not in data and b"urdfcheck" not in data \
+    if stream and len(data) >= xmlfront.STREAM_BYTES and not bytescan.has(data, b"&#") and b"urdfcheck" not in data \
             and _no_xacro_elements(data):
         try:
             warnings, checked = xmlfront.precheck(data)
