@@ -37,7 +37,7 @@ def _last_line(el) -> int:
 
 def scan_comments(root) -> list[tuple[int, int, tuple[str, ...], int]]:
     """(first, last, codes, comment_line) for every suppression comment in an lxml tree."""
-    from lxml import etree
+    from urdfcheck.core.lxmlimport import etree
 
     out = []
     nodes = list(root.itersiblings(preceding=True)) + [root]

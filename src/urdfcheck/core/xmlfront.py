@@ -12,9 +12,8 @@ from __future__ import annotations
 
 import re
 
-from lxml import etree
-
 from urdfcheck.core import bytescan, lazyre
+from urdfcheck.core.lxmlimport import etree
 from urdfcheck.core.records import TupleRecord
 
 MAX_BYTES = 32 * 1024 * 1024

@@ -18,9 +18,8 @@ from __future__ import annotations
 import os
 import re
 
-from lxml import etree
-
 from urdfcheck.core import lazyre
+from urdfcheck.core.lxmlimport import etree
 from urdfcheck.core.records import TupleRecord
 from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
 

@@ -15,10 +15,9 @@ from collections.abc import Callable, Iterator
 from math import isfinite
 from types import MappingProxyType
 
-from lxml import etree
-
 from urdfcheck.core import nogc
 from urdfcheck.core.findings import Location, Severity, closest
+from urdfcheck.core.lxmlimport import etree
 from urdfcheck.model import extensions
 from urdfcheck.model import grammar as G
 from urdfcheck.model.robot import (

@@ -64,7 +64,7 @@ def without_meshes(xml: str, folder: str | None = None) -> tuple[str, int]:
     """The document with every <mesh> file replaced, and how many were. With `folder`: each mesh points to a box
     STL written there, sized so that after the mesh's own `scale` it is a 0.1 m cube (the scale stays, so a
     consumer still reads and checks it); without: the <mesh> becomes a 0.1 m <box>."""
-    from lxml import etree
+    from urdfcheck.core.lxmlimport import etree
 
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
     try:

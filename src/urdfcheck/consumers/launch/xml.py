@@ -35,8 +35,6 @@ import shlex
 from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
-from lxml import etree
-
 from urdfcheck.consumers.common import ConsumerError, Value, as_bool
 from urdfcheck.consumers.launch.info import (  # noqa: F401 - the records are part of this module's interface
     _CMD_END,
@@ -59,6 +57,7 @@ from urdfcheck.consumers.launch.info import (  # noqa: F401 - the records are pa
 )
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
+from urdfcheck.core.lxmlimport import etree
 
 if TYPE_CHECKING:
     from urdfcheck.consumers.yamlsrc import YamlDoc
