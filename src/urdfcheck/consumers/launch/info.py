@@ -5,7 +5,6 @@ readers).
 """
 from __future__ import annotations
 
-import ast
 import math
 import os
 from collections.abc import Mapping
@@ -19,21 +18,11 @@ from urdfcheck.core.records import FrozenRecord, Record, TupleRecord
 UNKNOWN = "\x00"  # a piece of a string decided at launch time
 
 
-def callee(call: ast.Call) -> str:
-    """The called name of a Python launch file's call: `Node(...)` and `launch_ros.actions.Node(...)` -> Node."""
-    f = call.func
-    return f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
-
-
-def dotted(node: ast.AST) -> str:
-    """`a.b.c` of an attribute chain ("" parts where it is not plain names)."""
-    parts = []
-    while isinstance(node, ast.Attribute):
-        parts.append(node.attr)
-        node = node.value
-    if isinstance(node, ast.Name):
-        parts.append(node.id)
-    return ".".join(reversed(parts))
+class Declared(TupleRecord):
+    """A launch argument as the deployment finder reads it: its default and, where declared, its choices."""
+    default: str | None  # None: no default
+    choices: tuple | None
+    loc: Location
 
 
 class ModelRef(TupleRecord):
@@ -165,7 +154,7 @@ class LaunchInfo(Record):
     # format: "ros1-xml", "ros2-xml", "ros2-yaml", "ros2-py"
     # spawned: controller names given to spawners
     # param_sets: ROS 1: ParamSet / RosparamLoad, in document order
-    # declared: launch argument name -> pylaunch.Declared (default, choices)
+    # declared: launch argument name -> Declared (default, choices)
     _fields = ('path', 'format', 'nodes', 'static_tfs', 'state_publishers', 'joint_state_publishers', 'spawned',
                'param_files', 'includes', 'notes', 'param_sets', 'declared')
 

@@ -21,6 +21,7 @@ from typing import Any
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.consumers.launch.info import (  # noqa: F401 - UNKNOWN, ModelRef, command_model: read here too
     UNKNOWN,
+    Declared,
     Include,
     LaunchInfo,
     LaunchNode,
@@ -28,8 +29,6 @@ from urdfcheck.consumers.launch.info import (  # noqa: F401 - UNKNOWN, ModelRef,
     command_model,
     record_node,
 )
-from urdfcheck.consumers.launch.info import callee as _callee
-from urdfcheck.consumers.launch.info import dotted as _dotted
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import TupleRecord
 
@@ -73,10 +72,21 @@ class MoveItBuilder(TupleRecord):
     mappings: dict
 
 
-class Declared(TupleRecord):
-    default: str | None  # None: no default
-    choices: tuple | None
-    loc: Location
+def _callee(call: ast.Call) -> str:
+    """The called name of a Python launch file's call: `Node(...)` and `launch_ros.actions.Node(...)` -> Node."""
+    f = call.func
+    return f.id if isinstance(f, ast.Name) else f.attr if isinstance(f, ast.Attribute) else ""
+
+
+def _dotted(node: ast.AST) -> str:
+    """`a.b.c` of an attribute chain ("" parts where it is not plain names)."""
+    parts = []
+    while isinstance(node, ast.Attribute):
+        parts.append(node.attr)
+        node = node.value
+    if isinstance(node, ast.Name):
+        parts.append(node.id)
+    return ".".join(reversed(parts))
 
 
 _INDEXED = (ast.Assign, ast.AnnAssign, ast.AugAssign, ast.With, ast.AsyncWith, ast.For, ast.comprehension,

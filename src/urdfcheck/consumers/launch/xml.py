@@ -27,7 +27,6 @@ with a note. A node with an `if`/`unless` that cannot be decided is kept with `c
 """
 from __future__ import annotations
 
-import ast
 import math
 import os
 import re
@@ -42,6 +41,7 @@ from urdfcheck.consumers.launch.info import (  # noqa: F401 - the records are pa
     _CMD_UNKNOWN,
     _DESCRIPTION_KEY,
     UNKNOWN,
+    Declared,
     Include,
     JointStatePublisher,
     LaunchInfo,
@@ -60,6 +60,8 @@ from urdfcheck.core.findings import Location
 from urdfcheck.core.lxmlimport import etree
 
 if TYPE_CHECKING:
+    import ast
+
     from urdfcheck.consumers.yamlsrc import YamlDoc
 
 MAX_BYTES = 2 * 1024 * 1024
@@ -130,6 +132,8 @@ class _Subst:
         Python. None otherwise (decided at launch time)."""
         if len(expr) > 2000:
             return None
+        import ast  # here: most launch files have no $(eval), and ast costs 5 ms to import
+
         try:
             tree = ast.parse(expr.strip(), mode="eval")
         except (SyntaxError, ValueError, RecursionError, MemoryError):
@@ -589,8 +593,6 @@ def _outside(raw: str | None) -> tuple[str | None, str]:
 
 def _declared(default: str | None, choices: tuple, loc: Location):
     """A launch argument as the deployment finder reads it (one variant per choice)."""
-    from urdfcheck.consumers.launch.python import Declared
-
     ok = tuple(c for c in choices if isinstance(c, str) and c and "$(" not in c)
     return Declared(default, ok or None, loc)
 
@@ -756,6 +758,8 @@ def _parse(raw: bytes, path: str, args, packages) -> LaunchInfo:
             text = raw.decode("utf-8-sig")
         except UnicodeDecodeError as e:
             raise ConsumerError(f"not valid UTF-8 ({e.reason})", Location(path)) from None
+        import ast
+
         try:
             tree = ast.parse(text, filename=path)
         except SyntaxError as e:
