@@ -296,3 +296,31 @@ def test_a_parameter_file_parsed_in_the_worker_is_still_part_of_the_key(pkg, tmp
     assert edited[3][0].startswith("urdfcheck: cache miss (")
     assert edited[1] != clean[1]  # the wheel geometry no longer matches the URDF
     assert edited[:3] == cli(zero, pkg, c, env={"URDFCHECK_NO_CACHE": "1"})[:3]
+
+
+def test_a_miss_looks_at_each_path_once_and_at_the_read_files_first(tmp_path, monkeypatch):
+    """Every stored version of a key is tried on a miss; the paths they share are fingerprinted once, and the
+    files a run read come first (an edit changes one of them), so the installed modules are never looked at."""
+    from urdfcheck.core import observe
+
+    model = tmp_path / "m.urdf"
+    model.write_text("<robot name='r'/>")
+    spec = cache.Spec(str(tmp_path / "cache" / "v1"), "k" * 32, trace=False)
+    os.makedirs(spec.versions)
+    modules = [["m", f"/usr/lib/python3/mod{i}.py", "1:2"] for i in range(20)]
+    for v in range(cache.MAX_VERSIONS):
+        observed = modules + [["r", str(model), f"fold-{v}"]]  # each version saw other bytes of the model
+        entry = {"schema": cache.SCHEMA, "key": spec.key, "code": 0, "stdout": "", "stderr": "",
+                 "observed": observed}
+        entry["sum"] = cache._checksum(entry)
+        (Path(spec.versions) / f"{v}.json").write_text(json.dumps(entry))
+    asked = []
+    real = observe.fingerprint
+
+    def counting(kind, path, digest):
+        asked.append((kind, path))
+        return real(kind, path, digest)
+
+    monkeypatch.setattr(observe, "fingerprint", counting)
+    assert cache.replay(spec) is None
+    assert asked == [("r", str(model))]

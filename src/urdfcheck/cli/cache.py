@@ -156,11 +156,21 @@ def replay(spec: Spec) -> int | None:
     from urdfcheck.core.observe import fingerprint
 
     why = "miss"
+    now: dict = {}  # (kind, path) -> what it looks like now: a key's versions share most of their paths
+
+    def differs(item) -> bool:
+        kind, p, fp = item
+        got = now.get((kind, p))
+        if got is None:
+            got = now[kind, p] = fingerprint(kind, p, digest)
+        return got != fp
+
     for path in _versions(spec)[:MAX_VERSIONS]:
         entry = _load(path, spec.key)
         if entry is None:
             continue
-        changed = next((p for kind, p, fp in entry["observed"] if fingerprint(kind, p, digest) != fp), None)
+        # the files read first, then listings and probes, installed modules last: an edit changes the first
+        changed = next((item[1] for item in sorted(entry["observed"], key=_edited_first) if differs(item)), None)
         if changed is not None:
             why = f"miss ({changed} changed)"
             continue
@@ -174,6 +184,13 @@ def replay(spec: Spec) -> int | None:
         return entry["code"]
     _say(spec, why)
     return None
+
+
+_EDITED_FIRST = {"r": 0, "l": 1, "p": 2, "q": 2, "m": 3}
+
+
+def _edited_first(item) -> int:
+    return _EDITED_FIRST.get(item[0], 3)
 
 
 def _versions(spec: Spec) -> list[str]:
