@@ -164,7 +164,7 @@ def _text_messages(path, joint_topic, tf_topics, others) -> Iterator[Message]:
     try:
         docs = [json.loads(text)]
     except ValueError:
-        import yaml
+        from urdfcheck.core.yamlimport import yaml
 
         try:
             docs = [d for d in yaml.safe_load_all(text) if d is not None]

@@ -226,7 +226,7 @@ def _read_joint_states(path: str) -> list:
         doc = json.loads(text)
         docs = [doc]
     except ValueError:
-        import yaml
+        from urdfcheck.core.yamlimport import yaml
 
         try:
             docs = [d for d in yaml.safe_load_all(text) if d is not None]

@@ -19,13 +19,13 @@ from __future__ import annotations
 
 import os
 
-import yaml
 from yaml.constructor import SafeConstructor
 
 from urdfcheck.consumers.common import ConsumerError
 from urdfcheck.consumers.yamldoc import YamlDoc
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
+from urdfcheck.core.yamlimport import yaml
 
 MAX_BYTES = 2 * 1024 * 1024
 MAX_NODES = 100_000

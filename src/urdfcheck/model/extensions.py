@@ -27,7 +27,7 @@ class Extension(TupleRecord):
 @functools.lru_cache(maxsize=1)
 def registry() -> dict[tuple[str, str, str], Extension]:
     """(kind, URDF element, name) -> Extension; kind "element" (a child of that element) or "attribute"."""
-    import yaml  # only when a model has a name URDF does not define
+    from urdfcheck.core.yamlimport import yaml  # only when a model has a name URDF does not define
 
     with open(os.path.join(os.path.dirname(__file__), "extensions.yaml"), encoding="utf-8") as f:
         data = yaml.load(f, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader)) or []

@@ -171,7 +171,7 @@ DETAIL_KEYS = ("rationale", "fix", "examples", "cases")
 
 def read_entries(folder: Path | None = None) -> dict[str, dict]:
     """Parse every rules/*.yaml (the source of truth)."""
-    import yaml
+    from urdfcheck.core.yamlimport import yaml
 
     loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
     folder = folder or catalogue_dir()
@@ -297,7 +297,7 @@ def example_files(ex: dict) -> dict[str, str]:
     """The files of a catalogue example: `files:` plus the `urdf:`/`xacro:` shorthands."""
     files = dict(ex.get("files") or {})
     if ex.get("config") is not None:  # the example runs with this config (its own urdfcheck.yaml)
-        import yaml
+        from urdfcheck.core.yamlimport import yaml
 
         files["urdfcheck.yaml"] = yaml.safe_dump(dict(ex["config"]), sort_keys=False)
     if "urdf" in ex:

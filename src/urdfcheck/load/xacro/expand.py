@@ -514,8 +514,7 @@ def _deprecated_as_stock(xacro, symbols, name: str, confined):
 def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
     import functools
 
-    import yaml
-
+    from urdfcheck.core.yamlimport import yaml
     from urdfcheck.load.xacro import safeeval, yamlguard
 
     def confined_load_yaml(filename):

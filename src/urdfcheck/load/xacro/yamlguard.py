@@ -1,7 +1,7 @@
 """Refuse YAML files that would blow up when xacro loads them (size, alias bombs)."""
 from __future__ import annotations
 
-import yaml
+from urdfcheck.core.yamlimport import yaml
 
 MAX_BYTES = 8 * 1024 * 1024
 MAX_NODES = 1_000_000
