@@ -279,3 +279,15 @@ def test_xacro_source_markers_are_not_attributes(version):
             del el.attrib["ixx"]
     model, _ = build(etree.tostring(root))
     assert sorted(i.code for i in model.issues) == ["U003", "U006"]
+
+
+@pytest.mark.parametrize("xyz, finite", [("1e308 1e308 0", True), ("-1.7e308 -1.7e308 1", True),
+                                         ("1 inf 0", False), ("nan 0 0", False), ("inf -inf 0", False)])
+def test_a_vector_whose_sum_overflows_is_still_finite(xyz, finite):
+    """The vector reader's fast test is a finite sum; a sum that overflows must not make finite values unreadable."""
+    m = B.model_from_string(f'<robot name="r"><link name="a"><visual><origin xyz="{xyz}"/><geometry><box size="1 1 1"/>'
+                            '</geometry></visual></link></robot>')
+    bad = [i for i in m.issues if i.code == "U005"]
+    assert (not bad) == finite
+    if finite:
+        assert m.links["a"].visuals[0].origin.xyz == tuple(float(v) for v in xyz.split())

@@ -175,7 +175,9 @@ class _Builder:
                 out = tuple(map(float, parts))
             except ValueError:
                 out = None
-            if out is not None and "_" not in raw and all(map(isfinite, out)):
+            # a finite sum has no inf or nan among its terms (either would carry into it); a sum that overflows
+            # takes the exact test
+            if out is not None and "_" not in raw and (isfinite(sum(out)) or all(map(isfinite, out))):
                 self.vectors[raw] = out
                 return out
         a = reading(tag, self.version).attrs[i]
@@ -240,15 +242,19 @@ class _Builder:
 
     def geometry(self, g, kind: str = "") -> Geometry:
         self.R["geometry"](self, g)
-        shapes = [c for c in g if isinstance(c.tag, str) and not c.tag.startswith("{")]
+        shapes, tags = [], []  # each child's tag read once: lxml builds a new string at every read
+        for c in g:
+            t = c.tag
+            if isinstance(t, str) and not t.startswith("{"):
+                shapes.append(c)
+                tags.append(t)
         if not shapes:
             return Geometry("", self.locate(g))
         if len(shapes) > 1:
             self.issue("U002", f"<geometry> holds {len(shapes)} shapes; URDF parsers use only the first", shapes[1])
-            tags = [c.tag for c in shapes]
             self._note_repeats(f"link/{kind}/geometry", {t for t in tags if tags.count(t) > 1})
         s = shapes[0]
-        tag = s.tag
+        tag = tags[0]
         loc = self.locate(s)
         since = _SHAPE_SINCE.get(tag)
         if since is None:  # an unknown shape is G005's (urdfdom rejects the visual)
