@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import io
+import os
 
 from conftest import REPO, run_cli
 
@@ -55,3 +56,27 @@ def test_lint_reports_each_target(monkeypatch):
     assert seen[0] == ("quiet", False)
     code, out, err = run_cli(["lint", "--quiet", str(REPO / "examples" / "agv")])
     assert ("quiet", True) in seen
+
+
+def test_a_terminal_of_no_width_still_shows_the_line(monkeypatch):
+    """A pseudo-terminal whose size was never set reports 0 columns (`script`, some CI runners)."""
+
+    monkeypatch.setattr(progress, "DELAY", 0.0)
+    monkeypatch.setattr(progress, "INTERVAL", 0.0)
+    monkeypatch.setattr(os, "get_terminal_size", lambda fd: os.terminal_size((0, 0)))
+    term = Terminal()
+    term.fileno = lambda: 2
+    progress.to_terminal(term)
+    progress.step(0, 2, "robot.urdf")
+    progress.close()
+    assert "urdfcheck: 0/2 checked; robot.urdf" in term.getvalue()
+
+
+def test_the_line_names_targets_as_the_report_does(monkeypatch, tmp_path):
+    monkeypatch.setattr(progress, "DELAY", 0.0)
+    seen = []
+    monkeypatch.setattr(progress, "step", lambda done, total, label: seen.append(str(label)))
+    monkeypatch.chdir(REPO / "examples")
+    code, out, err = run_cli(["lint", str(REPO / "examples" / "agv")])
+    assert code == 0, err
+    assert seen and all(not os.path.isabs(s) and s.startswith("agv/") for s in seen), seen

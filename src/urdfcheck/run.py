@@ -371,7 +371,8 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
             for i, t in enumerate(targets):
                 if i + ahead < len(targets):
                     pending[i + ahead] = _begin(targets[i + ahead], kw)
-                progress.step(i, len(targets), t.path if not t.variant else f"{t.path} [{t.variant}]")
+                where = shown(str(t.path))  # as the report will name it
+                progress.step(i, len(targets), where if not t.variant else f"{where} [{t.variant}]")
                 exp = pending.pop(i).result()
                 if i == 0:
                     _take_params(first, parsed)

@@ -29,6 +29,8 @@ class _Line:
         try:
             width = os.get_terminal_size(self.stream.fileno()).columns
         except (AttributeError, OSError, ValueError):
+            width = 0
+        if width <= 0:  # not a terminal after all, or one whose size nobody set (`script`, some CI ptys)
             width = 80
         text = f"urdfcheck: {done}/{total} checked; {label}"
         if len(text) > width - 1:
