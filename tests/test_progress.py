@@ -80,3 +80,18 @@ def test_the_line_names_targets_as_the_report_does(monkeypatch, tmp_path):
     code, out, err = run_cli(["lint", str(REPO / "examples" / "agv")])
     assert code == 0, err
     assert seen and all(not os.path.isabs(s) and s.startswith("agv/") for s in seen), seen
+
+
+def test_a_later_pass_counts_on(monkeypatch):
+    """The libraries no model included are linted in a second pass: the count goes on, it does not restart."""
+    monkeypatch.setattr(progress, "DELAY", 0.0)
+    monkeypatch.setattr(progress, "INTERVAL", 0.0)
+    term = Terminal()
+    progress.to_terminal(term)
+    progress.step(1, 2, "robot.urdf.xacro")
+    with progress.after(2):
+        progress.step(0, 1, "lib.xacro")
+    progress.step(0, 1, "other.urdf")
+    progress.close()
+    text = term.getvalue()
+    assert "2/3 checked; lib.xacro" in text and "0/1 checked; other.urdf" in text

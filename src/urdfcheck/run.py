@@ -194,7 +194,8 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
                    like.settings if like is not None else None)
         t.probe = True
         extra.append(t)
-    more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    with progress.after(len(result.targets)):
+        more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
     merged = Result(_dedupe(result.raw() + more.raw()), result.targets + more.targets,
                     {**result.models, **more.models}, result.by_target + more.by_target)
     merged.read = set(result.read) | set(more.read)

@@ -57,9 +57,28 @@ def to_terminal(stream) -> None:
     _LINE = _Line(stream) if tty else None
 
 
+_BEFORE = 0  # targets of an earlier pass of the same run, counted in front of this pass's
+
+
 def step(done: int, total: int, label: str) -> None:
     if _LINE is not None:
-        _LINE.step(done, total, label)
+        _LINE.step(_BEFORE + done, _BEFORE + total, label)
+
+
+class after:
+    """A later pass of the same run (the libraries no model included) counts on from the `done` targets of the
+    earlier one instead of starting again at 0."""
+
+    def __init__(self, done: int):
+        self.done = done
+
+    def __enter__(self):
+        global _BEFORE
+        self.saved, _BEFORE = _BEFORE, self.done
+
+    def __exit__(self, *exc):
+        global _BEFORE
+        _BEFORE = self.saved
 
 
 def close() -> None:
