@@ -58,3 +58,49 @@ def test_yaml_imported_first_is_left_alone():
     code = ("import re, yaml\nfrom urdfcheck.core.yamlimport import yaml as ours\n"
             "assert ours is yaml and isinstance(yaml.reader.Reader.NON_PRINTABLE, re.Pattern)\nprint('ok')")
     assert _run(code).strip() == "ok"
+
+
+def test_the_xacro_workers_preload_imports_pyyaml_through_ours():
+    """xacro.substitution_args imports PyYAML: the worker's preload must reach it through our import first, or the
+    patterns compile at import in the one process that always imports PyYAML (the xacro worker: ~10 ms)."""
+    code = r"""
+import importlib
+from urdfcheck.load.xacro import SPARE_PRELOAD
+from urdfcheck.load.xacro import expand
+for name in SPARE_PRELOAD:
+    importlib.import_module(name)
+import yaml
+from urdfcheck.core import lazyre
+assert isinstance(yaml.reader.Reader.NON_PRINTABLE, lazyre.Pattern), "stock PyYAML import in the worker"
+print("ok")
+"""
+    assert _run(code).strip() == "ok"
+    preload = r"""
+from urdfcheck.load.xacro import expand
+expand.preload()
+import yaml
+from urdfcheck.core import lazyre
+assert isinstance(yaml.reader.Reader.NON_PRINTABLE, lazyre.Pattern)
+print("ok")
+"""
+    assert _run(preload).strip() == "ok"
+
+
+def test_no_module_imports_pyyaml_around_ours():
+    """`from yaml.x import y` loads the `yaml` package first, stock: every import of PyYAML goes through ours."""
+    import ast
+    from pathlib import Path
+
+    import urdfcheck
+
+    src = Path(urdfcheck.__file__).parent
+    direct = []
+    for path in sorted(src.rglob("*.py")):
+        if path.name == "yamlimport.py":
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = [a.name for a in node.names] if isinstance(node, ast.Import) else \
+                [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else []
+            if any(n == "yaml" or n.startswith("yaml.") for n in names):
+                direct.append(f"{path.relative_to(src)}:{node.lineno}")
+    assert direct == []

@@ -19,8 +19,6 @@ from __future__ import annotations
 
 import os
 
-from yaml.constructor import SafeConstructor
-
 from urdfcheck.consumers.common import ConsumerError
 from urdfcheck.consumers.yamldoc import YamlDoc
 from urdfcheck.core import lazyre
@@ -60,7 +58,7 @@ class _Builder:
         self.value_locs: dict = {}
         self.key_locs: dict = {}
         self.notes: list = []
-        self._ctor = SafeConstructor()
+        self._ctor = yaml.constructor.SafeConstructor()
         self._stack: set[int] = set()
 
     def _tick(self, node) -> None:

@@ -104,10 +104,12 @@ def preload() -> None:
     again (a package with argument variants forks once per variant), and PyYAML, which xacro imports,
     is already there for the contract readers. Importing runs no user input.
     """
-    import xacro  # noqa: F401
-    from xacro import substitution_args  # noqa: F401
+    import importlib
 
-    from urdfcheck.load.xacro import safeeval, yamlguard  # noqa: F401
+    from urdfcheck.load.xacro import SPARE_PRELOAD
+
+    for name in SPARE_PRELOAD:  # the spare's list, in its order (PyYAML through our import before xacro)
+        importlib.import_module(name)
 
 
 def expand_with(path: str, options: dict) -> dict:
