@@ -14,6 +14,8 @@ Goals from issue 21 (cold runs: --no-cache):
   (d) 10,000 links vs 1,000 links (linear growth)                            <= 12x
   (f) the lint cache: a hit on the unchanged AGV xacro vs `python -c pass`    <= 2x
   (f') 20 edit-and-lint runs of the AGV xacro (each a miss) vs the xacro CLI per run  <= 1.5x
+  (f'') 20 runs that each follow an edit of the AGV's controller file: a miss that reuses the expansions
+      (information only)
 """
 from __future__ import annotations
 
@@ -132,6 +134,14 @@ def main() -> int:
 
         paired_line("(f') 20 edit-and-lint runs vs xacro CLI each",
                     paired(cached, xacro_cli(model, pkg), 20, env=env, before_a=edit), 1.5)
+        params = pkg / "config" / "agv_controllers.yaml"
+        params_text = params.read_text()
+
+        def edit_params():  # a controller tuned between two commits: the model's expansions are reused
+            params.write_text(params_text + f"# edit {next(edits)}\n")
+
+        paired_line("(f'') 20 parameter-edit-and-lint runs vs xacro CLI",
+                    paired(cached, xacro_cli(model, pkg), 20, env=env, before_a=edit_params), None)
     return 0
 
 

@@ -5,7 +5,8 @@ code, under a key made of everything the command line and the process decide (ur
 interpreter, the working directory, the arguments, the environment, whether stdout is a terminal), together with
 what the run looked at (core/observe: each file it read by content hash, each folder it listed, each path it
 probed, the installed modules by size and mtime). A later run with the same key replays the entry only when
-every one of those still looks the same; otherwise it runs as if there were no cache and stores anew.
+every one of those still looks the same; otherwise it runs and stores anew, but takes each stored xacro expansion
+whose own reads are all unchanged instead of expanding again (`_offer`, load/reuse.py).
 
 Where: `--cache-dir DIR`, else $URDFCHECK_CACHE_DIR, else the user's cache folder (as platformdirs names it:
 $XDG_CACHE_HOME/urdfcheck or ~/.cache/urdfcheck on Linux). A config file in the checked tree can only turn the
@@ -25,11 +26,12 @@ import sys
 
 from urdfcheck.cli.commands import COMMANDS
 
-SCHEMA = 1
+SCHEMA = 2
 MAX_BYTES = 64 * 1024 * 1024
 MAX_ENTRIES = 2000
 MAX_ENTRY = 16 * 1024 * 1024
-_FIELDS = frozenset(("schema", "key", "code", "stdout", "stderr", "observed", "sum"))
+MAX_EXPANSIONS = 4 * 1024 * 1024  # expanded text kept with an entry: larger robots expand again on a miss
+_FIELDS = frozenset(("schema", "key", "code", "stdout", "stderr", "observed", "expansions", "made", "sum"))
 _VOLATILE = frozenset(("PWD", "OLDPWD", "SHLVL", "_", "URDFCHECK_CACHE_TRACE"))
 # lint options that write files or print something else than the report: such a run is not stored
 # --bag: recordings are read by rosbags and sqlite, whose reads the observer does not see (bag/check.py taints too)
@@ -165,6 +167,7 @@ def replay(spec: Spec) -> int | None:
             got = now[kind, p] = fingerprint(kind, p, digest)
         return got != fp
 
+    newest = True
     for path in _versions(spec)[:MAX_VERSIONS]:
         entry = _load(path, spec.key)
         if entry is None:
@@ -172,7 +175,10 @@ def replay(spec: Spec) -> int | None:
         # the files read first, then listings and probes, installed modules last: an edit changes the first
         changed = next((item[1] for item in sorted(entry["observed"], key=_edited_first) if differs(item)), None)
         if changed is not None:
-            why = f"miss ({changed} changed)"
+            if why == "miss":
+                why = f"miss ({changed} changed)"
+            _offer(entry, differs, newest)
+            newest = False
             continue
         try:
             os.utime(path)  # least recently used goes first when the folder is pruned
@@ -182,8 +188,39 @@ def replay(spec: Spec) -> int | None:
         sys.stderr.write(entry["stderr"])
         _say(spec, "hit")
         return entry["code"]
+    from urdfcheck.load import reuse
+
+    if reuse.offered():
+        why += f"; {reuse.offered()} expansion(s) reused" + (", no xacro worker" if reuse.all_expected() else "")
     _say(spec, why)
     return None
+
+
+def _offer(entry: dict, differs, newest: bool) -> None:
+    """A miss: each stored expansion whose own files are all unchanged goes to the loader (`load.reuse`), if no
+    installed module the run used has changed (xacro, PyYAML: an expansion lists only the files it read). When
+    every expansion of the newest entry goes, the run will most likely need no xacro worker at all."""
+    from urdfcheck.load import reuse
+
+    expansions = entry["expansions"]
+    if not expansions:
+        return
+    modules = [item for item in entry["observed"] if item[0] == "m"]
+    if any(differs(item) for item in modules):
+        return
+    usable = 0
+    for k, stored, observed in expansions:
+        if any(differs(item) for item in sorted(observed, key=_edited_first)):
+            continue
+        res = reuse.from_json(stored)
+        if res is None:
+            continue
+        # what the expansion read and the modules it ran, as a worker reports them: the next entry keeps them
+        res["observed"] = [(kind, p) for kind, p, _ in observed + modules]
+        reuse.offer(k, res)
+        usable += 1
+    if newest and usable == entry["made"]:  # every expansion of that run was kept, and is offered
+        reuse.expect_all()
 
 
 _EDITED_FIRST = {"r": 0, "l": 1, "p": 2, "q": 2, "m": 3}
@@ -238,17 +275,27 @@ def _valid(entry, key: str) -> bool:
         return False
     from urdfcheck.core.observe import KINDS
 
-    for item in entry["observed"]:
-        if not (isinstance(item, list) and len(item) == 3 and all(isinstance(x, str) for x in item)
-                and item[0] in KINDS and os.path.isabs(item[1])):
+    if not all(_observed_item(item, KINDS) for item in entry["observed"]):
+        return False
+    if not isinstance(entry["expansions"], list) or type(entry["made"]) is not int:
+        return False
+    for item in entry["expansions"]:
+        if not (isinstance(item, list) and len(item) == 3 and isinstance(item[0], str) and isinstance(item[1], dict)
+                and isinstance(item[2], list) and all(_observed_item(o, KINDS) for o in item[2])):
             return False
     return entry["sum"] == _checksum(entry)
+
+
+def _observed_item(item, kinds) -> bool:
+    return isinstance(item, list) and len(item) == 3 and all(isinstance(x, str) for x in item) \
+        and item[0] in kinds and os.path.isabs(item[1])
 
 
 def _checksum(entry: dict) -> str:
     import json
 
-    body = [entry["key"], entry["code"], entry["stdout"], entry["stderr"], entry["observed"]]
+    body = [entry["key"], entry["code"], entry["stdout"], entry["stderr"], entry["observed"], entry["expansions"],
+            entry["made"]]
     return digest(json.dumps(body, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
 
 
@@ -277,10 +324,12 @@ def record(spec: Spec):
     import site
 
     from urdfcheck.core import observe
+    from urdfcheck.load import reuse
 
     pkg = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     roots = [pkg] + [p for p in (getattr(site, "USER_SITE", None),) if p]
     observe.start(roots)
+    reuse.record()
     out, err = _Tee(sys.stdout), _Tee(sys.stderr)
     sys.stdout, sys.stderr = out, err
 
@@ -300,6 +349,7 @@ def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
     import json
 
     from urdfcheck.core import observe
+    from urdfcheck.load import reuse
 
     if code not in (0, 1):
         return "not stored (exit code)"
@@ -308,15 +358,28 @@ def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
     if len(stdout) + len(stderr) > MAX_ENTRY // 2:
         return "not stored (too large)"
     folder = os.path.join(spec.folder, "")
-    observed = []
-    for kind, path in observe.take():
-        if path.startswith(folder):
-            continue
-        observed.append([kind, path, observe.fingerprint(kind, path, digest)])
+    fps: dict = {}
+
+    def seen(items) -> list:
+        out = []
+        for kind, path in items:
+            if path.startswith(folder):
+                continue
+            fp = fps.get((kind, path))
+            if fp is None:
+                fp = fps[kind, path] = observe.fingerprint(kind, path, digest)
+            out.append([kind, path, fp])
+        return out
+
+    observed = seen(observe.take())
     entry = {"schema": SCHEMA, "key": spec.key, "code": code, "stdout": stdout, "stderr": stderr,
-             "observed": observed}
+             "observed": observed, "expansions": _expansions(seen), "made": reuse.made_count()}
     entry["sum"] = _checksum(entry)
     data = json.dumps(entry, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape")
+    if len(data) > MAX_ENTRY and entry["expansions"]:  # the report is what must be kept
+        entry["expansions"] = []
+        entry["sum"] = _checksum(entry)
+        data = json.dumps(entry, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape")
     if len(data) > MAX_ENTRY:
         return "not stored (too large)"
     os.makedirs(spec.versions, mode=0o700, exist_ok=True)
@@ -338,7 +401,25 @@ def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
     for old in _versions(spec)[MAX_VERSIONS:]:
         _unlink(old)
     prune(spec.folder)
+    if reuse.made_count():
+        return f"stored (xacro expansions: {reuse.taken_count()} reused, " \
+               f"{reuse.made_count() - reuse.taken_count()} expanded)"
     return "stored"
+
+
+def _expansions(seen) -> list:
+    """This run's expansions with what each read (`load.reuse`), up to MAX_EXPANSIONS of expanded text."""
+    from urdfcheck.load import reuse
+
+    out, size = [], 0
+    for k, res in reuse.made_list():
+        text = len(res.get("xml", ""))
+        if size + text > MAX_EXPANSIONS:
+            continue
+        size += text
+        own = [item for item in res["observed"] if item[0] != "m"]  # the entry's own list has the modules
+        out.append([k, reuse.to_json({n: v for n, v in res.items() if n != "observed"}), seen(own)])
+    return out
 
 
 def _tag(folder: str) -> None:
@@ -467,6 +548,8 @@ def fork_early(argv: list[str]) -> None:
                 return
     if not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths or ["."]):
         return
+    if _no_worker_expected():
+        return
     # the XML front end (lxml) before the fork: this process needs it anyway, and the worker inherits it instead of
     # importing it again (17 ms of CPU); the worker is ready no later, as it would import it first
     from urdfcheck.core import worker, xmlfront  # noqa: F401
@@ -475,6 +558,13 @@ def fork_early(argv: list[str]) -> None:
     _both_import()
 
     worker.keep_spare(SPARE, worker_limits(trusted, allow_env, timeout or XACRO_TIMEOUT), SPARE_PRELOAD)
+
+
+def _no_worker_expected() -> bool:
+    """The lint cache offers every expansion the newest stored run made (`_offer`): no xacro worker up front
+    (the loader starts one if an expansion is not offered after all)."""
+    reuse = sys.modules.get("urdfcheck.load.reuse")
+    return reuse is not None and reuse.all_expected()
 
 
 def _both_import() -> None:

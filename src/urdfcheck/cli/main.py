@@ -189,6 +189,9 @@ def _fork_xacro_worker(ns) -> None:
     paths = ns.paths or ["."]
     if ns.list or ns.write_baseline or not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths):
         return
+    reuse = sys.modules.get("urdfcheck.load.reuse")  # the lint cache offers every expansion (cli/cache.py)
+    if reuse is not None and reuse.all_expected():
+        return
     from urdfcheck.core import worker
     from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, XACRO_TIMEOUT, worker_limits
 

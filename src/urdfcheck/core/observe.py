@@ -26,6 +26,7 @@ _LIB: tuple[str, ...] = ()
 _STAT = os.stat
 _LSTAT = os.lstat
 _CWD = ""
+_ROOT = [0]  # the process that records (its direct children start afresh: `forked`)
 
 
 def active() -> bool:
@@ -38,6 +39,7 @@ def start(library_roots=()) -> None:
     if _SEEN is not None:
         return
     _SEEN = set()
+    _ROOT[0] = os.getpid()
     _CWD = os.getcwd()
     roots = {sys.prefix, sys.base_prefix, sys.exec_prefix, getattr(sys, "pycache_prefix", None), *library_roots}
     _LIB = tuple(sorted({os.path.join(os.path.abspath(r), "") for r in roots if r}))
@@ -59,6 +61,14 @@ def tainted() -> str:
 def take() -> list[tuple[str, str]]:
     """What was seen so far, as (kind, absolute path) pairs."""
     return sorted(_SEEN) if _SEEN is not None else []
+
+
+def forked() -> None:
+    """First thing in a forked worker. A child of the recording process starts afresh: what the run saw so far is
+    that process's to report, and the child's result then carries only its own part. A child of a worker keeps
+    what its parent saw (the xacro and PyYAML modules the spare imported, which nobody else reports)."""
+    if _SEEN is not None and os.getppid() == _ROOT[0]:
+        _SEEN.clear()
 
 
 def add(items) -> None:

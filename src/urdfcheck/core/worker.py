@@ -239,6 +239,9 @@ def _scratch_file():
 
 
 def _child(fn, lim: Limits, call, preload, prog_w, efd_w, capture, go_r, job_file, wfd) -> None:
+    observe = sys.modules.get("urdfcheck.core.observe")
+    if observe is not None:  # the lint cache: what this child reports (see `forked`)
+        observe.forked()
     if efd_w is not None:
         os.dup2(efd_w, 2)
         if capture == "output":  # a library's C-level prints (Pinocchio, yourdfpy's logging) come back too

@@ -14,7 +14,7 @@ from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
 from urdfcheck.core.suppress import Suppression
-from urdfcheck.load import budget
+from urdfcheck.load import budget, reuse
 from urdfcheck.load.packages import Resolver
 from urdfcheck.load.xacro import XACRO_MEMORY, XACRO_TIMEOUT, worker_limits
 
@@ -200,10 +200,16 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     opts = (trusted, allow_env, timeout, memory, max_elements)
     if is_xacro(p):
         out.xacro = True
+        known = reuse.key(str(p), _options(out, opts), out.resolver) if reuse.active() else None
+        stored = reuse.take(known) if known is not None else None
+        if stored is not None:  # the lint cache has this expansion, and every file it read is unchanged
+            return Pending(out, job=_Reused(stored, known))
         if batch is not None and not cut and batch.takes(opts):
-            return Pending(out, job=batch.add(out, p, opts))
-        job = _start_xacro(out, p, *opts, grace=0.0 if cut else None)
-        job.budget_cut = cut
+            job = batch.add(out, p, opts)
+        else:
+            job = _start_xacro(out, p, *opts, grace=0.0 if cut else None)
+            job.budget_cut = cut
+        job.reuse_key = known
         return Pending(out, job=job)
     too_big = _too_many_elements(data)
     if too_big is not None:
@@ -237,6 +243,21 @@ def _too_many_elements(data) -> str | None:
     return None
 
 
+class _Reused:
+    """An expansion the lint cache had (`load.reuse`), standing in for its worker job."""
+
+    budget_cut = False
+
+    def __init__(self, res: dict, known: str):
+        self.res, self.reuse_key = res, known
+
+    def result(self) -> dict:
+        return self.res
+
+    def cancel(self) -> None:
+        pass
+
+
 class Pending:
     """An expansion under way: `result()` gives the Expanded (waiting for the worker); `cancel()` drops it."""
 
@@ -249,7 +270,10 @@ class Pending:
         job, later = self._job, self._later
         self._job = self._later = None
         if job is not None:
-            _finish_xacro(self._out, job.result(), getattr(job, "budget_cut", False))
+            res = job.result()
+            if getattr(job, "reuse_key", None) is not None:
+                reuse.made(job.reuse_key, res)
+            _finish_xacro(self._out, res, getattr(job, "budget_cut", False))
         elif later is not None:
             later()
         return self._out
