@@ -48,7 +48,12 @@ def pkg(tmp_path):
 
 
 def entries(folder: Path) -> list[Path]:
-    return sorted((folder / f"v{cache.SCHEMA}").glob("*/*.json"))
+    """The stored reports (the expansions are stored beside them, in folders named x<key>: `expansions`)."""
+    return sorted(p for p in (folder / f"v{cache.SCHEMA}").glob("*/*.json") if not p.parent.name.startswith("x"))
+
+
+def expansions(folder: Path) -> list[Path]:
+    return sorted(p for p in (folder / f"v{cache.SCHEMA}").glob("x*/*.json"))
 
 
 def tree(folder: Path) -> dict:

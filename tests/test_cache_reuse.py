@@ -1,15 +1,15 @@
 """The lint cache on a miss (cli/cache.py, load/reuse.py): each stored xacro expansion whose own files are all
-unchanged is taken instead of expanding again; the report is the same as without the cache."""
+unchanged is taken instead of expanding again, whatever the command line; the report is the same as without
+the cache."""
 from __future__ import annotations
 
 import json
 import shutil
 
 import pytest
-from test_cache import AGV, cli, entries
+from test_cache import AGV, cli, entries, expansions
 
-from urdfcheck.cli import cache
-from urdfcheck.load import reuse
+from urdfcheck.load import reuse, stored
 
 
 @pytest.fixture
@@ -32,7 +32,7 @@ def test_a_parameter_edit_reuses_every_expansion_and_starts_no_worker(pkg, tmp_p
     assert cold[0] == 0 and cold[3][-1] == "urdfcheck: cache stored (xacro expansions: 0 reused, 2 expanded)"
     _edit_wheel_radius(pkg, "0.12")
     edited = cli(["lint", "."], pkg, c, raw=True, flags=("-X", "importtime"))
-    assert edited[3][0].endswith("; 2 expansion(s) reused, no xacro worker"), edited[3]
+    assert edited[3][0].endswith("; its 2 expansion(s) are stored, no xacro worker"), edited[3]
     assert edited[3][-1] == "urdfcheck: cache stored (xacro expansions: 2 reused, 0 expanded)"
     imported = [ln.rsplit("|", 1)[-1].strip() for ln in edited[2].splitlines() if ln.startswith("import time:")]
     assert "urdfcheck.run" in imported and "xacro" not in imported  # no process of the run imported xacro
@@ -60,17 +60,10 @@ def test_a_macro_edit_expands_again_only_the_models_that_include_it(tmp_path):
     arm = pkg / "urdf" / "macros" / "arm.xacro"
     arm.write_text(arm.read_text().replace("arm_link", "tool_link"))  # a.urdf.xacro now names a missing link
     edited = cli(["lint", "."], pkg, c, raw=True)
-    assert "1 expansion(s) reused" in edited[3][0] and "no xacro worker" not in edited[3][0], edited[3]
+    assert edited[3][0].endswith("; 1 of its 2 expansion(s) are stored"), edited[3]
     assert edited[3][-1] == "urdfcheck: cache stored (xacro expansions: 1 reused, 1 expanded)"
     plain = cli(["lint", "."], pkg, c, env={"URDFCHECK_NO_CACHE": "1"})
     assert edited[:3] == plain[:3] and edited[0] == 1 and "arm_link" in plain[1]
-
-
-def _rewrite(entry_path, change) -> None:
-    entry = json.loads(entry_path.read_text())
-    change(entry)
-    entry["sum"] = cache._checksum(entry)  # well-formed, so only the reuse checks can refuse it
-    entry_path.write_text(json.dumps(entry))
 
 
 def _module_changed(entry) -> None:
@@ -78,25 +71,49 @@ def _module_changed(entry) -> None:
         if item[0] == "m" and "/xacro/" in item[1]:
             item[2] = "0:0"
             return
-    raise AssertionError("no xacro module in the entry")
+    raise AssertionError("no xacro module in the stored expansion")
 
 
 def _not_a_result(entry) -> None:
-    entry["expansions"][0][1]["suppressions"] = [[7, 1, 2, ["G001"], 1]]  # names a file the result lacks
-    entry["expansions"][1][1]["xml"] = 42
+    entry["result"]["suppressions"] = [[7, 1, 2, ["G001"], 1]]  # names a file the result lacks
 
 
-@pytest.mark.parametrize("change", [_module_changed, _not_a_result], ids=["installed-xacro-changed", "malformed"])
-def test_an_expansion_is_not_reused_when(pkg, tmp_path, change):
+def _damaged(entry) -> None:
+    entry["result"]["xml"] = "<robot name='other'/>"  # the checksum no longer matches
+
+
+@pytest.mark.parametrize("change", [_module_changed, _not_a_result, _damaged],
+                         ids=["installed-xacro-changed", "malformed", "damaged"])
+def test_a_stored_expansion_is_not_taken_when(pkg, tmp_path, change):
     c = tmp_path / "cache"
     cli(["lint", "."], pkg, c)
-    (stored,) = entries(c)
-    _rewrite(stored, change)
+    stored = expansions(c)
+    assert len(stored) == 2
+    for path in stored:
+        entry = json.loads(path.read_text())
+        change(entry)
+        if change is not _damaged:  # well-formed, so only the reuse checks can refuse it
+            entry["sum"] = reuse._checksum(entry)
+        path.write_text(json.dumps(entry))
     _edit_wheel_radius(pkg, "0.12")
     edited = cli(["lint", "."], pkg, c, raw=True)
-    assert "reused" not in edited[3][0], edited[3]
+    assert "no xacro worker" not in edited[3][0], edited[3]
     assert edited[3][-1] == "urdfcheck: cache stored (xacro expansions: 0 reused, 2 expanded)"
     assert edited[:3] == cli(["lint", "."], pkg, c, env={"URDFCHECK_NO_CACHE": "1"})[:3]
+
+
+def test_another_command_line_takes_the_stored_expansions(pkg, tmp_path):
+    """pre-commit names the files a commit changed: each commit is another command line, and so another report
+    key, but the expansions are the same."""
+    c = tmp_path / "cache"
+    cli(["lint", "."], pkg, c)
+    (report,) = entries(c)
+    _edit_wheel_radius(pkg, "0.12")
+    named = cli(["lint", "config/agv_controllers.yaml"], pkg, c, raw=True)
+    assert named[3][0] == "urdfcheck: cache miss", named[3]  # a new key: no report to replay
+    assert named[3][-1].startswith("urdfcheck: cache stored (xacro expansions: 2 reused, 0 expanded)"), named[3]
+    assert named[:3] == cli(["lint", "config/agv_controllers.yaml"], pkg, c, env={"URDFCHECK_NO_CACHE": "1"})[:3]
+    assert "C011" in named[1]
 
 
 def test_a_result_reads_back_as_the_worker_returned_it():
@@ -105,10 +122,10 @@ def test_a_result_reads_back_as_the_worker_returned_it():
                                                                              ("error", "x", None)],
               "args": {"use_camera": "true", "prefix": None}, "xml_warnings": [(0, "X003", "BOM", 1)],
               "observed": [("r", "/p/a.urdf.xacro"), ("l", "/p")]}
-    back = reuse.from_json(json.loads(json.dumps(reuse.to_json(result))))
+    back = stored.from_json(json.loads(json.dumps(stored.to_json(result))))
     assert back == result
     failed = {"error": {"code": "X010", "message": "undefined macro", "marker": "0:3"}, "files": ["/p/a.urdf.xacro"],
               "suppressions": [], "warnings": [], "args": {}, "xml_warnings": [], "observed": []}
-    assert reuse.from_json(json.loads(json.dumps(reuse.to_json(failed)))) == failed
-    assert reuse.from_json({**reuse.to_json(failed), "xml": "<robot/>"}) is None  # an error has no text
-    assert reuse.from_json({**reuse.to_json(result), "code": "import os"}) is None  # no field of its own
+    assert stored.from_json(json.loads(json.dumps(stored.to_json(failed)))) == failed
+    assert stored.from_json({**stored.to_json(failed), "xml": "<robot/>"}) is None  # an error has no text
+    assert stored.from_json({**stored.to_json(result), "code": "import os"}) is None  # no field of its own

@@ -5,8 +5,9 @@ code, under a key made of everything the command line and the process decide (ur
 interpreter, the working directory, the arguments, the environment, whether stdout is a terminal), together with
 what the run looked at (core/observe: each file it read by content hash, each folder it listed, each path it
 probed, the installed modules by size and mtime). A later run with the same key replays the entry only when
-every one of those still looks the same; otherwise it runs and stores anew, but takes each stored xacro expansion
-whose own reads are all unchanged instead of expanding again (`_offer`, load/reuse.py).
+every one of those still looks the same; otherwise it runs and stores anew. Xacro expansions are stored apart,
+each with what it read: any run with the same settings takes one whose reads are all unchanged instead of
+expanding again, whatever its command line (load/reuse.py).
 
 Where: `--cache-dir DIR`, else $URDFCHECK_CACHE_DIR, else the user's cache folder (as platformdirs names it:
 $XDG_CACHE_HOME/urdfcheck or ~/.cache/urdfcheck on Linux). A config file in the checked tree can only turn the
@@ -25,12 +26,13 @@ import os
 import sys
 
 from urdfcheck.cli.commands import COMMANDS
+from urdfcheck.core import cachefile
+from urdfcheck.core.cachefile import digest
 
 SCHEMA = 2
 MAX_BYTES = 64 * 1024 * 1024
 MAX_ENTRIES = 2000
 MAX_ENTRY = 16 * 1024 * 1024
-MAX_EXPANSIONS = 4 * 1024 * 1024  # expanded text kept with an entry: larger robots expand again on a miss
 _FIELDS = frozenset(("schema", "key", "code", "stdout", "stderr", "observed", "expansions", "made", "sum"))
 _VOLATILE = frozenset(("PWD", "OLDPWD", "SHLVL", "_", "URDFCHECK_CACHE_TRACE"))
 # lint options that write files or print something else than the report: such a run is not stored
@@ -43,20 +45,13 @@ MAX_VERSIONS = 4  # entries kept per key: the states a pre-commit user goes back
 
 class Spec:
     """`folder`: the cache's folder for this schema; `key`: the settings' hash; `versions`: the folder holding
-    this key's entries, one per state of the files it read (newest used first)."""
-    __slots__ = ("folder", "key", "versions", "trace")
+    this key's entries, one per state of the files it read (newest used first); `base`: the hash of the settings
+    but the command line's own words (what a xacro expansion's key starts from: load/reuse.py)."""
+    __slots__ = ("folder", "key", "versions", "trace", "base")
 
-    def __init__(self, folder: str, key: str, trace: bool):
-        self.folder, self.key, self.trace = folder, key, trace
+    def __init__(self, folder: str, key: str, trace: bool, base: str = ""):
+        self.folder, self.key, self.trace, self.base = folder, key, trace, base
         self.versions = os.path.join(folder, key)
-
-
-def digest(data: bytes) -> str:
-    try:
-        from _blake2 import blake2b  # hashlib would load OpenSSL first: 7 ms at every start
-    except ImportError:  # pragma: no cover - an interpreter without it
-        from hashlib import blake2b
-    return blake2b(data, digest_size=16).hexdigest()
 
 
 def user_cache_dir() -> str:
@@ -109,17 +104,21 @@ def plan(argv: list[str]) -> Spec | None:
             return None
     folder = os.path.abspath(folder or env.get("URDFCHECK_CACHE_DIR") or user_cache_dir())
     folder = os.path.join(folder, f"v{SCHEMA}")
-    import json
 
     import urdfcheck
 
     pkg = os.path.dirname(os.path.abspath(urdfcheck.__file__))
-    material = [SCHEMA, urdfcheck.__version__, pkg, _code_stamp(pkg), sys.version, sys.executable,
-                os.getcwd(), argv, sorted((k, v) for k, v in env.items() if k not in _VOLATILE),
-                _isatty(sys.stdout)]
-    text = json.dumps(material, ensure_ascii=False, separators=(",", ":"))
+    base = [SCHEMA, urdfcheck.__version__, pkg, _code_stamp(pkg), sys.version, sys.executable, os.getcwd(),
+            sorted((k, v) for k, v in env.items() if k not in _VOLATILE)]
+    material = base + [argv, _isatty(sys.stdout)]
     trace = env.get("URDFCHECK_CACHE_TRACE", "") not in ("", "0")
-    return Spec(folder, digest(text.encode("utf-8", "surrogateescape")), trace)
+    return Spec(folder, _digest_json(material), trace, _digest_json(base))
+
+
+def _digest_json(value) -> str:
+    import json
+
+    return digest(json.dumps(value, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
 
 
 def _isatty(stream) -> bool:
@@ -167,60 +166,40 @@ def replay(spec: Spec) -> int | None:
             got = now[kind, p] = fingerprint(kind, p, digest)
         return got != fp
 
-    newest = True
-    for path in _versions(spec)[:MAX_VERSIONS]:
+    newest = None
+    for path in cachefile.versions(spec.versions)[:MAX_VERSIONS]:
         entry = _load(path, spec.key)
         if entry is None:
             continue
         # the files read first, then listings and probes, installed modules last: an edit changes the first
         changed = next((item[1] for item in sorted(entry["observed"], key=_edited_first) if differs(item)), None)
         if changed is not None:
-            if why == "miss":
-                why = f"miss ({changed} changed)"
-            _offer(entry, differs, newest)
-            newest = False
+            if newest is None:
+                newest, why = entry, f"miss ({changed} changed)"
             continue
-        try:
-            os.utime(path)  # least recently used goes first when the folder is pruned
-        except OSError:
-            pass
+        cachefile.touch(path)
         sys.stdout.write(entry["stdout"])
         sys.stderr.write(entry["stderr"])
         _say(spec, "hit")
         return entry["code"]
-    from urdfcheck.load import reuse
-
-    if reuse.offered():
-        why += f"; {reuse.offered()} expansion(s) reused" + (", no xacro worker" if reuse.all_expected() else "")
+    if newest is not None and newest["expansions"]:
+        why += _expect(spec, newest)
     _say(spec, why)
     return None
 
 
-def _offer(entry: dict, differs, newest: bool) -> None:
-    """A miss: each stored expansion whose own files are all unchanged goes to the loader (`load.reuse`), if no
-    installed module the run used has changed (xacro, PyYAML: an expansion lists only the files it read). When
-    every expansion of the newest entry goes, the run will most likely need no xacro worker at all."""
+def _expect(spec: Spec, entry: dict) -> str:
+    """A miss after a stored run: when the cache has every expansion that run made, each with all it read
+    unchanged (load/reuse.py), the console forks no xacro worker up front (the loader starts one if the run
+    needs another expansion after all)."""
     from urdfcheck.load import reuse
 
-    expansions = entry["expansions"]
-    if not expansions:
-        return
-    modules = [item for item in entry["observed"] if item[0] == "m"]
-    if any(differs(item) for item in modules):
-        return
-    usable = 0
-    for k, stored, observed in expansions:
-        if any(differs(item) for item in sorted(observed, key=_edited_first)):
-            continue
-        res = reuse.from_json(stored)
-        if res is None:
-            continue
-        # what the expansion read and the modules it ran, as a worker reports them: the next entry keeps them
-        res["observed"] = [(kind, p) for kind, p, _ in observed + modules]
-        reuse.offer(k, res)
-        usable += 1
-    if newest and usable == entry["made"]:  # every expansion of that run was kept, and is offered
+    reuse.configure(spec.folder, spec.base)
+    have = sum(map(reuse.available, entry["expansions"]))
+    if have == len(entry["expansions"]) == entry["made"]:
         reuse.expect_all()
+        return f"; its {have} expansion(s) are stored, no xacro worker"
+    return f"; {have} of its {entry['made']} expansion(s) are stored"
 
 
 _EDITED_FIRST = {"r": 0, "l": 1, "p": 2, "q": 2, "m": 3}
@@ -230,37 +209,8 @@ def _edited_first(item) -> int:
     return _EDITED_FIRST.get(item[0], 3)
 
 
-def _versions(spec: Spec) -> list[str]:
-    """This key's entries, most recently used first."""
-    found = []
-    try:
-        with os.scandir(spec.versions) as it:
-            for e in it:
-                if e.name.endswith(".json"):
-                    try:
-                        found.append((e.stat(follow_symlinks=False).st_mtime_ns, e.path))
-                    except OSError:
-                        continue
-    except OSError:
-        return []
-    return [p for _, p in sorted(found, reverse=True)]
-
-
 def _load(path: str, key: str) -> dict | None:
-    import json
-
-    from urdfcheck.core.safeio import read_file
-
-    try:
-        data = read_file(path, MAX_ENTRY)
-    except OSError:
-        return None
-    if len(data) > MAX_ENTRY:
-        return None
-    try:
-        entry = json.loads(data.decode("utf-8"))
-    except (UnicodeDecodeError, ValueError, RecursionError):
-        return None
+    entry = cachefile.read_json(path, MAX_ENTRY)
     return entry if _valid(entry, key) else None
 
 
@@ -273,30 +223,20 @@ def _valid(entry, key: str) -> bool:
     if not isinstance(entry["stdout"], str) or not isinstance(entry["stderr"], str) \
             or not isinstance(entry["observed"], list) or not isinstance(entry["sum"], str):
         return False
-    from urdfcheck.core.observe import KINDS
+    from urdfcheck.core.observe import valid_items
 
-    if not all(_observed_item(item, KINDS) for item in entry["observed"]):
+    if not valid_items(entry["observed"]):
         return False
-    if not isinstance(entry["expansions"], list) or type(entry["made"]) is not int:
+    if not isinstance(entry["expansions"], list) or not all(isinstance(k, str) for k in entry["expansions"]) \
+            or type(entry["made"]) is not int:
         return False
-    for item in entry["expansions"]:
-        if not (isinstance(item, list) and len(item) == 3 and isinstance(item[0], str) and isinstance(item[1], dict)
-                and isinstance(item[2], list) and all(_observed_item(o, KINDS) for o in item[2])):
-            return False
     return entry["sum"] == _checksum(entry)
 
 
-def _observed_item(item, kinds) -> bool:
-    return isinstance(item, list) and len(item) == 3 and all(isinstance(x, str) for x in item) \
-        and item[0] in kinds and os.path.isabs(item[1])
-
-
 def _checksum(entry: dict) -> str:
-    import json
-
     body = [entry["key"], entry["code"], entry["stdout"], entry["stderr"], entry["observed"], entry["expansions"],
             entry["made"]]
-    return digest(json.dumps(body, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
+    return _digest_json(body)
 
 
 # --- miss ----------------------------------------------------------------------------------------------------------
@@ -329,6 +269,7 @@ def record(spec: Spec):
     pkg = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     roots = [pkg] + [p for p in (getattr(site, "USER_SITE", None),) if p]
     observe.start(roots)
+    reuse.configure(spec.folder, spec.base)
     reuse.record()
     out, err = _Tee(sys.stdout), _Tee(sys.stderr)
     sys.stdout, sys.stderr = out, err
@@ -357,69 +298,24 @@ def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
         return f"not stored ({observe.tainted()})"
     if len(stdout) + len(stderr) > MAX_ENTRY // 2:
         return "not stored (too large)"
-    folder = os.path.join(spec.folder, "")
-    fps: dict = {}
-
-    def seen(items) -> list:
-        out = []
-        for kind, path in items:
-            if path.startswith(folder):
-                continue
-            fp = fps.get((kind, path))
-            if fp is None:
-                fp = fps[kind, path] = observe.fingerprint(kind, path, digest)
-            out.append([kind, path, fp])
-        return out
-
+    seen = reuse.seen  # fingerprints shared with the expansions stored below (one look at each path)
     observed = seen(observe.take())
     entry = {"schema": SCHEMA, "key": spec.key, "code": code, "stdout": stdout, "stderr": stderr,
-             "observed": observed, "expansions": _expansions(seen), "made": reuse.made_count()}
+             "observed": observed, "expansions": reuse.store(), "made": reuse.made_count()}
     entry["sum"] = _checksum(entry)
     data = json.dumps(entry, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape")
-    if len(data) > MAX_ENTRY and entry["expansions"]:  # the report is what must be kept
-        entry["expansions"] = []
-        entry["sum"] = _checksum(entry)
-        data = json.dumps(entry, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape")
     if len(data) > MAX_ENTRY:
         return "not stored (too large)"
-    os.makedirs(spec.versions, mode=0o700, exist_ok=True)
     _tag(os.path.dirname(spec.folder))
-    version = digest(json.dumps(observed, separators=(",", ":")).encode("utf-8", "surrogateescape"))
-    final = os.path.join(spec.versions, f"{version}.json")
-    tmp = os.path.join(spec.versions, f".{version}.{os.getpid()}.{id(entry):x}.tmp")
-    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0), 0o600)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, final)  # atomic: a parallel reader sees the old entry or the new one
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
-    for old in _versions(spec)[MAX_VERSIONS:]:
-        _unlink(old)
+    version = _digest_json(observed)
+    cachefile.write(spec.versions, f"{version}.json", data)
+    for old in cachefile.versions(spec.versions)[MAX_VERSIONS:]:
+        cachefile.unlink(old)
     prune(spec.folder)
     if reuse.made_count():
         return f"stored (xacro expansions: {reuse.taken_count()} reused, " \
                f"{reuse.made_count() - reuse.taken_count()} expanded)"
     return "stored"
-
-
-def _expansions(seen) -> list:
-    """This run's expansions with what each read (`load.reuse`), up to MAX_EXPANSIONS of expanded text."""
-    from urdfcheck.load import reuse
-
-    out, size = [], 0
-    for k, res in reuse.made_list():
-        text = len(res.get("xml", ""))
-        if size + text > MAX_EXPANSIONS:
-            continue
-        size += text
-        own = [item for item in res["observed"] if item[0] != "m"]  # the entry's own list has the modules
-        out.append([k, reuse.to_json({n: v for n, v in res.items() if n != "observed"}), seen(own)])
-    return out
 
 
 def _tag(folder: str) -> None:
@@ -454,7 +350,7 @@ def prune(folder: str, max_bytes: int = MAX_BYTES, max_entries: int = MAX_ENTRIE
                     except OSError:
                         continue
                     if e.name.endswith(".tmp") and st.st_mtime < stale:
-                        removed += _unlink(e.path)
+                        removed += cachefile.unlink(e.path)
                     elif e.name.endswith(".json"):
                         entries.append((st.st_mtime_ns, st.st_size, e.path))
                         total += st.st_size
@@ -466,7 +362,7 @@ def prune(folder: str, max_bytes: int = MAX_BYTES, max_entries: int = MAX_ENTRIE
         for _, size, path in entries:
             if total <= keep_bytes and left <= keep_entries:
                 break
-            if _unlink(path):
+            if cachefile.unlink(path):
                 total -= size
                 left -= 1
                 removed += 1
@@ -476,14 +372,6 @@ def prune(folder: str, max_bytes: int = MAX_BYTES, max_entries: int = MAX_ENTRIE
         except OSError:
             pass
     return removed
-
-
-def _unlink(path: str) -> bool:
-    try:
-        os.unlink(path)
-        return True
-    except OSError:
-        return False
 
 
 # --- the console entry ----------------------------------------------------------------------------------------------

@@ -63,6 +63,17 @@ def take() -> list[tuple[str, str]]:
     return sorted(_SEEN) if _SEEN is not None else []
 
 
+def installed_modules() -> list[tuple[str, str]]:
+    """("m", file) for each loaded module of an installed package (site- or dist-packages). A worker that
+    inherited its imports never opened those files, and its result depends on them (xacro, PyYAML, lxml)."""
+    out = set()
+    for mod in list(sys.modules.values()):
+        f = getattr(mod, "__file__", None)
+        if isinstance(f, str) and ("site-packages" in f or "dist-packages" in f):
+            out.add(("m", os.path.abspath(f)))
+    return sorted(out)
+
+
 def forked() -> None:
     """First thing in a forked worker. A child of the recording process starts afresh: what the run saw so far is
     that process's to report, and the child's result then carries only its own part. A child of a worker keeps
@@ -84,6 +95,13 @@ def add(items) -> None:
 
 
 KINDS = frozenset("rlpqm")
+
+
+def valid_items(items) -> bool:
+    """Whether `items` is a stored record: a list of [kind, absolute path, fingerprint]."""
+    return isinstance(items, list) and all(
+        isinstance(item, list) and len(item) == 3 and all(isinstance(x, str) for x in item) and item[0] in KINDS
+        and os.path.isabs(item[1]) for item in items)
 _SYSTEM = ("/proc/", "/sys/", "/dev/")  # the kernel's files (a worker reads its own /proc/self/status)
 
 

@@ -27,6 +27,13 @@ class remembered:
         _LISTED.pop()
 
 
+def forget() -> None:
+    """Drop the listings remembered so far (a forked worker whose reads are recorded lists afresh)."""
+    for memo in _LISTED:
+        memo.clear()
+        memo[""] = 0
+
+
 def _entries(here: str) -> list[os.DirEntry]:
     memo = _LISTED[-1] if _LISTED else None
     if memo is not None:

@@ -150,6 +150,13 @@ def _closer(a: Path, b: Path, near: Path | None) -> bool:
 _RESOLVED: dict[str, Path] = {}
 
 
+def forget() -> None:
+    """Drop the remembered workspace scans and resolved folders (a forked worker whose reads are recorded
+    looks afresh)."""
+    _WORKSPACES.clear()
+    _RESOLVED.clear()
+
+
 def _resolved(path) -> Path:
     """Path(path).resolve(), remembered: a workspace map of a hundred packages is given to every model."""
     key = os.fspath(path)

@@ -1,165 +1,202 @@
-"""Xacro expansions a lint run may take from the lint cache instead of expanding again, and the ones it made.
+"""Xacro expansions a lint run takes from the lint cache instead of expanding again, and the ones it stores.
 
-The lint cache (cli/cache.py) stores a run's report with the expansions the run made, each with what it read. On
-a miss (a file the run read has changed), each stored expansion whose own files are all unchanged is offered
-here; the loader takes an offered one for the same entry and options instead of starting the worker. So a pull
-request that edits a controller file re-lints with no xacro worker at all, and one that edits a macro file
-expands again only the models that include it. Only console runs with the cache on offer or record anything.
+Each expansion the console's run makes is stored in the user's cache folder (cli/cache.py decides where) with
+what it read, under a key of the entry path, its options, the package map's state, and the settings the run's
+own key has but its command line (tool version and code, interpreter, working directory, environment). A later
+run, whatever files it was asked about, takes a stored expansion with the same key when every file, folder and
+installed module it read still looks the same. So a commit that edits a controller file re-lints the robot with
+no xacro worker at all, and one that edits a macro file expands again only the models that include it. Only a
+console run with the cache on (`configure`, `record`) looks here; the API and the tests' in-process runs never do.
 """
 from __future__ import annotations
 
 import os
 
-_OFFERED: dict[str, dict] = {}
-_MADE: dict[str, dict] = {}
-_RECORDING = [False]
-_EXPECT_ALL = [False]
-_COUNT = [0, 0]  # expansions finished, of them taken from the cache
-_ROW = {"suppressions": 5, "warnings": 3, "xml_warnings": 4, "observed": 2}
+MAX_VERSIONS = 4  # stored results per key (the states a pre-commit user goes back and forth between)
+MAX_ENTRY = 16 * 1024 * 1024  # bytes of one stored expansion: a larger one is expanded again each time
+_STATE = {"folder": "", "base": "", "recording": False, "expect_all": False}
+_FOUND: dict[str, dict | None] = {}  # key -> the usable stored result (None: none), looked up once per run
+_MADE: dict[str, dict] = {}  # key -> result, this run's expansions
+_TAKEN: set[str] = set()
+_COUNT = [0]  # expansions this run finished, kept or not
+_NOW: dict = {}  # (kind, path) -> fingerprint, once per run and path
+
+
+def configure(folder: str, base: str) -> None:
+    """Where the cache lives (its schema's folder) and the hash of the run's settings but its command line."""
+    _STATE["folder"], _STATE["base"] = folder, base
+
+
+def record() -> None:
+    """From now on, remember this run's expansions for `store`."""
+    _STATE["recording"] = True
+
+
+def active() -> bool:
+    return bool(_STATE["base"])
 
 
 def key(path: str, options: dict, resolver) -> str:
     """What an expansion's result depends on besides the files it reads (those are checked one by one): the
-    entry, the options, and the package map's own settings (its answers come from probes the worker records)."""
-    try:
-        from _blake2 import blake2b  # hashlib would load OpenSSL first (cli/cache.py)
-    except ImportError:  # pragma: no cover - an interpreter without it
-        from hashlib import blake2b
-
-    where = None
+    entry, the options, the package map as the worker receives it (what the console found out already, such as
+    the workspace folder, it does not look at again), and the run's settings."""
+    state = None
     if resolver is not None:
-        where = [sorted((k, str(v)) for k, v in resolver.explicit.items()), str(resolver.named_workspace),
-                 str(resolver.near)]
+        state = sorted((k, repr(v)) for k, v in vars(resolver).items() if k != "used")
     shown = sorted((k, repr(sorted(v.items()) if isinstance(v, dict) else v)) for k, v in options.items()
                    if k != "resolver")
-    text = repr([os.path.abspath(path), shown, where])
-    return blake2b(text.encode("utf-8", "surrogateescape"), digest_size=16).hexdigest()
+    from urdfcheck.core.cachefile import digest
 
-
-def record() -> None:
-    """From now on, remember this run's expansions (the console's cache, before the run)."""
-    _RECORDING[0] = True
-
-
-def active() -> bool:
-    return _RECORDING[0] or bool(_OFFERED)
-
-
-def expect_all() -> None:
-    """The newest stored run's expansions are all offered: the console forks no xacro worker up front."""
-    _EXPECT_ALL[0] = True
-
-
-def all_expected() -> bool:
-    return _EXPECT_ALL[0]
-
-
-def offer(k: str, result: dict) -> None:
-    _OFFERED.setdefault(k, result)
-
-
-def offered() -> int:
-    return len(_OFFERED)
+    text = repr([_STATE["base"], os.path.abspath(path), shown, state])
+    return digest(text.encode("utf-8", "surrogateescape"))
 
 
 def take(k: str) -> dict | None:
-    got = _OFFERED.get(k)
+    """The stored result for key `k` whose reads are all unchanged, or None."""
+    got = _lookup(k)
     if got is not None:
-        _COUNT[1] += 1
+        _TAKEN.add(k)
     return got
 
 
+def available(k: str) -> bool:
+    return _lookup(k) is not None
+
+
+def expect_all() -> None:
+    """Every expansion of the last stored run is available: the console forks no xacro worker up front."""
+    _STATE["expect_all"] = True
+
+
+def all_expected() -> bool:
+    return _STATE["expect_all"]
+
+
 def made(k: str, result) -> None:
-    """A finished expansion: kept for the cache when it is a result (a worker that failed is not: what it would
-    have read is unknown), counted in any case."""
-    if not _RECORDING[0]:
+    """A finished expansion (taken or made): kept for `store` when it is a result with what it read (a worker
+    that failed is not: what it would have read is unknown), counted in any case."""
+    if not _STATE["recording"]:
         return
     _COUNT[0] += 1
     if isinstance(result, dict) and isinstance(result.get("observed"), list):
         _MADE.setdefault(k, result)
 
 
-def made_list() -> list[tuple[str, dict]]:
-    return sorted(_MADE.items())
-
-
 def made_count() -> int:
-    """How many expansions the run finished, kept or not."""
     return _COUNT[0]
 
 
 def taken_count() -> int:
-    """How many of them the cache gave."""
-    return _COUNT[1]
+    return len(_TAKEN)
 
 
-def to_json(result: dict) -> dict:
-    """The result as JSON values (tuples become lists; `from_json` restores them)."""
-    out = dict(result)
-    for name in _ROW:
-        if name in out:
-            out[name] = [list(row) for row in out[name]]
-    out["suppressions"] = [row[:3] + [list(row[3])] + row[4:] for row in out.get("suppressions", [])]
+def seen(items) -> list:
+    """[kind, path, fingerprint] for each (kind, path), leaving out the cache's own files."""
+    from urdfcheck.core.cachefile import digest
+    from urdfcheck.core.observe import fingerprint
+
+    folder = os.path.join(_STATE["folder"], "")
+    out = []
+    for kind, path in items:
+        if folder != os.sep and path.startswith(folder):
+            continue
+        fp = _NOW.get((kind, path))
+        if fp is None:
+            fp = _NOW[kind, path] = fingerprint(kind, path, digest)
+        out.append([kind, path, fp])
     return out
 
 
-def from_json(data) -> dict | None:
-    """A stored result, checked field by field; None when anything is not what an expansion returns."""
-    if not isinstance(data, dict) or not _error_or_text(data):
+def store() -> list[str]:
+    """Store this run's expansions that did not come from the cache; returns the keys of all it finished."""
+    import json
+
+    from urdfcheck.core import cachefile
+    from urdfcheck.load import stored
+
+    for k, res in sorted(_MADE.items()):
+        if k in _TAKEN:
+            continue
+        observed = seen(res["observed"])
+        result = stored.to_json({n: v for n, v in res.items() if n != "observed"})
+        entry = {"key": k, "result": result, "observed": observed}
+        entry["sum"] = _checksum(entry)
+        data = json.dumps(entry, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape")
+        if len(data) > MAX_ENTRY:
+            continue
+        folder = _folder(k)
+        cachefile.write(folder, f"{_checksum({'observed': observed})}.json", data)
+        for old in cachefile.versions(folder)[MAX_VERSIONS:]:
+            cachefile.unlink(old)
+    return sorted(_MADE)
+
+
+def _folder(k: str) -> str:
+    return os.path.join(_STATE["folder"], "x" + k)  # beside the reports' keys: pruned with them
+
+
+def _lookup(k: str) -> dict | None:
+    if k in _FOUND:
+        return _FOUND[k]
+    _FOUND[k] = None
+    if not _STATE["folder"]:
         return None
-    if set(data) - {"xml", "error", "files", "suppressions", "warnings", "args", "xml_warnings", "observed",
-                    "deps"}:
-        return None
-    out = {n: data[n] for n in ("xml", "error") if n in data}
-    files, deps, args = data.get("files", []), data.get("deps", []), data.get("args", {})
-    if not _strs(files) or not _strs(deps) or not isinstance(args, dict) or not _strs(list(args)) \
-            or not all(v is None or isinstance(v, str) for v in args.values()):
-        return None
-    out.update(files=list(files), args=dict(args))
-    if "deps" in data:
-        out["deps"] = list(deps)
-    for name, width in _ROW.items():
-        rows = data.get(name, [])
-        if not isinstance(rows, list) or not all(isinstance(r, list) and len(r) == width for r in rows):
-            return None
-        out[name] = [tuple(r) for r in rows]
-    for idx, first, last, codes, cline in out["suppressions"]:
-        if not (_ints(idx, first, last, cline) and _strs(codes) and 0 <= idx < len(files)):
-            return None
-    out["suppressions"] = [r[:3] + (tuple(r[3]),) + r[4:] for r in out["suppressions"]]
-    for idx, code, message, line in out["xml_warnings"]:
-        if not (_ints(idx) and 0 <= idx < len(files) and isinstance(code, str) and isinstance(message, str)
-                and (line is None or _ints(line))):
-            return None
-    for kind, text, marker in out["warnings"]:
-        if not (isinstance(kind, str) and isinstance(text, str) and (marker is None or isinstance(marker, str))):
-            return None
-    if not all(_strs(r) for r in out["observed"]):
-        return None
-    return out
+    from urdfcheck.core import cachefile
+    from urdfcheck.load import stored
+
+    for path in cachefile.versions(_folder(k))[:MAX_VERSIONS]:
+        entry = cachefile.read_json(path, MAX_ENTRY)
+        if not _valid(entry, k) or _changed(entry["observed"]):
+            continue
+        res = stored.from_json(entry["result"])
+        if res is None:
+            continue
+        res["observed"] = [(kind, p) for kind, p, _ in entry["observed"]]  # the run's own record keeps them
+        cachefile.touch(path)
+        _FOUND[k] = res
+        break
+    return _FOUND[k]
 
 
-def _error_or_text(data: dict) -> bool:
-    """A result has its expanded text, or the error that stopped it ({code, message, marker})."""
-    err = data.get("error")
-    if err is None:
-        return isinstance(data.get("xml"), str)
-    return "xml" not in data and isinstance(err, dict) and set(err) == {"code", "message", "marker"} \
-        and isinstance(err["code"], str) and isinstance(err["message"], str) \
-        and (err["marker"] is None or isinstance(err["marker"], str))
+_EDITED_FIRST = {"r": 0, "l": 1, "p": 2, "q": 2, "m": 3}
 
 
-def _strs(values) -> bool:
-    return isinstance(values, (list, tuple)) and all(isinstance(v, str) for v in values)
+def _changed(observed: list) -> bool:
+    """Whether anything the expansion read looks different now: the files it read first (an edit changes one)."""
+    from urdfcheck.core.cachefile import digest
+    from urdfcheck.core.observe import fingerprint
+
+    for kind, path, fp in sorted(observed, key=lambda item: _EDITED_FIRST.get(item[0], 3)):
+        now = _NOW.get((kind, path))
+        if now is None:
+            now = _NOW[kind, path] = fingerprint(kind, path, digest)
+        if now != fp:
+            return True
+    return False
 
 
-def _ints(*values) -> bool:
-    return all(type(v) is int for v in values)
+def _valid(entry, k: str) -> bool:
+    from urdfcheck.core.observe import valid_items
+
+    return isinstance(entry, dict) and set(entry) == {"key", "result", "observed", "sum"} and entry["key"] == k \
+        and isinstance(entry["result"], dict) and valid_items(entry["observed"]) \
+        and entry["sum"] == _checksum(entry)
+
+
+def _checksum(entry: dict) -> str:
+    import json
+
+    from urdfcheck.core.cachefile import digest
+
+    body = [entry.get("key"), entry.get("result"), entry["observed"]]
+    return digest(json.dumps(body, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
 
 
 def reset() -> None:
-    _OFFERED.clear()
+    """Forget the run's state (a test, or a long-lived process that runs the console twice)."""
+    _STATE.update(folder="", base="", recording=False, expect_all=False)
+    _FOUND.clear()
     _MADE.clear()
-    _RECORDING[0] = False
-    _EXPECT_ALL[0] = False
-    _COUNT[:] = [0, 0]
+    _TAKEN.clear()
+    _COUNT[0] = 0
+    _NOW.clear()

@@ -158,6 +158,16 @@ def _expand(path: str, opts: Options) -> dict:
     out: dict = {"files": state.files, "suppressions": state.suppressions, "warnings": state.warnings,
                  "args": state.declared_args, "xml_warnings": state.xml_warnings}
 
+    observe = sys.modules.get("urdfcheck.core.observe")
+    if observe is not None and observe.active():
+        # the lint cache stores what this expansion read (load/reuse.py): the walks and package folders the
+        # console remembered before forking would answer without a read, so they are looked at again here
+        from urdfcheck.core import walk
+        from urdfcheck.load import packages
+
+        walk.forget()
+        packages.forget()
+
     # --- fresh module state: nothing survives from an earlier run -------------------------
     xacro.all_includes = []
     xacro.substitution_args_context = {}
@@ -418,8 +428,9 @@ def _expand(path: str, opts: Options) -> dict:
         out["error"] = _describe(e, xacro)
         return out
     finally:
-        if "urdfcheck.core.observe" in sys.modules:  # what this expansion read, for the lint cache (cli/cache.py)
-            out["observed"] = sys.modules["urdfcheck.core.observe"].take()
+        seen = sys.modules.get("urdfcheck.core.observe")
+        if seen is not None and seen.active():  # what this expansion read and ran, for the lint cache
+            out["observed"] = sorted(set(seen.take()) | set(seen.installed_modules()))
     out["xml"] = text
     out["deps"] = sorted(set(xacro.all_includes))
     return out
