@@ -331,3 +331,22 @@ def test_a_miss_looks_at_each_path_once_and_at_the_read_files_first(tmp_path, mo
     monkeypatch.setattr(observe, "fingerprint", counting)
     assert cache.replay(spec) is None
     assert asked == [("r", str(model))]
+
+
+def test_a_link_that_points_elsewhere_looks_different(tmp_path):
+    """What a link probed with lstat points to decides whether a run may read through it (the checkout boundary):
+    a link moved to another target of the same length is a change."""
+    from urdfcheck.core import observe
+
+    (tmp_path / "in").mkdir()
+    (tmp_path / "ot").mkdir()
+    for d in ("in", "ot"):
+        (tmp_path / d / "m.xacro").write_text("<robot name='r'/>")
+    link = tmp_path / "m.xacro"
+    link.symlink_to("in/m.xacro")
+    before = observe.fingerprint("q", str(link), cache.digest)
+    link.unlink()
+    link.symlink_to("ot/m.xacro")
+    assert observe.fingerprint("q", str(link), cache.digest) != before
+    assert observe.fingerprint("r", str(link), cache.digest) == observe.fingerprint("r", str(tmp_path / "in" /
+                                                                                               "m.xacro"), cache.digest)

@@ -160,6 +160,11 @@ def fingerprint(kind: str, path: str, digest) -> str:
     if kind == "m":
         return f"{st.st_size}:{st.st_mtime_ns}"
     if kind in ("p", "q"):
+        if stat.S_ISLNK(mode):  # where a link points decides what the run may read (the checkout boundary)
+            try:
+                return "l" + os.readlink(path)
+            except OSError:
+                return "l?"
         return f"{_type(mode)}{st.st_size if stat.S_ISREG(mode) else ''}"
     if stat.S_ISDIR(mode):
         return "d" + _listing(path, digest)
