@@ -488,3 +488,21 @@ def test_hints_stop_once_the_run_has_compared_its_share(tmp_path):
     F._hints_left[0] = 0
     assert F.closest("revolut", ["revolute", "prismatic"]) == "revolute"  # a small set is never refused
     F.reset_hints()
+
+
+@pytest.mark.parametrize("name", ["x", "missing.yaml", "../urdf"])
+def test_a_load_yaml_that_fails_to_read_names_no_absolute_path(tmp_path, name):
+    """The fuzzer's find: a missing (or folder) load_yaml target said "[Errno 2] ... '/abs/path'" after our own
+    words, with the model named by an absolute path from another working directory."""
+    urdf = tmp_path / "ws" / "pkg" / "urdf"
+    urdf.mkdir(parents=True)
+    (urdf.parent / "package.xml").write_text("<package format='3'><name>pkg</name></package>")
+    model = urdf / "p.urdf.xacro"
+    model.write_text("<robot name='r' xmlns:xacro='http://www.ros.org/wiki/xacro'>"
+                     f"<link name=\"l${{xacro.load_yaml('{name}')}}\"/></robot>")
+    (tmp_path / "elsewhere").mkdir()
+    code, out, _ = run_cli(["lint", "--no-config", "--no-cache", "--format", "json", str(model)],
+                           cwd=tmp_path / "elsewhere")
+    assert code == 1
+    messages = [f["message"] for f in json.loads(out)["findings"]]
+    assert messages and not any(str(tmp_path) in m for m in messages), messages

@@ -538,8 +538,8 @@ def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
             raise Refusal("X014", f"refusing to load YAML {_shown(filename)}: it is outside the package roots")
         try:
             data = read_file(full, yamlguard.MAX_BYTES)
-        except OSError as e:
-            raise xacro.XacroException(f"{e.strerror}: {_shown(filename, quote=False)}", exc=e) from None
+        except OSError as e:  # not `exc=e`: xacro would append the OSError's text, which holds the absolute path
+            raise xacro.XacroException(f"{e.strerror}: {_shown(filename, quote=False)}") from None
         try:
             text = data.decode("utf-8")
             yamlguard.check_yaml_text(text, _shown(filename))
