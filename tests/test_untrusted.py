@@ -490,19 +490,36 @@ def test_hints_stop_once_the_run_has_compared_its_share(tmp_path):
     F.reset_hints()
 
 
-@pytest.mark.parametrize("name", ["x", "missing.yaml", "../urdf"])
-def test_a_load_yaml_that_fails_to_read_names_no_absolute_path(tmp_path, name):
-    """The fuzzer's find: a missing (or folder) load_yaml target said "[Errno 2] ... '/abs/path'" after our own
-    words, with the model named by an absolute path from another working directory."""
+@pytest.mark.parametrize("body", [f"<link name=\"l${{xacro.load_yaml('{name}')}}\"/>"
+                                  for name in ("x", "missing.yaml", "../urdf")]
+                         + ["<xacro:include filename='nothere.xacro'/><link name='a'/>",
+                            "<xacro:include filename='../urdf'/><link name='a'/>"])
+def test_a_file_that_fails_to_read_names_no_absolute_path(tmp_path, body):
+    """The fuzzer's find: a missing (or folder) load_yaml target or include said "[Errno 2] ... '/abs/path'" after
+    our own words, with the model named by an absolute path from another working directory."""
     urdf = tmp_path / "ws" / "pkg" / "urdf"
     urdf.mkdir(parents=True)
     (urdf.parent / "package.xml").write_text("<package format='3'><name>pkg</name></package>")
     model = urdf / "p.urdf.xacro"
-    model.write_text("<robot name='r' xmlns:xacro='http://www.ros.org/wiki/xacro'>"
-                     f"<link name=\"l${{xacro.load_yaml('{name}')}}\"/></robot>")
+    model.write_text(f"<robot name='r' xmlns:xacro='http://www.ros.org/wiki/xacro'>{body}</robot>")
     (tmp_path / "elsewhere").mkdir()
     code, out, _ = run_cli(["lint", "--no-config", "--no-cache", "--format", "json", str(model)],
                            cwd=tmp_path / "elsewhere")
     assert code == 1
     messages = [f["message"] for f in json.loads(out)["findings"]]
     assert messages and not any(str(tmp_path) in m for m in messages), messages
+
+
+def test_a_quoted_absolute_path_in_a_librarys_words_is_shown_as_reports_show_paths(tmp_path, monkeypatch):
+    """Defence in depth for the find above: whatever a library quotes of a path it built is shown relative to the
+    working directory, or not at all when outside it."""
+    from types import SimpleNamespace
+
+    from urdfcheck.load.xacro import expand
+
+    monkeypatch.chdir(tmp_path)
+    inside = tmp_path / "pkg" / "urdf" / "x.yaml"
+    err = OSError(f"cannot read '{inside}' nor \"/etc/secret.yaml\"")
+    got = expand._describe(err, SimpleNamespace(macrostack=[]))["message"]
+    assert str(tmp_path) not in got and "/etc/secret" not in got
+    assert "'pkg/urdf/x.yaml'" in got and "a file outside the working directory" in got

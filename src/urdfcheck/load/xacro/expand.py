@@ -298,7 +298,9 @@ def _expand(path: str, opts: Options) -> dict:
             data = read_file(full, MAX_FILE_BYTES)
         except OSError as e:
             xacro.filestack.pop()  # as stock xacro does: the missing file is not "the current file"
-            raise xacro.XacroException(f"{e.strerror}: {shown(filename, quote=False)}", exc=e) from e
+            # not `exc=e`: xacro would append the OSError's text, which holds the absolute path
+            raise xacro.XacroException(f"{e.strerror}: {shown(filename, quote=False)}{_package_hint(filename)}") \
+                from e
         if len(data) > MAX_FILE_BYTES:
             raise Refusal("X012", f"{shown(filename)} is larger than {MAX_FILE_BYTES} bytes")
         idx = state.index(os.path.normpath(full))
@@ -458,9 +460,8 @@ def _describe(e: BaseException, xacro) -> dict:
     msg = _text(e)
     if type(e).__name__ == "ExpatError":
         msg = f"XML parsing error: {msg}"
-    elif "No such file or directory" in msg and "package:/" in msg:
-        # stock xacro joins "package://pkg/x.xacro" to the including file's folder like any relative name
-        msg += " (xacro does not resolve package:// URLs in <xacro:include> or load_yaml: write $(find pkg)/...)"
+    elif "No such file or directory" in msg and "package:/" in msg and _PACKAGE_HINT not in msg:
+        msg += _PACKAGE_HINT
     elif msg.startswith("Undefined substitution argument "):
         # xacro's words name the argument without quotes ("... argument name"): say what is missing and who sets it
         arg = msg[len("Undefined substitution argument "):].strip()
@@ -469,7 +470,18 @@ def _describe(e: BaseException, xacro) -> dict:
     macros = [m.body.getAttribute("name") for m in reversed(xacro.macrostack or []) if m.body is not None]
     if macros:
         msg += " (in macro " + " <- ".join(macros) + ")"
+    # a library's own words may quote a path it built (an OSError's text): shown as reports show paths
+    msg = _QUOTED_PATH.sub(lambda m: _shown(m.group(2)), msg)
     return {"code": "X010", "message": msg.strip(), "marker": located or marker}
+
+
+_QUOTED_PATH = lazyre.compile(r"""(['"])(/[^'"\n]*)\1""")
+# stock xacro joins "package://pkg/x.xacro" to the including file's folder like any relative name
+_PACKAGE_HINT = " (xacro does not resolve package:// URLs in <xacro:include> or load_yaml: write $(find pkg)/...)"
+
+
+def _package_hint(path) -> str:
+    return _PACKAGE_HINT if "package:/" in str(path) else ""
 
 
 def _text(e: BaseException, limit: int = 4000) -> str:
@@ -539,7 +551,8 @@ def _install_sandbox(xacro, subst, resolver, confined: dict) -> None:
         try:
             data = read_file(full, yamlguard.MAX_BYTES)
         except OSError as e:  # not `exc=e`: xacro would append the OSError's text, which holds the absolute path
-            raise xacro.XacroException(f"{e.strerror}: {_shown(filename, quote=False)}") from None
+            raise xacro.XacroException(f"{e.strerror}: {_shown(filename, quote=False)}{_package_hint(full)}") \
+                from None
         try:
             text = data.decode("utf-8")
             yamlguard.check_yaml_text(text, _shown(filename))
