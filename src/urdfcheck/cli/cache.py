@@ -112,13 +112,8 @@ def plan(argv: list[str]) -> Spec | None:
             sorted((k, v) for k, v in env.items() if k not in _VOLATILE)]
     material = base + [argv, _isatty(sys.stdout)]
     trace = env.get("URDFCHECK_CACHE_TRACE", "") not in ("", "0")
-    return Spec(folder, _digest_json(material), trace, _digest_json(base))
+    return Spec(folder, cachefile.digest_json(material), trace, cachefile.digest_json(base))
 
-
-def _digest_json(value) -> str:
-    import json
-
-    return digest(json.dumps(value, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
 
 
 def _isatty(stream) -> bool:
@@ -236,7 +231,7 @@ def _valid(entry, key: str) -> bool:
 def _checksum(entry: dict) -> str:
     body = [entry["key"], entry["code"], entry["stdout"], entry["stderr"], entry["observed"], entry["expansions"],
             entry["made"]]
-    return _digest_json(body)
+    return cachefile.digest_json(body)
 
 
 # --- miss ----------------------------------------------------------------------------------------------------------
@@ -307,7 +302,7 @@ def _store(spec: Spec, code: int, stdout: str, stderr: str) -> str:
     if len(data) > MAX_ENTRY:
         return "not stored (too large)"
     _tag(os.path.dirname(spec.folder))
-    version = _digest_json(observed)
+    version = cachefile.digest_json(observed)
     cachefile.write(spec.versions, f"{version}.json", data)
     for old in cachefile.versions(spec.versions)[MAX_VERSIONS:]:
         cachefile.unlink(old)

@@ -16,6 +16,13 @@ def digest(data: bytes) -> str:
     return blake2b(data, digest_size=16).hexdigest()
 
 
+def digest_json(value) -> str:
+    """The digest of a JSON value as entries write it (the checksums and keys of the cache)."""
+    import json
+
+    return digest(json.dumps(value, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
+
+
 def versions(folder: str) -> list[str]:
     """The entries (.json) in `folder`, most recently used first."""
     found = []

@@ -184,12 +184,9 @@ def _valid(entry, k: str) -> bool:
 
 
 def _checksum(entry: dict) -> str:
-    import json
+    from urdfcheck.core.cachefile import digest_json
 
-    from urdfcheck.core.cachefile import digest
-
-    body = [entry.get("key"), entry.get("result"), entry["observed"]]
-    return digest(json.dumps(body, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
+    return digest_json([entry.get("key"), entry.get("result"), entry["observed"]])
 
 
 def reset() -> None:
