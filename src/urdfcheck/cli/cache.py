@@ -149,7 +149,7 @@ def _say(spec: Spec, what: str) -> None:
 # --- hit ----------------------------------------------------------------------------------------------------------
 def replay(spec: Spec) -> int | None:
     """Write the stored report and return its exit code, or None (no usable entry: run)."""
-    from urdfcheck.core.observe import fingerprint
+    from urdfcheck.core.observe import edited_first, fingerprint
 
     why = "miss"
     now: dict = {}  # (kind, path) -> what it looks like now: a key's versions share most of their paths
@@ -166,8 +166,7 @@ def replay(spec: Spec) -> int | None:
         entry = _load(path, spec.key)
         if entry is None:
             continue
-        # the files read first, then listings and probes, installed modules last: an edit changes the first
-        changed = next((item[1] for item in sorted(entry["observed"], key=_edited_first) if differs(item)), None)
+        changed = next((item[1] for item in sorted(entry["observed"], key=edited_first) if differs(item)), None)
         if changed is not None:
             if newest is None:
                 newest, why = entry, f"miss ({changed} changed)"
@@ -195,13 +194,6 @@ def _expect(spec: Spec, entry: dict) -> str:
         reuse.expect_all()
         return f"; its {have} expansion(s) are stored, no xacro worker"
     return f"; {have} of its {entry['made']} expansion(s) are stored"
-
-
-_EDITED_FIRST = {"r": 0, "l": 1, "p": 2, "q": 2, "m": 3}
-
-
-def _edited_first(item) -> int:
-    return _EDITED_FIRST.get(item[0], 3)
 
 
 def _load(path: str, key: str) -> dict | None:

@@ -97,6 +97,15 @@ def add(items) -> None:
 KINDS = frozenset("rlpqm")
 
 
+_EDITED_FIRST = {"r": 0, "l": 1, "p": 2, "q": 2, "m": 3}
+
+
+def edited_first(item) -> int:
+    """Sort key of a stored [kind, path, fingerprint]: the files read first, then listings and probes, installed
+    modules last (an edit changes one of the first, so a changed record is told after few looks)."""
+    return _EDITED_FIRST.get(item[0], 3)
+
+
 def valid_items(items) -> bool:
     """Whether `items` is a stored record: a list of [kind, absolute path, fingerprint]."""
     return isinstance(items, list) and all(

@@ -158,15 +158,12 @@ def _lookup(k: str) -> dict | None:
     return _FOUND[k]
 
 
-_EDITED_FIRST = {"r": 0, "l": 1, "p": 2, "q": 2, "m": 3}
-
-
 def _changed(observed: list) -> bool:
-    """Whether anything the expansion read looks different now: the files it read first (an edit changes one)."""
+    """Whether anything the expansion read looks different now."""
     from urdfcheck.core.cachefile import digest
-    from urdfcheck.core.observe import fingerprint
+    from urdfcheck.core.observe import edited_first, fingerprint
 
-    for kind, path, fp in sorted(observed, key=lambda item: _EDITED_FIRST.get(item[0], 3)):
+    for kind, path, fp in sorted(observed, key=edited_first):
         now = _NOW.get((kind, path))
         if now is None:
             now = _NOW[kind, path] = fingerprint(kind, path, digest)
