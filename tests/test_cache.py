@@ -152,6 +152,46 @@ def test_corrupt_or_foreign_entry_is_ignored(pkg, tmp_path, damage):
     assert cli(args, pkg, c)[3] == ["urdfcheck: cache hit"]
 
 
+def test_a_damaged_miss_is_not_read_for_its_expansions(pkg, tmp_path):
+    """A miss is told from the first changed file, before its entry is validated; the entry the miss then reads
+    (which expansions it made, so whether to fork a xacro worker) must still pass its checksum."""
+    c = tmp_path / "cache"
+    args = ["lint", "urdf/agv.urdf.xacro"]
+    cli(args, pkg, c)
+    (path,) = entries(c)
+    entry = json.loads(path.read_text())
+    assert entry["expansions"] and entry["made"] == len(entry["expansions"])
+    entry["made"] = 7  # not refreshing the checksum
+    path.write_text(json.dumps(entry))
+    params = pkg / "config" / "agv_controllers.yaml"
+    params.write_text(params.read_text() + "# tuned\n")
+    assert cli(args, pkg, c)[3] == ["urdfcheck: cache miss", "urdfcheck: cache stored"]
+    params.write_text(params.read_text() + "# again\n")
+    said = cli(args, pkg, c)[3]  # the entry just stored is sound: read for its expansions
+    assert said[0].startswith("urdfcheck: cache miss (") and said[0].endswith("no xacro worker"), said
+
+
+def test_first_change_answers_any_record_without_raising(tmp_path):
+    from urdfcheck.core.cachefile import digest
+    from urdfcheck.core.observe import MALFORMED, fingerprint, first_change
+
+    a, b = tmp_path / "a.xacro", tmp_path / "b.yaml"
+    a.write_text("<robot/>")
+    b.write_text("x: 1")
+    good = [["m", str(tmp_path), "0:0"], ["r", str(b), fingerprint("r", str(b), digest)],
+            ["r", str(a), fingerprint("r", str(a), digest)]]
+    assert first_change(good[1:], {}, digest) is None
+    assert first_change(good, {}, digest) == str(tmp_path)  # the module's stamp differs: looked at last
+    b.write_text("x: 2")
+    looks: dict = {}
+    assert first_change(good, looks, digest) == str(b)  # a file read before the module stamp
+    assert ("m", str(tmp_path)) not in looks  # the installed module was never looked at
+    same = [["r", str(b), fingerprint("r", str(b), digest)]]  # unchanged: what follows it is looked at
+    for bad in (None, {}, "r", [None], [["r", str(a)]], [[["r"], str(a), "x"]], [["r", "relative", "x"]],
+                same + [["z", str(a), "x"]], same + [[1, 2, 3]], same + [["r", str(a), None]]):
+        assert first_change(bad, {}, digest) == MALFORMED, bad
+
+
 def test_no_cache_and_not_stored_runs(pkg, tmp_path):
     c = tmp_path / "cache"
     assert cli(["lint", "--no-cache", "urdf/agv.urdf.xacro"], pkg, c)[3] == []

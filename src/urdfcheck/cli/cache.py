@@ -149,27 +149,23 @@ def _say(spec: Spec, what: str) -> None:
 # --- hit ----------------------------------------------------------------------------------------------------------
 def replay(spec: Spec) -> int | None:
     """Write the stored report and return its exit code, or None (no usable entry: run)."""
-    from urdfcheck.core.observe import edited_first, fingerprint
+    from urdfcheck.core.observe import MALFORMED, first_change
 
     why = "miss"
-    now: dict = {}  # (kind, path) -> what it looks like now: a key's versions share most of their paths
-
-    def differs(item) -> bool:
-        kind, p, fp = item
-        got = now.get((kind, p))
-        if got is None:
-            got = now[kind, p] = fingerprint(kind, p, digest)
-        return got != fp
-
+    looks: dict = {}  # (kind, path) -> what it looks like now: a key's versions share most of their paths
     newest = None
     for path in cachefile.versions(spec.versions)[:MAX_VERSIONS]:
-        entry = _load(path, spec.key)
-        if entry is None:
+        entry = cachefile.read_json(path, MAX_ENTRY)
+        if not isinstance(entry, dict) or entry.get("key") != spec.key:
             continue
-        changed = next((item[1] for item in sorted(entry["observed"], key=edited_first) if differs(item)), None)
-        if changed is not None:
-            if newest is None:
+        changed = first_change(entry.get("observed"), looks, digest)
+        if changed == MALFORMED:
+            continue
+        if changed is not None:  # a miss is validated whole only when it is the newest: _expect reads it
+            if newest is None and _valid(entry, spec.key):
                 newest, why = entry, f"miss ({changed} changed)"
+            continue
+        if not _valid(entry, spec.key):
             continue
         cachefile.touch(path)
         sys.stdout.write(entry["stdout"])
@@ -194,11 +190,6 @@ def _expect(spec: Spec, entry: dict) -> str:
         reuse.expect_all()
         return f"; its {have} expansion(s) are stored, no xacro worker"
     return f"; {have} of its {entry['made']} expansion(s) are stored"
-
-
-def _load(path: str, key: str) -> dict | None:
-    entry = cachefile.read_json(path, MAX_ENTRY)
-    return entry if _valid(entry, key) else None
 
 
 def _valid(entry, key: str) -> bool:

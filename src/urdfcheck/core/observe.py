@@ -100,17 +100,48 @@ KINDS = frozenset("rlpqm")
 _EDITED_FIRST = {"r": 0, "l": 1, "p": 2, "q": 2, "m": 3}
 
 
-def edited_first(item) -> int:
+def _order(item) -> int:
     """Sort key of a stored [kind, path, fingerprint]: the files read first, then listings and probes, installed
-    modules last (an edit changes one of the first, so a changed record is told after few looks)."""
-    return _EDITED_FIRST.get(item[0], 3)
+    modules last (an edit changes one of the first, so a changed record is told after few looks); a malformed
+    item before all, so that it is found at once."""
+    if isinstance(item, list) and item and isinstance(item[0], str):
+        return _EDITED_FIRST.get(item[0], 3)
+    return -1
 
 
 def valid_items(items) -> bool:
     """Whether `items` is a stored record: a list of [kind, absolute path, fingerprint]."""
-    return isinstance(items, list) and all(
-        isinstance(item, list) and len(item) == 3 and all(isinstance(x, str) for x in item) and item[0] in KINDS
-        and os.path.isabs(item[1]) for item in items)
+    return isinstance(items, list) and all(map(_valid_item, items))
+
+
+def _valid_item(item) -> bool:
+    return isinstance(item, list) and len(item) == 3 and all(isinstance(x, str) for x in item) and item[0] in KINDS \
+        and os.path.isabs(item[1])
+
+
+MALFORMED = "\0malformed"  # what `first_change` answers for a record that is not one (never a path: it has a NUL)
+
+
+def first_change(items, looks: dict, digest) -> str | None:
+    """The path of the first item of a stored record that looks different now (in `_order`), None when
+    none does, MALFORMED when the record is not one. Items are checked one by one as they are looked at: a miss,
+    the common answer, is told after a few looks, without validating the whole record first (a hit must still
+    validate it, with its checksum, before anything stored is used). `looks`: (kind, path) -> fingerprint, shared
+    by the records a run compares."""
+    if not isinstance(items, list):
+        return MALFORMED
+    for item in sorted(items, key=_order):
+        if not _valid_item(item):
+            return MALFORMED
+        kind, path, fp = item
+        now = looks.get((kind, path))
+        if now is None:
+            now = looks[kind, path] = fingerprint(kind, path, digest)
+        if now != fp:
+            return path
+    return None
+
+
 _SYSTEM = ("/proc/", "/sys/", "/dev/")  # the kernel's files (a worker reads its own /proc/self/status)
 
 

@@ -146,7 +146,8 @@ def _lookup(k: str) -> dict | None:
 
     for path in cachefile.versions(_folder(k))[:MAX_VERSIONS]:
         entry = cachefile.read_json(path, MAX_ENTRY)
-        if not _valid(entry, k) or _changed(entry["observed"]):
+        if not isinstance(entry, dict) or entry.get("key") != k or _changed(entry.get("observed")) \
+                or not _valid(entry, k):
             continue
         res = stored.from_json(entry["result"])
         if res is None:
@@ -158,18 +159,12 @@ def _lookup(k: str) -> dict | None:
     return _FOUND[k]
 
 
-def _changed(observed: list) -> bool:
-    """Whether anything the expansion read looks different now."""
+def _changed(observed) -> bool:
+    """Whether anything the expansion read looks different now (or the record is not one)."""
     from urdfcheck.core.cachefile import digest
-    from urdfcheck.core.observe import edited_first, fingerprint
+    from urdfcheck.core.observe import first_change
 
-    for kind, path, fp in sorted(observed, key=edited_first):
-        now = _NOW.get((kind, path))
-        if now is None:
-            now = _NOW[kind, path] = fingerprint(kind, path, digest)
-        if now != fp:
-            return True
-    return False
+    return first_change(observed, _NOW, digest) is not None
 
 
 def _valid(entry, k: str) -> bool:
