@@ -90,6 +90,26 @@ def test_args_declared_in_included_files_are_varied(tmp_path):
     assert [a for _, a in auto_variants(str(model), {})][-1] == {"use_arm": "false", "use_gripper": "true"}
 
 
+def test_a_big_package_map_is_resolved_once_per_root(tmp_path, monkeypatch):
+    """A workspace run gives every model the map of all packages: each root's real path is taken once per model,
+    not once per included file (the corpus spent most of its planning there)."""
+    import os
+
+    pkg, model, macro = args_in_include(tmp_path)
+    parts = [pkg / "urdf" / f"part{i}.xacro" for i in range(12)]
+    for i, part in enumerate(parts):
+        part.write_text(robot("", f'<xacro:arg name="flag{i}" default="false"/>'))
+    model.write_text(robot("".join(f'<xacro:include filename="$(find arm_description)/urdf/{p.name}"/>\n'
+                                   for p in parts), '<xacro:arg name="use_arm" default="true"/>'))
+    packages = {"arm_description": str(pkg), **{f"p{i}": str(tmp_path / f"p{i}") for i in range(60)}}
+    calls = []
+    real = os.path.realpath
+    monkeypatch.setattr(os.path, "realpath", lambda p, **kw: calls.append(p) or real(p, **kw))
+    assert list(boolean_args(str(model), packages)) == ["use_arm"] + [f"flag{i}" for i in range(12)]
+    # the map's roots once for the resolver and once for the confinement, and the files: not roots x files
+    assert len(calls) < 3 * len(packages), len(calls)
+
+
 @pytest.mark.parametrize("named", ["model", "macro"])
 def test_per_file_hook_lints_the_broken_variant(tmp_path, named):
     """The per-file hook (`urdfcheck lint FILE...`) given the robot file or its macro file fails on the variant

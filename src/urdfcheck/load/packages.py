@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import re
+import weakref
 from pathlib import Path
 
 from urdfcheck.core import lazyre
@@ -151,10 +152,47 @@ _RESOLVED: dict[str, Path] = {}
 
 
 def forget() -> None:
-    """Drop the remembered workspace scans and resolved folders (a forked worker whose reads are recorded
-    looks afresh)."""
+    """Drop the remembered workspace scans, resolved folders and package sub-folders (a forked worker whose
+    reads are recorded looks afresh)."""
     _WORKSPACES.clear()
     _RESOLVED.clear()
+    _SUBDIRS.clear()
+
+
+_LAYOUT_ROOTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # Resolver -> its roots as strings
+_SUBDIRS: dict[str, list[str]] = {}  # folder -> its sub-folders (links to folders too), listed once a run
+
+
+def _subdirs(folder: str) -> list[str]:
+    got = _SUBDIRS.get(folder)
+    if got is None:
+        got = []
+        try:
+            with os.scandir(folder) as it:
+                for e in it:
+                    try:
+                        if e.is_dir():
+                            got.append(e.path)
+                    except OSError:
+                        continue
+        except OSError:
+            pass
+        if len(_SUBDIRS) > 10_000:
+            _SUBDIRS.clear()
+        _SUBDIRS[folder] = got
+    return got
+
+
+def layout_hits(root: str, rel: str) -> list[str]:
+    """The files `rel` names one folder down inside `root`, or else two (`root/*/rel`, `root/*/*/rel`): where
+    CMake's install layout (`share/PKG/urdf`) has the source checkout's file (`PKG/description/urdf`). The
+    folders are listed once a run; `rel` is a name, not a pattern."""
+    for depth in (1, 2):
+        folders = _subdirs(root) if depth == 1 else [g for d in _subdirs(root) for g in _subdirs(d)]
+        hits = [c for c in (os.path.join(d, rel) for d in folders) if os.path.isfile(c)]
+        if hits:
+            return hits
+    return []
 
 
 def _resolved(path) -> Path:
@@ -263,17 +301,18 @@ class Resolver:
         names `PKG/description/urdf/x.xacro` in a source checkout. Look one or two folders down inside
         the package; use the match only when it is unique.
         """
-        p = Path(os.path.abspath(path))
-        for root in list(self.used.values()) + list(self.explicit.values()):
-            root = Path(os.path.abspath(root))
-            if root not in p.parents:
+        p = os.path.abspath(path)
+        key = (len(self.used), len(self.explicit))  # both only grow
+        cached = _LAYOUT_ROOTS.get(self)  # not an attribute: the lint cache keys expansions on the attributes
+        if cached is None or cached[0] != key:
+            roots = [os.path.abspath(r) for r in (*self.used.values(), *self.explicit.values())]
+            cached = _LAYOUT_ROOTS[self] = (key, [(r, r.rstrip(os.sep) + os.sep) for r in roots])
+        for root, inside in cached[1]:
+            if not p.startswith(inside):
                 continue
-            rel = p.relative_to(root)
-            hits = [c for c in root.glob(f"*/{rel}") if c.is_file()]
-            if not hits:
-                hits = [c for c in root.glob(f"*/*/{rel}") if c.is_file()]
+            hits = layout_hits(root, os.path.relpath(p, root))
             if len(hits) == 1:
-                return hits[0]
+                return Path(hits[0])
         return None
 
     def resolve_uri(self, uri: str, base_dir: Path) -> tuple[Path | None, str | None]:
@@ -340,8 +379,7 @@ def _literal_include(ref: str, includer: str, lookup, allow=None) -> str | None:
         if allow is not None and not allow(os.path.abspath(cand)):
             return None  # not even looked at
         if not os.path.isfile(cand):  # install layout vs source layout
-            hits = [str(c) for c in Path(root).glob(f"*/{rest}") if c.is_file()] or \
-                   [str(c) for c in Path(root).glob(f"*/*/{rest}") if c.is_file()]
+            hits = layout_hits(os.path.abspath(str(root)), rest) if rest else []
             cand = hits[0] if len(hits) == 1 else cand
         return os.path.abspath(cand)
     if "$" in ref or not ref:

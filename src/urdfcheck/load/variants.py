@@ -61,12 +61,18 @@ def _included(path: str, packages: Mapping[str, str]):
     resolver = Resolver(dict(packages), near=Path(entry))
     pkg = enclosing_package(Path(entry).parent)
     fixed = [os.path.abspath(p) for p in (*packages.values(), pkg or os.path.dirname(entry))]
+    real: dict[str, str] = {}  # root -> its real path, once: a workspace map names a hundred roots
 
     def allow(file: str) -> bool:
         # the package roots the loader reads from (the entry's, the named ones, those its $(find)s resolved):
         # written inside (nothing outside is ever looked at), and really inside (no link out)
         roots = fixed + [os.path.abspath(str(p)) for p in resolver.used.values()]
-        return _under(file, roots) and _under(os.path.realpath(file), [os.path.realpath(r) for r in roots])
+        if not _under(file, roots):
+            return False
+        for r in roots:
+            if r not in real:
+                real[r] = os.path.realpath(r)
+        return _under(os.path.realpath(file), [real[r] for r in roots])
 
     for file, text in literal_includes([entry], resolver.find, max_files=100, allow=allow):
         if file != entry:
