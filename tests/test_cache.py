@@ -192,6 +192,26 @@ def test_first_change_answers_any_record_without_raising(tmp_path):
         assert first_change(bad, {}, digest) == MALFORMED, bad
 
 
+def test_the_edited_file_of_a_big_record_is_looked_at_first(tmp_path):
+    """A workspace's record reads thousands of files: the miss after one edit must not digest them all first."""
+    from urdfcheck.core.cachefile import digest
+    from urdfcheck.core.observe import fingerprint, first_change
+
+    files = [tmp_path / f"f{i:03}.yaml" for i in range(200)]
+    for i, f in enumerate(files):
+        f.write_text(f"x: {i}")
+        os.utime(f, ns=(10**18, 10**18 + i))
+    record = [["r", str(f), fingerprint("r", str(f), digest)] for f in files]
+    files[57].write_text("x: edited")
+    os.utime(files[57], ns=(2 * 10**18, 2 * 10**18))
+    looks: dict = {}
+    assert first_change(record, looks, digest) == str(files[57])
+    assert len(looks) == 1
+    files[57].unlink()  # a file gone is a change too, and is found as soon
+    looks.clear()
+    assert first_change(record, looks, digest) == str(files[57]) and len(looks) == 1
+
+
 def test_no_cache_and_not_stored_runs(pkg, tmp_path):
     c = tmp_path / "cache"
     assert cli(["lint", "--no-cache", "urdf/agv.urdf.xacro"], pkg, c)[3] == []
