@@ -61,7 +61,7 @@ def test_install_layout_path_falls_back_to_the_source_layout(tmp_path):
 
 
 def test_source_layout_two_down_unique_and_literal(tmp_path):
-    import urdfcheck.load.packages as packages
+    from urdfcheck.core import walk
 
     root = pkg(tmp_path / "ws" / "demo", "demo")
     deep = root / "src" / "description" / "meshes"
@@ -70,35 +70,36 @@ def test_source_layout_two_down_unique_and_literal(tmp_path):
     (root / "src" / "description" / "meshes" / "a.dae").write_text("x")
     r = Resolver(near=root)
     base = r.find("demo")
-    packages.forget()
     assert r.source_layout(base / "meshes" / "[ab].dae") == deep / "[ab].dae"
     assert r.source_layout(base / "meshes" / "b.dae") is None
-    (root / "other" / "meshes").mkdir(parents=True)
-    (root / "other" / "meshes" / "a.dae").write_text("x")
-    packages.forget()  # the folders are listed once a run: the next run sees the new one
+    with walk.remembered():  # a run: its folders are listed once
+        assert r.source_layout(base / "meshes" / "a.dae") == deep / "a.dae"
+        (root / "other" / "meshes").mkdir(parents=True)
+        (root / "other" / "meshes" / "a.dae").write_text("x")
+        assert r.source_layout(base / "meshes" / "a.dae") == deep / "a.dae"  # the run does not list again
     assert r.source_layout(base / "meshes" / "a.dae") == root / "other" / "meshes" / "a.dae"  # one down first
     (root / "more" / "meshes").mkdir(parents=True)
     (root / "more" / "meshes" / "a.dae").write_text("x")
-    assert r.source_layout(base / "meshes" / "a.dae") == root / "other" / "meshes" / "a.dae"  # not listed again
-    packages.forget()
     assert r.source_layout(base / "meshes" / "a.dae") is None  # two one down: ambiguous
 
 
-def test_source_layout_lists_each_folder_once(tmp_path, monkeypatch):
-    import urdfcheck.load.packages as packages
+def test_source_layout_lists_each_folder_once_a_run(tmp_path, monkeypatch):
+    from urdfcheck.core import walk
 
     root = pkg(tmp_path / "ws" / "demo", "demo")
     for d in ("a", "b", "c"):
         (root / d / "x").mkdir(parents=True)
     r = Resolver(near=root)
     base = r.find("demo")
-    packages.forget()
     listed = []
     real = os.scandir
     monkeypatch.setattr(os, "scandir", lambda p=".": listed.append(os.fspath(p)) or real(p))
-    for i in range(20):
-        assert r.source_layout(base / "meshes" / f"m{i}.stl") is None
-    assert len(listed) == len(set(listed)) == 4  # the root and its 3 folders, once each
+    with walk.remembered():
+        for i in range(20):
+            assert r.source_layout(base / "meshes" / f"m{i}.stl") is None
+        assert len(listed) == len(set(listed)) == 4  # the root and its 3 folders, once each
+        walk.forget()  # a forked worker whose reads are recorded lists again
+        assert r.source_layout(base / "meshes" / "m.stl") is None and len(listed) == 8
 
 
 def test_the_enclosing_package_is_found_without_a_workspace_scan(tmp_path, monkeypatch):

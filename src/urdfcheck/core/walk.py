@@ -34,6 +34,14 @@ def forget() -> None:
         memo[""] = 0
 
 
+def run_memo(name: str) -> dict | None:
+    """A dict the run in progress keeps under `name` (None outside a run): what it may remember of the file
+    system besides listings (packages.real, packages.layout_hits). Dropped with the run, and by `forget`."""
+    if not _LISTED:
+        return None
+    return _LISTED[-1].setdefault((name,), {})  # a tuple: never a folder's path
+
+
 def _entries(here: str) -> list[os.DirEntry]:
     memo = _LISTED[-1] if _LISTED else None
     if memo is not None:

@@ -12,7 +12,7 @@ import re
 import weakref
 from pathlib import Path
 
-from urdfcheck.core import lazyre
+from urdfcheck.core import lazyre, walk
 
 _NAME = lazyre.compile(rb"<name>\s*([^<\s]+)\s*</name>")
 SCAN_DEPTH = 6
@@ -152,19 +152,33 @@ _RESOLVED: dict[str, Path] = {}
 
 
 def forget() -> None:
-    """Drop the remembered workspace scans, resolved folders and package sub-folders (a forked worker whose
-    reads are recorded looks afresh)."""
+    """Drop the remembered workspace scans and resolved folders (a forked worker whose reads are recorded looks
+    afresh; `core.walk.forget` drops the run's other memos: listings, real paths, sub-folders)."""
     _WORKSPACES.clear()
     _RESOLVED.clear()
-    _SUBDIRS.clear()
+
+
+def real(path: str) -> str:
+    """os.path.realpath, remembered for the run in progress: the confinement checks ask about the same package
+    roots and folders for every file of every model (a workspace run asked 16,000 times, an lstat per path
+    component each). Outside a run, looked up afresh."""
+    memo = walk.run_memo("realpath")
+    key = os.path.abspath(path)
+    got = memo.get(key) if memo is not None else None
+    if got is None:
+        got = os.path.realpath(key)
+        if memo is not None and len(memo) < 50_000:
+            memo[key] = got
+    return got
 
 
 _LAYOUT_ROOTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # Resolver -> its roots as strings
-_SUBDIRS: dict[str, list[str]] = {}  # folder -> its sub-folders (links to folders too), listed once a run
 
 
 def _subdirs(folder: str) -> list[str]:
-    got = _SUBDIRS.get(folder)
+    """The sub-folders of `folder` (links to folders too), listed once in a run."""
+    memo = walk.run_memo("subdirs")
+    got = memo.get(folder) if memo is not None else None
     if got is None:
         got = []
         try:
@@ -177,9 +191,8 @@ def _subdirs(folder: str) -> list[str]:
                         continue
         except OSError:
             pass
-        if len(_SUBDIRS) > 10_000:
-            _SUBDIRS.clear()
-        _SUBDIRS[folder] = got
+        if memo is not None and len(memo) < 10_000:
+            memo[folder] = got
     return got
 
 
@@ -290,9 +303,9 @@ class Resolver:
         return uniq
 
     def allowed(self, path: str | Path) -> bool:
-        real = os.path.realpath(path)
+        where = real(os.fspath(path))
         self.roots()
-        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in self._roots[2])
+        return any(where == r or where.startswith(r.rstrip(os.sep) + os.sep) for r in self._roots[2])
 
     def source_layout(self, path: str | Path) -> Path | None:
         """The source file behind an install-layout path, when `path` does not exist.

@@ -55,13 +55,13 @@ def boolean_args(path: str, packages: Mapping[str, str] | None = None, *, includ
 
 
 def _included(path: str, packages: Mapping[str, str]):
-    from urdfcheck.load.packages import Resolver, enclosing_package, literal_includes
+    from urdfcheck.load.packages import Resolver, enclosing_package, literal_includes, real
 
     entry = os.path.abspath(path)
     resolver = Resolver(dict(packages), near=Path(entry))
     pkg = enclosing_package(Path(entry).parent)
     fixed = [os.path.abspath(p) for p in (*packages.values(), pkg or os.path.dirname(entry))]
-    real: dict[str, str] = {}  # root -> its real path, once: a workspace map names a hundred roots
+    real_roots: dict[str, str] = {}  # root -> its real path, once a model (once a run: packages.real)
 
     def allow(file: str) -> bool:
         # the package roots the loader reads from (the entry's, the named ones, those its $(find)s resolved):
@@ -70,9 +70,9 @@ def _included(path: str, packages: Mapping[str, str]):
         if not _under(file, roots):
             return False
         for r in roots:
-            if r not in real:
-                real[r] = os.path.realpath(r)
-        return _under(os.path.realpath(file), [real[r] for r in roots])
+            if r not in real_roots:
+                real_roots[r] = real(r)
+        return _under(real(file), [real_roots[r] for r in roots])
 
     for file, text in literal_includes([entry], resolver.find, max_files=100, allow=allow):
         if file != entry:

@@ -219,9 +219,11 @@ class _Workspace:
         return out
 
     def inside(self, path: str) -> bool:
-        real = os.path.realpath(path)
-        roots = [os.path.realpath(p) for p in (self.root, *self.explicit.values(), *self.found)]
-        return any(real == r or real.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
+        from urdfcheck.load.packages import real
+
+        where = real(path)
+        roots = [real(p) for p in (self.root, *self.explicit.values(), *self.found)]
+        return any(where == r or where.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
 
     def locate(self, path: str | None) -> str | None:
         """`path` if it is a file; else the source-layout file an install-layout path names
