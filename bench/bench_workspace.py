@@ -30,14 +30,16 @@ DEFAULT_ROOT = REPO.parent / "shared" / "corpus"
 def lint_workspace(root: str) -> dict:
     """Plan and lint; returns a summary (per repository) as JSON-able data."""
     from urdfcheck.core.findings import Severity
+    from urdfcheck.load.discover import remembering
     from urdfcheck.rules import engine
     from urdfcheck.run import lint_targets
 
-    plan = _plan(root)
-    targets = list(plan.models)
-    for t in targets:
-        t.settings = None  # linted with the selection below
-    result = lint_targets(targets, engine.Selection(ignore=("G001",)))  # meshes are absent from the corpus
+    with remembering():  # as `run.run` plans and lints: each folder listed and each package walked once
+        plan = _plan(root)
+        targets = list(plan.models)
+        for t in targets:
+            t.settings = None  # linted with the selection below
+        result = lint_targets(targets, engine.Selection(ignore=("G001",)))  # meshes are absent from the corpus
     by_repo: dict = defaultdict(lambda: {"models": set(), "targets": 0, "deployments": 0, "with_model": 0,
                                          "loaded": 0, "codes": Counter(), "not_understood": []})
 
