@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import os
 import re
-import weakref
 from pathlib import Path
 
 from urdfcheck.core import lazyre, walk
@@ -172,9 +171,6 @@ def real(path: str) -> str:
     return got
 
 
-_LAYOUT_ROOTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # Resolver -> its roots as strings
-
-
 def _subdirs(folder: str) -> list[str]:
     """The sub-folders of `folder` (links to folders too), listed once in a run."""
     memo = walk.run_memo("subdirs")
@@ -316,11 +312,15 @@ class Resolver:
         """
         p = os.path.abspath(path)
         key = (len(self.used), len(self.explicit))  # both only grow
-        cached = _LAYOUT_ROOTS.get(self)  # not an attribute: the lint cache keys expansions on the attributes
-        if cached is None or cached[0] != key:
+        # remembered in the run's memo, not on the resolver: the lint cache keys expansions on its attributes
+        memo = walk.run_memo("layout_roots")
+        cached = memo.get(id(self)) if memo is not None else None
+        if cached is None or cached[0] is not self or cached[1] != key:
             roots = [os.path.abspath(r) for r in (*self.used.values(), *self.explicit.values())]
-            cached = _LAYOUT_ROOTS[self] = (key, [(r, r.rstrip(os.sep) + os.sep) for r in roots])
-        for root, inside in cached[1]:
+            cached = (self, key, [(r, r.rstrip(os.sep) + os.sep) for r in roots])
+            if memo is not None:
+                memo[id(self)] = cached
+        for root, inside in cached[2]:
             if not p.startswith(inside):
                 continue
             hits = layout_hits(root, os.path.relpath(p, root))
