@@ -102,6 +102,24 @@ def test_source_layout_lists_each_folder_once_a_run(tmp_path, monkeypatch):
         assert r.source_layout(base / "meshes" / "m.stl") is None and len(listed) == 8
 
 
+def test_confinement_and_layout_with_a_workspace_map(tmp_path):
+    """With many roots (a workspace map) a path is looked up by its ancestors: the same answers as one by one."""
+    from urdfcheck.core import walk
+
+    roots = {f"p{i}": pkg(tmp_path / "ws" / f"p{i}", f"p{i}") for i in range(12)}
+    (tmp_path / "ws" / "p1x").mkdir()  # a sibling whose name starts like a root's
+    (roots["p7"] / "description" / "meshes").mkdir(parents=True)
+    (roots["p7"] / "description" / "meshes" / "m.stl").write_text("solid")
+    r = Resolver({k: str(v) for k, v in roots.items()})  # no near: the roots are the map alone
+    for run in (False, True):
+        with walk.remembered() if run else open(os.devnull):
+            assert r.allowed(roots["p3"] / "urdf" / "x.xacro") and r.allowed(roots["p3"])
+            assert not r.allowed(tmp_path / "ws" / "p1x" / "x.xacro")
+            assert not r.allowed(tmp_path / "elsewhere.urdf") and not r.allowed("/")
+            assert r.source_layout(roots["p7"] / "meshes" / "m.stl") == roots["p7"] / "description" / "meshes" / "m.stl"
+            assert r.source_layout(roots["p6"] / "meshes" / "m.stl") is None
+
+
 def test_the_enclosing_package_is_found_without_a_workspace_scan(tmp_path, monkeypatch):
     import urdfcheck.load.packages as packages
 

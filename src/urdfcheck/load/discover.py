@@ -150,7 +150,7 @@ def _is_srdf(text: str) -> bool:
     return bool(_SRDF.search(text)) and not re.search(r"<\s*link\b", text)
 
 
-def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
+def _included_files(ref: str, includer: str, xacros: _Xacros) -> set[str]:
     """Package xacro files an include reference may point at.
 
     A plain relative reference resolves against the including file. A `$(find pkg)/a/b.xacro` reference
@@ -162,7 +162,7 @@ def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
         return set()
     if "$(" not in ref and "${" not in ref:
         cand = os.path.normpath(ref if os.path.isabs(ref) else os.path.join(os.path.dirname(includer), ref))
-        return {cand} if cand in xacros else set()
+        return {cand} if cand in xacros.paths else set()
     tail = re.sub(r"^.*\)", "", ref).lstrip("/")  # text after the last substitution
     if "${" in tail or not tail:
         return set()
@@ -172,10 +172,22 @@ def _included_files(ref: str, includer: str, xacros: list[str]) -> set[str]:
     def ends_with(path: str) -> bool:
         parts = path.replace("\\", "/").split("/")
         return parts[-len(tail_parts):] == tail_parts
-    hits = {x for x in xacros if ends_with(x)}
+    named = xacros.by_name.get(tail_parts[-1], ())  # a path that ends with the tail has its file name
+    hits = {x for x in named if ends_with(x)}
     if not hits:
-        hits = {x for x in xacros if os.path.basename(x) == tail_parts[-1]}
+        hits = {x for x in named if os.path.basename(x) == tail_parts[-1]}
     return hits
+
+
+class _Xacros:
+    """A package's xacro files, looked up by path and by file name (an include is matched against all of them:
+    a workspace holds a thousand)."""
+
+    def __init__(self, paths: list[str]):
+        self.paths = set(paths)
+        self.by_name: dict[str, list[str]] = {}
+        for p in paths:
+            self.by_name.setdefault(p.replace("\\", "/").rsplit("/", 1)[-1], []).append(p)
 
 
 def several_models(package_dir: str | os.PathLike, *, max_files: int = MAX_FILES, trusted: bool = False
@@ -271,9 +283,10 @@ def _discover(package_dir, max_files: int, trusted: bool) -> Discovered:
     xacros = [p for p in xacros if p not in models]
     texts = {p: _read_head(p, trusted, real_dirs) for p in xacros}
     included: set[str] = set()
+    index = _Xacros(xacros)
     for p, t in texts.items():
         for m in _INCLUDE.finditer(_COMMENT.sub("", t)):  # a commented-out include includes nothing
-            included |= _included_files(m.group(2), p, xacros) - {p}
+            included |= _included_files(m.group(2), p, index) - {p}
     libs, probes, maybe = [], [], []
     for p in urdfs:  # a .urdf without any <link> is a fragment (materials, properties) for others to include
         (models if re.search(r"<\s*link\b", _read_head(p, trusted, real_dirs)) else libs).append(p)

@@ -192,16 +192,42 @@ def _subdirs(folder: str) -> list[str]:
     return got
 
 
+def _ancestors(path: str) -> list[str]:
+    """The folders above an absolute, normalized `path`, nearest first, up to the file system's root."""
+    out = []
+    end = len(path)
+    while True:
+        end = path.rfind(os.sep, 0, end)
+        if end <= 0:
+            out.append(os.sep)
+            return out
+        out.append(path[:end])
+
+
 def layout_hits(root: str, rel: str) -> list[str]:
     """The files `rel` names one folder down inside `root`, or else two (`root/*/rel`, `root/*/*/rel`): where
     CMake's install layout (`share/PKG/urdf`) has the source checkout's file (`PKG/description/urdf`). The
     folders are listed once a run; `rel` is a name, not a pattern."""
+    head = os.path.dirname(rel)
     for depth in (1, 2):
         folders = _subdirs(root) if depth == 1 else [g for d in _subdirs(root) for g in _subdirs(d)]
+        if head:  # the folders that hold rel's folder, once per folder name: a robot's meshes share a few
+            folders = _holding(root, depth, head, folders)
         hits = [c for c in (os.path.join(d, rel) for d in folders) if os.path.isfile(c)]
         if hits:
             return hits
     return []
+
+
+def _holding(root: str, depth: int, head: str, folders: list[str]) -> list[str]:
+    memo = walk.run_memo("layout_heads")
+    key = (root, depth, head)
+    got = memo.get(key) if memo is not None else None
+    if got is None:
+        got = [d for d in folders if os.path.isdir(os.path.join(d, head))]
+        if memo is not None and len(memo) < 10_000:
+            memo[key] = got
+    return got
 
 
 def _resolved(path) -> Path:
@@ -301,7 +327,17 @@ class Resolver:
     def allowed(self, path: str | Path) -> bool:
         where = real(os.fspath(path))
         self.roots()
-        return any(where == r or where.startswith(r.rstrip(os.sep) + os.sep) for r in self._roots[2])
+        roots = self._roots[2]
+        if len(roots) < 8:
+            return any(where == r or where.startswith(r.rstrip(os.sep) + os.sep) for r in roots)
+        # a workspace map: the path's few ancestors looked up, not every root compared (once per mesh)
+        memo = walk.run_memo("root_sets")
+        got = memo.get(id(self)) if memo is not None else None
+        if got is None or got[0] is not roots:
+            got = (roots, frozenset(roots))
+            if memo is not None:
+                memo[id(self)] = got
+        return where in got[1] or any(a in got[1] for a in _ancestors(where))
 
     def source_layout(self, path: str | Path) -> Path | None:
         """The source file behind an install-layout path, when `path` does not exist.
@@ -317,12 +353,15 @@ class Resolver:
         cached = memo.get(id(self)) if memo is not None else None
         if cached is None or cached[0] is not self or cached[1] != key:
             roots = [os.path.abspath(r) for r in (*self.used.values(), *self.explicit.values())]
-            cached = (self, key, [(r, r.rstrip(os.sep) + os.sep) for r in roots])
+            order: dict[str, int] = {}
+            for i, r in enumerate(roots):
+                order.setdefault(r, i)
+            cached = (self, key, order)
             if memo is not None:
                 memo[id(self)] = cached
-        for root, inside in cached[2]:
-            if not p.startswith(inside):
-                continue
+        order = cached[2]
+        above = set(_ancestors(p))
+        for root in sorted((r for r in above if r in order), key=order.__getitem__):  # the roots' own order
             hits = layout_hits(root, os.path.relpath(p, root))
             if len(hits) == 1:
                 return Path(hits[0])
