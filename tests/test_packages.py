@@ -120,6 +120,25 @@ def test_confinement_and_layout_with_a_workspace_map(tmp_path):
             assert r.source_layout(roots["p6"] / "meshes" / "m.stl") is None
 
 
+def test_the_source_layout_never_looks_outside_the_package(tmp_path, monkeypatch):
+    """`$(find P)/../x` is the model's own text: the fallback joins it to folders inside P, and a name that climbs
+    out is not looked up at all (before, `P/*/../../x` was probed beside P)."""
+    from urdfcheck.load.packages import layout_hits
+
+    root = pkg(tmp_path / "ws" / "demo", "demo")
+    (root / "a").mkdir()
+    (tmp_path / "ws" / "secret.xacro").write_text("<robot/>")
+    looked = []
+    real = os.path.isfile
+    monkeypatch.setattr(os.path, "isfile", lambda p: looked.append(os.fspath(p)) or real(p))
+    for rel in ("../secret.xacro", "../../ws/secret.xacro", "x/../../secret.xacro", str(tmp_path / "ws" / "s.xacro")):
+        assert layout_hits(str(root), rel) == []
+    assert not [p for p in looked if not os.path.normpath(p).startswith(str(root) + os.sep)], looked
+    (root / "a" / "urdf").mkdir()
+    (root / "a" / "urdf" / "x.xacro").write_text("<robot/>")
+    assert layout_hits(str(root), "urdf/../urdf/x.xacro") == [str(root / "a" / "urdf" / "x.xacro")]
+
+
 def test_the_enclosing_package_is_found_without_a_workspace_scan(tmp_path, monkeypatch):
     import urdfcheck.load.packages as packages
 

@@ -207,7 +207,11 @@ def _ancestors(path: str) -> list[str]:
 def layout_hits(root: str, rel: str) -> list[str]:
     """The files `rel` names one folder down inside `root`, or else two (`root/*/rel`, `root/*/*/rel`): where
     CMake's install layout (`share/PKG/urdf`) has the source checkout's file (`PKG/description/urdf`). The
-    folders are listed once a run; `rel` is a name, not a pattern."""
+    folders are listed once a run; `rel` is a name, not a pattern, and never leads out of the folder it is
+    joined to (an include's `$(find P)/../x` is the model's text: nothing outside the package is looked at)."""
+    rel = os.path.normpath(rel)
+    if os.path.isabs(rel) or rel == os.curdir or rel.split(os.sep, 1)[0] == os.pardir:
+        return []
     head = os.path.dirname(rel)
     for depth in (1, 2):
         folders = _subdirs(root) if depth == 1 else [g for d in _subdirs(root) for g in _subdirs(d)]
