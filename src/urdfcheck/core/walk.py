@@ -42,6 +42,20 @@ def run_memo(name: str) -> dict | None:
     return _LISTED[-1].setdefault((name,), {})  # a tuple: never a folder's path
 
 
+def run_cached(name: str, key, compute, limit: int = 10_000):
+    """compute(), remembered under `key` in the run's memo `name` (at most `limit` entries); computed afresh
+    outside a run."""
+    memo = run_memo(name)
+    if memo is None:
+        return compute()
+    got = memo.get(key)
+    if got is None:
+        got = compute()
+        if len(memo) < limit:
+            memo[key] = got
+    return got
+
+
 def _entries(here: str) -> list[os.DirEntry]:
     memo = _LISTED[-1] if _LISTED else None
     if memo is not None:

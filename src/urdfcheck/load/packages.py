@@ -161,34 +161,27 @@ def real(path: str) -> str:
     """os.path.realpath, remembered for the run in progress: the confinement checks ask about the same package
     roots and folders for every file of every model (a workspace run asked 16,000 times, an lstat per path
     component each). Outside a run, looked up afresh."""
-    memo = walk.run_memo("realpath")
     key = os.path.abspath(path)
-    got = memo.get(key) if memo is not None else None
-    if got is None:
-        got = os.path.realpath(key)
-        if memo is not None and len(memo) < 50_000:
-            memo[key] = got
-    return got
+    return walk.run_cached("realpath", key, lambda: os.path.realpath(key), 50_000)
 
 
 def _subdirs(folder: str) -> list[str]:
     """The sub-folders of `folder` (links to folders too), listed once in a run."""
-    memo = walk.run_memo("subdirs")
-    got = memo.get(folder) if memo is not None else None
-    if got is None:
-        got = []
-        try:
-            with os.scandir(folder) as it:
-                for e in it:
-                    try:
-                        if e.is_dir():
-                            got.append(e.path)
-                    except OSError:
-                        continue
-        except OSError:
-            pass
-        if memo is not None and len(memo) < 10_000:
-            memo[folder] = got
+    return walk.run_cached("subdirs", folder, lambda: _list_subdirs(folder))
+
+
+def _list_subdirs(folder: str) -> list[str]:
+    got = []
+    try:
+        with os.scandir(folder) as it:
+            for e in it:
+                try:
+                    if e.is_dir():
+                        got.append(e.path)
+                except OSError:
+                    continue
+    except OSError:
+        pass
     return got
 
 
@@ -224,14 +217,8 @@ def layout_hits(root: str, rel: str) -> list[str]:
 
 
 def _holding(root: str, depth: int, head: str, folders: list[str]) -> list[str]:
-    memo = walk.run_memo("layout_heads")
-    key = (root, depth, head)
-    got = memo.get(key) if memo is not None else None
-    if got is None:
-        got = [d for d in folders if os.path.isdir(os.path.join(d, head))]
-        if memo is not None and len(memo) < 10_000:
-            memo[key] = got
-    return got
+    return walk.run_cached("layout_heads", (root, depth, head),
+                           lambda: [d for d in folders if os.path.isdir(os.path.join(d, head))])
 
 
 def _resolved(path) -> Path:
