@@ -89,6 +89,18 @@ def test_edge_documents(text):
     assert streamed == tree
 
 
+@pytest.mark.parametrize("newline", ["\n", "\r\n", "\r"])
+def test_pieces_cut_anywhere_read_as_the_whole(newline):
+    """The parser is fed the bytes in pieces: a piece may end inside a multi-byte character, a tag spread over
+    lines or a line ending; the lines and names are still those of one whole parse."""
+    text = document(1500, 11).replace('"L', '"Łącznik-L').replace("<joint ", "<joint\n   ")
+    text = text.replace("\n", newline)
+    assert len(text.encode()) > 4 * xmlfront._PIECE
+    tree, streamed = both(text)
+    assert streamed == tree
+    assert any("Łącznik" in name for name in streamed.links)
+
+
 def test_a_child_is_dropped_once_read():
     data = document(5000, 3).encode()
     elements = xmlfront.stream(data)
