@@ -234,7 +234,8 @@ class _Builder:
         self.issue("U002", f"unknown element <{tag}> in <{parent_tag}>{hint}; URDF parsers ignore it{lost}", c)
 
     # --- parts ---------------------------------------------------------------------------------------------
-    # Each element's children are walked once with a dispatch on the tag (lxml proxies are costly).
+    # Each element's children are walked once with a dispatch on the tag (lxml proxies are costly), taken as a
+    # slice: lxml builds the list in C, about two thirds of the time of iterating the element.
     def pose(self, el) -> Pose:
         v = self.R["origin"](self, el)
         # both rpy and quat_xyzw (U009) stay in the model as written; core.geometry prefers the quaternion
@@ -243,7 +244,7 @@ class _Builder:
     def geometry(self, g, kind: str = "") -> Geometry:
         self.R["geometry"](self, g)
         shapes, tags = [], []  # each child's tag read once: lxml builds a new string at every read
-        for c in g:
+        for c in g[:]:
             t = c.tag
             if isinstance(t, str) and not t.startswith("{"):
                 shapes.append(c)
@@ -275,7 +276,7 @@ class _Builder:
 
     def _colour_texture(self, mat):
         rgba = texture = None
-        for c in mat:
+        for c in mat[:]:
             tag = c.tag
             if tag == "color":
                 rgba = self.R["color"](self, c)[0]
@@ -299,7 +300,7 @@ class _Builder:
         name = R[kind](self, el)[0]
         origin, geometry, mat = POSE0, None, None
         twice = None  # the tags seen again, of those read once (a repeat is rare: noticed by the first's trace)
-        for c in el:
+        for c in el[:]:
             tag = c.tag
             if tag == "origin":
                 if origin is not POSE0:
@@ -328,7 +329,7 @@ class _Builder:
         R["inertial"](self, el)
         origin, mass, mass_loc, inertia, inertia_loc = POSE0, None, None, None, None
         twice = None
-        for c in el:
+        for c in el[:]:
             tag = c.tag
             if tag == "mass":
                 if mass_loc is not None:
@@ -356,7 +357,7 @@ class _Builder:
         inertial, visuals, collisions = None, [], []
         extra_inertial = False
         self.owner = name
-        for c in el:
+        for c in el[:]:
             tag = c.tag
             if tag == "visual":
                 visuals.append(self.shape(c, "visual"))
@@ -390,7 +391,7 @@ class _Builder:
         parent = child = parent_loc = child_loc = None
         origin, axis, axis_loc, limit, mimic, dyn, safety = POSE0, X_AXIS, None, None, None, None, None
         twice = None  # the tags seen again, of those MuJoCo reads once
-        for c in el:
+        for c in el[:]:
             tag = c.tag
             if tag == "parent":
                 if parent_loc is not None:
