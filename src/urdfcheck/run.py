@@ -289,7 +289,8 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
         contracts = t.consumers(model, exp, config)  # planned, or found beside the model: once per target
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
                              variant=t.variant, target=t.settings.target if t.settings is not None else None,
-                             profiles=t.settings.profiles if t.settings is not None else ())
+                             profiles=t.settings.profiles if t.settings is not None else (),
+                             evidence=t.evidence)
         findings.extend(engine.run_checks(model, ctx))
         if t.bags:
             findings.extend(_bag_findings(model, t, selection))

@@ -82,6 +82,9 @@ class Finding(TupleRecord):
     also: tuple[Also, ...] = ()
     # the consumer profile (rules/checks/profiles) the finding predicts a behaviour of: "mujoco", "gazebo"... or ""
     profile: str = ""
+    # the planning steps the finding rests on (core.evidence.Step): how its model, deployment, parameter files
+    # and features were chosen; a finding with a step that is a guess is said at info (rules.engine)
+    evidence: tuple = ()
 
     def places(self) -> tuple[Place, ...]:
         return self.where or (Place(self.model, self.variant),)
@@ -116,13 +119,18 @@ class Problem:
     `severity` None means the catalogue default; `code` is for checks that serve several codes.
     `absent`: the problem claims that nothing supplies something (what might: "publish them"); the engine
     keeps its severity only where the consumers understood everything that could supply it (issue 20).
+    `rests_on`: the planning steps (core.evidence.Step) the check used beyond the target's own (a parameter
+    file's pairing with the model, the feature taken as the wheel); the engine says the problem at info when
+    one of them, or of the target's, is a guess (issue 37).
     """
 
-    __slots__ = ("message", "at", "related", "severity", "code", "data", "absent")
+    __slots__ = ("message", "at", "related", "severity", "code", "data", "absent", "rests_on")
 
     def __init__(self, message: str, at: object = None, related: tuple = (), severity: Severity | None = None,
-                 code: str | None = None, data: dict | None = None, absent: str | None = None):
+                 code: str | None = None, data: dict | None = None, absent: str | None = None,
+                 rests_on: tuple = ()):
         self.absent = absent
+        self.rests_on = tuple(rests_on)
         self.message = message
         self.at = at
         self.related = related

@@ -63,6 +63,8 @@ class Target(Record):
     bags: tuple = ()  # recordings a config declares for this model (urdfcheck.bag)
     joint_states: str | None = None  # their JointState topic (None: /joint_states, else the only one)
     probe = False    # may be a library: the expansion decides (plan.robots); the run sets `library`
+    # how the model and its deployment were chosen (core.evidence.Step), which every finding of it rests on
+    evidence: tuple = ()
     library = False  # a probe whose expansion has no link: not a robot, not checked as one
 
     def __init__(self, path: Path,

@@ -48,7 +48,9 @@ class Context(Record):
     # options: the running rule's options (catalogue defaults + config)
     # target: the ROS distribution the model is checked for (flag over config; None: the checks decide, U007)
     # profiles: the consumer profiles asked for (--profile / `profiles:`), e.g. ("mujoco", "gazebo")
-    _fields = ('selection', 'expanded', 'config', 'contracts', 'variant', 'options', 'target', 'profiles')
+    # evidence: the planning steps (core.evidence.Step) of the target: how the model and deployment were chosen
+    _fields = ('selection', 'expanded', 'config', 'contracts', 'variant', 'options', 'target', 'profiles',
+               'evidence')
 
     def __init__(self, selection: Selection | None = None,
                  expanded: object = None,
@@ -57,8 +59,10 @@ class Context(Record):
                  variant: str = "",
                  options: dict | None = None,
                  target: str | None = None,
-                 profiles: tuple = ()):
+                 profiles: tuple = (),
+                 evidence: tuple = ()):
         self.profiles = tuple(profiles or ())
+        self.evidence = tuple(evidence or ())
         self.selection = Selection() if selection is None else selection
         self.expanded = expanded
         self.config = config
@@ -125,6 +129,14 @@ def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
         default = Severity.INFO
         message += f"; not failed, since {_listing([w for w, _ in unknown])} may {p.absent}"
         related += tuple(loc for _, loc in unknown[:3] if loc is not None)
+    steps = ctx.evidence + p.rests_on
+    if steps and default > Severity.INFO:  # the evidence rule (issue 37): a guess under it makes it an info
+        from urdfcheck.core.evidence import demotion
+
+        why = demotion(steps)
+        if why is not None:
+            default = Severity.INFO
+            message += why
     return Finding(
         code=code,
         severity=ctx.selection.severity_of(code, default),
@@ -133,6 +145,7 @@ def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
         name=info.name if info else "",
         related=related,
         profile=p.data.get("profile") or _annotated(code, ctx),
+        evidence=steps,
     )
 
 
