@@ -10,11 +10,13 @@ MAX_MERMAID_EDGES = 300  # GitHub renders larger diagrams poorly (and stops at i
 
 
 def render(fmt: str, result, shown=str) -> str:
+    from urdfcheck.report import finish_text
+
     if fmt == "json":
-        return json.dumps(result.as_dict(), indent=2, sort_keys=False) + "\n"
+        return finish_text(json.dumps(result.as_dict(), indent=2, sort_keys=False) + "\n", "json")
     if fmt == "markdown":
-        return markdown(result, shown)
-    return text(result, shown)
+        return finish_text(markdown(result, shown), "markdown")
+    return finish_text(text(result, shown), "text")
 
 
 def _title(p) -> str:
@@ -90,7 +92,17 @@ def _tally(result) -> str:
 
 
 def _cell(s) -> str:
-    return clean_text(str(s)).replace("|", "\\|").replace("`", "'")
+    """Untrusted text in a table cell or list item: HTML, links, @mentions and bare URLs made inert."""
+    from urdfcheck.report.markdown import md
+
+    return md(str(s))
+
+
+def _code(s) -> str:
+    """Untrusted text inside a `code span`."""
+    from urdfcheck.report.markdown import code
+
+    return code(str(s))
 
 
 def markdown(result, shown=str) -> str:
@@ -99,11 +111,11 @@ def markdown(result, shown=str) -> str:
     if not any(p.changed for p in result.pairs):
         return "\n".join(out) + "\n"
     for p in result.pairs:
-        out.append(f"### `{_cell(_title(p))}`: {'no change' if not p.changed else p.status}")
+        out.append(f"### `{_code(_title(p))}`: {'no change' if not p.changed else p.status}")
         out.append("")
         if p.status == "unloadable":
             for side, errs in p.errors.items():
-                out.extend(f"- {side}: `{_cell(e)}`" for e in errs[:10])
+                out.extend(f"- {side}: `{_code(e)}`" for e in errs[:10])
             out.append("")
         if p.status != "changed":
             continue
@@ -112,12 +124,12 @@ def markdown(result, shown=str) -> str:
             out += ["", "| frame | moved (mm) | rotated (deg) | at zero (mm, deg) | changed joint |",
                     "| --- | ---: | ---: | --- | --- |"]
             for m in p.moved:
-                out.append(f"| `{_cell(m['frame'])}` | {m['mm']:g} | {m['deg']:g} | {m['zero_mm']:g}, "
+                out.append(f"| `{_code(m['frame'])}` | {m['mm']:g} | {m['deg']:g} | {m['zero_mm']:g}, "
                            f"{m['zero_deg']:g} | {_cell(m['because'] or '')} |")
         if p.changes:
             out += ["", "| what | field | before | after |", "| --- | --- | --- | --- |"]
             for c in p.changes:
-                out.append(f"| {_cell(c['kind'])} `{_cell(c['name'])}` | {_cell(c['field'])} | {_cell(_v(c['old']))} "
+                out.append(f"| {_cell(c['kind'])} `{_code(c['name'])}` | {_cell(c['field'])} | {_cell(_v(c['old']))} "
                            f"| {_cell(_v(c['new']))} |")
         diagram = mermaid(p)
         if diagram:
@@ -144,8 +156,10 @@ def mermaid(p) -> str:
             ids[name] = f"n{len(ids)}"
         return ids[name]
 
-    def label(s):
-        return clean_text(str(s)).replace('"', "#quot;")
+    def label(s):  # only [A-Za-z0-9_ ] literally: no HTML, quote or arrow from a name reaches the diagram
+        from urdfcheck.report.markdown import mermaid as entities
+
+        return entities(str(s))
 
     lines = ["graph TD"]
     for r in roots:

@@ -278,7 +278,21 @@ _STATIC_PKGS = ("tf", "tf2_ros")
 _JSP_PKGS = ("joint_state_publisher", "joint_state_publisher_gui")
 
 
+def _unrooted(s):
+    """A name or argument built from `__file__` (a node named after its launch file) holds the runner's absolute
+    path: shown relative to the run's root, like every path in a report."""
+    if not isinstance(s, str) or os.sep not in s:
+        return s
+    from urdfcheck.core import paths
+
+    root = paths.root().rstrip(os.sep) + os.sep
+    return s.replace(root, "") if root in s else s
+
+
 def record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
+    if any(isinstance(x, str) and os.sep in x for x in (node.name, node.namespace)):
+        node = LaunchNode(node.package, node.executable, _unrooted(node.name), _unrooted(node.namespace),
+                          node.args, node.loc, node.params, node.param_files, node.condition)
     info.nodes.append(node)
     pkg, exe = node.package, node.executable
     if pkg in _STATIC_PKGS and exe in ("static_transform_publisher", "static_transform_publisher_node"):
@@ -292,8 +306,8 @@ def record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
             return
         xyz = tuple(float(v) + 0.0 for v in xyz)  # no -0.0
         rpy = tuple(float(v) + 0.0 for v in rpy)
-        info.static_tfs.append(StaticTF(_frame(parent), _frame(child), xyz, rpy, node.loc, info.path,
-                                        node.condition, node.name))
+        info.static_tfs.append(StaticTF(_frame(_unrooted(parent)), _frame(_unrooted(child)), xyz, rpy, node.loc,
+                                        info.path, node.condition, node.name))
     elif pkg == "robot_state_publisher" and exe in ("robot_state_publisher", "state_publisher"):
         key = "frame_prefix" if ros == 2 else "tf_prefix"
         v = node.params.get(key)
