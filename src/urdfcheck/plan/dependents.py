@@ -1,11 +1,16 @@
-"""What depends on a parameter file: the targets a YAML file named by itself (the per-file pre-commit hook)
-stands for.
+"""What depends on a file that is no robot: the targets a parameter file (YAML, cartographer's `.lua`, a MoveIt
+`.srdf`) or a launch file that starts no robot, named by itself (the per-file pre-commit hook), stands for.
 
-A YAML file is no robot; a change to it matters to the robots and deployments that read it: the targets of its
+Such a file is no robot; a change to it matters to the robots and deployments that read it: the targets of its
 workspace (the working directory when the file is below it, else its package) whose planned consumers read it
-(controllers, drivers, launch parameters), and the models of the package that holds it (a model reads its own
-package's parameter files: `xacro.load_yaml`, the consumers found beside it). A config file stands for its
-scope. A YAML file nothing reads is an info line.
+(controllers, drivers, launch parameters, included launch files), and the models of the package that holds it (a
+model reads its own package's parameter files: `xacro.load_yaml`, the consumers found beside it). A config file
+stands for its scope. A file nothing reads is an info line.
+
+From a monorepo root (a workspace of many repositories) the workspace is not planned whole: only the launch files
+that can reach the file are read (those naming its package or its file name, and the launch files that name
+those, until nothing new), with the workspace's packages resolvable, plus the models of its own package. A
+workspace with a urdfcheck config is planned whole (a config may declare what reads the file).
 """
 from __future__ import annotations
 
@@ -15,9 +20,29 @@ from pathlib import Path
 from urdfcheck.core.paths import shown
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")
+# files that change a contract without being a robot: parameters, cartographer's options, MoveIt's semantic model
+SUFFIXES = (".yaml", ".yml", ".lua", ".srdf", ".srdf.xacro")
+_KIND = {".yaml": "YAML", ".yml": "YAML", ".lua": ".lua", ".srdf": "SRDF", ".xacro": "SRDF"}
+GREP_BYTES = 1024 * 1024  # a launch file is read this far for the names (a larger one is read by the planner)
 
 
-def targets_reading(planner, raw: str, settings) -> list:
+def is_dependent(raw: str) -> bool:
+    """A file named by itself that stands for the robots reading it (not a model, not an unusable name)."""
+    return raw.lower().endswith(SUFFIXES)
+
+
+def launch_or_readers(planner, raw: str, settings) -> list:
+    """A launch file named by itself: the robots it starts; when it starts none (a controllers-only launch file
+    that a bringup includes), the robots and deployments that read it, like a parameter file."""
+    from urdfcheck.request.request import UsageError
+
+    try:
+        return planner.launch_targets(raw, settings)
+    except UsageError:
+        return targets_reading(planner, raw, settings, what="launch file that starts no robot and")
+
+
+def targets_reading(planner, raw: str, settings, what: str | None = None) -> list:
     from urdfcheck.load.packages import enclosing_package
 
     path = os.path.abspath(raw)
@@ -28,14 +53,56 @@ def targets_reading(planner, raw: str, settings) -> list:
     ws = here if _below(path, here) else str(pkg or os.path.dirname(path))
     real = os.path.realpath(path)
     out = []
-    for t in planner.workspace_targets(ws):
+    for t in _candidates(planner, ws, path, pkg, settings):
         own = enclosing_package(Path(os.path.abspath(t.path)).parent)
         if (own is not None and _below(real, os.path.realpath(own))) or real in _read_by(t):
             out.append(t)
     if not out:
-        planner.infos.append(f"{shown(raw)}: a YAML file that no robot or deployment of its "
+        kind = what or f"{_KIND.get(os.path.splitext(path)[1].lower(), 'YAML')} file"
+        planner.infos.append(f"{shown(raw)}: a {kind} that no robot or deployment of its "
                              "workspace reads: not linted")
     return out
+
+
+def _candidates(planner, ws: str, path: str, pkg, settings) -> list:
+    """The targets of `ws` that may read `path`: all of them when `ws` is the file's package (or holds a config),
+    else the deployments of the launch files that can reach it and the own package's models."""
+    if pkg is None or _below(ws, str(pkg)) or planner.walk(ws).configs:
+        return planner.workspace_targets(ws)
+    from urdfcheck.load.packages import package_name
+    from urdfcheck.plan.deployments import launch_files
+
+    words = {os.path.basename(path).encode()}
+    name = package_name(pkg / "package.xml")
+    if name:
+        words.add(name.encode())
+    texts = {p: _head(p) for p in launch_files(ws)}
+    chosen = {p for p in texts if _below(p, str(pkg))}  # the own package's launch files, whatever they name
+    words.update(os.path.basename(p).encode() for p in chosen)
+    grew = True
+    while grew:  # the launch files naming a chosen one (an include), until nothing new
+        grew = False
+        for p, text in texts.items():
+            if p not in chosen and (text is None or any(w in text for w in words)):
+                chosen.add(p)
+                words.add(os.path.basename(p).encode())
+                grew = True
+    deployed = planner.deployments(ws, settings, files=sorted(chosen)) if chosen else []
+    covered = {os.path.realpath(t.path) for t in deployed}  # linted through its deployments, as in a whole plan
+    own = [t for t in planner.workspace_targets(str(pkg))
+           if t.deployment is None and os.path.realpath(t.path) not in covered]
+    return deployed + own
+
+
+def _head(path: str) -> bytes | None:
+    """The launch file's bytes for the name search (None: not readable here, so it is kept)."""
+    from urdfcheck.core import door
+
+    try:
+        data = door.read_bytes(path, limit=GREP_BYTES)
+    except OSError:
+        return None
+    return None if len(data) > GREP_BYTES else data
 
 
 def _read_by(t) -> set[str]:

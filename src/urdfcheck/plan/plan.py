@@ -241,15 +241,12 @@ class Planner:
         if not os.path.isdir(raw):
             if cfg is not None and cfg.model_for(raw) is not None:
                 return self.declared(cfg, [raw])
-            if _is_launch(raw):
-                return self.launch_targets(raw, settings)
-            if raw.lower().endswith((".yaml", ".yml")):
-                from urdfcheck.plan.dependents import targets_reading
+            from urdfcheck.plan import dependents
 
-                return targets_reading(self, raw, settings)  # the per-file hook names a parameter file
-            if raw.lower().endswith(".srdf.xacro"):  # the per-file hook passes every *.xacro: not an error
-                self.infos.append(f"{shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
-                return []
+            if _is_launch(raw):  # the per-file hook names a launch file: its robots, else what reads it
+                return dependents.launch_or_readers(self, raw, settings)
+            if dependents.is_dependent(raw):  # a parameter, .lua or SRDF file: the robots that read it
+                return dependents.targets_reading(self, raw, settings)
             if raw.lower().endswith(NOT_MODELS):
                 raise UsageError(f"{raw} is not a URDF or xacro model (name the model, its package, or a "
                                  "launch file that starts robot_state_publisher)")
