@@ -187,3 +187,13 @@ def test_names_from_file_do_not_show_the_runners_path(tmp_path):
     assert str(tmp_path).strip("/") not in out
     code, out, err = run_cli(["lint", "--no-config", "--no-cache", "pkg", "--format", "json"], cwd=tmp_path)
     assert str(tmp_path).strip("/") not in out
+
+
+def test_list_and_info_lines_show_bidi_controls(tmp_path):
+    name = "a\u202eb.urdf"
+    (tmp_path / name).write_text('<robot name="r"><link name="a"/></robot>')
+    (tmp_path / "c\u202ed.yaml").write_text("x: 1\n")
+    code, out, err = run_cli(["lint", "--no-cache", "--list", name], cwd=tmp_path)
+    assert code == 0 and "a\\u202eb.urdf" in out and "\u202e" not in out, out + err
+    code, out, err = run_cli(["lint", "--no-cache", "c\u202ed.yaml"], cwd=tmp_path)
+    assert "c\\u202ed.yaml" in err and "\u202e" not in err + out, err

@@ -59,11 +59,11 @@ def run(ns, usage_error=UsageError) -> int:
         print(f"wrote {len(result.raw())} findings to {ns.write_baseline}", file=sys.stderr)
         return 0
 
-    from urdfcheck.core.findings import clean_text
+    from urdfcheck.core.findings import clean_text, escape_bidi
     from urdfcheck.report import render
 
     for line in getattr(result, "infos", ()):  # on stderr: the report formats stay as they are
-        print(f"urdfcheck: info: {clean_text(line, 4096)}", file=sys.stderr)
+        print(f"urdfcheck: info: {escape_bidi(clean_text(line, 4096))}", file=sys.stderr)
 
     colour = ns.color == "always" or (ns.color == "auto" and ns.output is None and sys.stdout.isatty()
                                       and not os.environ.get("NO_COLOR"))
@@ -93,7 +93,7 @@ def _list(request: LintRequest) -> int:
 
 
 def _list_plan(request: LintRequest) -> int:
-    from urdfcheck.core.findings import clean_text
+    from urdfcheck.core.findings import clean_text, escape_bidi
     from urdfcheck.core.paths import shown
     from urdfcheck.plan.deployments import describe, show_args
     from urdfcheck.plan.plan import plan
@@ -103,7 +103,7 @@ def _list_plan(request: LintRequest) -> int:
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
 
     def out(text: str) -> None:
-        print(clean_text(text, 4096))
+        print(escape_bidi(clean_text(text, 4096)))
 
     for line in targets.infos:
         out(f"info: {line}")
