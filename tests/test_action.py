@@ -55,12 +55,20 @@ STAND_IN = '''import os, sys
 
 
 def main():
+    args = sys.argv[1:]
     log = os.environ.get("URDFCHECK_TEST_ARGV")
     if log:
         with open(log, "a") as f:
-            f.write(json.dumps(sys.argv[1:]) + "\\n")
+            f.write(json.dumps(args) + "\\n")
+    if os.environ.get("URDFCHECK_TEST_CONFIG_FROM"):  # an urdfcheck that has `lint --config-from REV`
+        if args[:2] == ["lint", "--help"]:
+            print("  --config-from REV   the config of revision REV")
+            return
+        if "--config-from" in args:
+            i = args.index("--config-from")
+            del args[i:i + 2]
     env = dict(os.environ, PYTHONPATH={src!r})
-    os.execve({python!r}, [{python!r}, "-m", "urdfcheck", *sys.argv[1:]], env)
+    os.execve({python!r}, [{python!r}, "-m", "urdfcheck", *args], env)
 
 
 import json  # noqa: E402
@@ -165,7 +173,8 @@ def git(cwd: Path, *args: str) -> str:
 
 
 def run_action(tmp_path: Path, workspace: Path, source: Path, inputs: dict | None = None, event_name: str = "push",
-               event: dict | None = None, python: str | None = None, upload_fails: bool = False):
+               event: dict | None = None, python: str | None = None, upload_fails: bool = False,
+               extra_env: dict | None = None):
     tmp_path.mkdir(exist_ok=True)
     spec = action()
     defaults = {k: v.get("default", "") for k, v in spec["inputs"].items()}
@@ -198,7 +207,7 @@ def run_action(tmp_path: Path, workspace: Path, source: Path, inputs: dict | Non
                     "GITHUB_WORKSPACE": str(workspace), "GITHUB_EVENT_NAME": event_name,
                     "GITHUB_REPOSITORY": "owner/robot", "NO_COLOR": "1", "URDFCHECK_TEST_ARGV": str(argv_log),
                     "PIP_NO_INDEX": "1", "GIT_CONFIG_NOSYSTEM": "1",  # offline
-                    **{k: str(v) for k, v in files.items()},
+                    **{k: str(v) for k, v in files.items()}, **(extra_env or {}),
                     **{k: ctx.substitute(str(v)) for k, v in step.get("env", {}).items()}})
         cwd = workspace / ctx.substitute(step.get("working-directory", "."))
         script = ctx.substitute(step["run"])
@@ -361,6 +370,24 @@ def test_fork_pull_request_skips_the_upload_and_still_reports(tmp_path, source):
         assert args[args.index("--config-from") + 1] == base  # the base revision's config, not the fork's
     else:  # an urdfcheck without the flag (before `lint --config-from` lands): said, not silent
         assert "has no --config-from" in lint.stdout
+
+
+def test_a_shallow_pull_request_checkout_gets_the_base_commit_and_its_config(tmp_path, source):
+    """actions/checkout fetches one commit: the action fetches the base commit (from the checkout's own remote) and
+    passes `--config-from BASE_SHA` to an urdfcheck that has the flag."""
+    origin = workspace_with(tmp_path, "examples/agv")
+    event = pull_request(origin, FORK)
+    base = event["pull_request"]["base"]["sha"]
+    ws = tmp_path / "checkout"
+    git(tmp_path, "clone", "-q", "--depth", "1", f"file://{origin}", str(ws))
+    with pytest.raises(subprocess.CalledProcessError):
+        git(ws, "cat-file", "-e", f"{base}^{{commit}}")  # not in the shallow checkout
+    ctx, log, _, argv = run_action(tmp_path / "run", ws, source, {"sarif": "false"}, event_name="pull_request",
+                                   event=event, extra_env={"URDFCHECK_TEST_CONFIG_FROM": "1"})
+    args = lint_argv(argv)
+    assert args[args.index("--config-from") + 1] == base
+    git(ws, "cat-file", "-e", f"{base}^{{commit}}")  # fetched
+    assert ctx.steps["lint"]["exit-code"] == "0"
 
 
 def test_config_from_base_can_be_turned_off(tmp_path, source):
