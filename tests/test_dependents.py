@@ -22,6 +22,8 @@ BRINGUP = """<launch>
            value="$(command 'xacro $(find-pkg-share agv_description)/urdf/agv.urdf.xacro')"/>
   </node>
   <include file="$(find-pkg-share agv_bringup)/launch/controllers.launch.xml"/>
+  <node pkg="cartographer_ros" exec="cartographer_node" name="cartographer_node"
+        args="-configuration_directory $(find-pkg-share agv_bringup)/config -configuration_basename slam.lua"/>
 </launch>
 """
 CONTROLLERS = """<launch>
@@ -54,6 +56,16 @@ def mono(tmp_path) -> Path:
     shutil.copy(desc / "config" / "agv_controllers.yaml", bringup / "config" / "controllers.yaml")
     (bringup / "launch" / "bringup.launch.xml").write_text(BRINGUP)
     (bringup / "launch" / "controllers.launch.xml").write_text(CONTROLLERS)
+    (bringup / "config" / "slam.lua").write_text('options = {\n  map_frame = "map",\n  tracking_frame = "base_link",\n'
+                                                  '  published_frame = "odom",\n  odom_frame = "odom",\n'
+                                                  '  provide_odom_frame = false,\n}\nreturn options\n')
+    other = tmp_path / "repoB" / "other_bringup"  # another robot's file of the same name: not a reader
+    (other / "launch").mkdir(parents=True)
+    (other / "package.xml").write_text((desc / "package.xml").read_text().replace("agv_description",
+                                                                                  "other_bringup"))
+    (other / "launch" / "slam.launch.xml").write_text(
+        '<launch><node pkg="cartographer_ros" exec="cartographer_node" name="c" args="-configuration_directory '
+        '$(find-pkg-share other_bringup)/config -configuration_basename slam.lua"/></launch>\n')
     shutil.copytree(REPO / "examples" / "broken" / "joint_limits", tmp_path / "repoB" / "joint_limits")
     return tmp_path
 
@@ -81,13 +93,19 @@ def test_lua_and_srdf_files_stand_for_their_packages_robots(mono, name):
                            "repoA/agv_description/urdf/agv.urdf.xacro [repoA/agv_bringup/launch/bringup.launch.xml]"]
 
 
+def test_a_lua_file_stands_for_the_deployments_whose_launch_files_name_it(mono):
+    code, out, err = run_cli(["lint", "--no-cache", "--list", "repoA/agv_bringup/config/slam.lua"], cwd=mono)
+    assert code == 0, err
+    assert listed(out) == ["repoA/agv_description/urdf/agv.urdf.xacro [repoA/agv_bringup/launch/bringup.launch.xml]"]
+
+
 def test_a_lua_file_nothing_reads_is_an_info_line(tmp_path):
     (tmp_path / "cfg.lua").write_text("options = {}\n")
     code, out, err = run_cli(["lint", "--no-cache", "cfg.lua"], cwd=tmp_path)
     assert code == 0 and "a .lua file that no robot or deployment of its workspace reads" in err, out + err
 
 
-@pytest.mark.parametrize("rel", ["repoA/agv_bringup/config/controllers.yaml",
+@pytest.mark.parametrize("rel", ["repoA/agv_bringup/config/controllers.yaml", "repoA/agv_bringup/config/slam.lua",
                                  "repoA/agv_bringup/launch/controllers.launch.xml",
                                  "repoA/agv_description/config/agv_controllers.yaml"])
 def test_from_the_folder_of_repositories_as_from_the_repository(mono, rel):
@@ -121,7 +139,8 @@ def _both(monkeypatch, here: Path, files: list[str]):
 
 def test_the_same_targets_as_a_plan_of_the_whole_folder(mono, monkeypatch):
     files = ["repoA/agv_bringup/config/controllers.yaml", "repoA/agv_description/config/agv_controllers.yaml",
-             "repoA/agv_description/config/carto.lua", "repoA/agv_bringup/launch/controllers.launch.xml"]
+             "repoA/agv_description/config/carto.lua", "repoA/agv_bringup/launch/controllers.launch.xml",
+             "repoA/agv_bringup/config/slam.lua", "repoA/agv_description/config/agv.srdf"]
     fast, whole = _both(monkeypatch, mono, files)
     assert fast == whole and all(fast)
 

@@ -52,10 +52,13 @@ def targets_reading(planner, raw: str, settings, what: str | None = None) -> lis
     pkg = enclosing_package(Path(path).parent)
     ws = here if _below(path, here) else str(pkg or os.path.dirname(path))
     real = os.path.realpath(path)
+    # no reader records a .lua, an SRDF or a launch file included under a condition: the launch files naming it
+    named = set() if path.lower().endswith((".yaml", ".yml")) else _naming(planner, ws, path)
     out = []
     for t in _candidates(planner, ws, path, pkg, settings):
         own = enclosing_package(Path(os.path.abspath(t.path)).parent)
-        if (own is not None and _below(real, os.path.realpath(own))) or real in _read_by(t):
+        if (own is not None and _below(real, os.path.realpath(own))) or real in _read_by(t) \
+                or (t.deployment is not None and os.path.realpath(t.deployment.launch.file) in named):
             out.append(t)
     if not out:
         kind = what or f"{_KIND.get(os.path.splitext(path)[1].lower(), 'YAML')} file"
@@ -67,16 +70,15 @@ def targets_reading(planner, raw: str, settings, what: str | None = None) -> lis
 def _candidates(planner, ws: str, path: str, pkg, settings) -> list:
     """The targets of `ws` that may read `path`: all of them when `ws` is the file's package (or holds a config),
     else the deployments of the launch files that can reach it and the own package's models."""
-    if pkg is None or _below(ws, str(pkg)) or planner.walk(ws).configs:
+    if pkg is None or _below(ws, str(pkg)) or _listing(planner, ws)[1]:
         return planner.workspace_targets(ws)
     from urdfcheck.load.packages import package_name
-    from urdfcheck.plan.deployments import launch_files
 
     words = {os.path.basename(path).encode()}
     name = package_name(pkg / "package.xml")
     if name:
         words.add(name.encode())
-    texts = {p: _head(p) for p in launch_files(ws)}
+    texts = _texts(planner, ws)
     chosen = {p for p in texts if _below(p, str(pkg))}  # the own package's launch files, whatever they name
     words.update(os.path.basename(p).encode() for p in chosen)
     grew = True
@@ -92,6 +94,52 @@ def _candidates(planner, ws: str, path: str, pkg, settings) -> list:
     own = [t for t in planner.workspace_targets(str(pkg))
            if t.deployment is None and os.path.realpath(t.path) not in covered]
     return deployed + own
+
+
+def _texts(planner, ws: str) -> dict:
+    """The launch files of `ws` and their bytes (read once per run and workspace)."""
+    return _listing(planner, ws)[0]
+
+
+def _listing(planner, ws: str) -> tuple[dict, bool]:
+    """One pass over `ws` (as the deployment finder lists it): its launch files with their bytes, and whether a
+    urdfcheck config sits anywhere in it."""
+    memo = planner.__dict__.setdefault("_dependents_listing", {})
+    if ws not in memo:
+        from urdfcheck.load.discover import _walk
+        from urdfcheck.plan.deployments import _is_launch
+        from urdfcheck.request.config import PYPROJECT, _pyproject_has_table
+
+        texts, config = {}, False
+        for folder, name in _walk(os.path.abspath(ws), 20_000):  # plan.deployments.launch_files' walk
+            if _is_launch(name):
+                texts[os.path.join(folder, name)] = None
+            elif name in CONFIG_NAMES or (name == PYPROJECT and _pyproject_has_table(Path(folder, name))):
+                config = True
+        memo[ws] = ({p: _head(p) for p in texts}, config)
+    return memo[ws]
+
+
+def _naming(planner, ws: str, path: str) -> set[str]:
+    """The launch files of `ws` that name `path` (its file name, and its package's name unless they are in that
+    package: a file of another package is found through it), and those that include them, named the same way."""
+    from urdfcheck.load.packages import own_package
+
+    texts = _texts(planner, ws)
+    found: dict[str, None] = {}
+    todo = [path]
+    while todo:
+        target = todo.pop()
+        word = os.path.basename(target).encode()
+        name, folder = own_package(target)
+        for p, text in texts.items():
+            if p in found or p == target or text is None or word not in text:
+                continue
+            if folder is not None and not _below(p, str(folder)) and (not name or name.encode() not in text):
+                continue  # names a file of that name in another package
+            found[p] = None
+            todo.append(p)
+    return {os.path.realpath(p) for p in found}
 
 
 def _head(path: str) -> bytes | None:
