@@ -32,7 +32,7 @@ import threading
 
 from urdfcheck.core import safeio
 
-DEFAULT_RUN_BYTES = 2 * 1024**3  # what one run may read in all (every file of every reader), unless the runner raises it
+DEFAULT_RUN_BYTES = 2 * 1024**3  # what one run may read in all, every reader together, unless the runner raises it
 DEFAULT_FILE_BYTES = 64 * 1024**2  # one file read whole, unless the reader asks for a smaller or larger cap
 
 
