@@ -146,6 +146,9 @@ def admit(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) -> str
     return real
 
 
+overlaid = safeio.overlaid  # the unsaved text of an editor's open documents (`urdfcheck server`)
+
+
 def read_bytes(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) -> bytes:
     """At most `limit + 1` bytes of a confined regular file (a caller tells "too large" by the extra byte)."""
     real = confine(path, runner=runner)
