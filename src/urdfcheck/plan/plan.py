@@ -540,7 +540,7 @@ class _Walk(Record):
 
 
 def _walk(folder: str) -> _Walk:
-    """One pass over a folder tree: nested config files and packages (hidden and build folders skipped)."""
+    """One pass over a folder tree: nested config files and packages (what core.walk skips skipped)."""
     from urdfcheck.core import walk
     from urdfcheck.request.config import PYPROJECT, _pyproject_has_table
 
