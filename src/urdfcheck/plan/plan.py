@@ -211,7 +211,9 @@ class Planner:
         if not paths:
             cfg = self.nearest(os.path.abspath(self.here))
             if cfg is not None and cfg.models:
-                got = TargetList(_unique(self.declared(cfg, None)), self.infos)
+                found = self.declared(cfg, None) + self.added(cfg, cfg.root)
+                got = TargetList(_unique(found), dict.fromkeys(self.infos))
+                got.not_understood = list(self.not_understood)
                 got.findings, got.libraries = self.plan_findings(), len(self.libraries)
                 got.included = list(dict.fromkeys(self.included))
                 return got
@@ -260,8 +262,8 @@ class Planner:
             [c for c in walk.configs if cfg is None or os.path.dirname(c) != cfg.root]
         nested_roots = [os.path.dirname(c) for c in nested]
         # the deployments of the whole named tree, once; a folder whose config declares its models keeps them
-        declaring = [self.config(c).root for c in nested if self.config(c).models]
-        if cfg is not None and _models_at(cfg, raw):
+        declaring = [self.config(c).root for c in nested if self.config(c).models and _vouched(self.config(c))]
+        if cfg is not None and _models_at(cfg, raw) and _vouched(cfg):
             declaring.append(os.path.abspath(raw))
         named = self.named(raw, settings, skip=declaring)
         out = self.scope(cfg, raw, walk, exclude=nested_roots, named=named)
@@ -270,6 +272,7 @@ class Planner:
             deeper = [r for r in nested_roots if _below(r, sub.root) and r != sub.root]
             if sub.models:
                 out.extend(t for t in self.declared(sub, None) if not _under_any(str(t.path), deeper))
+                out.extend(self.added(sub, sub.root, self.walk(sub.root), exclude=deeper, named=named))
             else:
                 out.extend(self.scope(sub, sub.root, self.walk(sub.root), exclude=deeper, named=named))
         return out
@@ -278,8 +281,20 @@ class Planner:
         """The models of `folder` under one config (or none): declared ones, else discovered."""
         settings = self.settings(cfg)
         if cfg is not None and _models_at(cfg, folder):
-            return [t for t in self.declared(cfg, [folder]) if not _under_any(str(t.path), exclude)]
+            return [t for t in self.declared(cfg, [folder]) if not _under_any(str(t.path), exclude)] \
+                + self.added(cfg, folder, walk, exclude, named)
         return self.discovered(folder, walk, settings, exclude, named)
+
+    def added(self, cfg, folder: str, walk=None, exclude=(), named: _Named | None = None) -> list[Target]:
+        """What a config the runner did not vouch for cannot hide (issue 36): its `models:` add to discovery, so
+        the robots of `folder` it does not declare are linted zero-config beside them (a clean decoy declared
+        there does not hide the broken robot next to it). A vouched config's models are all that is linted."""
+        if _vouched(cfg) or not os.path.isdir(folder):
+            return []
+        declared = {os.path.realpath(m.path) for m in cfg.models}
+        got = self.discovered(folder, walk if walk is not None else self.walk(folder), self.settings(cfg),
+                              exclude, named)
+        return [t for t in got if t.deployment is not None or os.path.realpath(t.path) not in declared]
 
     def declared(self, cfg, paths) -> list[Target]:
         """The config's models (at or below `paths` when given); paths no model covers: discovered."""
@@ -484,6 +499,11 @@ def _cut_short(folder: str, limit: str):
     return Finding("X019", Severity.ERROR, f"the file walk stopped after {limit}: what lies beyond was not looked "
                    "at (lint the packages one by one, or remove generated files from the checkout)",
                    Location(folder), name="walk-truncated")
+
+
+def _vouched(cfg) -> bool:
+    """The runner named this config with --config FILE --trust-config (request.config.Config.vouched)."""
+    return bool(getattr(cfg, "vouched", True))
 
 
 def _is_srdf_name(path: str) -> bool:
