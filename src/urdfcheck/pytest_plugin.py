@@ -129,6 +129,9 @@ def pytest_collection_modifyitems(session, config, items):
             parent, kids = parent_for(t.path)
             name = f"urdfcheck[{t.variant}]" if t.variant else "urdfcheck"
             kids.append(UrdfcheckItem.from_parent(parent, name=name, target=t, state=state, index=i))
+        if getattr(state.targets, "findings", None):  # about the plan itself (a refused config key, X018; X019)
+            parent, kids = parent_for(Path(state.config_path or state.rootdir))
+            kids.append(UrdfcheckItem.from_parent(parent, name="urdfcheck-config", target=None, state=state))
     new = []
     for path, parent in parents.items():
         # report the collection like pytest does for files it collects (counts, --co, junitxml)
@@ -162,6 +165,15 @@ class UrdfcheckItem(pytest.Item):
         if self.state.error is not None:
             raise UrdfcheckFailure(f"invalid urdfcheck config: {self.state.error}")
         result = _result(self.state)
+        if self.target is None:  # the plan's own findings: what the config asked and was refused (issue 36)
+            from urdfcheck.core.findings import Severity
+
+            findings, fail_on = list(self.state.targets.findings), self.state.fail_on or Severity.WARNING
+            failing = [f for f in findings if f.severity >= fail_on]
+            if failing:
+                raise UrdfcheckFailure("\n".join([f"{len(failing)} urdfcheck finding(s) about the plan (config, "
+                                                  "file walk)"] + [_line(f) for f in failing]))
+            return
         findings = result.shares[self.index]
         fail_on = self.state.fail_on or self.target.settings.fail_on
         failing = [f for f in findings if f.severity >= fail_on]

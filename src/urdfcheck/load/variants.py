@@ -54,9 +54,9 @@ def boolean_args(path: str, packages: Mapping[str, str] | None = None, *, includ
     return {k: v for k, v in declared.items() if v in _BOOLS}
 
 
-def defaulted_args(path: str, packages: Mapping[str, str] | None = None) -> set[str]:
-    """The names of the xacro:args declared with a default (any value), in the entry and its literal includes:
-    what a config's `args` replace rather than supply (request.config; issue 36)."""
+def defaulted_args(path: str, packages: Mapping[str, str] | None = None) -> dict[str, str]:
+    """The xacro:args declared with a default (name -> its text, the first declaration's), in the entry and its
+    literal includes: what a config's `args` replace rather than supply (request.config; issue 36)."""
     from urdfcheck.core.safeio import read_file
 
     try:
@@ -66,12 +66,12 @@ def defaulted_args(path: str, packages: Mapping[str, str] | None = None) -> set[
     texts = [text]
     if "include" in text:
         texts.extend(inc for _, inc in _included(path, packages or {}))
-    out: set[str] = set()
+    out: dict[str, str] = {}
     for t in texts:
         for m in _ARG.finditer(re.sub(r"<!--.*?-->", "", t, flags=re.S)):
             attrs = {k: v for k, _, v in _ATTR.findall(m.group(1))}
-            if attrs.get("name") and "default" in attrs:
-                out.add(attrs["name"])
+            if attrs.get("name") and "default" in attrs and attrs["name"] not in out:
+                out[attrs["name"]] = attrs["default"].strip()
     return out
 
 

@@ -294,7 +294,8 @@ class Planner:
         declared = {os.path.realpath(m.path) for m in cfg.models}
         got = self.discovered(folder, walk if walk is not None else self.walk(folder), self.settings(cfg),
                               exclude, named)
-        return [t for t in got if t.deployment is not None or os.path.realpath(t.path) not in declared]
+        return [t for t in got if not _covered(t, cfg) if t.deployment is not None
+                or os.path.realpath(t.path) not in declared]
 
     def declared(self, cfg, paths) -> list[Target]:
         """The config's models (at or below `paths` when given); paths no model covers: discovered."""
@@ -499,6 +500,18 @@ def _cut_short(folder: str, limit: str):
     return Finding("X019", Severity.ERROR, f"the file walk stopped after {limit}: what lies beyond was not looked "
                    "at (lint the packages one by one, or remove generated files from the checkout)",
                    Location(folder), name="walk-truncated")
+
+
+def _covered(t: Target, cfg) -> bool:
+    """A deployment the config already lints as planned: its model declared with that launch file among the
+    model's `launch:`, and the launch file's xacro arguments one of the model's variants (or none at all)."""
+    d = t.deployment
+    if d is None:
+        return False
+    m = cfg.model_for(t.path)
+    if m is None or os.path.realpath(d.launch.file) not in {os.path.realpath(x) for x in m.launch}:
+        return False
+    return not d.args or any(dict(d.args) == a for _, a in m.variant_args())
 
 
 def _vouched(cfg) -> bool:

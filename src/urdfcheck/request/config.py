@@ -103,7 +103,7 @@ class ModelConfig(FrozenRecord):
                  localization: tuple[str, ...] = (),
                  frame_prefix: str = "",
                  bags: tuple[str, ...] = (),
-                 defaults: frozenset = frozenset()):
+                 defaults: Mapping[str, str] | None = None):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
         d["loc"] = loc
@@ -117,7 +117,7 @@ class ModelConfig(FrozenRecord):
         d["frame_prefix"] = frame_prefix
         d["bags"] = bags  # recordings checked against this model (urdfcheck.bag)
         # xacro args whose default an untrusted config replaces: the defaults are linted too (issue 36)
-        d["defaults"] = defaults
+        d["defaults"] = _ro({}) if defaults is None else defaults
 
     def variant_args(self) -> list[tuple[str, dict]]:
         """(variant name, xacro args) pairs: one ("", args) when there are no variants."""
@@ -129,9 +129,9 @@ class ModelConfig(FrozenRecord):
         else:
             out = [("", base)]
         if self.defaults:  # an untrusted config's args may add variants, never replace the defaults
-            plain = {k: v for k, v in base.items() if k not in self.defaults}
-            if all(a != plain for _, a in out):
-                out.append(("xacro defaults", plain))
+            d = self.defaults
+            if not any(all(a.get(k, v) == v for k, v in d.items()) for _, a in out):
+                out.append(("xacro defaults", {k: v for k, v in base.items() if k not in d}))
         return out
 
 
@@ -442,9 +442,7 @@ def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
                 frames=_as_tuple(d.get("frames")), odom_tf=d.get("odom_tf"),
                 odom_frame=d.get("odom_frame"), base_frame=d.get("base_frame"),
             ))
-        replaced = frozenset() if trusted else _replaced_defaults(mp, m)
-        if replaced:
-            notes += (trust.defaults_kept(str(m["path"]), replaced, key_loc("models", i, "args")),)
+        replaced = _ro({}) if trusted else _replaced_defaults(mp, m)
         models.append(ModelConfig(
             defaults=replaced, path=mp, loc=val_loc("models", i, "path"), args=_ro(_str_args(m.get("args"))), variants=variants,
             controllers=tuple(resolve(p, "models", i, "controllers", k)
@@ -457,6 +455,9 @@ def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
             frame_prefix=str(m.get("frame_prefix") or ""),
             bags=tuple(resolve(p, "models", i, "bags", k, kind="recording") for k, p in enumerate(m.get("bags") or [])),
         ))
+        if replaced and any(n == "xacro defaults" for n, _ in models[-1].variant_args()):
+            key = "args" if m.get("args") else "variants"
+            notes += (trust.defaults_kept(str(m["path"]), replaced, key_loc("models", i, key)),)
     packages = {str(k): resolve(v, "packages", k, kind="folder") for k, v in (data.get("packages") or {}).items()}
     for k, p in packages.items():
         if not os.path.isdir(p):
@@ -489,17 +490,17 @@ def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
     )
 
 
-def _replaced_defaults(model: str, m: dict) -> frozenset:
-    """The xacro args with a default in `model` that the config's `args` or `variants` set."""
-    given = set((m.get("args") or {}))
+def _replaced_defaults(model: str, m: dict) -> Mapping:
+    """The xacro args with a default in `model` (name -> default) that the config's `args` or `variants` set."""
+    given = {str(k) for k in m.get("args") or {}}
     if isinstance(m.get("variants"), dict):
         for v in m["variants"].values():
-            given |= set(v or {})
+            given |= {str(k) for k in v or {}}
     if not given or not model.endswith(".xacro"):
-        return frozenset()
+        return _ro({})
     from urdfcheck.load.variants import defaulted_args
 
-    return frozenset(str(k) for k in given) & defaulted_args(model)
+    return _ro({k: v for k, v in defaulted_args(model).items() if k in given})
 
 
 def _own_packages(packages: dict, data: dict, root: str, key_loc) -> list:

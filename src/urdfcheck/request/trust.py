@@ -173,7 +173,7 @@ def refuse_package(name: str, given: str, own: list, loc: Location) -> Finding:
 
 def defaults_kept(model: str, names, loc: Location) -> Finding:
     """A note, not a refusal: the model is linted with its xacro defaults too."""
-    return Finding("X018", Severity.INFO, f"'args' of {model} replace the default of {', '.join(sorted(names))[:200]}"
+    return Finding("X018", Severity.INFO, f"the args of {model} replace the default of {', '.join(sorted(names))[:200]}"
                    " in a config the runner did not trust: the model is linted with its defaults too (variant "
                    "'xacro defaults')", loc, name="untrusted-config")
 
