@@ -164,7 +164,8 @@ class Planner:
 
             try:
                 named = self.request.config is not None and os.path.abspath(self.request.config) == path
-                self._configs[path] = cfgmod.load_config(path, trusted=bool(named and self.request.trust_config))
+                self._configs[path] = cfgmod.load_config(path, trusted=bool(named and self.request.trust_config),
+                                                         root=self.request.config_root if named else None)
             except cfgmod.ConfigError as e:
                 where = e.location or cfgmod.Location(path)
                 at = shown(where.file) + "".join(f":{n}" for n in (where.line, where.column) if n)
@@ -249,7 +250,7 @@ class Planner:
                 from urdfcheck.plan.dependents import targets_reading
 
                 return targets_reading(self, raw, settings)  # the per-file hook names a parameter file
-            if raw.lower().endswith(".srdf.xacro"):  # the per-file hook passes every *.xacro: not an error
+            if raw.lower().endswith(".srdf.xacro") and _srdf_text(raw):  # the per-file hook passes every *.xacro
                 self.infos.append(f"{shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
                 return []
             if raw.lower().endswith(NOT_MODELS):
@@ -372,7 +373,10 @@ class Planner:
         resolver = Resolver(dict(settings.packages), near=Path(root), workspace=root)
         found = find_deployments(root, resolver, packages=dict(settings.packages), files=files)
         self.not_understood.extend(d for d in found if d.model is None and d not in self.not_understood)
-        return [d for d in found if d.model is not None and d.launch is not None and not _is_srdf_name(d.model)]
+        # what robot_state_publisher is given is a robot, whatever its name (issue 36: a robot.srdf.xacro
+        # loaded as robot_description is not skipped); only a file whose text is MoveIt's semantic description
+        # (groups, no link) is none
+        return [d for d in found if d.model is not None and d.launch is not None and not _srdf_text(d.model)]
 
     def deployed(self, d, root: str, settings: Settings) -> Target:
         """A deployment's target: the launch file's xacro arguments, its controllers and localization as the
@@ -519,8 +523,11 @@ def _vouched(cfg) -> bool:
     return bool(getattr(cfg, "vouched", True))
 
 
-def _is_srdf_name(path: str) -> bool:
-    return path.lower().endswith((".srdf", ".srdf.xacro"))
+def _srdf_text(path: str) -> bool:
+    """MoveIt's semantic description by its text (SRDF elements, no <link>), whatever the file's name."""
+    from urdfcheck.load.discover import _is_srdf, _read_head
+
+    return os.path.isfile(path) and _is_srdf(_read_head(str(path)))
 
 
 def _is_launch(path: str) -> bool:

@@ -386,9 +386,11 @@ def _str_args(d) -> dict[str, str]:
     return out
 
 
-def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
+def load_config(path: str | os.PathLike, trusted: bool = False, root: str | None = None) -> Config:
     """`trusted`: the person running the tool named this config (--config FILE --trust-config); otherwise
-    what lowers the guard is ignored, with a finding, and its paths stay in the checkout (request.trust)."""
+    what lowers the guard is ignored, with a finding, and its paths stay in the checkout (request.trust).
+    `root`: the folder its relative paths start at (default: its own folder; a trusted config kept in a private
+    temp file, such as the base revision's, names the checkout folder it belongs to)."""
     from urdfcheck.request import trust
 
     path = os.path.abspath(str(path))
@@ -405,7 +407,7 @@ def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
     except RecursionError:
         raise ConfigError("the config is nested too deeply", Location(path)) from None
     notes = tuple(trust.screen(data, path, key_loc, trusted))
-    root = os.path.dirname(path)
+    root = os.path.abspath(root) if root else os.path.dirname(path)
     locs: dict[tuple, Location] = {}
 
     def resolve(p: str, *keypath, must_exist=True, kind="file") -> str:
