@@ -105,12 +105,6 @@ def test_fail_on_error_with_lowered_severities_says_each_refused_key(tmp_path):
                                                    ("urdfcheck.yaml", 2)], found
 
 
-def test_tightening_is_anyones_right(tmp_path):
-    ws = _ws(tmp_path, "select: [ALL]\nseverity: {U002: error}\nfail_on: info\nrules: {J007: {tolerance: 1.0e-9}}\n")
-    code, found = _lint(ws)
-    assert code == 1 and _has_broken(found, "error") and not [c for c in found if c[0] == "X018"], found
-
-
 def test_a_rule_option_that_loosens_the_check_is_refused(tmp_path):
     ws = _ws(tmp_path, "rules:\n  J007:\n    tolerance: 1.0e+9\n")
     (ws / "bot" / "urdf" / "broken.urdf").write_text(
@@ -121,6 +115,12 @@ def test_a_rule_option_that_loosens_the_check_is_refused(tmp_path):
     assert code == 1 and "J007" in [c for c, *_ in found] and _x018(found) == [("urdfcheck.yaml", 3)], found
     code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
     assert "J007" not in [c for c, *_ in found], found
+    # tightening is anyone's right: kept, no X018
+    (ws / "urdfcheck.yaml").write_text("select: [ALL]\nseverity: {J007: error}\nfail_on: info\n"
+                                       "rules: {J007: {tolerance: 1.0e-9}}\n")
+    code, found = _lint(ws)
+    assert code == 1 and ("J007", "bot/urdf/broken.urdf", 5, "error") in found, found
+    assert not [c for c in found if c[0] == "X018"], found
 
 
 @pytest.mark.parametrize("code, option, value, ok", [
