@@ -45,7 +45,8 @@ def _has_broken(found, severity="warning"):
 DECOY = {
     "urdfcheck.yaml": ("urdfcheck.yaml", "models:\n  - path: bot/urdf/clean.urdf\n"),
     ".urdfcheck.yaml": (".urdfcheck.yaml", "models:\n  - path: bot/urdf/clean.urdf\n"),
-    "pyproject": ("pyproject.toml", '[project]\nname = "x"\n\n[[tool.urdfcheck.models]]\npath = "bot/urdf/clean.urdf"\n'),
+    "pyproject": ("pyproject.toml",
+                  '[project]\nname = "x"\n\n[[tool.urdfcheck.models]]\npath = "bot/urdf/clean.urdf"\n'),
     "nested": ("bot/urdfcheck.yaml", "models:\n  - path: urdf/clean.urdf\n"),
 }
 
@@ -161,6 +162,12 @@ def test_packages_may_not_point_the_checkouts_own_package_at_a_clean_copy(tmp_pa
     (ws / "urdfcheck.yaml").write_text("packages: {bot: bot, other: vendor/bot_clean}\n")  # its own folder: fine
     code, found = _lint(ws, "bot")
     assert not _x018(found) and ("U002", "bot/urdf/parts.xacro", 6, "warning") in found, found
+    # a clean copy committed under the same name: choosing it is the runner's too
+    (ws / "vendor" / "bot_clean" / "package.xml").write_text("<package format='3'><name>bot</name></package>")
+    (ws / "urdfcheck.yaml").write_text("packages: {bot: vendor/bot_clean}\n")
+    code, found = _lint(ws, "bot")
+    assert code == 1 and ("U002", "bot/urdf/parts.xacro", 6, "warning") in found, found
+    assert _x018(found) == [("urdfcheck.yaml", 1)]
 
 
 TYPO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">

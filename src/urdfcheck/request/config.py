@@ -446,7 +446,8 @@ def load_config(path: str | os.PathLike, trusted: bool = False, root: str | None
             ))
         replaced = _ro({}) if trusted else _replaced_defaults(mp, m)
         models.append(ModelConfig(
-            defaults=replaced, path=mp, loc=val_loc("models", i, "path"), args=_ro(_str_args(m.get("args"))), variants=variants,
+            defaults=replaced, path=mp, loc=val_loc("models", i, "path"), args=_ro(_str_args(m.get("args"))),
+            variants=variants,
             controllers=tuple(resolve(p, "models", i, "controllers", k)
                               for k, p in enumerate(m.get("controllers") or [])),
             drivers=tuple(drivers),
@@ -507,7 +508,8 @@ def _replaced_defaults(model: str, m: dict) -> Mapping:
 
 def _own_packages(packages: dict, data: dict, root: str, key_loc) -> list:
     """Refuse (X018, and drop) `packages:` entries that point a package the checkout defines (a package.xml of
-    that name in the config's repository) at another folder: the pull request would lint a clean copy."""
+    that name in the config's repository) at another folder, or choose among two copies of it: the pull request
+    would lint a clean copy."""
     from urdfcheck.load.packages import workspace_packages
     from urdfcheck.request import trust
 
@@ -516,7 +518,9 @@ def _own_packages(packages: dict, data: dict, root: str, key_loc) -> list:
     out = []
     for name in list(packages):
         homes = own.get(name)
-        if homes and os.path.realpath(packages[name]) not in {os.path.realpath(h) for h in homes}:
+        # two copies of one package in the checkout: choosing one is the runner's (the pull request could commit a
+        # clean copy under the same name); zero config resolves the copy nearest each model
+        if homes and (len(homes) > 1 or os.path.realpath(packages[name]) != os.path.realpath(homes[0])):
             shown = [os.path.relpath(h, top) for h in homes]  # no absolute runner path in a message
             out.append(trust.refuse_package(name, str(data["packages"][name]), shown, key_loc("packages", name)))
             del packages[name]
