@@ -7,7 +7,7 @@ What is skipped is what ROS's own tools skip, by the marker files they read, nev
 under a plain folder named `build`, `log`, `install` or `venv` is built by colcon, so it is linted; issue 36):
 - a folder holding COLCON_IGNORE, AMENT_IGNORE or CATKIN_IGNORE (colcon, ament and catkin skip it; colcon writes
   COLCON_IGNORE into the build, install and log bases it creates: colcon_core verb/build.py `_create_path`,
-  location.py `create_log_path`);
+  location.py `create_log_path`; catkin's CMake writes CATKIN_IGNORE into its build folder);
 - hidden folders (.git and the like: colcon's crawl and catkin_pkg skip names starting with a dot);
 - outputs of other tools, by the file the tool writes, and only in a folder that is no package (a package.xml
   beside the marker wins, as colcon would build it): a Python venv (`pyvenv.cfg`), a catkin devel or install
