@@ -6,9 +6,11 @@ Registered through the `pytest11` entry point, so installing urdfcheck is enough
 * the pytest rootdir holds a urdfcheck config (`urdfcheck.yaml`, `.urdfcheck.yaml`, or `pyproject.toml`
   with `[tool.urdfcheck]`).
 
-The models are what the config declares (each variant is its own item), else the entry models found
-below the rootdir. An item fails when the model has findings at or above the fail level
-(`--urdfcheck-fail-on`, else the config's `fail_on`, else `warning`); the failure text lists the located
+The models are what the config declares (each variant is its own item) and the entry models found below the
+rootdir that it does not declare (a config found in the checkout adds, never hides: issue 36); what the config
+asked and was refused (X018) is the item `urdfcheck-config`. An item fails when the model has findings at or
+above the fail level (`--urdfcheck-fail-on`, else the config's `fail_on` when it may set it, else `warning`);
+the failure text lists the located
 findings. The plugin makes the request `urdfcheck lint` run in the rootdir makes and runs the same pipeline
 (plan/plan.py, run.py) once, on the first item: every item shows its model's share, and an unused
 suppression in a YAML file fails the item of the first model that read the file, as R002 fails the CLI.
