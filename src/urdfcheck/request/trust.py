@@ -57,7 +57,6 @@ def screen(data: dict, path: str, key_loc, trusted: bool) -> list[Finding]:
     return out
 
 
-LOAD_PREFIX = "X0"  # load and sandbox findings: X001-X029
 DEFAULT_FAIL_ON = Severity.WARNING  # request.Settings' default
 
 
