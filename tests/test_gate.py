@@ -261,3 +261,20 @@ def test_a_robot_in_an_srdf_named_file_loaded_by_a_launch_file_is_linted(tmp_pat
         "value=\"$(command 'xacro $(find-pkg-share bot)/urdf/robot.srdf.xacro')\"/>\n  </node>\n</launch>\n")
     code, found = _lint(ws, "--no-config", ".")
     assert code == 1 and ("U002", "bot/urdf/robot.srdf.xacro", 6, "warning") in found, found
+
+
+def test_declared_consumers_add_to_those_found_beside_the_model(tmp_path):
+    """A config that declares a model with a clean controllers file does not hide the driver file beside it whose
+    wheel separation is wrong: the model is linted again with the consumers zero config finds."""
+    import shutil
+
+    from conftest import REPO
+
+    ws = tmp_path / "ws"
+    shutil.copytree(REPO / "examples" / "broken" / "contract_wheel_separation", ws)
+    (ws / ".git").mkdir()
+    (ws / "urdfcheck.yaml").write_text("models:\n  - path: urdf/agv.urdf\n    controllers: [config/agv_controllers.yaml]\n")
+    code, found = _lint(ws)
+    assert code == 1 and ("C010", "config/agv_driver_ros1.yaml", 7, "warning") in found, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert code == 0 and found == [], found

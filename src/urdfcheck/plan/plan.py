@@ -66,6 +66,7 @@ class Target(Record):
     # how the model and its deployment were chosen (core.evidence.Step), which every finding of it rests on
     evidence: tuple = ()
     library = False  # a probe whose expansion has no link: not a robot, not checked as one
+    twin = False  # a declared model linted again with the consumers found beside it (an unvouched config's)
 
     def __init__(self, path: Path,
                  args: dict | None = None,
@@ -316,6 +317,12 @@ class Planner:
             for vname, vargs in m.variant_args():
                 out.append(self.target(Path(m.path), vargs, vname, consumers, settings))
                 out[-1].bags = m.bags
+            if not _vouched(cfg) and _undeclared_consumers(m):
+                # declared consumers add to those found beside the model, never replace them (issue 36): the
+                # package's parameter and launch files the config leaves out are checked as zero config would
+                twin = self.target(Path(m.path), m.variant_args()[0][1], "consumers found beside it", None, settings)
+                twin.twin = True
+                out.append(twin)
         for raw in rest:
             out.extend(self.file_targets(Path(raw), settings) if not os.path.isdir(raw)
                        else self.discovered(raw, self.walk(raw), settings))
@@ -518,6 +525,20 @@ def _covered(t: Target, cfg) -> bool:
     return not d.args or any(dict(d.args) == a for _, a in m.variant_args())
 
 
+def _undeclared_consumers(m) -> bool:
+    """Does the declared model's package hold parameter or launch files (as zero config finds them) that the
+    config does not name for it?"""
+    from urdfcheck.load.discover import discover
+    from urdfcheck.load.packages import enclosing_package
+
+    pkg = enclosing_package(Path(os.path.abspath(m.path)).parent)
+    if pkg is None:
+        return False
+    named = {os.path.realpath(p) for p in (*m.controllers, *m.launch, *m.localization, *(d.file for d in m.drivers))}
+    found = discover(str(pkg))
+    return any(os.path.realpath(p) not in named for p in (*found.params, *found.launch))
+
+
 def _vouched(cfg) -> bool:
     """The runner named this config with --config FILE --trust-config (request.config.Config.vouched)."""
     return bool(getattr(cfg, "vouched", True))
@@ -553,7 +574,8 @@ def _unique(targets: list[Target]) -> list[Target]:
     seen, out = set(), []
     for t in targets:
         launch = getattr(getattr(t.deployment, "launch", None), "file", None)
-        key = (os.path.realpath(t.path), tuple(sorted(t.args.items())), launch)  # realpath: no stat of a link's target
+        key = (os.path.realpath(t.path), tuple(sorted(t.args.items())), launch,  # realpath: no stat of a link's target
+               getattr(t, "twin", False))
         if key not in seen:
             seen.add(key)
             out.append(t)
