@@ -213,7 +213,11 @@ class Planner:
         if not paths:
             cfg = self.nearest(os.path.abspath(self.here))
             if cfg is not None and cfg.models:
-                found = self.declared(cfg, None) + self.added(cfg, cfg.root)
+                found = self.declared(cfg, None)
+                if not _vouched(cfg):  # its models add to the tree it governs, planned as a path (nested configs)
+                    here = os.path.abspath(self.here)
+                    near = _below(here, cfg.root) or _below(cfg.root, here)  # not a config kept elsewhere
+                    found += self.path_targets(cfg.root if near else here)
                 got = TargetList(_unique(found), dict.fromkeys(self.infos))
                 got.not_understood = list(self.not_understood)
                 got.findings, got.libraries = self.plan_findings(), len(self.libraries)
