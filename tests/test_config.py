@@ -260,7 +260,7 @@ def test_targets(tmp_path):
     cfg = str(root / "urdfcheck.yaml")
     # named by itself (no --trust-config) it adds (issue 36): the defaults of the arg it replaces, and the model
     # it does not declare
-    ts = plan(make_request([], config=cfg))
+    ts = plan(make_request([], config=cfg), here=str(root))  # run in the package
     assert [(t.path.name, t.variant, t.args) for t in ts] == [
         ("agv.urdf.xacro", "defaults", {"use_lidar": "true", "use_camera": "true"}),
         ("agv.urdf.xacro", "use_camera=false", {"use_lidar": "true", "use_camera": "false"}),
