@@ -89,11 +89,15 @@ def _candidates(planner, ws: str, path: str, pkg, settings) -> list:
                 chosen.add(p)
                 words.add(os.path.basename(p).encode())
                 grew = True
-    deployed = planner.deployments(ws, settings, files=sorted(chosen)) if chosen else []
-    covered = {os.path.realpath(t.path) for t in deployed}  # linted through its deployments, as in a whole plan
-    own = [t for t in planner.workspace_targets(str(pkg))
-           if t.deployment is None and os.path.realpath(t.path) not in covered]
-    return deployed + own
+    from urdfcheck.plan.plan import _Named
+
+    # as a plan of the whole workspace has them: these deployments found for `ws` (its packages resolvable), the
+    # models they load linted through them only, the own package's other models with `ws`'s packages and variants
+    root = os.path.abspath(ws)
+    deps = planner.find(root, settings, files=sorted(chosen)) if chosen else []
+    named = _Named(root, deps, {os.path.realpath(d.model) for d in deps})
+    out = [planner.deployed(d, root, settings) for d in deps if not _below(d.launch.file, str(pkg))]
+    return out + planner.discovered(str(pkg), planner.walk(str(pkg)), settings, named=named)
 
 
 def _texts(planner, ws: str) -> dict:
