@@ -453,7 +453,7 @@ def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
             if p.code == code:
                 related = _dedupe_locs(p.related, p.at)
                 yield Problem(p.message, at=p.at, related=related, data=p.data,
-                              severity=_WARNING() if drive.owner in inferred else p.severity)
+                              severity=_WARNING() if drive.owner in inferred else p.severity, rests_on=p.rests_on)
 
 
 def wheel_separation_mismatch(model, ctx):
