@@ -31,6 +31,7 @@ from urdfcheck.consumers.graph import (
     static_and_dynamic,
 )
 from urdfcheck.core import lazyre
+from urdfcheck.core.evidence import Step
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
 from urdfcheck.rules.contracts.wheels import check_drive
@@ -653,8 +654,52 @@ def _no_state_publisher(c: Consumers, model, ctx) -> bool:
 
 
 def duplicate_tf_owner(model, ctx):
+    said = set()
     for p in _tf_problems(model, ctx, duplicate_owners):
+        said.add(p.frames)
         yield _as_problem(p)
+    yield from _unlaunched_duplicates(model, consumers(model, ctx), said)
+
+
+_RL_ODOM_INPUT = lazyre.compile(r"^(odom|twist|pose)\d+$")
+
+
+def _unlaunched_duplicates(model, c: Consumers, said: set):
+    """T001 between parameter files of the model's package that no launch file of the deployment reads (a
+    drive controller with enable_odom_tf and robot_localization with publish_tf, both on odom -> base_link).
+    They claim nothing in the deployment's own graph; among themselves, two owners of one edge are a defect
+    wherever they run together. That they do is evidence when the filter fuses the controller's odometry (its
+    odomN input names the controller), else a guess from the package (said as info, naming how to confirm)."""
+    ctrls = [ctl for ctl in c.controllers if getattr(ctl, "elsewhere", None) and ctl.odom_tf is not None]
+    drivers = [d for d in c.drivers if getattr(d, "elsewhere", None) and getattr(d, "odom_tf", None) is not None]
+    loc_nodes = list(getattr(c, "elsewhere_localization", ()) or ())
+    if not loc_nodes and len(ctrls) + len(drivers) < 2:
+        return
+    base = c.frames.get("base", "base_link")
+    g = TFGraph()
+    g.extend(claims_from_odom((ctl.odom_tf for ctl in ctrls), base, "controller"))
+    g.extend(claims_from_odom((d.odom_tf for d in drivers), base, "driver"))
+    g.extend(claims_from_localization(loc_nodes))
+    inputs = set()  # the topics the localization nodes fuse
+    for n in loc_nodes:
+        for key, v in (getattr(n, "values", None) or {}).items():
+            if _RL_ODOM_INPUT.match(str(key)) and isinstance(getattr(v, "value", None), str):
+                inputs.add(v.value.strip("/").split("/")[0])
+    for p in duplicate_owners(g):
+        if p.frames in said or len({cl.loc.file for cl in p.claims}) < 2:
+            continue
+        owners = {cl.owner for cl in p.claims if cl.source in ("controller", "driver")}
+        fused = bool(owners) and owners <= inputs
+        files = " and ".join(sorted({shown(cl.loc.file) for cl in p.claims}))
+        steps = () if fused else (Step(
+            "deployment", f"{files} together", "package",
+            confirm="load both from the launch file that runs them (or name them in urdfcheck.yaml under the "
+                    "model's controllers: and launch:)"),)
+        got = _as_problem(p, hint=(f"; both in parameter files of the package that no launch file read here loads"
+                                   + (" (the filter fuses the controller's odometry, so they run together)"
+                                      if fused else "")))
+        got.rests_on = steps
+        yield got
 
 
 def static_and_dynamic_tf(model, ctx):

@@ -18,7 +18,7 @@
   step: said as info);
 * axes: every wheel's rolling heading in the ground plane (`a x z`) parallel or anti-parallel to the first left
   one's. A camber (the axis tilted out of the ground plane, `rpy="3.14 0 0"` leaves 0.09 degrees) changes no
-  heading: the wheels still roll the same way;
+  heading: below one degree it is the rounding of an rpy and not reported; above, the wheel rolls on its edge;
 * counts: as many wheels left as right (none on a side and the controller refuses to start);
 * sides (C014): the wheels named left must be on the left of the direction in which positive wheel rotation
   drives the robot. A wheel turning positively about its axis `a` (in the base frame, z up) rolls its centre
@@ -44,6 +44,9 @@ from urdfcheck.core.evidence import Step
 from urdfcheck.core.findings import Location, Severity
 from urdfcheck.core.records import FrozenRecord, Record, TupleRecord
 
+# a camber difference below this is the rounding of an rpy written with 2-4 digits (3.14 leaves 0.09 degrees,
+# 1.57 leaves 0.05): no differential-drive consumer reads the axis tilt
+CAMBER_TOLERANCE = math.radians(1.0)
 AMBIGUOUS_RATIO = 0.75  # another coaxial shape at least this share of the largest radius may be the rolling one
 MIN_FORWARD_SIGN = 0.5  # |mean left a_y + mean right a_y| below this: mixed axis signs, turning sense undefined
 
@@ -273,14 +276,22 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
             if w is ref:
                 continue
             ang = _heading_angle(ref.axis, w.axis)
+            tilt = _angle(ref.axis, w.axis)
             if ang > angle_tolerance:
-                rep.problems_.append(WheelProblem(
-                    "C012",
-                    f"wheel joint {w.use.joint} turns about {_vec(w.axis)} but {ref.use.joint} about {_vec(ref.axis)} "
-                    f"(in {base}); they roll in headings {math.degrees(ang):.3g} degrees apart on the ground, so the "
-                    f"wheels fight each other",
-                    w.joint_loc, (ref.joint_loc, w.use.loc), None,
-                    {"angle": ang, "joint": w.use.joint, "reference": ref.use.joint}))
+                why = (f"they roll in headings {math.degrees(ang):.3g} degrees apart on the ground, so the wheels "
+                       f"fight each other")
+            elif tilt > max(angle_tolerance, CAMBER_TOLERANCE):
+                ang = tilt
+                why = (f"they roll the same heading, but one is tilted {math.degrees(tilt):.3g} degrees out of the "
+                       f"other's plane (camber): it rolls on its edge, not its tread")
+            else:
+                continue
+            rep.problems_.append(WheelProblem(
+                "C012",
+                f"wheel joint {w.use.joint} turns about {_vec(w.axis)} but {ref.use.joint} about {_vec(ref.axis)} "
+                f"(in {base}); {why}",
+                w.joint_loc, (ref.joint_loc, w.use.loc), None,
+                {"angle": ang, "joint": w.use.joint, "reference": ref.use.joint}))
     # --- directions (C015) --------------------------------------------------------------------------
     if ref is not None:
         rep.problems_.extend(_direction_problems(drive, base, lefts, rep.wheels))
