@@ -404,6 +404,34 @@ def unreadable_consumer(model, ctx) -> Iterator[Problem]:
     for d in c.drivers:
         for key, loc in d.missing:
             yield Problem(f"driver {d.name}: key {key!r} is not in {shown(d.file)}", at=loc)
+    yield from _home_parameter_files(model)
+
+
+# a home folder: /home/<user>/, /Users/<user>/ (macOS), /root/, ~/
+_HOME = lazyre.compile(r"^(?:/home/[^/]+/|/Users/[^/]+/|/root/|~/)")
+
+
+def _home_parameter_files(model) -> Iterator[Problem]:
+    """A Gazebo ros2_control plugin whose <parameters> names a file in someone's home folder: it exists on the
+    author's machine only, so everywhere else (CI, a colleague, the robot) the controller manager in the simulator
+    starts with no controllers. A `$(find pkg)` that xacro resolved to this checkout is not one."""
+    here = [os.path.realpath(os.getcwd())]
+    if model.source:
+        here.append(os.path.dirname(os.path.dirname(os.path.realpath(model.source))))
+    for p in model.plugins or ():
+        if "ros2_control" not in f"{p.filename} {p.name}":
+            continue
+        for par in p.all("parameters"):
+            path = par.text.strip()
+            if not _HOME.match(path):
+                continue
+            real = os.path.realpath(os.path.expanduser(path)) if path.startswith("/") else path
+            if any(real == h or real.startswith(h.rstrip("/") + "/") for h in here):
+                continue
+            yield Problem(f"{os.path.basename(p.filename) or p.name} <parameters> names {path}, a file in someone's "
+                          f"home folder: on every other machine (CI, a colleague's, the robot) the controller manager "
+                          f"in the simulator finds no such file and starts no controllers; write "
+                          f"$(find <package>)/config/<file>.yaml", at=par.loc)
 
 
 # --- C010..C014: wheels ------------------------------------------------------------------------------------
