@@ -63,16 +63,44 @@ _FRAME_SUFFIX = lazyre.compile(r"(_link|_frame)$")
 
 
 def _suggest_frame(name: str, options) -> str:
-    """Like _suggest, comparing frame names without their _link/_frame suffix: 'imu' -> 'imu_link', while
-    'camera_link' is not 'laser_link' just because both end in _link."""
+    """A near miss of a frame that exists: the same name without its _link/_frame suffix ('imu' -> 'imu_link'),
+    or a typo (a letter or two wrong: 'lazer_link', 'base_lnk'). A frame that merely resembles one ('laser' and
+    'base_link', a driver's own 'os_imu' and 'imu_link', 'camera_color_optical_frame' and 'camera_color_frame')
+    is no evidence of a typo: the driver may publish it itself."""
     stem = _FRAME_SUFFIX.sub("", name)
     stems: dict[str, str] = {}
     for o in options:
         stems.setdefault(_FRAME_SUFFIX.sub("", o), o)
     if stem in stems and stems[stem] != name:
         return f" (did you mean '{stems[stem]}'?)"
-    close = closest(stem, stems, cutoff=0.6)
-    return f" (did you mean '{stems[close]}'?)" if close else ""
+    best = None
+    for o in options:
+        d = _edits(name, o, 2)
+        if d <= _typo_edits(name) and (best is None or d < best[0]):
+            best = (d, o)
+    return f" (did you mean '{best[1]}'?)" if best else ""
+
+
+def _typo_edits(name: str) -> int:
+    """Edits a typo of `name` may take: one, two for names of ten letters or more."""
+    return 1 if len(name) < 10 else 2
+
+
+def _edits(a: str, b: str, cap: int) -> int:
+    """Levenshtein distance with adjacent transpositions, or cap + 1 once it exceeds `cap`."""
+    if abs(len(a) - len(b)) > cap:
+        return cap + 1
+    prev2, prev = None, list(range(len(b) + 1))
+    for i, ca in enumerate(a, 1):
+        cur = [i] + [0] * len(b)
+        for k, cb in enumerate(b, 1):
+            cur[k] = min(prev[k] + 1, cur[k - 1] + 1, prev[k - 1] + (ca != cb))
+            if prev2 is not None and i > 1 and k > 1 and ca == b[k - 2] and a[i - 2] == cb:
+                cur[k] = min(cur[k], prev2[k - 2] + 1)
+        if min(cur) > cap:
+            return cap + 1
+        prev2, prev = prev, cur
+    return prev[-1]
 
 
 def _unresolved(name: str) -> bool:
