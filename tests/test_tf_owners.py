@@ -534,3 +534,25 @@ def test_a_simulator_publishing_its_scan_frame_is_no_c020(tmp_path):
     """f1tenth_simulator broadcasts base_frame -> scan_frame on every scan (and map -> base_frame)."""
     root = package(tmp_path, F1TENTH, {"config/sim.yaml": F1TENTH_YAML})
     assert [f for f in tf(root) if f[0] == "C020"] == []
+
+
+ZED = """        Node(package="zed_wrapper", executable="zed_wrapper", name="zed_node",
+             parameters=[os.path.join(share, "config", "zed.yaml")]),
+"""
+ZED_YAML = """/**:
+  ros__parameters:
+    general:
+      camera_name: zed
+    pos_tracking:
+      map_frame: 'map'
+      odometry_frame: 'odom'
+"""
+ZED_LINK = ('  <link name="zed_camera_link"/>\n')
+
+
+def test_a_camera_driver_publishing_tf_by_default_is_no_c020(tmp_path):
+    """zed_wrapper publishes odom -> zed_camera_link and map -> odom (pos_tracking.publish_tf and publish_map_tf
+    default true): its map and odom frames are its own, not frames missing from the tree."""
+    root = package(tmp_path, ZED, {"config/zed.yaml": ZED_YAML}, extra=ZED_LINK)
+    found = tf(root)
+    assert [f for f in found if f[0] == "C020"] == [], found
