@@ -556,3 +556,24 @@ def test_a_camera_driver_publishing_tf_by_default_is_no_c020(tmp_path):
     root = package(tmp_path, ZED, {"config/zed.yaml": ZED_YAML}, extra=ZED_LINK)
     found = tf(root)
     assert [f for f in found if f[0] == "C020"] == [], found
+
+
+MICROSTRAIN = """        Node(package="microstrain_inertial_driver", executable="microstrain_inertial_driver_node",
+             name="microstrain_inertial_driver", parameters=[os.path.join(share, "config", "gq7.yml")]),
+"""
+MICROSTRAIN_YAML = """microstrain_inertial_driver:
+  ros__parameters:
+    use_enu_frame: True
+    frame_id: 'camera_link'
+    gnss1_frame_id: "gq7_gnss_1_antenna_link"
+    gnss2_frame_id: "gq7_gnss_2_antenna_link"
+    odometer_frame_id: "gq7_odometer_link"
+    publish_mount_to_frame_id_transform: False
+"""
+
+
+def test_an_ins_driver_publishing_its_antenna_frames_is_no_c020(tmp_path):
+    """microstrain_inertial_driver broadcasts frame_id -> each GNSS antenna frame and the odometer frame itself."""
+    root = package(tmp_path, MICROSTRAIN, {"config/gq7.yml": MICROSTRAIN_YAML})
+    found = tf(root)
+    assert [f for f in found if f[0] == "C020"] == [], found
