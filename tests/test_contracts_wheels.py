@@ -305,3 +305,20 @@ def test_an_ambiguous_wheel_feature_is_said_as_info_naming_the_step(tmp_path):
     _, report = lint_json([str(pkg)], cwd=tmp_path)
     c011 = [f for f in report["findings"] if f["code"] == "C011"]
     assert c011 and all(f["severity"] == "info" and "picked by its shape" in f["message"] for f in c011), c011
+
+
+def test_mecanum_projection_is_measured_at_the_tyres():
+    """lx + ly from the rollers' centres, not the hub joint frames 0.03 m further in."""
+    from urdfcheck.consumers.catalog import WheelSet
+    from urdfcheck.rules.contracts.drives import geometry_problems
+
+    def w(name, x, y, tyre_y):
+        return tyre_wheel(name, y, "0 0 0", "0 1 0", tyre_y).replace('xyz="0 ' + str(y), f'xyz="{x} {y}')
+
+    model = robot(w("fl", 0.2, 0.22, 0.03), w("fr", 0.2, -0.22, -0.03), w("rl", -0.2, 0.22, 0.03),
+                  w("rr", -0.2, -0.22, -0.03))
+    uses = tuple(JointUse(f"{n}_joint", Location(YAML, 20 + i), "mecanum", role="wheel")
+                 for i, n in enumerate(("fl", "fr", "rl", "rr")))
+    ws = WheelSet("mecanum", "mecanum", Location(YAML, 1), uses, (), projection=Value(0.45, Location(YAML, 9)),
+                  projection_key="sum_of_robot_center_projection")
+    assert geometry_problems(model, ws, "base_link", 0.001) == []
