@@ -101,3 +101,36 @@ def test_a_yaml_style_key_with_one_underscore_reads_as_stock_reads_it():
 def test_double_underscore_stays_refused_as_stock_refuses_it():
     compare(f'<robot name="r" {XACRO_NS}>\n  <link name="${{__x}}"/>\n</robot>\n')
 
+
+
+def test_a_list_popped_in_a_recursive_macro_expands_as_in_stock():
+    """ar4_description pops its mesh and material lists in a recursive macro: the sandbox refused list.pop and the
+    whole robot went unlinted."""
+    compare(f'<robot name="r" {XACRO_NS}>\n'
+            '  <xacro:macro name="chain" params="names">\n'
+            '    <xacro:if value="${names}">\n'
+            '      <link name="${names.pop(0)}"/>\n'
+            '      <xacro:chain names="${names}"/>\n'
+            '    </xacro:if>\n'
+            '  </xacro:macro>\n'
+            '  <xacro:property name="all" value="${[\'a\', \'b\', \'c\']}"/>\n'
+            '  <xacro:chain names="${all}"/>\n'
+            '  <xacro:property name="d" value="${dict(x=1, y=2)}"/>\n'
+            '  <link name="l${d.pop(\'x\')}${len(d)}"/>\n'
+            '</robot>\n')
+
+
+def test_growing_a_value_in_place_stays_refused():
+    import xacro
+
+    from urdfcheck.load.xacro.safeeval import Refused, default_evaluator
+
+    ev = default_evaluator(xacro._global_symbols)
+    table = xacro.Table(xacro._global_symbols)
+    table["l"] = [1]
+    for expr in ("l.append(1)", "l.extend([1])", "l.insert(0, 1)"):
+        try:
+            ev.evaluate(expr, table)
+        except Refused:
+            continue
+        raise AssertionError(f"{expr} was not refused")

@@ -20,7 +20,9 @@ safety (each one reaches code or memory stock would hand out):
 * names and attributes starting with ``__`` (stock refuses the same names, but not inside comprehensions or
   ``str.format`` fields); an attribute starting with one ``_`` only where it is a key of a mapping (a YAML
   key, a namespace's property), never a private attribute or method (``python._setitem``);
-* ``str.format`` fields with ``.attr`` or ``[index]``; calls of anything outside the allow set;
+* ``str.format`` fields with ``.attr`` or ``[index]``; calls of anything outside the allow set; methods that grow a
+  value in place (``list.append``/``extend``/``insert``, ``dict.update``/``setdefault``: sizes are charged once,
+  when a value is made); shrinking ones (``pop``, ``remove``, ``clear``) and ``reverse`` are allowed;
 * work beyond :class:`Limits` (huge ``**``, repetitions, widths, iterations).
 
 A name with one leading underscore (``_origin_xyz``) is an ordinary name, as in stock xacro.
@@ -222,9 +224,11 @@ _METHODS: dict[type, frozenset[str]] = {
     int: frozenset(_NUMBER | {"bit_length", "bit_count", "numerator", "denominator", "as_integer_ratio"}),
     float: frozenset(_NUMBER | {"is_integer", "as_integer_ratio", "hex"}),
     complex: frozenset(_NUMBER),
-    list: frozenset({"index", "count", "copy"}),
+    # mutators that only shrink or reorder a value (`${meshes.pop(0)}` in a recursive macro, as ar4 does): a size
+    # charged before is still an upper bound. Growing ones (append, extend, insert, update, setdefault) are refused.
+    list: frozenset({"index", "count", "copy", "pop", "remove", "reverse", "clear"}),
     tuple: frozenset({"index", "count"}),
-    dict: frozenset({"get", "keys", "values", "items", "copy"}),
+    dict: frozenset({"get", "keys", "values", "items", "copy", "pop", "popitem", "clear"}),
     set: frozenset({"union", "intersection", "difference", "symmetric_difference", "issubset",
                     "issuperset", "isdisjoint", "copy"}),
     frozenset: frozenset({"union", "intersection", "difference", "symmetric_difference", "issubset",
@@ -891,7 +895,9 @@ class Evaluator:
     def __init__(self, allowed=(), *, mapping_types=(), limits: Limits | None = None):
         self.limits = limits or Limits()
         self.spent = 0  # items iterated by finished evaluations (Limits.max_total_iter)
-        self._sizes: dict[int, tuple[object, int]] = {}  # id -> (container, nested size); values are never mutated
+        # id -> (container, nested size); values never grow in place (only shrinking mutators are allowed), so a
+        # memoised size stays an upper bound
+        self._sizes: dict[int, tuple[object, int]] = {}
         self._allowed: dict[int, object] = {}
         self._guards: dict[int, tuple[object, object]] = {}
         self._mapping_types: tuple[type, ...] = ()

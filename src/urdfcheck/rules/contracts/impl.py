@@ -751,7 +751,7 @@ def _unlaunched_duplicates(model, c: Consumers, said: set):
             "deployment", f"{files} together", "package",
             confirm="load both from the launch file that runs them (or name them in urdfcheck.yaml under the "
                     "model's controllers: and launch:)"),)
-        got = _as_problem(p, hint=(f"; both in parameter files of the package that no launch file read here loads"
+        got = _as_problem(p, hint=("; both in parameter files of the package that no launch file read here loads"
                                    + (" (the filter fuses the controller's odometry, so they run together)"
                                       if fused else "")))
         got.rests_on = steps
