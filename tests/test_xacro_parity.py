@@ -62,6 +62,10 @@ def expressions(refs):
         sub.map(lambda e: f"[_v for _v in [{e}]][0]"),
         sub.map(lambda e: f"python.abs(len(str({e})))"),
         sub.map(lambda e: f"str({e}).upper()"),
+        sub.map(lambda e: f"xacro.dotify(dict(_k={e}))._k"),
+        sub.map(lambda e: f"[{e}, 1].pop(0)"),
+        sub.map(lambda e: f"'{{}}-{{}}'.format({e}, {e})"),
+        sub.map(lambda e: f"{{'a': {e}}}.get('a')"),
     ), max_leaves=4)
 
 
