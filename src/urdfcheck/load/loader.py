@@ -59,7 +59,7 @@ def is_xacro(path: Path, root=None) -> bool:
         return True
     if XACRO_NS not in root.nsmap.values():
         return False
-    return any("${" in v or "$(" in v for el in root.iter() for v in el.attrib.values())
+    return bool(root.xpath('boolean(//@*[contains(., "${") or contains(., "$(")])'))  # in C, as iter above
 
 
 class Expanded(Record):
