@@ -215,16 +215,28 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
     from urdfcheck.consumers.localization import localization_from_params
 
     joints = set(model.joints) if model is not None else set()
-    pfs = []
+    entry = getattr(model, "source", None) or ""
+    mine, others = _references(entry, files) if not single and entry else (set(), set())
+    pfs, skipped = [], []
     for f in files:
+        real = os.path.realpath(f)
+        if real in others:  # another model of the package names it (consumers.pairing)
+            skipped.append(f)
+            continue
         errs: list = []
         pf = reader.params(f, errs)
         if pf is None:
-            if single:
+            if single or real in mine:
                 c.errors.extend(e for e in errs if e not in c.errors)
             continue
-        if single or names_a_joint(pf, joints):
+        if single or real in mine or names_a_joint(pf, joints):
             pfs.append(pf)
+            if hasattr(c, "pair"):
+                c.pair([f], "referenced" if real in mine else "only" if single else "overlap", entry)
+    if skipped:
+        from urdfcheck.consumers.consumers import others_files
+
+        c.unknown = list(c.unknown or ()) + others_files(skipped)
     if not pfs:
         return
     ctrls = read_controllers(pfs)
@@ -242,6 +254,24 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
         c.drivers.append(drv)
     files_read = c.files.setdefault("package", [])
     files_read.extend(pf.path for pf in pfs if pf.path not in files_read)
+
+
+def _references(entry: str, files) -> tuple[set, set]:
+    """The package's files named for this model and for its other models only (consumers.pairing)."""
+    from pathlib import Path
+
+    from urdfcheck.consumers.pairing import finder, references
+    from urdfcheck.load.discover import discover
+    from urdfcheck.load.packages import enclosing_package
+
+    root = enclosing_package(Path(os.path.abspath(entry)).parent)
+    if root is None:
+        return set(), set()
+    try:
+        found = discover(str(root))
+        return references(entry, str(root), found.models, files, found.launch, finder(str(root)))
+    except OSError:
+        return set(), set()
 
 
 def package_drivers(pfs, controllers, localization) -> list:

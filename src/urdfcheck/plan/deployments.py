@@ -154,6 +154,8 @@ class Deployment(Record):
         out.files = {"controllers": list(self.controller_files), "localization": list(self.localization_files),
                      "launch": [li.path for li in self.infos],
                      "drivers": sorted({f for _, files in self.driver_nodes for f in files})}
+        # what this deployment's launch files name or load runs with the model (issue 37: evidence)
+        out.pair([f for fs in out.files.values() for f in fs], "launched", self.model or "")
         from urdfcheck.consumers.openworld import deployment_unknowns
 
         out.unknown = deployment_unknowns(self, out.drivers)

@@ -299,6 +299,7 @@ class Planner:
             for vname, vargs in m.variant_args():
                 out.append(self.target(Path(m.path), vargs, vname, consumers, settings))
                 out[-1].bags = m.bags
+                out[-1].evidence = (_step("model", str(m.path), "config"),)
         for raw in rest:
             out.extend(self.file_targets(Path(raw), settings) if not os.path.isdir(raw)
                        else self.discovered(raw, self.walk(raw), settings))
@@ -332,12 +333,12 @@ class Planner:
                                   "linted through the robots that include them")
             for entry in found.models:
                 if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
-                    out.extend(self.variants(Path(entry), settings, named.root))
+                    out.extend(_mark(self.variants(Path(entry), settings, named.root), "complete"))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
             for entry in self.discover(folder, settings).models:
                 if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
-                    out.extend(self.variants(Path(entry), settings, named.root))
+                    out.extend(_mark(self.variants(Path(entry), settings, named.root), "complete"))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
 
     def named(self, root: str, settings: Settings, skip=()) -> _Named:
@@ -365,6 +366,7 @@ class Planner:
         t = self.target(Path(d.model), dict(d.args), label, Later(d.consumers), settings,
                         _packages(root, d.model, settings))
         t.deployment = d
+        t.evidence = (_step("deployment", label, "launched"),)
         return t
 
     def deployments(self, root: str, settings: Settings, files=None) -> list[Target]:
@@ -398,20 +400,22 @@ class Planner:
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
                 maybe = {os.path.realpath(x) for x in (*found.probes, *found.included)}
                 if not robots and os.path.realpath(path) in maybe:  # named: never skipped when it may be a robot
-                    return [self.probe(path, settings)]
+                    return _mark([self.probe(path, settings)], "named", force=True)
                 if not robots:  # macros and properties only: certainly no link
                     self.infos.append(f"{shown(str(path))}: a xacro library that no robot of "
                                       "its workspace includes: not linted alone")
                 self.included.append(str(path))  # the run checks that one of them did read it
                 return robots
             if _robot_file(path):  # a robot named by itself (the per-file hook): its variants too
-                return self.variants(path, settings)
-        return [self.target(path, {}, "", None, settings)]
+                return _mark(self.variants(path, settings), "named")
+        return _mark([self.target(path, {}, "", None, settings)], "named")
 
     def probe(self, path: Path, settings: Settings, root: str | None = None) -> Target:
         """A file that may be a library: expanded with its defaults; a library when the expansion has no link."""
         t = self.target(path, {}, "", None, settings, _packages(root, str(path), settings) if root else None)
         t.probe = True
+        t.evidence = (_step("model", str(path), "probe", f"lint {shown(str(path))} by name, or name it under "
+                            "models: in urdfcheck.yaml, if it is a whole robot"),)
         return t
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
@@ -465,6 +469,20 @@ def _packages(root: str, model: str, settings: Settings) -> dict:
     from urdfcheck.load.packages import workspace_map
 
     return {**workspace_map(root, near=model), **dict(settings.packages)}
+
+
+def _step(what: str, subject: str, how: str, confirm: str = ""):
+    from urdfcheck.core.evidence import Step
+
+    return Step(what, shown(subject) if what == "model" else subject, how, confirm)
+
+
+def _mark(targets: list[Target], how: str, force: bool = False) -> list[Target]:
+    """Record how these targets' model was chosen (core.evidence), unless a step already says so."""
+    for t in targets:
+        if force or not t.evidence:
+            t.evidence = (_step("model", str(t.path), how),)
+    return targets
 
 
 def _robot_file(path) -> bool:

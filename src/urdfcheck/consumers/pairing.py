@@ -1,0 +1,106 @@
+"""How a consumer file was paired with a model (issue 37): by reference first, then as the only model of its
+package, then by the joint names it shares with the model; never by "same package" alone.
+
+In a package of several models (a robot and its older variant, a fiducial grid, a dock), a parameter file that
+one model names (a Gazebo plugin's `<parameters>` in the model's files; a launch file that mentions that model
+and loads the file) belongs to that model: it is checked against it as evidence, and never against the package's
+other models. A file no model names is checked against a model whose joints it names, as a guess (the engine
+says its findings at info, `core.evidence`).
+
+    references(entry, package_root, models, find) -> (mine, others)   # realpaths named for entry / for others
+    step(path, how, model) -> core.evidence.Step
+"""
+from __future__ import annotations
+
+import os
+import re
+
+from urdfcheck.core import lazyre
+
+_COMMENT = lazyre.compile(r"<!--.*?(?:-->|\Z)", re.S)
+_PLUGIN = lazyre.compile(r"<plugin\b[^>]*>(.*?)</plugin>", re.S)
+_PARAMS = lazyre.compile(r"<parameters>\s*([^<]+?)\s*</parameters>")
+_FIND = lazyre.compile(r"^\$\(\s*find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)(/[^$]*)$")
+MAX_LAUNCH_BYTES = 2 * 1024 * 1024
+
+CONFIRM = ("name it under models: in urdfcheck.yaml (controllers:, drivers: or localization: of this model), or "
+           "load it from a launch file that runs this model")
+
+
+def step(path: str, how: str, model: str = ""):
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.core.paths import shown
+
+    subject = shown(path) + (f" for {shown(model)}" if model else "")
+    return Step("parameters" if path.endswith((".yaml", ".yml")) else "launch", subject, how,
+                "" if how in ("referenced", "launched", "config", "only") else CONFIRM)
+
+
+def plugin_files(entry: str, find) -> set[str]:
+    """Realpaths of the files a model's Gazebo plugins name in `<parameters>` (`$(find pkg)/x.yaml`), read as
+    text through the model's literal includes."""
+    from urdfcheck.load.packages import literal_includes
+
+    out = set()
+    for _path, text in literal_includes([entry], find):
+        for block in _PLUGIN.finditer(_COMMENT.sub("", text)):
+            for m in _PARAMS.finditer(block.group(1)):
+                hit = _FIND.match(m.group(1).strip())
+                root = find(hit.group(1)) if hit else None
+                if root:
+                    out.add(os.path.realpath(root + hit.group(2)))
+    return out
+
+
+def _named_in(text: bytes, name: str) -> bool:
+    return re.search(rb"(?<![\w.-])" + re.escape(name.encode()) + rb"(?![\w.-])", text) is not None
+
+
+def launch_files_named(launches, models, params) -> dict[str, set[str]]:
+    """model realpath -> the parameter files (realpaths) a launch file that mentions that model (by file name)
+    loads (names by file name): a launch file naming two models pairs its files with both."""
+    from urdfcheck.core.safeio import read_file
+    from urdfcheck.load.packages import leaves_cwd
+
+    out: dict[str, set[str]] = {}
+    for lf in launches:
+        if leaves_cwd(lf):
+            continue
+        try:
+            text = read_file(lf, MAX_LAUNCH_BYTES)
+        except OSError:
+            continue
+        named = [m for m in models if _named_in(text, os.path.basename(m))]
+        if not named:
+            continue
+        files = {os.path.realpath(p) for p in params if _named_in(text, os.path.basename(p))}
+        for m in named:
+            out.setdefault(os.path.realpath(m), set()).update(files)
+    return out
+
+
+def references(entry: str, root: str, models, params, launches, find) -> tuple[set[str], set[str]]:
+    """(files named for `entry`, files named for the package's other models and not for `entry`)."""
+    me = os.path.realpath(entry)
+    by_model = {os.path.realpath(m): plugin_files(m, find) for m in {*models, entry}}
+    for m, files in launch_files_named(launches, {*models, entry}, params).items():
+        by_model.setdefault(m, set()).update(files)
+    mine = by_model.get(me, set())
+    others = set().union(*(f for m, f in by_model.items() if m != me)) - mine if by_model else set()
+    return mine, others
+
+
+def finder(root: str, packages=None):
+    """A package finder for `$(find pkg)`: the explicit packages, else the enclosing package by its name."""
+    from pathlib import Path
+
+    from urdfcheck.load.packages import package_name
+
+    own = package_name(Path(root) / "package.xml")
+    pk = dict(packages or {})
+
+    def find(name: str):
+        if name in pk:
+            return str(pk[name])
+        return root if name == own else None
+    return find
