@@ -1,0 +1,90 @@
+"""The evidence rule (issue 37): every target and consumer file records how it was chosen; a finding resting on a
+guess is an info naming the guess and how to confirm it; pairing goes by reference first."""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+from conftest import REPO, lint_json
+
+DATA = Path(__file__).parent / "data" / "evidence"
+
+
+@pytest.fixture
+def pkg(tmp_path):
+    def copy(name):
+        dst = tmp_path / name
+        shutil.copytree(DATA / name, dst)
+        return dst
+    return copy
+
+
+def _errors(report):
+    return [(f["code"], f["severity"], f["message"]) for f in report["findings"] if f["severity"] != "info"]
+
+
+def test_a_controller_file_that_one_models_plugin_names_is_not_checked_against_the_other_model(pkg):
+    # urdf/robot.urdf.xacro's gazebo_ros2_control plugin loads config/controllers.yaml; urdf/old_robot.urdf (an
+    # older variant without the arm) shares the wheel joints: the file was checked against it too, C001 error
+    root = pkg("plugin_names_controllers")
+    code, report = lint_json(["."], cwd=root)
+    assert _errors(report) == [] and code == 0
+    assert not [f for f in report["findings"] if f["code"].startswith("C")]
+
+
+def test_the_referenced_model_is_still_checked_against_its_file(pkg):
+    root = pkg("plugin_names_controllers")
+    f = root / "config" / "controllers.yaml"
+    f.write_text(f.read_text().replace("joints: [arm_joint]", "joints: [arm_jiont]"))
+    code, report = lint_json(["."], cwd=root)
+    c001 = [x for x in report["findings"] if x["code"] == "C001"]
+    assert [x["severity"] for x in c001] == ["error"] and code == 1
+    assert c001[0]["model"].endswith("robot.urdf.xacro")
+    steps = {s["how"] for s in c001[0]["evidence"]}
+    assert "referenced" in steps and all(s["evidence"] for s in c001[0]["evidence"])
+
+
+def test_a_pairing_by_joint_names_alone_is_an_info_that_says_how_to_confirm_it(pkg):
+    # no model names the file: it is checked against both models whose joints it names, a guess
+    root = pkg("overlap_only")
+    code, report = lint_json(["."], cwd=root)
+    assert code == 0
+    (c001,) = [f for f in report["findings"] if f["code"] == "C001"]
+    assert c001["severity"] == "info"
+    assert "paired by the joint names it shares with the model" in c001["message"]
+    assert "to confirm: name it under models: in urdfcheck.yaml" in c001["message"]
+    guess = [s for s in c001["evidence"] if not s["evidence"]]
+    assert [(s["what"], s["how"]) for s in guess] == [("parameters", "overlap")]
+    assert "config/controllers.yaml for " in guess[0]["subject"] and "old_robot.urdf" in guess[0]["subject"]
+
+
+def test_a_confirmed_pairing_keeps_the_severity(pkg):
+    root = pkg("overlap_only")
+    (root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/old_robot.urdf\n    controllers: [config/controllers.yaml]\n")
+    from conftest import run_cli
+    import json
+
+    code, out, _ = run_cli(["lint", "--format", "json", "."], cwd=root)
+    found = [(f["code"], f["severity"]) for f in json.loads(out)["findings"] if f["code"] == "C001"]
+    assert found == [("C001", "error")] and code == 1
+    (f,) = [f for f in json.loads(out)["findings"] if f["code"] == "C001"]
+    assert {s["how"] for s in f["evidence"]} == {"config"}
+
+
+def test_the_json_report_says_how_the_model_was_chosen():
+    _, report = lint_json(["examples/broken/zero_axis"], cwd=REPO)
+    assert report["findings"]
+    for f in report["findings"]:
+        assert f["evidence"][0]["what"] == "model" and f["evidence"][0]["how"] == "complete"
+    named = next(Path(REPO, "examples/broken/zero_axis").rglob("*.urdf*"))
+    _, report = lint_json([str(named.relative_to(REPO))], cwd=REPO)
+    assert report["findings"] and all(f["evidence"][0]["how"] == "named" for f in report["findings"])
+
+
+def test_a_deployment_is_evidence_of_its_launch_file():
+    _, report = lint_json(["examples/broken/contract_launch_override"], cwd=REPO)
+    launched = [f for f in report["findings"] if f.get("evidence") and f["evidence"][0]["how"] == "launched"]
+    assert launched, [(f["code"], f.get("evidence")) for f in report["findings"]]
+    assert launched[0]["evidence"][0]["what"] == "deployment"
+    assert launched[0]["evidence"][0]["subject"].endswith((".launch.py", ".launch.xml", ".launch"))
