@@ -62,8 +62,9 @@ def test_a_pairing_by_joint_names_alone_is_an_info_that_says_how_to_confirm_it(p
 def test_a_confirmed_pairing_keeps_the_severity(pkg):
     root = pkg("overlap_only")
     (root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/old_robot.urdf\n    controllers: [config/controllers.yaml]\n")
-    from conftest import run_cli
     import json
+
+    from conftest import run_cli
 
     code, out, _ = run_cli(["lint", "--format", "json", "."], cwd=root)
     found = [(f["code"], f["severity"]) for f in json.loads(out)["findings"] if f["code"] == "C001"]
@@ -88,3 +89,24 @@ def test_a_deployment_is_evidence_of_its_launch_file():
     assert launched, [(f["code"], f.get("evidence")) for f in report["findings"]]
     assert launched[0]["evidence"][0]["what"] == "deployment"
     assert launched[0]["evidence"][0]["subject"].endswith((".launch.py", ".launch.xml", ".launch"))
+
+
+def test_a_description_launch_file_beside_the_model_claims_no_absence(pkg):
+    # zero config: the package's only launch file starts robot_state_publisher alone (its model goes through a
+    # wrapper script, not understood): it is meant to be included by a bringup file that starts the rest, so
+    # "nothing publishes joint states" is not failed (the open-world rule's own page: info)
+    root = pkg("description_launch")
+    code, report = lint_json(["."], cwd=root)
+    c003 = [f for f in report["findings"] if f["code"] == "C003"]
+    assert [f["severity"] for f in c003] == ["info"] and code == 0
+    assert "description launch file" in c003[0]["message"]
+
+
+def test_a_launch_file_naming_a_file_name_that_several_models_share_is_a_guess(pkg):
+    # robots/alpha/model.urdf and robots/beta/model.urdf: `$(arg robot)/model.urdf` names neither of them
+    root = pkg("shared_name")
+    code, report = lint_json(["."], cwd=root)
+    c003 = [f for f in report["findings"] if f["code"] == "C003"]
+    assert len(c003) == 2 and {f["severity"] for f in c003} == {"info"} and code == 0
+    for f in c003:
+        assert any(s["how"] == "guess" and s["what"] == "launch" for s in f["evidence"])

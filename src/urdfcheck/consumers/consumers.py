@@ -275,10 +275,14 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
 
     base = os.path.basename(entry)
     launches = []
+    # a file name that several models of the package share (robots/*/model.urdf) names none of them
+    shared = not single and _shared_name(root, base)
+    tail = "/".join(Path(entry).parts[-2:])
     for p in found_launch:
         if single or _mentions(p, base):
             launches.append(p)
-            out.pair([p], "only" if single else "referenced", entry)
+            how = "only" if single else "guess" if shared and not _mentions(p, tail) else "referenced"
+            out.pair([p], how, entry)
     pk = dict(packages or {})
     _read_launch(launches, out, None, pk, r)
     tf_owners(out, pfs, r)
@@ -287,19 +291,10 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     # every launch file of the package, associated with this model or not: when none starts a
     # robot_state_publisher, nothing in the package needs joint states (C003)
     out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found_launch)}
+    from urdfcheck.consumers.pairing import others_files
+
     out.unknown = package_unknowns(out) + others_files(skipped)
     return out
-
-
-def others_files(skipped) -> list:
-    """Parameter files left to the package's other models: what they supply (a localization node, a drive) may
-    also run beside this one, so an absence claimed here is not failed (consumers.openworld)."""
-    if not skipped:
-        return []
-    from urdfcheck.core.paths import shown
-
-    return [(f"{', '.join(shown(p) for p in skipped[:3])} (named for another model of the package, not read "
-             "for this one)", Location(skipped[0]))]
 
 
 def _references(entry: str, root, several: bool, params, launches, packages) -> tuple[set, set]:
@@ -391,16 +386,24 @@ def _launch_typed(out: Consumers, pfs: list) -> None:
             out.notes.extend(c.notes)
 
 
+def _shared_name(root, base: str) -> bool:
+    from urdfcheck.load.discover import discover
+
+    try:
+        return sum(os.path.basename(m) == base for m in discover(str(root)).models) > 1
+    except OSError:
+        return False
+
+
 def _mentions(path: str, name: str) -> bool:
     from urdfcheck.load.packages import leaves_cwd
 
     if leaves_cwd(path):
         return False
     try:
+        from urdfcheck.consumers.pairing import named_in
         from urdfcheck.core.safeio import read_file
 
-        from urdfcheck.consumers.pairing import _named_in
-
-        return _named_in(read_file(path, 2 * 1024 * 1024), name)  # agv.urdf is not named by agv.urdf.xacro
+        return named_in(read_file(path, 2 * 1024 * 1024), name)  # agv.urdf is not named by agv.urdf.xacro
     except OSError:
         return False

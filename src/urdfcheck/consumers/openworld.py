@@ -136,7 +136,20 @@ def package_unknowns(c) -> list[tuple[str, Location]]:
     if not any(li.state_publishers for li in c.launch):
         return [("no launch file found that runs this model with its parameter files (what runs beside it is "
                  "not known)", first or Location(c.launch[0].path))]
-    return launch_unknowns(c)
+    return launch_unknowns(c) + description_files(c.launch)
+
+
+def description_files(launches) -> list[tuple[str, Location]]:
+    """Zero config: when every launch file beside the model that starts robot_state_publisher starts it alone
+    (with tools), they are description launch files, meant to be included by a bringup or simulation launch
+    file that starts the rest (a vendor driver, joint_state_publisher): that world is not known."""
+    from urdfcheck.core.paths import shown as display
+
+    starters = [li for li in launches if li.state_publishers]
+    if not starters or not all(_description_only(li, li.nodes) for li in starters):
+        return []
+    return [(f"the launch files that include {display(li.path)} (it starts robot_state_publisher and nothing "
+             "that moves or supplies the robot: a description launch file)", Location(li.path)) for li in starters]
 
 
 def launch_unknowns(c, read=()) -> list[tuple[str, Location]]:
@@ -234,7 +247,7 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
             if hasattr(c, "pair"):
                 c.pair([f], "referenced" if real in mine else "only" if single else "overlap", entry)
     if skipped:
-        from urdfcheck.consumers.consumers import others_files
+        from urdfcheck.consumers.pairing import others_files
 
         c.unknown = list(c.unknown or ()) + others_files(skipped)
     if not pfs:

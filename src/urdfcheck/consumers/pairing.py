@@ -32,8 +32,10 @@ def step(path: str, how: str, model: str = ""):
     from urdfcheck.core.paths import shown
 
     subject = shown(path) + (f" for {shown(model)}" if model else "")
-    return Step("parameters" if path.endswith((".yaml", ".yml")) else "launch", subject, how,
-                "" if how in ("referenced", "launched", "config", "only") else CONFIRM)
+    params = path.endswith((".yaml", ".yml"))
+    confirm = CONFIRM if params else "name it under models: in urdfcheck.yaml (launch: of this model)"
+    return Step("parameters" if params else "launch", subject, how,
+                "" if how in ("referenced", "launched", "config", "only") else confirm)
 
 
 def plugin_files(entry: str, find) -> set[str]:
@@ -52,7 +54,7 @@ def plugin_files(entry: str, find) -> set[str]:
     return out
 
 
-def _named_in(text: bytes, name: str) -> bool:
+def named_in(text: bytes, name: str) -> bool:
     return re.search(rb"(?<![\w.-])" + re.escape(name.encode()) + rb"(?![\w.-])", text) is not None
 
 
@@ -70,10 +72,10 @@ def launch_files_named(launches, models, params) -> dict[str, set[str]]:
             text = read_file(lf, MAX_LAUNCH_BYTES)
         except OSError:
             continue
-        named = [m for m in models if _named_in(text, os.path.basename(m))]
+        named = [m for m in models if named_in(text, os.path.basename(m))]
         if not named:
             continue
-        files = {os.path.realpath(p) for p in params if _named_in(text, os.path.basename(p))}
+        files = {os.path.realpath(p) for p in params if named_in(text, os.path.basename(p))}
         for m in named:
             out.setdefault(os.path.realpath(m), set()).update(files)
     return out
@@ -104,3 +106,16 @@ def finder(root: str, packages=None):
             return str(pk[name])
         return root if name == own else None
     return find
+
+
+def others_files(skipped) -> list:
+    """Parameter files left to the package's other models: what they supply (a localization node, a drive) may
+    also run beside this one, so an absence claimed here is not failed (consumers.openworld)."""
+    if not skipped:
+        return []
+    from urdfcheck.core.findings import Location
+    from urdfcheck.core.paths import shown
+
+    return [(f"{', '.join(shown(p) for p in skipped[:3])} (named for another model of the package, not read "
+             "for this one)", Location(skipped[0]))]
+
