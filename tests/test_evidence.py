@@ -61,7 +61,8 @@ def test_a_pairing_by_joint_names_alone_is_an_info_that_says_how_to_confirm_it(p
 
 def test_a_confirmed_pairing_keeps_the_severity(pkg):
     root = pkg("overlap_only")
-    (root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/old_robot.urdf\n    controllers: [config/controllers.yaml]\n")
+    (root / "urdfcheck.yaml").write_text("models:\n  - path: urdf/old_robot.urdf\n"
+                                         "    controllers: [config/controllers.yaml]\n")
     import json
 
     from conftest import run_cli
