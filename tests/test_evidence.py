@@ -111,3 +111,32 @@ def test_a_launch_file_naming_a_file_name_that_several_models_share_is_a_guess(p
     assert len(c003) == 2 and {f["severity"] for f in c003} == {"info"} and code == 0
     for f in c003:
         assert any(s["how"] == "guess" and s["what"] == "launch" for s in f["evidence"])
+
+
+def test_fragments_a_package_lint_finds_are_infos_and_never_fail_it(pkg):
+    # urdf/robot.urdf.xacro includes sensors/$(arg sensor).urdf.xacro (a computed name) and, in a comment, a drop-in
+    # alternative chassis: those files rest on the robot's macros, properties and links; linted alone, the camera
+    # gave X010 "unknown macro name" (error) and a model "not checked": a red run on a correct robot
+    root = pkg("fragments")
+    code, report = lint_json(["."], cwd=root)
+    assert [f for f in report["findings"] if f["severity"] != "info"] == [] and code == 0
+    (x010,) = [f for f in report["findings"] if f["code"] == "X010"]
+    assert x010["location"]["file"].endswith("sensors/camera.urdf.xacro")
+    assert [s["how"] for s in x010["evidence"]] == ["probe"]
+    assert "may be a fragment of another model" in x010["message"]
+
+
+def test_a_legacy_unprefixed_include_names_a_fragment(tmp_path):
+    from urdfcheck.load.discover import discover
+
+    (tmp_path / "package.xml").write_text("<package><name>legacy</name></package>")
+    u = tmp_path / "urdf"
+    u.mkdir()
+    (u / "robot.urdf.xacro").write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                                        '  <link name="base_link"/>\n  <include filename="arm.xacro"/>\n</robot>\n')
+    (u / "arm.xacro").write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <link name="arm"/>\n'
+                                 '  <joint name="j" type="fixed"><parent link="base_link"/>'
+                                 '<child link="arm"/></joint>\n</robot>\n')
+    found = discover(tmp_path)
+    assert [p.rsplit("/", 1)[-1] for p in found.models] == ["robot.urdf.xacro"]
+    assert [p.rsplit("/", 1)[-1] for p in found.probes] == ["arm.xacro"]

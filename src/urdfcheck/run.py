@@ -62,9 +62,11 @@ class Result(Record):
         return [f for fs in self.by_target for f in fs]
 
     def unchecked(self) -> list[Target]:
-        """The targets whose model did not load: not checked, whatever the selection hid (issue 19)."""
+        """The targets whose model did not load: not checked, whatever the selection hid (issue 19). A probe
+        that may be a fragment of another file (its evidence is a guess, core.evidence) is no robot left
+        unchecked: its load findings say why at info, and a package lint never fails on a fragment alone."""
         return [t for t in self.targets if (str(t.path), t.variant) in self.models
-                and self.models[(str(t.path), t.variant)] is None and not t.library]
+                and self.models[(str(t.path), t.variant)] is None and not t.library and not _fragment(t)]
 
     def not_passed(self) -> str | None:
         """Why a run without findings still is no pass (a report says it instead of "All checks passed"):
@@ -168,6 +170,12 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
         t.joint_states = topic
 
 
+def _fragment(t: Target) -> bool:
+    from urdfcheck.core.evidence import weakest
+
+    return bool(t.probe) and weakest(t.evidence) is not None
+
+
 def _not_understood(result: Result, deployments, request: LintRequest) -> None:
     """Deployments whose model was not understood: C021 infos (issue 20), beside the targets' findings."""
     from urdfcheck.plan.understood import findings
@@ -181,6 +189,7 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
     """Files taken for included libraries that no model of the run read (the include was commented out,
     conditional, or in a file that is no robot): expanded now as probes, so that a robot is never hidden by
     another file claiming to include it."""
+    from urdfcheck.core.evidence import Step
     from urdfcheck.plan.robots import missed
 
     unread = missed(included, result.read)
@@ -193,6 +202,8 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
         t = Target(Path(path), {}, "", None, dict(like.packages) if like is not None else {},
                    like.settings if like is not None else None)
         t.probe = True
+        t.evidence = (Step("model", shown(path), "probe", "it is included by another file, which failed or never "
+                           "read it: lint that file, or name this one under models: in urdfcheck.yaml"),)
         extra.append(t)
     with progress.after(len(result.targets)):
         more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
@@ -284,7 +295,7 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
     from urdfcheck.rules import engine
 
     model = loader.build_model(exp)  # first: a document read as it is built may add its load findings
-    findings = list(exp.findings)
+    findings = engine.on_evidence(exp.findings, t.evidence)
     if model is not None:
         contracts = t.consumers(model, exp, config)  # planned, or found beside the model: once per target
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
@@ -385,7 +396,8 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                     t.library = True
                     sel = t.settings.selection if t.settings is not None else selection
                     models[(str(t.path), t.variant)] = None
-                    by_target[i].extend(engine.finish(list(exp.findings), sel, exp.suppressions, model=exp.entry))
+                    by_target[i].extend(engine.finish(engine.on_evidence(exp.findings, t.evidence), sel,
+                                                      exp.suppressions, model=exp.entry))
                     continue
                 try:
                     if t.settings is not None:

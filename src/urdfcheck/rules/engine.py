@@ -183,6 +183,26 @@ def _listing(items, shown: int = 3) -> str:
     return head[0] if len(head) == 1 else ", ".join(head[:-1]) + " and " + head[-1]
 
 
+def on_evidence(findings: list[Finding], steps: tuple) -> list[Finding]:
+    """The evidence rule for the loader's findings (X0xx, said before any check runs): those of a target chosen
+    by a guess (a probe that may be a fragment of another file) are said at info, as `_finding` does."""
+    if not steps:
+        return list(findings)
+    from urdfcheck.core.evidence import demotion
+
+    why = demotion(steps)
+    cat = rulebook.catalogue()
+    out = []
+    for f in findings:
+        info = cat.get(f.code)
+        sev = f.severity if f.name or not info else info.severity
+        if why is not None and sev > Severity.INFO:
+            f = f._replace(severity=Severity.INFO, message=clean_text(f.message + why),
+                           name=f.name or (info.name if info else ""))
+        out.append(f._replace(evidence=tuple(steps) + tuple(f.evidence)))
+    return out
+
+
 def finish(findings: list[Finding], selection: Selection, suppressions=(), model: str = "",
            variant: str = "", yaml_used: set | None = None) -> list[Finding]:
     """Apply selection and severity to load findings too, fill names, drop suppressed, report unused.
