@@ -67,7 +67,9 @@ def test_agv_zero_config_is_clean():
     models = {(Path(m["path"]).name, m["variant"]) for m in report["models"]}
     # the xacro is the model launch/agv.launch.xml starts robot_state_publisher with: linted as that deployment
     # (the launch file's arguments and consumers), not alone with its boolean variants (plan/plan.py)
-    assert models == {("agv.urdf", ""), ("agv.urdf.xacro", "examples/agv/launch/agv.launch.xml")}
+    # (plan/plan.py); the launch argument use_camera reaches the xacro argument: its other value is a deployment too
+    assert models == {("agv.urdf", ""), ("agv.urdf.xacro", "examples/agv/launch/agv.launch.xml"),
+                      ("agv.urdf.xacro", "examples/agv/launch/agv.launch.xml [use_camera=false]")}
 
 
 def test_agv_config_reaches_every_consumer():

@@ -140,3 +140,27 @@ def test_a_legacy_unprefixed_include_names_a_fragment(tmp_path):
     found = discover(tmp_path)
     assert [p.rsplit("/", 1)[-1] for p in found.models] == ["robot.urdf.xacro"]
     assert [p.rsplit("/", 1)[-1] for p in found.probes] == ["arm.xacro"]
+
+
+def test_a_boolean_launch_argument_that_reaches_a_xacro_argument_is_a_variant():
+    # the launch file passes use_camera:=$(var use_camera) (default true): use_camera:=false is as free as the
+    # xacro argument, and only that variant shows the driver stamping data in camera_link (C020); zero config
+    # linted the launch default alone and passed
+    code, report = lint_json(["--no-cache", "examples/broken/variant_camera_off"], cwd=REPO)
+    c020 = [f for f in report["findings"] if f["code"] == "C020"]
+    assert [f["severity"] for f in c020] == ["warning"] and code == 1
+    assert "use_camera=false" in c020[0]["variant"]
+    assert any(m["args"].get("use_camera") == "false" for m in report["models"])
+
+
+def test_a_boolean_launch_argument_that_does_not_reach_the_model_adds_no_deployment(tmp_path):
+    from urdfcheck.plan.deployments import find_deployments
+
+    agv = tmp_path / "agv"
+    shutil.copytree(Path(REPO, "examples/agv"), agv)
+    launch = agv / "launch" / "agv.launch.xml"
+    launch.write_text(launch.read_text().replace(
+        '<arg name="use_camera"', '<arg name="use_rviz" default="false"/>\n  <node pkg="rviz2" exec="rviz2" '
+        'if="$(var use_rviz)"/>\n  <arg name="use_camera"'))
+    deps = find_deployments(agv)
+    assert sorted(d.variant for d in deps if d.model) == ["", "use_camera=false"]

@@ -375,6 +375,38 @@ def _choice_dims(tree: _Tree, overrides: Mapping[str, str | None]) -> dict[str, 
     return dims
 
 
+_FLIP = {"true": "false", "false": "true", "True": "False", "False": "True"}
+MAX_BOOL_DIMS = 8
+
+
+def _bool_dims(tree: _Tree, dims: Mapping[str, tuple]) -> dict[str, str]:
+    """Boolean launch arguments (default true/false, no choices) that no including file sets: name -> the value
+    other than the default. A launch argument is as free as a xacro argument (issue 37): where it reaches the
+    model's xacro arguments (`use_camera:=$(arg use_camera)`), its other value is another deployment; where it
+    does not, that deployment is the same and collapses (`Deployment.key`)."""
+    passed: set[str] = set()
+    for info in tree.infos:
+        for inc in info.includes:
+            passed.update(inc.args)
+    out: dict[str, str] = {}
+    for info in tree.infos:
+        is_root = not tree.chains.get(id(info))
+        for name, d in getattr(info, "declared", {}).items():
+            if d.choices or d.default not in _FLIP or name in dims or name in out:
+                continue
+            if is_root or name not in passed:
+                out[name] = _FLIP[d.default]
+            if len(out) >= MAX_BOOL_DIMS:
+                return out
+    return out
+
+
+def _reaches_model(base: list, flipped: list) -> bool:
+    """A flipped launch argument changed what robot_state_publisher is given (model or xacro arguments)."""
+    return {(d.model, tuple(sorted(d.args.items()))) for d in flipped} != \
+        {(d.model, tuple(sorted(d.args.items()))) for d in base}
+
+
 def _required(tree: _Tree) -> set[str]:
     return {n for info in tree.infos for n, d in getattr(info, "declared", {}).items() if d.default is None}
 
@@ -583,10 +615,26 @@ def _root_deployments(ws: _Workspace, rootfile: str):
             label = ",".join(f"{k}={v}" for k, v in a.items())
             if label not in [x for x, _ in assignments]:
                 assignments.append((label, a))
+    done = 0
+    first = None
     for label, a in assignments[:MAX_VARIANTS]:
         tree = base if not a else _walk_tree(ws, rootfile, a)
-        for dep in _deployments(ws, rootfile, tree, label):
+        deps = _deployments(ws, rootfile, tree, label)
+        first = deps if first is None else first
+        done += 1
+        for dep in deps:
             yield dep, tree
+    if first is None or required:
+        return
+    for name, value in _bool_dims(base, dims).items():  # each boolean flipped alone, where it reaches the model
+        if done >= MAX_VARIANTS:
+            return
+        tree = _walk_tree(ws, rootfile, {name: value})
+        deps = _deployments(ws, rootfile, tree, f"{name}={value}")
+        done += 1
+        if _reaches_model(first, deps):
+            for dep in deps:
+                yield dep, tree
 
 
 def describe(deployments: list[Deployment], show=None) -> str:
