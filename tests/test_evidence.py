@@ -164,3 +164,42 @@ def test_a_boolean_launch_argument_that_does_not_reach_the_model_adds_no_deploym
         'if="$(var use_rviz)"/>\n  <arg name="use_camera"'))
     deps = find_deployments(agv)
     assert sorted(d.variant for d in deps if d.model) == ["", "use_camera=false"]
+
+
+def _launch_pkg(tmp_path, name: str, launch_name: str, launch_text: str) -> Path:
+    root = tmp_path / name
+    (root / "urdf").mkdir(parents=True)
+    (root / "launch").mkdir()
+    (root / "package.xml").write_text(f"<package format='3'><name>{name}</name></package>")
+    shutil.copy(DATA / "overlap_only" / "urdf" / "old_robot.urdf", root / "urdf" / "bot.urdf.xacro")
+    (root / "launch" / launch_name).write_text(launch_text)
+    return root
+
+
+def _models(root):
+    from urdfcheck.plan.deployments import find_deployments
+
+    return [Path(d.model).name if d.model else None for d in find_deployments(root)]
+
+
+def test_xacro_found_by_its_package_prefix_in_xml_launch(tmp_path):
+    root = _launch_pkg(tmp_path, "prefixbot", "a.launch.xml", """<launch>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher">
+    <param name="robot_description"
+           value="$(command '$(find-pkg-prefix xacro)/bin/xacro $(find-pkg-share prefixbot)/urdf/bot.urdf.xacro')"/>
+  </node>
+</launch>
+""")
+    assert _models(root) == ["bot.urdf.xacro"]
+
+
+def test_xacro_run_by_a_wrapper_script_in_ros1_launch(tmp_path):
+    root = _launch_pkg(tmp_path, "wrapbot", "description.launch", """<launch>
+  <arg name="config" default="base"/>
+  <param name="robot_description"
+         command="$(find wrapbot)/scripts/env_run $(find wrapbot)/urdf/configs/$(arg config)
+                  $(find xacro)/xacro $(find wrapbot)/urdf/bot.urdf.xacro --inorder"/>
+  <node name="robot_state_publisher" pkg="robot_state_publisher" type="robot_state_publisher"/>
+</launch>
+""")
+    assert _models(root) == ["bot.urdf.xacro"]

@@ -35,6 +35,17 @@ class ModelRef(TupleRecord):
 
 
 
+def _xacro_at(toks: list) -> int | None:
+    """The index of the xacro executable among a command's tokens (the last of a run of them), or None."""
+    names = ("xacro", "xacro.py")
+    first = next((i for i, t in enumerate(toks[:8]) if os.path.basename(t) in names), None)
+    if first is None:
+        return None
+    while first + 1 < len(toks) and os.path.basename(toks[first + 1]) in names:
+        first += 1
+    return first
+
+
 def command_model(text: str, loc: Location) -> ModelRef | None:
     """`xacro FILE a:=b ...` (or `cat FILE`) -> ModelRef. Tokens are split on whitespace (launch joins the
     pieces and the shell splits them; quoting in robot descriptions is rare)."""
@@ -42,9 +53,10 @@ def command_model(text: str, loc: Location) -> ModelRef | None:
     if not toks:
         return None
     exe = os.path.basename(toks[0])
-    if exe in ("xacro", "xacro.py"):
+    at = _xacro_at(toks)
+    if at is not None:  # xacro itself, or run by a wrapper (`env_run CONFIG xacro FILE`, `ros2 run xacro xacro FILE`)
         path, args = None, []
-        for t in toks[1:]:
+        for t in toks[at + 1:]:
             if ":=" in t:
                 k, _, v = t.partition(":=")
                 if k and not k.startswith("_"):
