@@ -203,3 +203,34 @@ def test_xacro_run_by_a_wrapper_script_in_ros1_launch(tmp_path):
 </launch>
 """)
     assert _models(root) == ["bot.urdf.xacro"]
+
+
+def test_a_model_returned_by_a_function_of_the_launch_file_through_xacros_python_api(tmp_path):
+    # andino's spawn_robot.launch.py, ar4's main.launch.py: `get_robot_description()` returns
+    # xacro.process_file(...).toprettyxml(), its text edited (package:// -> file://): the deployment was C021
+    root = _launch_pkg(tmp_path, "apibot", "spawn.launch.py", '''
+import os
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch_ros.actions import Node
+from xacro import process_file
+
+
+def get_robot_description(use_ros_control: str) -> str:
+    doc = process_file(os.path.join(get_package_share_directory("apibot"), "urdf", "bot.urdf.xacro"),
+                       mappings={"use_ros_control": use_ros_control})
+    robot_desc = doc.toprettyxml(indent="  ")
+    folder = get_package_share_directory("apibot")
+    robot_desc = robot_desc.replace("package://apibot/", f"file://{folder}/")
+    return robot_desc
+
+
+def generate_launch_description():
+    rsp = Node(package="robot_state_publisher", executable="robot_state_publisher",
+               parameters=[{"robot_description": get_robot_description("true")}])
+    return LaunchDescription([rsp])
+''')
+    from urdfcheck.plan.deployments import find_deployments
+
+    (d,) = find_deployments(root)
+    assert Path(d.model).name == "bot.urdf.xacro" and d.args == {"use_ros_control": "true"}

@@ -93,15 +93,23 @@ _INDEXED = (ast.Assign, ast.AnnAssign, ast.AugAssign, ast.With, ast.AsyncWith, a
             ast.arguments)
 
 
+def _edits(value: ast.AST | None, name: str) -> bool:
+    """`name.replace(...)` / `name.strip()`: an edit of the text bound to `name`."""
+    return isinstance(value, ast.Call) and isinstance(value.func, ast.Attribute) \
+        and value.func.attr in ("replace", "strip") and isinstance(value.func.value, ast.Name) \
+        and value.func.value.id == name
+
+
 def _index(tree: ast.AST) -> dict:
     """Calls by callee name, and under "*" the nodes that bind names."""
-    out: dict = {"*": [], "^": {}}
+    out: dict = {"*": [], "^": {}, "def": {}}
     for n in ast.walk(tree):
         if isinstance(n, ast.Call):
             out.setdefault(_callee(n), []).append(n)
         elif isinstance(n, _INDEXED):
             out["*"].append(n)
         if isinstance(n, ast.FunctionDef):  # BFS: an inner function is seen after its outer one and wins
+            out["def"].setdefault(n.name, []).append(n)
             for inner in ast.walk(n):
                 if inner is not n and isinstance(inner, ast.Call):
                     out["^"][id(inner)] = n
@@ -190,6 +198,8 @@ class PyLaunch:
 
     def _bind(self, target: ast.AST, value: ast.AST | None) -> None:
         if isinstance(target, ast.Name):
+            if target.id in self.assign and _edits(value, target.id):
+                return  # `desc = desc.replace(...)`: the same document, its text edited (package:// -> file://)
             self.assign[target.id] = None if target.id in self.assign else value
         elif isinstance(target, (ast.Tuple, ast.List)):
             for e in target.elts:
@@ -370,6 +380,9 @@ class PyLaunch:
         if attr_of is not None and name == "get" and _dotted(attr_of).endswith("launch_configurations"):
             key = self.ev(self._arg(node, 0), d)
             return self.config(key) if isinstance(key, str) else None
+        if attr_of is not None and name == "replace":  # a model's text edited: still that model
+            base = self.ev(attr_of, d)
+            return base if isinstance(base, (XacroDoc, FileText)) else None
         if attr_of is not None and name in ("read", "read_text"):
             base = self.ev(attr_of, d)
             if isinstance(base, FileOpen):
@@ -447,7 +460,43 @@ class PyLaunch:
             # like xacro's $(optenv VAR default) in the sandbox: the default, never the runner's environment
             default = self._arg(node, 1, "default_value", "default")
             return self.ev(default, d) if default is not None else None
+        if isinstance(node.func, ast.Name):  # a function of this launch file (`get_robot_description()`)
+            return self._local_call(node, name, d)
         return None  # os.getenv, EnvironmentVariable, PythonExpression, anything else: decided at launch time
+
+    def _local_call(self, node: ast.Call, name: str, d: int) -> Any:
+        """What a function defined in this launch file returns, when it has one `return` and its parameters are
+        given (or defaulted): read, never run."""
+        defs = self._calls.get("def", {}).get(name, ())
+        key = "\x00def " + name  # (beside the launch arguments being read)
+        if len(defs) != 1 or key in self._busy:
+            return None
+        fd = defs[0]
+        rets = [n for n in ast.walk(fd) if isinstance(n, ast.Return) and n.value is not None]
+        if len(rets) != 1:
+            return None
+        params = [a.arg for a in fd.args.posonlyargs + fd.args.args]
+        defaults = dict(zip(params[len(params) - len(fd.args.defaults):], fd.args.defaults))
+        b = {}
+        for p, arg in zip(params, node.args):
+            b[p] = self.ev(arg, d)
+        for k in node.keywords:
+            if k.arg in params:
+                b[k.arg] = self.ev(k.value, d)
+        for p in params:
+            if p not in b:
+                if p not in defaults:
+                    return None
+                b[p] = self.ev(defaults[p], d)
+        saved = self.bindings
+        self._busy.add(key)
+        try:
+            if b:
+                self.bindings = {**saved, **b}
+            return self.ev(rets[0].value, d)
+        finally:
+            self.bindings = saved
+            self._busy.discard(key)
 
     # --- conditions -------------------------------------------------------------------------------
     def condition(self, call: ast.Call) -> tuple[bool, str | None]:
