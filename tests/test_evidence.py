@@ -234,3 +234,15 @@ def generate_launch_description():
 
     (d,) = find_deployments(root)
     assert Path(d.model).name == "bot.urdf.xacro" and d.args == {"use_ros_control": "true"}
+
+
+@pytest.mark.parametrize("launch, says", [
+    ("a.launch.py", "it comes from `load_description()` of module my_robot_utils.description, which urdfcheck does "
+                    "not run"),
+    ("b.launch.py", "it comes from `robot.urdf()`, a method of class Robot of this launch file"),
+    ("c.launch.py", "it is computed inside OpaqueFunction(launch_setup)"),
+])
+def test_a_model_computed_where_urdfcheck_does_not_read_is_one_precise_c021(launch, says):
+    _, report = lint_json(["--no-cache", "tests/data/evidence/launch_constructs"], cwd=REPO)
+    (c021,) = [f for f in report["findings"] if f["code"] == "C021" and f["location"]["file"].endswith(launch)]
+    assert c021["severity"] == "info" and says in c021["message"]

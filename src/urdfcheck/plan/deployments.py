@@ -432,8 +432,10 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
             ref = next((i.descriptions[sp.description_key] for i in tree.infos
                         if sp.description_key in getattr(i, "descriptions", {})), None)
         if ref is None:
-            out.append(Deployment(None, notes=notes + [("the model robot_state_publisher gets is not understood",
-                                                         sp.loc)], **common))
+            why = getattr(sp, "unread", "")
+            out.append(Deployment(None, notes=notes + [("the model robot_state_publisher gets is not understood"
+                                                         + (f": {why}" if why else ""), sp.loc)],
+                                  **common))
             continue
         if UNKNOWN in (ref.path or ""):
             files = ws.match(ref.path)

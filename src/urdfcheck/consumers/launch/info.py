@@ -95,6 +95,7 @@ class StatePublisher(TupleRecord):
     condition: str | None = None
     description: Any = None  # pylaunch.ModelRef: the model it publishes, when the launch file says
     description_key: str | None = None  # ROS 1: the global parameter it reads the model from, when not found
+    unread: str = ""  # when `description` is None: the construct the model comes from, which is not read (C021)
 
 
 class JointStatePublisher(TupleRecord):
@@ -199,6 +200,7 @@ class LaunchInfo(Record):
 # --- the model robot_state_publisher is given ---------------------------------------------------
 _CMD_START, _CMD_END, _CMD_UNKNOWN = "\x02", "\x03", "\x01"
 _DESCRIPTION_KEY = "\x00description_key"  # LaunchNode.params entry: where a ROS 1 rsp reads its model
+_DESCRIPTION_WHY = "\x00description_unread"  # LaunchNode.params entry: what the model comes from, not read
 
 
 def description_of(value, loc: Location):
@@ -320,9 +322,11 @@ def record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
         d = node.params.get("robot_description")
         desc = description_of(d.value, d.loc) if d is not None else None
         key = node.params.get(_DESCRIPTION_KEY)
+        why = node.params.get(_DESCRIPTION_WHY)
         info.state_publishers.append(StatePublisher(node.name or "robot_state_publisher", node.namespace, prefix,
                                                     node.loc, info.path, ploc, node.condition, desc,
-                                                    key.value if key is not None and desc is None else None))
+                                                    key.value if key is not None and desc is None else None,
+                                                    why.value if why is not None and desc is None else ""))
     elif pkg in _JSP_PKGS:
         info.joint_state_publishers.append(JointStatePublisher(node.name or pkg, pkg, node.loc, info.path,
                                                                node.condition))

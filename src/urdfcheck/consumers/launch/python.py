@@ -20,6 +20,7 @@ from typing import Any
 
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.consumers.launch.info import (  # noqa: F401 - UNKNOWN, ModelRef, command_model: read here too
+    _DESCRIPTION_WHY,
     UNKNOWN,
     Declared,
     Include,
@@ -600,6 +601,10 @@ def node_values(r: PyLaunch, call: ast.Call) -> dict:
                 if k == "robot_description":
                     ref = model_ref(val, loc)
                     params[k] = Value(ref, loc)
+                    if ref is None:
+                        why = unread(r, el, call)
+                        if why:
+                            params[_DESCRIPTION_WHY] = Value(why, loc)
                     continue
                 if isinstance(val, (str, int, float, bool)) and not (isinstance(val, str) and UNKNOWN in val):
                     params[k] = Value(val, loc)
@@ -615,6 +620,68 @@ def node_values(r: PyLaunch, call: ast.Call) -> dict:
     return {"package": text("package"), "executable": text("executable", "node_executable"),
             "name": text("name", "node_name"), "namespace": text("namespace", "node_namespace"),
             "args": args, "params": params, "files": tuple(files)}
+
+
+# modules whose functions the reader evaluates itself (launch, launch_ros, xacro's API, paths)
+_READ_MODULES = ("launch", "launch_ros", "xacro", "os", "pathlib", "ament_index_python", "typing")
+
+
+def unread(r: PyLaunch, el: ast.AST, node: ast.Call) -> str:
+    """The construct a robot_description value comes from that is not read (never run): a function of another
+    module, a class method, a function of this file with several returns, an OpaqueFunction's arguments; ""
+    when none of these."""
+    imported: dict[str, str] = {}
+    for n in ast.walk(r.tree):
+        if isinstance(n, ast.ImportFrom) and n.module:
+            for a in n.names:
+                imported[a.asname or a.name] = n.module
+        elif isinstance(n, ast.Import):
+            for a in n.names:
+                imported[(a.asname or a.name).split(".")[0]] = a.name
+    defined = {n.name for n in ast.walk(r.tree) if isinstance(n, ast.ClassDef)}
+    classes = {name: v.func.id for name, v in r.assign.items()  # instances of this file's classes
+               if isinstance(v, ast.Call) and isinstance(v.func, ast.Name) and v.func.id in defined}
+    seen: set[int] = set()
+    queue, steps = [el], 0
+    while queue and steps < 200:
+        cur = queue.pop(0)
+        steps += 1
+        if id(cur) in seen:
+            continue
+        seen.add(id(cur))
+        for sub in ast.walk(cur):
+            if isinstance(sub, ast.Name) and r.assign.get(sub.id) is not None:
+                queue.append(r.assign[sub.id])
+            if not isinstance(sub, ast.Call):
+                continue
+            f = sub.func
+            if isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name) and f.value.id in ("self", "cls"):
+                return f"it comes from `{f.value.id}.{f.attr}()`, a class method, which urdfcheck does not run"
+            if isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name) and f.value.id in classes:
+                return f"it comes from `{f.value.id}.{f.attr}()`, a method of class {classes[f.value.id]} of this " \
+                       "launch file, which urdfcheck does not run"
+            head = _dotted(f).split(".")[0]
+            module = imported.get(head)
+            if module is not None and module.split(".")[0] not in _READ_MODULES:
+                return f"it comes from `{_dotted(f)}()` of module {module}, which urdfcheck does not run"
+            if isinstance(f, ast.Name):
+                defs = r._calls.get("def", {}).get(f.id, ())
+                if len(defs) == 1:
+                    rets = [x.value for x in ast.walk(defs[0]) if isinstance(x, ast.Return) and x.value is not None]
+                    if len(rets) > 1:
+                        return f"it comes from `{f.id}()`, a function of this launch file with {len(rets)} returns, " \
+                               "which urdfcheck does not run"
+                    queue.extend(rets)
+    fd = r._calls["^"].get(id(node))
+    if fd is not None and any(_refers(c, fd.name) for c in r.calls("OpaqueFunction")):
+        return f"it is computed inside OpaqueFunction({fd.name}) from what the launch passes it, which urdfcheck " \
+               "does not run"
+    return ""
+
+
+def _refers(call: ast.Call, name: str) -> bool:
+    return any(isinstance(n, ast.Name) and n.id == name for a in (*call.args, *(k.value for k in call.keywords))
+               for n in ast.walk(a))
 
 
 def _flatten(d: dict, prefix: str = ""):
