@@ -246,3 +246,12 @@ def test_a_model_computed_where_urdfcheck_does_not_read_is_one_precise_c021(laun
     _, report = lint_json(["--no-cache", "tests/data/evidence/launch_constructs"], cwd=REPO)
     (c021,) = [f for f in report["findings"] if f["code"] == "C021" and f["location"]["file"].endswith(launch)]
     assert c021["severity"] == "info" and says in c021["message"]
+
+
+def test_naming_a_fragment_lints_the_robot_that_includes_it(pkg):
+    # sensors/camera.urdf.xacro is included by urdf/robot.urdf.xacro under a computed name: named alone it gave
+    # X010 "unknown macro name" (error), the macro its includer defines
+    root = pkg("fragments")
+    code, report = lint_json(["urdf/sensors/camera.urdf.xacro"], cwd=root)
+    assert [m["path"] for m in report["models"]] == ["urdf/robot.urdf.xacro"]
+    assert report["findings"] == [] and code == 0

@@ -49,6 +49,9 @@ class Discovered(TupleRecord):
     probes: tuple[str, ...] = ()
     # libraries because another file includes them, that may hold links: the run checks that a model read them
     included: tuple[str, ...] = ()
+    # (fragment, includer): files another file may include where discovery cannot follow (a legacy or commented
+    # include, a computed name): probes, and linted through their includers when named (plan.plan)
+    hints: tuple = ()
 
 
 def _walk(root: str, max_files: int, cut: list | None = None):
@@ -324,10 +327,13 @@ def _discover(package_dir, max_files: int, trusted: bool) -> Discovered:
     included: set[str] = set()
     index = _Xacros(xacros)
     hinted: set[str] = set()  # fragments by another file's hint: expanded as probes, never robots by discovery
+    hints = []
     for p, t in texts.items():
         for m in _INCLUDE.finditer(_COMMENT.sub("", t)):  # a commented-out include includes nothing
             included |= _included_files(m.group(2), p, index) - {p}
-        hinted |= _fragment_hints(t, p, index) - {p}
+        got = _fragment_hints(t, p, index) - {p}
+        hinted |= got
+        hints.extend((f, p) for f in sorted(got))
     libs, probes, maybe = [], [], []
     for p in urdfs:  # a .urdf without any <link> is a fragment (materials, properties) for others to include
         (models if re.search(r"<\s*link\b", _read_head(p, trusted, real_dirs)) else libs).append(p)
@@ -348,4 +354,4 @@ def _discover(package_dir, max_files: int, trusted: bool) -> Discovered:
             continue
         models.append(p)
     return Discovered(root, tuple(sorted(models)), tuple(sorted(params)), tuple(sorted(launches)), tuple(sorted(libs)),
-                      bool(cut), tuple(sorted(probes)), tuple(sorted(maybe)))
+                      bool(cut), tuple(sorted(probes)), tuple(sorted(maybe)), tuple(hints))

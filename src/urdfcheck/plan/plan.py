@@ -398,6 +398,13 @@ class Planner:
             found = self.discover(pkg or folder, settings)
             if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
+                real = os.path.realpath(path)
+                for by in (b for f, b in getattr(found, "hints", ()) if os.path.realpath(f) == real):
+                    if not robots:  # a computed, legacy or commented include: the robots that include its includer
+                        robots = [t for t in self.robots_including(by, str(pkg or folder), settings)
+                                  if os.path.realpath(t.path) != real]
+                        robots = robots or [t for t in self.workspace_targets(_ws(self.here, by, pkg or folder))
+                                            if os.path.realpath(t.path) == os.path.realpath(by)]
                 maybe = {os.path.realpath(x) for x in (*found.probes, *found.included)}
                 if not robots and os.path.realpath(path) in maybe:  # named: never skipped when it may be a robot
                     return _mark([self.probe(path, settings)], "named", force=True)
@@ -469,6 +476,11 @@ def _packages(root: str, model: str, settings: Settings) -> dict:
     from urdfcheck.load.packages import workspace_map
 
     return {**workspace_map(root, near=model), **dict(settings.packages)}
+
+
+def _ws(here: str, path: str, pkg) -> str:
+    here = os.path.abspath(here)
+    return here if _below(path, here) else os.path.abspath(str(pkg))
 
 
 def _step(what: str, subject: str, how: str, confirm: str = ""):
