@@ -255,3 +255,22 @@ def test_naming_a_fragment_lints_the_robot_that_includes_it(pkg):
     code, report = lint_json(["urdf/sensors/camera.urdf.xacro"], cwd=root)
     assert [m["path"] for m in report["models"]] == ["urdf/robot.urdf.xacro"]
     assert report["findings"] == [] and code == 0
+
+
+def test_a_robot_made_of_includes_alone_is_whole_not_a_probe(tmp_path):
+    # its text has no link (the links come from the files it includes): expanded as a probe, but nothing includes
+    # it, so it is a whole robot and its findings keep their severity
+    root = tmp_path / "incbot"
+    (root / "urdf").mkdir(parents=True)
+    (root / "package.xml").write_text("<package format='3'><name>incbot</name></package>")
+    src = next(Path(REPO, "examples/broken/zero_axis/urdf").glob("*.urdf"))
+    body = src.read_text().split("?>", 1)[-1].strip()
+    inner = body[body.index(">", body.index("<robot")) + 1: body.rindex("</robot>")]
+    (root / "urdf" / "body.xacro").write_text(f'<robot xmlns:xacro="http://www.ros.org/wiki/xacro">{inner}</robot>\n')
+    (root / "urdf" / "robot.urdf.xacro").write_text(
+        '<robot name="incbot" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="body.xacro"/>\n</robot>\n')
+    code, report = lint_json(["."], cwd=root)
+    bad = [f for f in report["findings"] if f["severity"] != "info"]
+    assert bad and code == 1
+    assert all(f["evidence"][0]["how"] == "complete" for f in bad)

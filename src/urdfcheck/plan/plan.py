@@ -324,9 +324,12 @@ class Planner:
             [p for p in walk.packages if not _under_any(p, exclude)]  # a package with its own config: its own
         for root in roots:
             found = self.discover(root, settings)
+            hinted = {os.path.realpath(f) for f, _ in getattr(found, "hints", ())}
             for entry in found.probes:  # no link by its text: the expansion decides (plan.robots)
                 if os.path.realpath(entry) not in named.covered:
                     out.append(self.probe(Path(entry), settings, named.root))
+                    if os.path.realpath(entry) not in hinted:  # nothing includes it: whole, if it has links
+                        out[-1].evidence = (_step("model", entry, "complete"),)
             if not found.models and not found.probes and found.libraries \
                     and not any(_below(t.path, root) for t in out):
                 self.infos.append(f"{shown(root)}: xacro libraries only (macros, properties): "
