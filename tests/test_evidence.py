@@ -274,3 +274,13 @@ def test_a_robot_made_of_includes_alone_is_whole_not_a_probe(tmp_path):
     bad = [f for f in report["findings"] if f["severity"] != "info"]
     assert bad and code == 1
     assert all(f["evidence"][0]["how"] == "complete" for f in bad)
+
+
+def test_a_controller_file_the_plugin_loads_only_in_another_branch_is_not_read(pkg):
+    # andino_gz_classic: the gazebo_ros2_control plugin (which loads config/controllers.yaml) sits under
+    # xacro:if use_ros2_control, the Gazebo diff-drive plugin under xacro:unless; the deployment runs the default
+    # (false): the controllers' odom -> base_link was counted beside the plugin's, a false T001 error
+    root = pkg("plugin_branch")
+    code, report = lint_json(["."], cwd=root)
+    assert [f for f in report["findings"] if f["severity"] != "info"] == [] and code == 0
+    assert not [f for f in report["findings"] if f["code"] == "T001"]

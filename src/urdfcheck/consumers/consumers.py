@@ -44,8 +44,15 @@ class Consumers(Record):
     elsewhere_localization: list = ()
     workspace: str | None = None  # the folder whose joint state broadcasters may run beside this deployment
 
+    plugin_files: tuple = ()
+
     def settle(self, model) -> Consumers:
         """Add the package's unread parameter files, once, now that the model is known."""
+        plugin, self.plugin_files = self.plugin_files, ()
+        if plugin:
+            from urdfcheck.consumers.pairing import drop_unloaded
+
+            drop_unloaded(self, plugin, model)
         files, self.package_files = self.package_files, ()
         if files:
             from urdfcheck.consumers.openworld import add_package_files

@@ -119,3 +119,26 @@ def others_files(skipped) -> list:
     return [(f"{', '.join(shown(p) for p in skipped[:3])} (named for another model of the package, not read "
              "for this one)", Location(skipped[0]))]
 
+
+def drop_unloaded(c, files, model) -> None:
+    """Controller files read because the model's Gazebo ros2_control plugin names them (as text, through every
+    branch): when the expanded model has no plugin naming one, these xacro arguments do not load it (the plugin
+    sits in a branch they do not take). Its controllers are dropped, and what they would supply is not known."""
+    from urdfcheck.core.findings import Location
+    from urdfcheck.core.paths import shown
+
+    named = [p.text.strip() for pl in getattr(model, "plugins", ()) for p in pl.params if p.tag == "parameters"]
+    gone = [f for f in files if not any(n.endswith("/" + os.path.basename(f)) or n == os.path.basename(f)
+                                        for n in named)]
+    if not gone:
+        return
+    real = {os.path.realpath(f) for f in gone}
+    ctrls = c.controllers.controllers
+    for key in [k for k, ctl in ctrls.items() if os.path.realpath(getattr(ctl, "file", "") or "") in real]:
+        del ctrls[key]
+    for key in ("controllers",):
+        if key in c.files:
+            c.files[key] = [f for f in c.files[key] if os.path.realpath(f) not in real]
+    c.pairing = {k: v for k, v in c.pairing.items() if k not in real}
+    c.unknown = list(c.unknown or ()) + [(f"{shown(gone[0])} (the model's Gazebo ros2_control plugin loads it "
+                                          "under other xacro arguments)", Location(gone[0]))]

@@ -60,6 +60,9 @@ class Deployment(Record):
     # model too, `consumers.openworld`); package_single: the package holds one model
     package_files: tuple = ()
     package_single = True
+    # controller files taken from the model's Gazebo ros2_control plugin, read as text: kept only when the
+    # expanded model has that plugin (`Consumers.settle`; it may sit in a branch these arguments do not take)
+    plugin_files: tuple = ()
     workspace: str | None = None
     included_elsewhere = False
 
@@ -160,6 +163,7 @@ class Deployment(Record):
 
         out.unknown = deployment_unknowns(self, out.drivers)
         out.package_files, out.package_single = list(self.package_files), self.package_single
+        out.plugin_files = tuple(self.plugin_files)
         out.workspace = self.workspace
         return out
 
@@ -462,6 +466,7 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
         if dropped:
             notes.append((f"xacro argument(s) {', '.join(dropped)} are decided at launch time; the model's "
                           "defaults are used", ref.loc))
+        ctrl_launched = bool(ctrl)
         if not ctrl and picked:
             # the controller manager is the simulator's plugin: its parameter file is named in the model
             files, unknown = plugin_parameter_files(ws, picked[0][0])
@@ -474,10 +479,12 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
                 notes.append(("the model's Gazebo ros2_control plugins load "
                               f"{', '.join([_show(f) for f in files] + unknown)}: which one runs is decided by "
                               "xacro arguments; not read", sp.loc))
+        from_plugin = tuple(common["controller_files"]) if not ctrl_launched else ()
         for f, label in picked:
             c = dict(common)
             c["variant"] = ",".join(x for x in (variant, label) if x)
             out.append(Deployment(f, ref.how, args, notes=list(notes), dropped_args=dropped, **c))
+            out[-1].plugin_files = from_plugin
     return out
 
 
