@@ -284,3 +284,19 @@ def test_a_controller_file_the_plugin_loads_only_in_another_branch_is_not_read(p
     code, report = lint_json(["."], cwd=root)
     assert [f for f in report["findings"] if f["severity"] != "info"] == [] and code == 0
     assert not [f for f in report["findings"] if f["code"] == "T001"]
+
+
+def test_a_launch_file_pairs_by_the_folder_when_two_parameter_files_share_a_name(tmp_path):
+    from urdfcheck.consumers.pairing import launch_files_named
+
+    a, b = tmp_path / "config" / "a" / "controllers.yaml", tmp_path / "config" / "b" / "controllers.yaml"
+    lf = tmp_path / "launch" / "a.launch"
+    for f in (a, b, lf):
+        f.parent.mkdir(parents=True, exist_ok=True)
+    a.write_text("x: 1\n")
+    b.write_text("x: 1\n")
+    lf.write_text('<launch><param name="robot_description" textfile="$(find p)/urdf/a.urdf"/>'
+                  '<rosparam file="$(find p)/config/a/controllers.yaml"/></launch>')
+    got = launch_files_named([str(lf)], [str(tmp_path / "urdf" / "a.urdf"), str(tmp_path / "urdf" / "b.urdf")],
+                             [str(a), str(b)])
+    assert got == {str((tmp_path / "urdf" / "a.urdf").resolve()): {str(a.resolve())}}

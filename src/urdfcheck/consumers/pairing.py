@@ -58,6 +58,14 @@ def named_in(text: bytes, name: str) -> bool:
     return re.search(rb"(?<![\w.-])" + re.escape(name.encode()) + rb"(?![\w.-])", text) is not None
 
 
+def _name_of(path: str, paths) -> str:
+    """How a launch file names `path`: its file name, or with its folder when another file shares the name."""
+    base = os.path.basename(path)
+    if sum(os.path.basename(p) == base for p in paths) > 1:
+        return "/".join(path.replace("\\", "/").split("/")[-2:])
+    return base
+
+
 def launch_files_named(launches, models, params) -> dict[str, set[str]]:
     """model realpath -> the parameter files (realpaths) a launch file that mentions that model (by file name)
     loads (names by file name): a launch file naming two models pairs its files with both."""
@@ -75,7 +83,7 @@ def launch_files_named(launches, models, params) -> dict[str, set[str]]:
         named = [m for m in models if named_in(text, os.path.basename(m))]
         if not named:
             continue
-        files = {os.path.realpath(p) for p in params if named_in(text, os.path.basename(p))}
+        files = {os.path.realpath(p) for p in params if named_in(text, _name_of(p, params))}
         for m in named:
             out.setdefault(os.path.realpath(m), set()).update(files)
     return out
