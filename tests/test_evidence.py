@@ -300,3 +300,17 @@ def test_a_launch_file_pairs_by_the_folder_when_two_parameter_files_share_a_name
     got = launch_files_named([str(lf)], [str(tmp_path / "urdf" / "a.urdf"), str(tmp_path / "urdf" / "b.urdf")],
                              [str(a), str(b)])
     assert got == {str((tmp_path / "urdf" / "a.urdf").resolve()): {str(a.resolve())}}
+
+
+def test_a_description_launch_file_whose_model_is_not_understood_claims_no_absence(pkg):
+    # zero config pairs the model with the package's launch file; it starts robot_state_publisher alone with a model
+    # from a generator script: a description launch file, meant to be included
+    root = pkg("description_launch")
+    lf = root / "launch" / "description.launch"
+    text = lf.read_text()
+    start, end = text.index('command="') + len('command="'), text.index('" />')
+    lf.write_text(text[:start] + "$(find rover_description)/scripts/generate_description $(arg config)" + text[end:])
+    code, report = lint_json(["."], cwd=root)
+    c003 = [f for f in report["findings"] if f["code"] == "C003"]
+    assert [f["severity"] for f in c003] == ["info"] and code == 0
+    assert "description launch file" in c003[0]["message"]

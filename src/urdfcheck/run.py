@@ -171,9 +171,34 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
 
 
 def _fragment(t: Target) -> bool:
-    from urdfcheck.core.evidence import weakest
+    """A probe whose load failed only on symbols the files that include it provide (`_load_findings`)."""
+    return bool(t.probe) and getattr(t, "fragment", False)
 
-    return bool(t.probe) and weakest(t.evidence) is not None
+
+def _load_findings(t: Target, exp) -> list[Finding]:
+    """The loader's findings of `t`, through the evidence rule (rules.engine.on_evidence): a probe that another
+    file may include and that fails only on a symbol (macro, property, argument) that file provides is a
+    fragment of it: those findings are infos, and the probe is no model left unchecked. Any other finding of it
+    keeps its severity (a decoy include never hides a broken robot)."""
+    from urdfcheck.rules import engine
+
+    found = engine.on_evidence(exp.findings, t.evidence)
+    if not (t.probe and t.includers and exp.findings):
+        return found
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.plan.robots import includer_texts, includers_of, provided
+
+    failing = [f for f in exp.findings if f.code == "X010"]
+    if not failing:
+        return found
+    includers = [i for i in t.includers if i != "?"] or includers_of(str(t.path))
+    texts = includer_texts(includers, lambda n: t.packages.get(n))
+    if not texts or not all(provided(f.message, texts) for f in failing):
+        return found
+    t.fragment = True
+    step = Step("model", shown(str(t.path)), "probe", f"lint {shown(includers[0])}, which includes it, or name this "
+                "file under models: in urdfcheck.yaml if it is a whole robot")
+    return [engine.on_evidence([f], (step,) if f.code == "X010" else t.evidence)[0] for f in exp.findings]
 
 
 def _not_understood(result: Result, deployments, request: LintRequest) -> None:
@@ -189,7 +214,6 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
     """Files taken for included libraries that no model of the run read (the include was commented out,
     conditional, or in a file that is no robot): expanded now as probes, so that a robot is never hidden by
     another file claiming to include it."""
-    from urdfcheck.core.evidence import Step
     from urdfcheck.plan.robots import missed
 
     unread = missed(included, result.read)
@@ -202,8 +226,7 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
         t = Target(Path(path), {}, "", None, dict(like.packages) if like is not None else {},
                    like.settings if like is not None else None)
         t.probe = True
-        t.evidence = (Step("model", shown(path), "probe", "it is included by another file, which failed or never "
-                           "read it: lint that file, or name this one under models: in urdfcheck.yaml"),)
+        t.includers = ("?",)  # found when it fails (plan.robots.includers_of)
         extra.append(t)
     with progress.after(len(result.targets)):
         more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
@@ -295,7 +318,7 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
     from urdfcheck.rules import engine
 
     model = loader.build_model(exp)  # first: a document read as it is built may add its load findings
-    findings = engine.on_evidence(exp.findings, t.evidence)
+    findings = _load_findings(t, exp)
     if model is not None:
         contracts = t.consumers(model, exp, config)  # planned, or found beside the model: once per target
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
@@ -396,8 +419,8 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                     t.library = True
                     sel = t.settings.selection if t.settings is not None else selection
                     models[(str(t.path), t.variant)] = None
-                    by_target[i].extend(engine.finish(engine.on_evidence(exp.findings, t.evidence), sel,
-                                                      exp.suppressions, model=exp.entry))
+                    by_target[i].extend(engine.finish(_load_findings(t, exp), sel, exp.suppressions,
+                                                      model=exp.entry))
                     continue
                 try:
                     if t.settings is not None:

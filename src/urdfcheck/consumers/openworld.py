@@ -127,6 +127,20 @@ def _description_only(root, nodes) -> bool:
     return True
 
 
+def _gives_a_model(li) -> bool:
+    """A robot_state_publisher of the launch file is given a model (understood or not): a description launch file,
+    not a bare node that waits for one."""
+    if any(s.description is not None or getattr(s, "unread", "") for s in li.state_publishers) \
+            or getattr(li, "descriptions", None):
+        return True
+    from urdfcheck.core.safeio import read_file
+
+    try:
+        return b"robot_description" in read_file(li.path, 2 * 1024 * 1024)
+    except OSError:
+        return False
+
+
 def package_unknowns(c) -> list[tuple[str, Location]]:
     """Zero config: parameter files beside the model, and either no launch file of the package that starts
     robot_state_publisher (what runs beside the model is not known) or nodes of no known kind in them."""
@@ -146,7 +160,7 @@ def description_files(launches) -> list[tuple[str, Location]]:
     from urdfcheck.core.paths import shown as display
 
     starters = [li for li in launches if li.state_publishers]
-    if not starters or not all(_description_only(li, li.nodes) for li in starters):
+    if not starters or not all(_description_only(li, li.nodes) and _gives_a_model(li) for li in starters):
         return []
     return [(f"the launch files that include {display(li.path)} (it starts robot_state_publisher and nothing "
              "that moves or supplies the robot: a description launch file)", Location(li.path)) for li in starters]

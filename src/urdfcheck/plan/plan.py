@@ -63,6 +63,7 @@ class Target(Record):
     bags: tuple = ()  # recordings a config declares for this model (urdfcheck.bag)
     joint_states: str | None = None  # their JointState topic (None: /joint_states, else the only one)
     probe = False    # may be a library: the expansion decides (plan.robots); the run sets `library`
+    includers: tuple = ()  # files that may include this one (a probe): a symbol they define is no defect here
     # how the model and its deployment were chosen (core.evidence.Step), which every finding of it rests on
     evidence: tuple = ()
     library = False  # a probe whose expansion has no link: not a robot, not checked as one
@@ -324,12 +325,16 @@ class Planner:
             [p for p in walk.packages if not _under_any(p, exclude)]  # a package with its own config: its own
         for root in roots:
             found = self.discover(root, settings)
-            hinted = {os.path.realpath(f) for f, _ in getattr(found, "hints", ())}
+            hinted: dict[str, list] = {}
+            for f, by in getattr(found, "hints", ()):
+                hinted.setdefault(os.path.realpath(f), []).append(by)
             for entry in found.probes:  # no link by its text: the expansion decides (plan.robots)
                 if os.path.realpath(entry) not in named.covered:
                     out.append(self.probe(Path(entry), settings, named.root))
-                    if os.path.realpath(entry) not in hinted:  # nothing includes it: whole, if it has links
-                        out[-1].evidence = (_step("model", entry, "complete"),)
+                    # whole, if it has links; one that another file may include is a fragment where it fails
+                    # only on what that file provides (run: plan.robots.provided)
+                    out[-1].evidence = (_step("model", entry, "complete"),)
+                    out[-1].includers = tuple(hinted.get(os.path.realpath(entry), ()))
             if not found.models and not found.probes and found.libraries \
                     and not any(_below(t.path, root) for t in out):
                 self.infos.append(f"{shown(root)}: xacro libraries only (macros, properties): "
