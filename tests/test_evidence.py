@@ -314,3 +314,15 @@ def test_a_description_launch_file_whose_model_is_not_understood_claims_no_absen
     c003 = [f for f in report["findings"] if f["code"] == "C003"]
     assert [f["severity"] for f in c003] == ["info"] and code == 0
     assert "description launch file" in c003[0]["message"]
+
+
+def test_joints_a_workspace_broadcaster_does_not_name_rest_on_a_guessed_pairing(pkg):
+    # moose: the description launch file starts robot_state_publisher alone; a JointStateController in another
+    # package's control.yaml names the steering joint only (a ROS 1 controller publishes whatever the hardware
+    # registers): "nothing publishes the state of the wheels" was a warning resting on that file's pairing
+    root = pkg("workspace_broadcaster")
+    code, report = lint_json(["."], cwd=root)
+    c003 = [f for f in report["findings"] if f["code"] == "C003"]
+    assert c003 and {f["severity"] for f in c003} == {"info"} and code == 0
+    wheel = [f for f in c003 if "left_wheel_joint" in f["message"]]
+    assert wheel and any(s["how"] == "overlap" and "control.yaml" in s["subject"] for s in wheel[0]["evidence"])
