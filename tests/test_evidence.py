@@ -326,3 +326,17 @@ def test_joints_a_workspace_broadcaster_does_not_name_rest_on_a_guessed_pairing(
     assert c003 and {f["severity"] for f in c003} == {"info"} and code == 0
     wheel = [f for f in c003 if "left_wheel_joint" in f["message"]]
     assert wheel and any(s["how"] == "overlap" and "control.yaml" in s["subject"] for s in wheel[0]["evidence"])
+
+
+def test_a_symbol_from_a_package_the_includer_cannot_find_may_be_provided(tmp_path):
+    from urdfcheck.plan.robots import includer_texts, provided
+
+    inc = tmp_path / "base.xacro"
+    inc.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                   '  <xacro:include filename="$(find sensor_plugins)/urdf/dvl.xacro"/>\n</robot>\n')
+    texts = includer_texts([str(inc)], lambda name: None)
+    assert provided("unknown macro name: xacro:default_dvl_macro", texts)
+    found = includer_texts([str(inc)], lambda name: str(tmp_path) if name == "sensor_plugins" else None)
+    assert not provided("unknown macro name: xacro:default_dvl_macro", found)
+    assert provided("name 'ns' is not defined", ['<xacro:property name="ns" value="a"/>'])
+    assert not provided("No such file or directory: x.xacro", ['<xacro:property name="ns" value="a"/>'])

@@ -49,15 +49,27 @@ def provided(message: str, texts) -> bool:
         if m:
             name = re.escape(m.group(1))
             rx = re.compile(definition.replace("{}", name))
-            return any(rx.search(t) for t in texts)
+            return any(t == "*" or rx.search(t) for t in texts)
     return False
 
 
+_FIND_INCLUDE = r"""<\s*xacro:include\b[^>]*\bfilename\s*=\s*["']\$\(\s*find\s+([\w-]+)\s*\)"""
+
+
 def includer_texts(includers, find) -> list[str]:
-    """The text of the includers and of what they include literally (their macro libraries)."""
+    """The text of the includers and of what they include literally (their macro libraries). An includer that
+    includes a file of a package that is not found may get any symbol from it (that package's absence is said
+    at the includer, X013): the text "*" then stands for it."""
+    import re
+
     from urdfcheck.load.packages import literal_includes
 
-    return [text for _path, text in literal_includes(list(includers), find)] if includers else []
+    if not includers:
+        return []
+    texts = [text for _path, text in literal_includes(list(includers), find)]
+    if any(find(m.group(1)) is None for t in texts for m in re.finditer(_FIND_INCLUDE, t)):
+        texts.append("*")
+    return texts
 
 
 def includers_of(path: str) -> list[str]:
