@@ -241,6 +241,7 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
         return
     # suppliers not known to run in this deployment: the package's unread files, then the workspace's
     far, far_covered, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=False)
+    workspace = False
     if not far:  # a broadcaster in a workspace file that names these joints (a `*_control` package)
         from urdfcheck.consumers.openworld import workspace_broadcasters
 
@@ -248,6 +249,7 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
         far = [b for b, _ in found]
         far_covered = set().union(set(), *(named | hw_joints for _, named in found))
         everything = False
+        workspace = bool(far)
     if everything:
         far_covered = {j.name for j in missing}
     supplied = [j for j in missing if j.name in far_covered]
@@ -269,11 +271,29 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
                       f"robot_state_publisher cannot place their child links", at=where,
                       related=_dedupe_locs(missing[:6], where), absent="publish them")
         return
-    # evidence cuts both ways: the suppliers found cover other joints, not these
+    # evidence cuts both ways: the suppliers found cover other joints, not these; when none of them runs here,
+    # the claim rests on how their files were paired with the model (a workspace file: by joint names, a guess)
+    rests = () if sources else _far_pairing(c, far, model, workspace)
     for j in missing:
         yield Problem(f"nothing publishes the state of joint {j.name!r} (the joint state broadcaster does not "
                       f"cover it and no driver names it); robot_state_publisher will not publish "
-                      f"{j.child!r}", at=j, data={"joint": j.name})
+                      f"{j.child!r}", at=j, data={"joint": j.name}, rests_on=rests)
+
+
+def _far_pairing(c, far, model, workspace: bool) -> tuple:
+    """The pairing steps (core.evidence) of the suppliers not known to run here that a C003 claim rests on."""
+    from urdfcheck.consumers.pairing import step
+
+    pairing = getattr(c, "pairing", None) or {}
+    out = []
+    for s in far[:3]:
+        f = getattr(s, "file", "") or ""
+        got = pairing.get(os.path.realpath(f)) if f else None
+        if got is None and f:
+            got = step(f, "overlap" if workspace else "package", getattr(model, "source", "") or "")
+        if got is not None and got not in out:
+            out.append(got)
+    return tuple(out)
 
 
 def _elsewhere(item) -> str:
