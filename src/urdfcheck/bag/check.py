@@ -38,12 +38,13 @@ class BagOptions(FrozenRecord):
                  "profile": "ros2", "frame_prefix": ""}
 
 
-def check_recording(model, path: str, options: BagOptions | None = None, progress=None, text: bool | None = None
-                    ) -> list[Finding]:
+def check_recording(model, path: str, options: BagOptions | None = None, progress=None, text: bool | None = None,
+                    runner: bool = False) -> list[Finding]:
     """Findings about the recording at `path` (bag, bag folder, .db3, .mcap, or a YAML/JSON message list),
     located in the recording; `related` points at the model's source lines. Never raises for a bad recording:
     that is a B014 finding. `progress(n)` is called every 10,000 messages. `text`: read it as a YAML/JSON list
-    whatever its name (None: by its suffix)."""
+    whatever its name (None: by its suffix). `runner`: the person running the tool named this path (core.door);
+every file inside a recording folder is read as the checkout's, whoever named the folder."""
     opts = options or BagOptions()
     from urdfcheck.core import observe
 
@@ -53,10 +54,16 @@ def check_recording(model, path: str, options: BagOptions | None = None, progres
                   static_tolerance=opts.static_tolerance)
     issues: list[Issue] = []
     others: list[str] = []
+    facts: dict = {}
     n = 0
+    budget = _budget()
+    cut = None
     try:
-        for m in source.messages(path, opts.joint_topic, others=others, text=text):
+        for m in source.messages(path, opts.joint_topic, others=others, text=text, facts=facts, runner=runner):
             n += 1
+            if budget is not None and not n % 2048 and budget.remaining() <= 0:
+                cut = f"the run's time budget ({budget.seconds:g} s) ran out after {n:,} messages"
+                break
             if m.kind == "joint_state":
                 states.add(m)
                 tf.joint_state(m)
@@ -68,6 +75,11 @@ def check_recording(model, path: str, options: BagOptions | None = None, progres
         issues.append(Issue("B014", f"the recording cannot be read: {e}"))
     except RecursionError:
         issues.append(Issue("B014", "the recording cannot be read: nested too deeply"))
+    except MemoryError:
+        issues.append(Issue("B014", "the recording cannot be read: the run's memory budget was used up"))
+    if cut is not None:
+        issues.append(Issue("B014", f"the recording was read only in part: {cut}; what follows rests on "
+                            "the part read"))
     issues.extend(states.issues())
     issues.extend(tf.issues())
     if not n and not issues:
@@ -83,6 +95,12 @@ def check_recording(model, path: str, options: BagOptions | None = None, progres
                 i.message += (f" (the recording also has {', '.join(others)}, not read: a joint_state_publisher "
                               "may merge them; pass --joint-states TOPIC to check one of them)")
     return [_finding(i, path) for i in issues]
+
+
+def _budget():
+    from urdfcheck.load.budget import current
+
+    return current()
 
 
 def _finding(i: Issue, path: str) -> Finding:
