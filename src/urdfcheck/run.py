@@ -165,6 +165,7 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
             chosen[str(t.path)] = t
     for t in chosen.values():
         t.bags = tuple(t.bags) + tuple(b for b in bags if b not in t.bags)
+        t.runner_bags = tuple(bags)  # typed on the command line (core.door: runner=True)
         t.joint_states = topic
 
 
@@ -253,8 +254,9 @@ def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding
     options = BagOptions(joint_topic=t.joint_states, tolerance=tolerance("B005"),
                          replay_tolerance=tolerance("B013"), static_tolerance=tolerance("B011"))
     out = []
+    runner = getattr(t, "runner_bags", ())
     for bag in t.bags:
-        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag)))
+        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag), runner=bag in runner))
     return out
 
 

@@ -49,6 +49,15 @@ def sniff(path: str, runner: bool) -> str:
     return ""
 
 
+def _in_time() -> None:
+    """Between records: stop when the run's time budget (load.budget) is spent, even if nothing is yielded."""
+    from urdfcheck.load.budget import current
+
+    b = current()
+    if b is not None and b.remaining() <= 0:
+        raise ContainerError(f"the run's time budget ({b.seconds:g} s) ran out while the recording was read")
+
+
 def _exact(f, n: int) -> bytes:
     data = f.read(n)
     if len(data) != n:
@@ -133,7 +142,11 @@ def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
 
     with door.open_stream(path, limit=RECORDING_BYTES, runner=runner) as f:
         _exact(f, len(ROS1_MAGIC))
+        ticks = 0
         while True:
+            ticks += 1
+            if not ticks & 4095:
+                _in_time()
             head = f.read(4)
             if not head:
                 return
@@ -253,6 +266,7 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
     with (stream if stream is not None else door.open_stream(path, limit=RECORDING_BYTES, runner=runner)) as f:
         if _exact(f, 8) != MCAP_MAGIC:
             raise ContainerError("not an MCAP file")
+        ticks = 0
         while True:
             head = f.read(9)
             if not head:
@@ -261,6 +275,11 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                 raise ContainerError("the file ends in the middle of a record (truncated)")
             op = head[0]
             (n,) = struct.unpack_from("<Q", head, 1)
+            ticks += 1
+            if not ticks & 4095:
+                _in_time()
+            if op == 0x00 or op == 0xFF:  # reserved opcodes: not MCAP (a file of zeros)
+                raise ContainerError(f"an MCAP record with the invalid opcode {op:#04x}")
             if op == 0x02:  # footer: the end
                 return
             if op == 0x06:  # chunk
@@ -313,10 +332,11 @@ class InflatingStream:
             from backports import zstd
         self.raw, self.inflater, self.what = raw, inflater, what
         self.d = zstd.ZstdDecompressor()
-        self.buf = b""
+        self.buf = bytearray()
+        self.pos = 0
 
     def read(self, n: int) -> bytes:
-        while len(self.buf) < n and not self.d.eof:
+        while len(self.buf) - self.pos < n and not self.d.eof:
             chunk = b"" if self.d.needs_input is False else self.raw.read(1 << 20)
             if not chunk and self.d.needs_input:
                 break
@@ -327,8 +347,11 @@ class InflatingStream:
             self.inflater.used += len(out)
             if self.inflater.used > self.inflater.total:
                 raise ContainerError(f"the recording inflates past {self.inflater.total >> 30} GiB in all")
+            del self.buf[:self.pos]
+            self.pos = 0
             self.buf += out
-        data, self.buf = self.buf[:n], self.buf[n:]
+        data = bytes(self.buf[self.pos:self.pos + n])
+        self.pos += len(data)
         return data
 
     def seek(self, *a):
@@ -381,7 +404,7 @@ def sqlite_messages(path: str, want, facts: dict, runner: bool, inflater: Inflat
                               "'schema', 'metadata')")}
         for name in ("topics", "messages", "schema"):
             typ, sql = kinds.get(name, ("", ""))
-            if typ and (typ != "table" or "virtual" in sql.lower()):
+            if typ and (typ != "table" or sql.lstrip().upper().startswith("CREATE VIRTUAL")):
                 raise ContainerError(f"its {name!r} is a {typ if typ != 'table' else 'virtual table'}, not a "
                                      "table: refused (a view runs a query of the file's choosing)")
         for name in ("topics", "messages"):

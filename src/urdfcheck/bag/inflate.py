@@ -32,8 +32,9 @@ class Inflater:
             raise InflateError(f"the recording inflates past {self.total >> 30} GiB in all")
         out = _decompress(codec, data, cap + 1)
         if len(out) > cap:
-            raise InflateError(f"{what} inflates past its declared size of {cap} bytes (a decompression bomb)"
-                               if declared is not None else f"{what} inflates past {cap >> 20} MiB (a decompression bomb?)")
+            if declared is None:
+                raise InflateError(f"{what} inflates past {cap >> 20} MiB (a decompression bomb?)")
+            raise InflateError(f"{what} inflates past its declared size of {cap} bytes (a decompression bomb)")
         self.used += len(out)
         return out
 

@@ -310,7 +310,9 @@ def _reason(e: Exception) -> str:
 
 
 # --- text recordings ----------------------------------------------------------------------------------------
-def _text_messages(path, joint_topic, tf_topics, others, runner=False) -> Iterator[Message]:
+def text_items(path: str, runner: bool = False):
+    """The items of a YAML/JSON message list, read through the door and bounded (JSON one item at a time,
+    YAML through the alias-bomb guard). Raises RecordingError."""
     from urdfcheck.core import door
 
     try:
@@ -324,8 +326,11 @@ def _text_messages(path, joint_topic, tf_topics, others, runner=False) -> Iterat
     text = data.decode("utf-8", "replace")
     del data
     items = _json_items(text)
-    if items is None:
-        items = _yaml_items(text)
+    return _yaml_items(text) if items is None else items
+
+
+def _text_messages(path, joint_topic, tf_topics, others, runner=False) -> Iterator[Message]:
+    items = text_items(path, runner)
     counters: dict[str, int] = {}
     for n, item in enumerate(items):
         if not isinstance(item, dict):
