@@ -50,20 +50,27 @@ every file inside a recording folder is read as the checkout's, whoever named th
 
     observe.taint("a recording was read (rosbags and sqlite reads are not observed)")
     states = JointStateChecks(model, tolerance=opts.tolerance)
-    tf = TfChecks(model, profile=opts.profile, frame_prefix=opts.frame_prefix, tolerance=opts.replay_tolerance,
-                  static_tolerance=opts.static_tolerance)
+    tf = None  # made at the first message: by then the recording has said whether it is ROS 1 or 2
     issues: list[Issue] = []
     others: list[str] = []
     facts: dict = {}
     n = 0
     budget = _budget()
     cut = None
+
+    def tf_checks() -> TfChecks:
+        return TfChecks(model, profile=opts.profile, frame_prefix=opts.frame_prefix,
+                        tolerance=opts.replay_tolerance, static_tolerance=opts.static_tolerance,
+                        ros=facts.get("ros"))
+
     try:
         for m in source.messages(path, opts.joint_topic, others=others, text=text, facts=facts, runner=runner):
             n += 1
             if budget is not None and not n % 2048 and budget.remaining() <= 0:
                 cut = f"the run's time budget ({budget.seconds:g} s) ran out after {n:,} messages"
                 break
+            if tf is None:
+                tf = tf_checks()
             if m.kind == "joint_state":
                 states.add(m)
                 tf.joint_state(m)
@@ -80,20 +87,41 @@ every file inside a recording folder is read as the checkout's, whoever named th
     if cut is not None:
         issues.append(Issue("B014", f"the recording was read only in part: {cut}; what follows rests on "
                             "the part read"))
-    issues.extend(states.issues())
-    issues.extend(tf.issues())
+    if tf is None:
+        tf = tf_checks()
+    states.ros = facts.get("ros")
+    tf.finish()
+
+    def on_tf(joint: str):
+        for key, seg in tf.movable.items():
+            if seg.name == joint and tf.on_tf.get(key):
+                return key[0], key[1], tf.on_tf[key]
+        return None
+
+    issues.extend(states.issues(on_tf=on_tf))
+    named = {j for j in states.seen if j in states.movable}
+    issues.extend(tf.issues(named=named, js_count=states.count))
+    topic = opts.joint_topic or "/joint_states"
+    hint = (f" (JointState topics in it: {', '.join(others)}; pass --joint-states TOPIC)" if others else "")
     if not n and not issues:
-        topic = opts.joint_topic or "/joint_states"
         issues.append(Issue("B015", f"the recording has no JointState messages on {topic} and no /tf or "
-                            "/tf_static messages: nothing was checked"
-                            + (f" (JointState topics in it: {', '.join(others)}; pass --joint-states TOPIC)"
-                               if others else "")))
+                            "/tf_static messages: nothing was checked" + hint, severity="warning"))
+    elif n and not states.count and states.movable and not any(i.code == "B014" for i in issues):
+        # /tf or /tf_static alone: no movable joint of the model was checked (a wrong topic passes silently)
+        issues.append(Issue("B015", f"the recording has no JointState messages on {topic}: none of the model's "
+                            f"{len(states.movable)} movable joints was checked (only "
+                            f"{tf.compared()} transform{'s' if tf.compared() != 1 else ''} of its fixed joints "
+                            "were compared)" + hint, severity="warning"))
     if others and states.count:
         for i in issues:
             if i.code == "B002":  # an absence claim about a topic we did not read all of: say what we did not see
                 i.severity = "info"
                 i.message += (f" (the recording also has {', '.join(others)}, not read: a joint_state_publisher "
                               "may merge them; pass --joint-states TOPIC to check one of them)")
+    if cut is not None:
+        for i in issues:
+            if i.code in ("B002", "B015"):  # absence claims about a recording read in part
+                i.severity = "info"
     return [_finding(i, path) for i in issues]
 
 

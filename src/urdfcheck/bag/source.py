@@ -47,9 +47,10 @@ class Message(TupleRecord):
     kind: str  # "joint_state", "tf" or "tf_static"
     data: object  # JointStateMsg, or a tuple of Edge
     callerid: str = ""  # ROS 1 only: the publishing node
+    start: int = 0  # when the recording's first message read was recorded: locations are offsets from it
 
     def where(self) -> str:
-        return f"{self.topic} message {self.index + 1} (t = {self.time_ns / NS:.3f} s)"
+        return f"{self.topic} message {self.index + 1} (at {(self.time_ns - self.start) / NS:+.3f} s)"
 
 
 def is_text(path: str) -> bool:
@@ -102,7 +103,7 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterat
     inflater = Inflater()
     counters: dict[str, int] = {}
     late: set = set()
-    n = 0
+    n = start = 0
     try:
         for part in parts:
             for topic, msgtype, t, payload, caller, cdr in part.messages(want, inflater):
@@ -115,13 +116,16 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterat
                     payload = inflater.inflate("zstd", bytes(payload), None, "a compressed message")
                 i = counters.get(topic, 0)
                 counters[topic] = i + 1
+                if not n:
+                    start = t
                 n += 1
                 if kind == "joint_state":
                     st, names, pos, vel, eff = decode.joint_state(payload, cdr)
-                    yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller)
+                    yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
                 else:
                     edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
-                    yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller)
+                    yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
+                                  start)
     except (containers.ContainerError, decode.DecodeError, InflateError, OSError) as e:
         raise RecordingError(f"the recording is truncated or corrupt after {n} messages: {_why(e)}") from None
     if chosen is None and joint_topic is None and len(late) > 1:
@@ -332,6 +336,7 @@ def text_items(path: str, runner: bool = False):
 def _text_messages(path, joint_topic, tf_topics, others, runner=False) -> Iterator[Message]:
     items = text_items(path, runner)
     counters: dict[str, int] = {}
+    start = None
     for n, item in enumerate(items):
         if not isinstance(item, dict):
             raise RecordingError(f"message {n + 1} is not a mapping")
@@ -348,15 +353,17 @@ def _text_messages(path, joint_topic, tf_topics, others, runner=False) -> Iterat
                 stamp = _ns(item.get("stamp")) if item.get("stamp") is not None else \
                     (edges[0].stamp_ns if edges else 0)
                 kind = "tf_static" if topic.endswith("tf_static") else "tf"
-                yield Message(topic, i, stamp, kind, edges, str(item.get("callerid") or ""))
+                start = stamp if start is None else start
+                yield Message(topic, i, stamp, kind, edges, str(item.get("callerid") or ""), start)
             else:
                 header = item.get("header")
                 st = _ns(item.get("stamp") if "stamp" in item or not isinstance(header, dict)
                          else header.get("stamp"))
+                start = st if start is None else start
                 yield Message(topic, i, st, "joint_state", JointStateMsg(
                     tuple(str(x) for x in item.get("name") or ()), _floats(item.get("position")),
                     _floats(item.get("velocity")), _floats(item.get("effort")), st),
-                    str(item.get("callerid") or ""))
+                    str(item.get("callerid") or ""), start)
         except (TypeError, ValueError, KeyError, OverflowError, AttributeError) as e:
             raise RecordingError(f"{topic} message {i + 1} cannot be read: {_reason(e)}") from None
 

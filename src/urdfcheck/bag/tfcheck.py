@@ -1,18 +1,31 @@
 """Checks over the /tf and /tf_static messages of a recording, against the model's robot_state_publisher.
 
 robot_state_publisher publishes one transform per movable joint on /tf, stamped with the JointState's stamp,
-and one per fixed joint on /tf_static. So every recorded /tf transform of a movable joint's edge must equal
-what the built-in publisher computes from the JointState with the same stamp (the replay); a difference means
-the URDF running on the robot is not the URDF in the repository, or another node publishes that edge too.
+and one per fixed joint on /tf_static (ROS 1 with `use_tf_static: false`: on /tf, stamped ahead). So every
+recorded /tf transform of a movable joint's edge must equal what the built-in publisher computes from the
+JointState with the same stamp (the replay); a difference means the URDF running on the robot is not the URDF in
+the repository, or another node publishes that edge too.
+
+What real recordings add (issue 39): `rosbag record` often writes a /tf message before the JointState it was
+computed from, so a transform waits for its JointState a short while (by receive time) instead of being dropped;
+the robot may run under a frame prefix (`tf_prefix`, `frame_prefix`): given by the config or deployment, or
+recognised from the recorded names (`robot1/base_link -> robot1/upper_arm` is the model's edge under
+`robot1/`); a second publisher of an edge shows by its callerid (ROS 1), or, without callerids, by the edge being
+in two different /tf_static messages, or by a movable edge whose stamps match no JointState while the other
+edges' do.
 """
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
+from collections import OrderedDict, deque
 
 from urdfcheck.bag.jointstates import Issue
 from urdfcheck.bag.source import NS, Edge, Message
 from urdfcheck.publisher.state import StatePublisher
+
+WAIT_NS = NS // 2  # how long (receive time) a /tf transform waits for the JointState it was computed from
+MAX_PENDING = 4096
+MAX_KEYS = 4096  # distinct edges followed for callerids and /tf_static messages
 
 
 class _Worst:
@@ -33,57 +46,127 @@ class _Worst:
 
 
 class TfChecks:
-    """Feed the joint states with `joint_state` and the TF messages with `add`; `issues()` at the end."""
+    """Feed the joint states with `joint_state` and the TF messages with `add`; `issues()` at the end.
+    `ros`: 1 or 2, what the recording says it is (a ROS 1 `.bag`); None: `profile` decides."""
 
     KEEP_STATES = 2048  # joint states kept for the replay, by stamp (TF follows its JointState closely)
 
     def __init__(self, model, profile: str = "ros2", frame_prefix: str = "", tolerance: float = 1e-6,
-                 static_tolerance: float = 1e-4):
+                 static_tolerance: float = 1e-4, ros: int | None = None):
         self.model = model
-        self.pub = StatePublisher(model, profile=profile, frame_prefix=frame_prefix, ignore_timestamp=True)
-        tree = self.pub.tree
-        f = self.pub.frame
-        self.movable = {(f(s.parent), f(s.child)): s for s in tree.movable.values()}
-        self.fixed = {(f(s.parent), f(s.child)): s for s in tree.fixed.values()}
-        self.fixed_tq = {k: s.tq(0.0) for k, s in self.fixed.items()}
+        if ros is not None:
+            profile = "ros1" if ros == 1 else "ros2"
         self.profile = profile
+        self.pub = StatePublisher(model, profile=profile, frame_prefix="", ignore_timestamp=True)
+        tree = self.pub.tree
+        self.movable = {(s.parent, s.child): s for s in tree.movable.values()}
+        self.fixed = {(s.parent, s.child): s for s in tree.fixed.values()}
+        self.fixed_tq = {k: s.tq(0.0) for k, s in self.fixed.items()}
+        self.child_parent = {c: p for p, c in list(self.movable) + list(self.fixed)}
+        self.given_prefix = frame_prefix or ""
+        self.prefix: str | None = None  # the prefix the recording shows, once one is seen
+        self.names: dict[tuple, tuple | None] = {}
         self.tolerance = tolerance
         self.static_tolerance = static_tolerance
         self.count = 0
+        self.tf_messages = 0
         self.states: OrderedDict[int, dict] = OrderedDict()
         self.predicted: OrderedDict[int, dict] = OrderedDict()
+        self.pending: deque = deque()
+        self.pending_stamps: dict[int, int] = {}
         self.parents: dict[str, dict[str, Message]] = {}
         self.callers: dict[tuple, dict[str, Message]] = {}
+        self.static_sets: dict[tuple, dict[frozenset, Message]] = {}
         self.last_value: dict[tuple, tuple] = {}
         self.second: dict[tuple, tuple[Message, str]] = {}
         self.replay = _Worst()
         self.replayed = 0
+        self.static_compared = 0
+        self.matched: dict[tuple, list] = {}  # model key -> [matched, unmatched, first unmatched message]
+        self.on_tf: dict[tuple, int] = {}  # model key -> times seen in the recording
         self.static_off: dict[tuple, tuple[Message, Edge, tuple]] = {}
+        self.fixed_on: dict[tuple, dict[str, Message]] = {}  # fixed edge -> {"tf" / "tf_static": first message}
 
+    # --- names ---------------------------------------------------------------------------------------------
+    def model_key(self, parent: str, child: str):
+        """The model's (parent, child) for a recorded edge, under the frame prefix; None: not the model's."""
+        key = (parent, child)
+        got = self.names.get(key, False)
+        if got is not False:
+            return got
+        got = None
+        if key in self.movable or key in self.fixed:
+            got = key  # (a prefix the config gives but the recording does not show: the names decide)
+        else:
+            for i in range(1, len(child)):
+                mc = child[i:]
+                mp = self.child_parent.get(mc)
+                if mp is not None and parent == child[:i] + mp:
+                    pre = child[:i]
+                    if self._prefix_ok(pre):
+                        got = (mp, mc)
+                    break
+        if len(self.names) < 65536:
+            self.names[key] = got
+        return got
+
+    def _prefix_ok(self, pre: str) -> bool:
+        if self.given_prefix:
+            norm = {self.given_prefix, self.given_prefix.strip("/") + "/", "/" + self.given_prefix.strip("/") + "/"}
+            return pre in norm
+        if self.prefix is None:
+            self.prefix = pre  # the first robot under a prefix is the one checked
+        return pre == self.prefix
+
+    # --- messages ------------------------------------------------------------------------------------------
     def joint_state(self, m: Message) -> None:
         js = m.data
         if len(js.names) != len(js.position):
             return
-        self.states[js.stamp_ns] = dict(zip(js.names, js.position))
+        st = js.stamp_ns
+        have = self.states.get(st)
+        if have is None:
+            self.states[st] = dict(zip(js.names, js.position))
+        else:  # several drivers, one stamp: robot_state_publisher handles each message; the union replays them
+            have.update(zip(js.names, js.position))
+            self.predicted.pop(st, None)
         while len(self.states) > self.KEEP_STATES:
             self.states.popitem(last=False)
+        if st in self.pending_stamps:
+            self._settle(m.time_ns, st)
 
     def add(self, m: Message) -> None:
         self.count += 1
+        if m.kind == "tf":
+            self.tf_messages += 1
+        keys = []
         for e in m.data:
-            key = (e.parent, e.child)
+            raw = (e.parent, e.child)
             ps = self.parents.setdefault(e.child, {})
             if e.parent not in ps and len(ps) < 8:
                 ps[e.parent] = m
-            if m.callerid:
-                cs = self.callers.setdefault(key, {})
+            if m.callerid and (raw in self.callers or len(self.callers) < MAX_KEYS):
+                cs = self.callers.setdefault(raw, {})
                 if m.callerid not in cs and len(cs) < 8:
                     cs[m.callerid] = m
+            key = self.model_key(e.parent, e.child)
+            if key is None:
+                continue
+            keys.append(key)
+            self.on_tf[key] = self.on_tf.get(key, 0) + 1
             seg = self.movable.get(key)
             if seg is not None:
                 self._movable(m, e, key, seg)
-            elif key in self.fixed:
+            else:
                 self._fixed(m, e, key)
+        if m.kind == "tf_static" and keys:
+            shape = frozenset(keys)
+            for key in keys:
+                if key in self.static_sets or len(self.static_sets) < MAX_KEYS:
+                    sets = self.static_sets.setdefault(key, {})
+                    if shape not in sets and len(sets) < 8:
+                        sets[shape] = m
+        self._expire(m.time_ns)
 
     def _movable(self, m: Message, e: Edge, key, seg) -> None:
         if m.kind == "tf_static" and key not in self.second:
@@ -94,62 +177,144 @@ class TfChecks:
                 sum(_diff(prev[1], prev[2], e)) > 10 * self.tolerance:
             self.second[key] = (m, "two different transforms carry the same stamp")
         self.last_value[key] = (e.stamp_ns, e.translation, e.rotation)
+        if e.stamp_ns in self.states:
+            self._compare(m, e, key, seg)
+        elif len(self.pending) < MAX_PENDING:  # its JointState may be written just after it
+            self.pending.append((m.time_ns, m, e, key, seg))
+            self.pending_stamps[e.stamp_ns] = self.pending_stamps.get(e.stamp_ns, 0) + 1
+        else:
+            self._unmatched(m, key)
+
+    def _compare(self, m: Message, e: Edge, key, seg) -> None:
         expected = self._expected(e.stamp_ns, seg)
-        if expected is None:
+        rec = self.matched.setdefault(key, [0, 0, None])
+        if expected is None:  # the JointState of that stamp does not name this joint
+            self._unmatched(m, key)
             return
+        rec[0] += 1
         self.replayed += 1
         d = _diff(expected[0], expected[1], e)
         if d[0] > self.tolerance or d[1] > self.tolerance:
             self.replay.add(m, e, d, 0.1)
 
+    def _unmatched(self, m: Message, key) -> None:
+        rec = self.matched.setdefault(key, [0, 0, None])
+        rec[1] += 1
+        if rec[2] is None:
+            rec[2] = m
+
+    def _settle(self, now: int, stamp: int) -> None:
+        keep = deque()
+        for item in self.pending:
+            t, m, e, key, seg = item
+            if e.stamp_ns == stamp:
+                self._compare(m, e, key, seg)
+                self._forget(stamp)
+            else:
+                keep.append(item)
+        self.pending = keep
+
+    def _forget(self, stamp: int) -> None:
+        n = self.pending_stamps.get(stamp, 0) - 1
+        if n > 0:
+            self.pending_stamps[stamp] = n
+        else:
+            self.pending_stamps.pop(stamp, None)
+
+    def _expire(self, now: int | None) -> None:
+        while self.pending and (now is None or now - self.pending[0][0] > WAIT_NS):
+            _t, m, e, key, _seg = self.pending.popleft()
+            self._forget(e.stamp_ns)
+            self._unmatched(m, key)
+
     def _expected(self, stamp: int, seg):
         pos = self.states.get(stamp)
-        if pos is None:
+        if pos is None or seg.name not in pos and not _mimic_of(self.model, seg.name, pos):
             return None
         cache = self.predicted.get(stamp)
         if cache is None:
             cache = {t.child: (t.translation, t.rotation) for t in self.pub.transforms_for(
-                {k: v for k, v in pos.items() if math.isfinite(v)}, (stamp // NS, stamp % NS))}
+                {k: v for k, v in pos.items() if k in self.model.joints and math.isfinite(v)},
+                (stamp // NS, stamp % NS))}
             self.predicted[stamp] = cache
             while len(self.predicted) > 64:
                 self.predicted.popitem(last=False)
-        return cache.get(self.pub.frame(seg.child))
+        return cache.get(seg.child)
 
     def _fixed(self, m: Message, e: Edge, key) -> None:
+        seen = self.fixed_on.setdefault(key, {})
+        seen.setdefault(m.kind, m)
+        if self.profile == "ros1" and len(seen) > 1 and key not in self.second:
+            seg = self.fixed[key]
+            self.second[key] = (seen["tf"], f"it is on /tf_static and on /tf, while robot_state_publisher (ROS 1) "
+                                            f"publishes fixed joint {seg.name!r} on one of them (use_tf_static)")
         if m.kind == "tf" and self.profile == "ros2" and key not in self.second:
             seg = self.fixed[key]
             self.second[key] = (m, f"it is published on /tf, while robot_state_publisher publishes fixed joint "
                                    f"{seg.name!r} on /tf_static")
+        self.static_compared += 1
         t, q = self.fixed_tq[key]
         d = _diff(t, q, e)
         if (d[0] > self.static_tolerance or d[1] > self.static_tolerance) and key not in self.static_off:
             self.static_off[key] = (m, e, d)
 
     # --- the verdict -----------------------------------------------------------------------------------------
-    def issues(self) -> list[Issue]:
+    def finish(self) -> None:
+        self._expire(None)
+
+    def compared(self) -> int:
+        return self.replayed + self.static_compared
+
+    def issues(self, named=frozenset(), js_count: int = 0) -> list[Issue]:
+        """`named`: the joints the JointStates named (robot_state_publisher should have published them)."""
+        self.finish()
         out: list[Issue] = []
         joints = self.model.joints
-        for key, callers in sorted(self.callers.items()):
-            if len(callers) > 1 and (key in self.movable or key in self.fixed):
-                seg = self.movable.get(key) or self.fixed[key]
-                names = sorted(callers)
-                first = min(callers.values(), key=lambda m: m.time_ns)
-                out.append(Issue("B010", f"the edge {key[0]} -> {key[1]} (joint {seg.name!r}) has "
+
+        def loc(seg):
+            return (joints[seg.name].loc,) if seg.name in joints else ()
+
+        for raw, callers in sorted(self.callers.items()):
+            if len(callers) < 2:
+                continue
+            key = self.model_key(*raw)
+            seg = self.movable.get(key) or self.fixed.get(key) if key is not None else None
+            names = sorted(callers)
+            first = min(callers.values(), key=lambda m: m.time_ns)
+            if seg is not None:
+                out.append(Issue("B010", f"the edge {raw[0]} -> {raw[1]} (joint {seg.name!r}) has "
                                  f"{len(names)} publishers: {', '.join(names)}; robot_state_publisher publishes it "
-                                 "from the model, so TF alternates between their values", first,
-                                 (joints[seg.name].loc,) if seg.name in joints else ()))
+                                 "from the model, so TF alternates between their values", first, loc(seg)))
+            else:
+                out.append(Issue("B010", f"the edge {raw[0]} -> {raw[1]} has {len(names)} publishers: "
+                                 f"{', '.join(names)}; tf2 keeps whichever came last, so the frame jumps between "
+                                 "their values (two nodes, e.g. a drive controller and an EKF, both publish it: "
+                                 "let one of them)", first))
+                self.second.pop(raw, None)
+        have = {k for k in self.second}
+        for key, sets in sorted(self.static_sets.items()):
+            if len(sets) > 1 and key not in have and not self._by_callers(key):
+                seg = self.movable.get(key) or self.fixed[key]
+                first = sorted(sets.values(), key=lambda m: m.time_ns)[1]
+                self.second[key] = (first, f"it is in {len(sets)} different /tf_static messages (each latched "
+                                           "publisher sends its own; robot_state_publisher sends one with every "
+                                           "fixed joint)")
+        for key, (matched, unmatched, first) in sorted(self.matched.items()):
+            if key in self.second or self._by_callers(key) or unmatched < 5 or unmatched <= matched:
+                continue
+            if any(k != key and v[0] >= 5 and v[1] * 10 <= v[0] for k, v in self.matched.items()):
+                self.second[key] = (first, f"{unmatched} of its {matched + unmatched} /tf stamps match no "
+                                           "JointState, while robot_state_publisher's other edges match theirs")
         for key, (m, why) in sorted(self.second.items()):
             seg = self.movable.get(key) or self.fixed.get(key)
             out.append(Issue("B010", f"the edge {key[0]} -> {key[1]} (joint {seg.name!r}) comes from another "
-                             f"publisher as well: {why} (first {m.where()})", m,
-                             (joints[seg.name].loc,) if seg.name in joints else ()))
+                             f"publisher as well: {why} (first {m.where()})", m, loc(seg)))
         for key, (m, _edge, d) in sorted(self.static_off.items()):
             seg = self.fixed[key]
-            out.append(Issue("B011", f"/tf_static has {key[0]} -> {key[1]} {d[0] * 1000:.1f} mm and "
+            out.append(Issue("B011", f"{m.topic} has {key[0]} -> {key[1]} {d[0] * 1000:.1f} mm and "
                              f"{math.degrees(d[1]):.2f} deg away from fixed joint {seg.name!r} in the model "
                              f"({m.where()}): a calibration that was never written back to the URDF, or the "
-                             "URDF changed after the recording", m,
-                             (joints[seg.name].loc,) if seg.name in joints else ()))
+                             "URDF changed after the recording", m, loc(seg)))
         for child, parents in sorted(self.parents.items()):
             if len(parents) > 1:
                 names = sorted(parents)
@@ -167,7 +332,35 @@ class TfChecks:
                              f"{w.worst_diff[0] * 1000:.3f} mm, {math.degrees(w.worst_diff[1]):.3f} deg at "
                              f"{w.worst.where()}{sep if w.first is not w.worst else ''}: the URDF on the robot is not "
                              "the URDF in the repository", w.first))
+        out.extend(self._unpublished(named, js_count))
         return out
+
+    def _by_callers(self, key) -> bool:
+        return any(len(c) > 1 and self.names.get(raw) == key for raw, c in self.callers.items())
+
+    def _unpublished(self, named, js_count: int) -> list[Issue]:
+        """Joints the JointStates name that /tf never carries, while /tf was recorded: robot_state_publisher
+        did not hear those joint states (another namespace, a remap)."""
+        if not self.tf_messages or not js_count:
+            return []
+        missing = sorted(s.name for k, s in self.movable.items() if s.name in named and k not in self.on_tf)
+        if not missing:
+            return []
+        joints = self.model.joints
+        carried = sum(1 for k in self.movable if k in self.on_tf)
+        return [Issue("B002", f"robot_state_publisher did not publish joint{'s' if len(missing) > 1 else ''} "
+                      f"{', '.join(repr(n) for n in missing[:6])}{' and more' if len(missing) > 6 else ''}: "
+                      f"{'it is' if len(missing) == 1 else 'they are'} named in the joint states ({js_count} "
+                      f"messages) but /tf ({self.tf_messages} messages"
+                      + (f", {carried} other joint{'s' if carried != 1 else ''} of the model" if carried else "")
+                      + ") never carries their transforms: the robot_state_publisher that ran does not hear this "
+                      "JointState topic (another namespace, a remap) or runs another model", None,
+                      tuple(joints[n].loc for n in missing if n in joints))]
+
+
+def _mimic_of(model, name: str, pos: dict) -> bool:
+    j = model.joints.get(name)
+    return j is not None and j.mimic is not None and getattr(j.mimic, "joint", None) in pos
 
 
 def _diff(t, q, e: Edge) -> tuple[float, float]:
