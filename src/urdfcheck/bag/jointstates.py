@@ -172,13 +172,13 @@ class JointStateChecks:
         joints = self.model.joints
         if self.unknown:
             names = sorted(self.unknown)
+            unseen = [n for n in sorted(self.movable) if n not in self.seen]  # never a fixed joint: not a state
             first = min(self.unknown.values(), key=lambda m: (m.time_ns, m.index))
             one = len(names) == 1
             out.append(Issue("B001", f"{_names(names)} in the joint states {'is' if one else 'are'} not "
                              f"{'a joint' if one else 'joints'} of the model, first in {first.where()} "
                              f"(robot_state_publisher ignores {'it' if one else 'them'}; renamed in firmware or a "
-                             "driver's config?)" + _close(names, [n for n in sorted(self.movable) if n not in self.seen]),
-                             first))
+                             "driver's config?)" + _close(names, unseen), first))
         never = sorted(n for n in self.movable - self.seen if n not in self.mimic)
         carried = [(n, on_tf(n)) for n in never] if on_tf is not None else []
         carried = [(n, c) for n, c in carried if c]

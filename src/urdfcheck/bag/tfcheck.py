@@ -152,7 +152,7 @@ class TfChecks:
             key = self.model_key(e.parent, e.child)
             if key is None:
                 continue
-            keys.append(key)
+            keys.append((key, e))
             self.on_tf[key] = self.on_tf.get(key, 0) + 1
             seg = self.movable.get(key)
             if seg is not None:
@@ -160,12 +160,16 @@ class TfChecks:
             else:
                 self._fixed(m, e, key)
         if m.kind == "tf_static" and keys:
-            shape = frozenset(keys)
-            for key in keys:
+            # a latched /tf_static is recorded once per publisher: the same edge in two messages that differ
+            # (in the edges they carry, or in its value) comes from two publishers; a message recorded twice
+            # (the same edges, the same values) does not
+            shape = frozenset(k for k, _e in keys)
+            for key, e in keys:
                 if key in self.static_sets or len(self.static_sets) < MAX_KEYS:
                     sets = self.static_sets.setdefault(key, {})
-                    if shape not in sets and len(sets) < 8:
-                        sets[shape] = m
+                    sig = (shape, tuple(round(x, 6) for x in e.translation + e.rotation))
+                    if sig not in sets and len(sets) < 8:
+                        sets[sig] = m
         self._expire(m.time_ns)
 
     def _movable(self, m: Message, e: Edge, key, seg) -> None:
@@ -248,7 +252,10 @@ class TfChecks:
             seg = self.fixed[key]
             self.second[key] = (seen["tf"], f"it is on /tf_static and on /tf, while robot_state_publisher (ROS 1) "
                                             f"publishes fixed joint {seg.name!r} on one of them (use_tf_static)")
-        if m.kind == "tf" and self.profile == "ros2" and key not in self.second:
+        if m.kind == "tf" and self.profile == "ros2" and key not in self.second and \
+                not 0.3 * NS < e.stamp_ns - m.time_ns < 0.7 * NS:
+            # (stamped half a second ahead of when it was recorded: ROS 1's robot_state_publisher with
+            # use_tf_static false, in a recording converted to rosbag2)
             seg = self.fixed[key]
             self.second[key] = (m, f"it is published on /tf, while robot_state_publisher publishes fixed joint "
                                    f"{seg.name!r} on /tf_static")
@@ -295,10 +302,10 @@ class TfChecks:
         for key, sets in sorted(self.static_sets.items()):
             if len(sets) > 1 and key not in have and not self._by_callers(key):
                 seg = self.movable.get(key) or self.fixed[key]
-                first = sorted(sets.values(), key=lambda m: m.time_ns)[1]
-                self.second[key] = (first, f"it is in {len(sets)} different /tf_static messages (each latched "
-                                           "publisher sends its own; robot_state_publisher sends one with every "
-                                           "fixed joint)")
+                first = sorted(sets.values(), key=lambda m: (m.time_ns, m.index))[1]
+                self.second[key] = (first, f"it is in {len(sets)} different /tf_static messages (a latched topic "
+                                           "is recorded once per publisher; robot_state_publisher sends one "
+                                           "with every fixed joint)")
         for key, (matched, unmatched, first) in sorted(self.matched.items()):
             if key in self.second or self._by_callers(key) or unmatched < 5 or unmatched <= matched:
                 continue
@@ -309,9 +316,9 @@ class TfChecks:
             seg = self.movable.get(key) or self.fixed.get(key)
             out.append(Issue("B010", f"the edge {key[0]} -> {key[1]} (joint {seg.name!r}) comes from another "
                              f"publisher as well: {why} (first {m.where()})", m, loc(seg)))
-        for key, (m, _edge, d) in sorted(self.static_off.items()):
+        for key, (m, edge, d) in sorted(self.static_off.items()):
             seg = self.fixed[key]
-            out.append(Issue("B011", f"{m.topic} has {key[0]} -> {key[1]} {d[0] * 1000:.1f} mm and "
+            out.append(Issue("B011", f"{m.topic} has {edge.parent} -> {edge.child} {d[0] * 1000:.1f} mm and "
                              f"{math.degrees(d[1]):.2f} deg away from fixed joint {seg.name!r} in the model "
                              f"({m.where()}): a calibration that was never written back to the URDF, or the "
                              "URDF changed after the recording", m, loc(seg)))
