@@ -307,11 +307,12 @@ class TfChecks:
                                            "is recorded once per publisher; robot_state_publisher sends one "
                                            "with every fixed joint)")
         for key, (matched, unmatched, first) in sorted(self.matched.items()):
-            if key in self.second or self._by_callers(key) or unmatched < 5 or unmatched <= matched:
+            if key in self.second or self._by_callers(key) or unmatched < 5 or unmatched * 10 <= matched + unmatched:
                 continue
             if any(k != key and v[0] >= 5 and v[1] * 10 <= v[0] for k, v in self.matched.items()):
                 self.second[key] = (first, f"{unmatched} of its {matched + unmatched} /tf stamps match no "
-                                           "JointState, while robot_state_publisher's other edges match theirs")
+                                           "JointState, while robot_state_publisher's other edges match theirs "
+                                           "(another node publishes it with stamps of its own)")
         for key, (m, why) in sorted(self.second.items()):
             seg = self.movable.get(key) or self.fixed.get(key)
             out.append(Issue("B010", f"the edge {key[0]} -> {key[1]} (joint {seg.name!r}) comes from another "
