@@ -121,23 +121,102 @@ def _cursor(buf, cdr: bool) -> _Cursor:
     return _Cursor(buf, 4, "<" if kind == 1 else ">", True)
 
 
+_last_names = [b"", ()]  # the names' bytes of the last JointState, and their tuple: they rarely change
+
+
 def joint_state(buf, cdr: bool):
     """(stamp_ns, names, position, velocity, effort)."""
     c = _cursor(buf, cdr)
     stamp = c.stamp()
     c.string()  # frame_id
-    names = tuple(c.string() for _ in range(c.count()))
+    n = c.count()
+    blob, names = _last_names
+    end = c.pos + len(blob)
+    if n == len(names) and blob and buf[c.pos:end] == blob:
+        c.pos = end
+    else:
+        start = c.pos
+        names = _strings(c, n)
+        _last_names[:] = [bytes(buf[start:c.pos]), names]
     return stamp, names, c.doubles(), c.doubles(), c.doubles()
 
 
-def tf_message(buf, cdr: bool) -> list[tuple]:
-    """[(parent, child, (x, y, z), (qx, qy, qz, qw), stamp_ns)]."""
-    c = _cursor(buf, cdr)
+def _strings(c: _Cursor, n: int) -> tuple:
+    """n strings, as `_Cursor.string` reads them, in one loop (a JointState of a PR2 names 50 joints)."""
+    buf, pos, end, base, cdr = c.buf, c.pos, c.end, c.base, c.cdr
+    u32 = _U32[c.e].unpack_from
     out = []
-    for _ in range(c.count()):
-        stamp = c.stamp()
-        parent = c.string()
-        child = c.string()
-        v = c.seven()
+    for _ in range(n):
+        if cdr:
+            off = (pos - base) & 3
+            if off:
+                pos += 4 - off
+        if pos + 4 > end:
+            raise DecodeError("the message is shorter than its fields say")
+        k = u32(buf, pos)[0]
+        pos += 4
+        if pos + k > end:
+            raise DecodeError("the message is shorter than its fields say")
+        raw = bytes(buf[pos:pos + k])
+        pos += k
+        if cdr and raw[-1:] == b"\0":
+            raw = raw[:-1]
+        out.append(raw.decode("utf-8", "replace"))
+    c.pos = pos
+    return tuple(out)
+
+
+def tf_message(buf, cdr: bool) -> list[tuple]:
+    """[(parent, child, (x, y, z), (qx, qy, qz, qw), stamp_ns)], in one loop (a PR2's /tf carries 40 a message)."""
+    c = _cursor(buf, cdr)
+    n = c.count()
+    buf, pos, end, base, e = c.buf, c.pos, c.end, c.base, c.e
+    u32 = _U32[e].unpack_from
+    i32 = _I32[e].unpack_from
+    seven = _SEVEN[e].unpack_from
+    time1 = _TIME1.unpack_from
+    out = []
+
+    def text(pos):
+        if cdr:
+            off = (pos - base) & 3
+            if off:
+                pos += 4 - off
+        if pos + 4 > end:
+            raise DecodeError("the message is shorter than its fields say")
+        k = u32(buf, pos)[0]
+        pos += 4
+        if pos + k > end:
+            raise DecodeError("the message is shorter than its fields say")
+        raw = bytes(buf[pos:pos + k])
+        if cdr and raw[-1:] == b"\0":
+            raw = raw[:-1]
+        return raw.decode("utf-8", "replace"), pos + k
+
+    for _ in range(n):
+        if cdr:
+            off = (pos - base) & 3
+            if off:
+                pos += 4 - off
+            if pos + 8 > end:
+                raise DecodeError("the message is shorter than its fields say")
+            stamp = i32(buf, pos)[0] * NS + u32(buf, pos + 4)[0]
+            pos += 8
+        else:
+            if pos + 12 > end:
+                raise DecodeError("the message is shorter than its fields say")
+            _seq, sec, nsec = time1(buf, pos)
+            stamp = sec * NS + nsec
+            pos += 12
+        parent, pos = text(pos)
+        child, pos = text(pos)
+        if cdr:
+            off = (pos - base) & 7
+            if off:
+                pos += 8 - off
+        if pos + 56 > end:
+            raise DecodeError("the message is shorter than its fields say")
+        v = seven(buf, pos)
+        pos += 56
         out.append((parent, child, v[:3], v[3:], stamp))
     return out

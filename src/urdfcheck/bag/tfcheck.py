@@ -373,10 +373,13 @@ def _mimic_of(model, name: str, pos: dict) -> bool:
 
 def _diff(t, q, e: Edge) -> tuple[float, float]:
     """(translation distance in m, rotation angle in rad) between (t, q) and the recorded edge."""
-    dt = math.sqrt(sum((a - b) ** 2 for a, b in zip(t, e.translation)))
-    n1 = math.sqrt(sum(x * x for x in q)) or 1.0
-    n2 = math.sqrt(sum(x * x for x in e.rotation)) or 1.0
-    dot = abs(sum(a * b for a, b in zip(q, e.rotation))) / (n1 * n2)
+    x, y, z = e.translation
+    dt = math.sqrt((t[0] - x) ** 2 + (t[1] - y) ** 2 + (t[2] - z) ** 2)
+    a, b, c, d = q
+    qx, qy, qz, qw = e.rotation
+    n1 = math.sqrt(a * a + b * b + c * c + d * d) or 1.0
+    n2 = math.sqrt(qx * qx + qy * qy + qz * qz + qw * qw) or 1.0
+    dot = abs(a * qx + b * qy + c * qz + d * qw) / (n1 * n2)
     ang = 2.0 * math.acos(min(1.0, dot))
     if not (math.isfinite(dt) and math.isfinite(ang)):
         return (math.inf, math.inf)
