@@ -68,6 +68,10 @@ class JointStateChecks:
         self.periods: list[int] = []  # bounded sample of receive periods for the median
         self.median_period = 0.0  # of `periods`, recomputed as the sample grows (sorting per message is slow)
         self.gaps: list = [0, None, 0, None]  # count, first message, largest gap ns, its message
+        self._plan_names = None  # the names of the last message read name by name, and its known joints
+        self._plan: list = []
+        self._ratios_full = False
+        self._group: dict[str, tuple] = {}  # publisher -> (names, stamp) of its last message
 
     # --- one message ----------------------------------------------------------------------------------------
     def add(self, m: Message) -> None:
@@ -81,10 +85,32 @@ class JointStateChecks:
             if extra and len(extra) != len(names):
                 self._first(self.length, 2, m)
                 break
-        joints = self.model.joints
-        seen, ranges = self.seen, self.ranges
         vel = js.velocity if len(js.velocity) == len(names) else None
         stamp = js.stamp_ns
+        if names is self._plan_names and (vel is None or self._ratios_full):
+            self._known(m, pos, self._plan)  # the same names as before (the decoder hands the same tuple)
+        else:
+            self._each(m, names, pos, vel, stamp)
+        self._stamp(m, stamp, names)
+        self._timing(m)
+
+    def _known(self, m: Message, pos, plan) -> None:
+        """Ranges and non-finite values of the known joints, by their index in the message."""
+        for k, name, r in plan:
+            q = pos[k]
+            if q - q != 0.0:  # NaN or infinite (faster than math.isfinite on the hot path)
+                rec = self.nonfinite.setdefault(name, [0, m])
+                rec[0] += 1
+                continue
+            if q < r.lo:
+                r.lo, r.lo_msg = q, m
+            if q > r.hi:
+                r.hi, r.hi_msg = q, m
+
+    def _each(self, m: Message, names, pos, vel, stamp) -> None:
+        joints = self.model.joints
+        seen, ranges = self.seen, self.ranges
+        plan = []
         for k, name in enumerate(names):
             if name not in seen:
                 seen.add(name)
@@ -94,6 +120,7 @@ class JointStateChecks:
                     self.unknown.setdefault(name, m)
                     continue
                 r = ranges[name] = _Range()
+            plan.append((k, name, r))
             q = pos[k]
             if q - q != 0.0:  # NaN or infinite (faster than math.isfinite on the hot path)
                 rec = self.nonfinite.setdefault(name, [0, m])
@@ -106,8 +133,8 @@ class JointStateChecks:
             if vel is not None:
                 self._unit_sample(name, q, vel[k], stamp, r)
                 self.prev_pos[name] = (stamp, q)
-        self._stamp(m, js.stamp_ns, names)
-        self._timing(m)
+        self._plan_names, self._plan = names, plan
+        self._ratios_full = all(len(r.ratios) >= self.MAX_RATIOS for _k, _n, r in plan)
 
     def _first(self, rec: list, i: int, m: Message) -> None:
         rec[i] += 1
@@ -129,8 +156,21 @@ class JointStateChecks:
         if st == 0:
             self._first(self.stamps["zero"], 0, m)
             return
-        last = self.last_stamp
         caller = m.callerid
+        group = self._group.get(caller)
+        if group is not None and group[0] is names:  # the same joints as this publisher's last message
+            prev = group[1]
+            self._group[caller] = (names, st)
+            if st < prev:
+                self._first(self.stamps["backwards"], 0, m)
+                self.worst_back = max(self.worst_back, prev - st)
+            elif st == prev:
+                self._first(self.stamps["repeated"], 0, m)
+            return
+        last = self.last_stamp
+        if group is not None:  # its last message's stamp, joint by joint, before these names are compared
+            for name in group[0]:
+                last[(caller, name)] = group[1]
         back = repeated = 0
         for name in names:
             key = (caller, name)
@@ -141,6 +181,7 @@ class JointStateChecks:
                 elif st < prev:
                     back = max(back, prev - st)
             last[key] = st
+        self._group[caller] = (names, st)
         if back:
             self._first(self.stamps["backwards"], 0, m)
             self.worst_back = max(self.worst_back, back)
