@@ -17,6 +17,7 @@ from urdfcheck.bag.source import NS, Message
 DEG = 180.0 / math.pi
 LIMITED = ("revolute", "prismatic")
 MOVABLE = ("revolute", "continuous", "prismatic")
+MAX_NAMES = 10_000  # distinct names remembered (seen, unknown): memory does not grow with a hostile recording
 
 
 class Issue:
@@ -112,12 +113,13 @@ class JointStateChecks:
         seen, ranges = self.seen, self.ranges
         plan = []
         for k, name in enumerate(names):
-            if name not in seen:
+            if name not in seen and len(seen) < MAX_NAMES:  # (a hostile recording names millions)
                 seen.add(name)
             r = ranges.get(name)
             if r is None:
                 if name not in joints:
-                    self.unknown.setdefault(name, m)
+                    if len(self.unknown) < MAX_NAMES:
+                        self.unknown.setdefault(name, m)
                     continue
                 r = ranges[name] = _Range()
             plan.append((k, name, r))
@@ -170,9 +172,13 @@ class JointStateChecks:
         last = self.last_stamp
         if group is not None:  # its last message's stamp, joint by joint, before these names are compared
             for name in group[0]:
-                last[(caller, name)] = group[1]
+                if name in self.model.joints:
+                    last[(caller, name)] = group[1]
         back = repeated = 0
+        joints = self.model.joints
         for name in names:
+            if name not in joints:
+                continue
             key = (caller, name)
             prev = last.get(key)
             if prev is not None:

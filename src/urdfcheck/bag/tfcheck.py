@@ -142,8 +142,10 @@ class TfChecks:
         keys = []
         for e in m.data:
             raw = (e.parent, e.child)
-            ps = self.parents.setdefault(e.child, {})
-            if e.parent not in ps and len(ps) < 8:
+            ps = self.parents.get(e.child)
+            if ps is None and len(self.parents) < 100_000:  # (distinct frames of a hostile recording: bounded)
+                ps = self.parents[e.child] = {}
+            if ps is not None and e.parent not in ps and len(ps) < 8:
                 ps[e.parent] = m
             if m.callerid and (raw in self.callers or len(self.callers) < MAX_KEYS):
                 cs = self.callers.setdefault(raw, {})
