@@ -48,7 +48,7 @@ every file inside a recording folder is read as the checkout's, whoever named th
     opts = options or BagOptions()
     from urdfcheck.core import observe
 
-    observe.taint("a recording was read (rosbags and sqlite reads are not observed)")
+    observe.taint("a recording was read (its sqlite reads are not observed)")
     states = JointStateChecks(model, tolerance=opts.tolerance)
     tf = None  # made at the first message: by then the recording has said whether it is ROS 1 or 2
     issues: list[Issue] = []

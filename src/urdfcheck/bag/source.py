@@ -1,6 +1,7 @@
 """Recordings, streamed one message at a time (memory does not grow with the recording's length).
 
-Binary recordings go through rosbags (ROS 1 `.bag`, a ROS 2 bag folder, a single `.db3` or `.mcap` file);
+Binary recordings are read by bag.containers through core.door (ROS 1 `.bag`, a ROS 2 bag folder or its
+metadata.yaml, a single `.db3` or `.mcap` file), only JointState and TF messages decoded (bag.decode);
 a text recording is a YAML or JSON list of messages, the form `urdfcheck publish --joint-states` reads, each
 with an optional `topic` (default /joint_states): JointState fields (`name`, `position`, `velocity`,
 `effort`, `stamp`), or `transforms: [{parent, child, translation, rotation, stamp}]` for /tf and /tf_static.
