@@ -376,7 +376,8 @@ def _mimic_of(model, name: str, pos: dict) -> bool:
 def _diff(t, q, e: Edge) -> tuple[float, float]:
     """(translation distance in m, rotation angle in rad) between (t, q) and the recorded edge."""
     x, y, z = e.translation
-    dt = math.sqrt((t[0] - x) ** 2 + (t[1] - y) ** 2 + (t[2] - z) ** 2)
+    dx, dy, dz = t[0] - x, t[1] - y, t[2] - z
+    dt = math.sqrt(dx * dx + dy * dy + dz * dz)  # (products: 1e200 ** 2 raises, 1e200 * 1e200 is inf)
     a, b, c, d = q
     qx, qy, qz, qw = e.rotation
     n1 = math.sqrt(a * a + b * b + c * c + d * d) or 1.0
