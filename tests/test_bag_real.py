@@ -86,6 +86,14 @@ def test_two_odometry_publishers_by_callerid(tmp_path):
     assert "/diff_drive" in b010["message"] and "/ekf" in b010["message"]
 
 
+@pytest.mark.parametrize("fmt", ["sqlite3", "mcap"])
+def test_two_odometry_publishers_without_callerids(fmt, tmp_path):
+    """Converted to rosbag2 the callerids are gone; the edge still jumps between the two nodes' values."""
+    code, found = lint(tmp_path, convert(_copy(tmp_path, "two_odom"), fmt, tmp_path / f"two_odom_{fmt}"))
+    (b010,) = found
+    assert b010["code"] == "B010" and "odom -> base_link jumps back and forth" in b010["message"]
+
+
 def test_second_static_publisher_by_callerid(tmp_path):
     code, found = lint(tmp_path, _copy(tmp_path, "second_static"))
     b010 = [f for f in found if f["code"] == "B010"]

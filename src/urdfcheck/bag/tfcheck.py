@@ -85,7 +85,8 @@ class TfChecks:
         self.matched: dict[tuple, list] = {}  # model key -> [matched, unmatched, first unmatched message]
         self.on_tf: dict[tuple, int] = {}  # model key -> times seen in the recording
         self.static_off: dict[tuple, tuple[Message, Edge, tuple]] = {}
-        self.fixed_on: dict[tuple, dict[str, Message]] = {}  # fixed edge -> {"tf" / "tf_static": first message}
+        self.fixed_on: dict[tuple, dict[str, Message]] = {}
+        self.alternating: dict[tuple, list] = {}  # an edge not of the model -> its back-and-forth record  # fixed edge -> {"tf" / "tf_static": first message}
 
     # --- names ---------------------------------------------------------------------------------------------
     def model_key(self, parent: str, child: str):
@@ -153,6 +154,8 @@ class TfChecks:
                     cs[m.callerid] = m
             key = self.model_key(e.parent, e.child)
             if key is None:
+                if m.kind == "tf":
+                    self._jumps(m, raw, e.translation)
                 continue
             keys.append((key, e))
             self.on_tf[key] = self.on_tf.get(key, 0) + 1
@@ -173,6 +176,24 @@ class TfChecks:
                     if sig not in sets and len(sets) < 8:
                         sets[sig] = m
         self._expire(m.time_ns)
+
+    def _jumps(self, m: Message, raw, xyz) -> None:
+        """An edge that jumps back and forth (A B A B) comes from two publishers whose values differ, as an EKF and
+        a drive controller both publishing odom -> base_link: one node's values move smoothly."""
+        rec = self.alternating.get(raw)
+        if rec is None:
+            if len(self.alternating) >= MAX_KEYS:
+                return
+            rec = self.alternating[raw] = [None, None, 0, 0, None]  # before last, last, count, back-and-forth, first
+        older, last = rec[0], rec[1]
+        rec[2] += 1
+        if older is not None:
+            step = _dist(xyz, last)
+            if step > 0.005 and _dist(xyz, older) * 4 < step:
+                rec[3] += 1
+                if rec[4] is None:
+                    rec[4] = m
+        rec[0], rec[1] = last, xyz
 
     def _movable(self, m: Message, e: Edge, key, seg) -> None:
         if m.kind == "tf_static" and key not in self.second:
@@ -300,6 +321,12 @@ class TfChecks:
                                  "their values (two nodes, e.g. a drive controller and an EKF, both publish it: "
                                  "let one of them)", first))
                 self.second.pop(raw, None)
+        for raw, (_o, _l, count, back, first) in sorted(self.alternating.items()):
+            if back >= 10 and back * 10 >= count and len(self.callers.get(raw, ())) < 2:  # (callerids said it)
+                out.append(Issue("B010", f"the edge {raw[0]} -> {raw[1]} jumps back and forth between two values "
+                                 f"{back} times in {count} /tf messages (first {first.where()}): two nodes publish "
+                                 "it (a drive controller and an EKF both publishing odom -> base_link?); tf2 keeps "
+                                 "whichever came last", first))
         have = {k for k in self.second}
         for key, sets in sorted(self.static_sets.items()):
             if len(sets) > 1 and key not in have and not self._by_callers(key):
@@ -366,6 +393,12 @@ class TfChecks:
                       + ") never carries their transforms: the robot_state_publisher that ran does not hear this "
                       "JointState topic (another namespace, a remap) or runs another model", None,
                       tuple(joints[n].loc for n in missing if n in joints))]
+
+
+def _dist(a, b) -> float:
+    dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
+    d = math.sqrt(dx * dx + dy * dy + dz * dz)
+    return d if math.isfinite(d) else 0.0
 
 
 def _mimic_of(model, name: str, pos: dict) -> bool:
