@@ -85,8 +85,8 @@ class TfChecks:
         self.matched: dict[tuple, list] = {}  # model key -> [matched, unmatched, first unmatched message]
         self.on_tf: dict[tuple, int] = {}  # model key -> times seen in the recording
         self.static_off: dict[tuple, tuple[Message, Edge, tuple]] = {}
-        self.fixed_on: dict[tuple, dict[str, Message]] = {}
-        self.alternating: dict[tuple, list] = {}  # an edge not of the model -> its back-and-forth record  # fixed edge -> {"tf" / "tf_static": first message}
+        self.fixed_on: dict[tuple, dict[str, Message]] = {}  # fixed edge -> {"tf" / "tf_static": first message}
+        self.alternating: dict[tuple, list] = {}  # an edge not of the model -> its back-and-forth record
 
     # --- names ---------------------------------------------------------------------------------------------
     def model_key(self, parent: str, child: str):
