@@ -289,6 +289,21 @@ def test_links_out_of_the_checkout_inside_a_recording_folder_are_refused(tmp_pat
         assert [f.code for f in found] == ["B014"] and "outside the checkout" in found[0].message
 
 
+def test_a_runner_typed_folder_outside_the_checkout_is_read(tmp_path):
+    from urdfcheck.bag import check_recording
+    from urdfcheck.core import door
+
+    checkout = tmp_path / "checkout"
+    checkout.mkdir()
+    folder = write(tmp_path / "data" / "rec", "sqlite3", [("js", 1.0, ["wrist"], [0.1])])
+    with door.guarded([checkout]):
+        found = check_recording(_model(), str(folder), runner=True)
+        assert "B001" in {f.code for f in found}, _messages(found)  # read: the runner named it
+    with door.guarded([checkout]):
+        found = check_recording(_model(), str(folder), runner=False)  # a config cannot name it
+        assert [f.code for f in found] == ["B014"], _messages(found)
+
+
 def test_a_runner_typed_recording_linked_out_of_the_checkout_is_refused(tmp_path):
     from urdfcheck.bag import check_recording
     from urdfcheck.core import door

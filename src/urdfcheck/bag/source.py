@@ -237,10 +237,14 @@ def _parts(path: str, runner: bool, facts: dict) -> list[_Part]:
     folder = None
     if os.path.isdir(path):
         folder = path
-        door.confine(path, runner=runner)
     elif os.path.basename(path) == "metadata.yaml":
         folder = os.path.dirname(path) or "."
         door.confine(path, runner=runner)
+    if folder is not None:
+        if runner:  # typed by the runner outside the checkout: its files are the runner's too
+            door.runner_folder(folder)
+        else:
+            door.confine(folder)
     if folder is None:
         fmt = containers.sniff(path, runner)
         if fmt not in ("ros1", "mcap", "sqlite3"):
