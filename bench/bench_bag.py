@@ -14,7 +14,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -104,17 +103,6 @@ def write_bag(model_path: str, n: int, out: Path, fmt: str = "mcap") -> Path:
     return path
 
 
-def measure(cmd: list[str], runs: int, env) -> tuple[float, str]:
-    """Median wall time of `runs` runs, and the end of the last run's output."""
-    walls, out = [], ""
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        p = subprocess.run(cmd, capture_output=True, text=True, env=env)
-        walls.append(time.perf_counter() - t0)
-        out = p.stdout[-400:] + p.stderr[-400:]
-    return statistics.median(walls), out
-
-
 def peak_of(cmd: list[str], env) -> int:
     """Peak resident set (KiB) of one run of `cmd`, measured from a fresh parent process."""
     probe = ("import resource, subprocess, sys; subprocess.run(sys.argv[1:], capture_output=True); "
@@ -127,7 +115,7 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--messages", type=int, default=1_000_000)
     ap.add_argument("--model", default=None)
-    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--runs", type=int, default=3, help="pairs (ours, peer) after one warm-up each")
     ap.add_argument("--keep", metavar="DIR", help="write (or reuse) the bags here")
     ap.add_argument("--formats", default="mcap,ros1", help="mcap, ros1 or both (comma-separated)")
     ns = ap.parse_args()
@@ -149,14 +137,17 @@ def run_one(model: str, folder: Path, fmt: str, n: int, runs: int) -> None:
     env = dict(os.environ, PYTHONPATH=str(HERE.parent / "src"))
     ours = [sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json", "--no-config"]
     peer = [sys.executable, "-c", PEER, str(bag)]
-    peer_t, _ = measure(peer, runs, env)
-    ours_t, tail = measure(ours, runs, env)
+    sys.path.insert(0, str(HERE))
+    from timing import paired, paired_line
+
+    r = paired(ours, peer, runs, env=env)  # A B A B: a shared machine's drift hits both sides of a pair
+    tail = subprocess.run(ours, capture_output=True, text=True, env=env).stdout[-400:]
     # ru_maxrss of RUSAGE_CHILDREN is the largest child so far: each command's peak from a fresh parent
     mem = peak_of(ours, env)
     peer_mem = peak_of(peer, env)
-    print(f"{fmt:>5} {n:>9,} messages: urdfcheck bag {ours_t:7.1f} s ({n / ours_t:,.0f} msg/s), rosbags read "
-          f"alone {peer_t:7.1f} s: {ours_t / peer_t:.2f}x the time ({peer_t / ours_t:.2f}x as fast); peak memory "
-          f"{mem / 1024:.0f} MiB vs {peer_mem / 1024:.0f} MiB", flush=True)
+    paired_line(f"{fmt} {n:,} messages vs rosbags read+deserialise", r, 0.2)  # issue 39: >= 5x as fast
+    print(f"  {n / r['wall_a']:,.0f} msg/s against {n / r['wall_b']:,.0f} msg/s; peak memory {mem / 1024:.0f} MiB "
+          f"vs {peer_mem / 1024:.0f} MiB", flush=True)
     if '"findings": []' not in tail and "findings" in tail:
         print("  (the recording is clean by construction; the run reported:", tail.strip()[-300:], ")")
 
