@@ -67,6 +67,8 @@ class TfChecks:
         self.prefix: str | None = None  # the prefix the recording shows, once one is seen
         self.names: dict[tuple, tuple | None] = {}
         self.tolerance = tolerance
+        self._tol2 = tolerance * tolerance
+        self._cos2 = math.cos(tolerance / 2) ** 2
         self.static_tolerance = static_tolerance
         self.count = 0
         self.tf_messages = 0
@@ -214,15 +216,27 @@ class TfChecks:
 
     def _compare(self, m: Message, e: Edge, key, seg) -> None:
         expected = self._expected(e.stamp_ns, seg)
-        rec = self.matched.setdefault(key, [0, 0, None])
+        rec = self.matched.get(key)
+        if rec is None:
+            rec = self.matched[key] = [0, 0, None]
         if expected is None:  # the JointState of that stamp does not name this joint
             self._unmatched(m, key)
             return
         rec[0] += 1
         self.replayed += 1
-        d = _diff(expected[0], expected[1], e)
-        if d[0] > self.tolerance or d[1] > self.tolerance:
-            self.replay.add(m, e, d, 0.1)
+        # within tolerance, told without sqrt or acos (almost every transform of a clean recording):
+        # |t - t'|^2 <= tol^2, and the angle 2 acos(|q.q'|) <= tol, i.e. (q.q')^2 >= |q|^2 |q'|^2 cos^2(tol / 2)
+        (tx, ty, tz), (a, b, c, d) = expected
+        x, y, z = e.translation
+        qx, qy, qz, qw = e.rotation
+        dx, dy, dz = tx - x, ty - y, tz - z
+        if dx * dx + dy * dy + dz * dz <= self._tol2:
+            dot = a * qx + b * qy + c * qz + d * qw
+            if dot * dot >= (a * a + b * b + c * c + d * d) * (qx * qx + qy * qy + qz * qz + qw * qw) * self._cos2:
+                return
+        diff = _diff(expected[0], expected[1], e)
+        if diff[0] > self.tolerance or diff[1] > self.tolerance:
+            self.replay.add(m, e, diff, 0.1)
 
     def _unmatched(self, m: Message, key) -> None:
         rec = self.matched.setdefault(key, [0, 0, None])
