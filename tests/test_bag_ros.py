@@ -126,11 +126,13 @@ def test_ros1_zero_stamps_are_described_as_ros1_does(tmp_path):
     assert "published once" in b008["message"]
 
 
-def test_locations_are_offsets_from_the_start(tmp_path):
-    events = clean_run(back_at=20)
-    code, found = lint(tmp_path, write(tmp_path / "rec", "mcap", events))
+@pytest.mark.parametrize("fmt", FORMATS)
+def test_locations_are_offsets_from_the_start(fmt, tmp_path):
+    """From the recording's first message of any topic (a timeline viewer's zero), not epoch seconds."""
+    events = [("tf", 0.5, [CAMERA], "/tf_other")] + clean_run(back_at=20)[1:]
+    code, found = lint(tmp_path, write(tmp_path / "rec", fmt, events))
     (b008,) = [f for f in found if f["code"] == "B008"]
-    assert "message 21 (at +" in b008["message"] and "t = 1" not in b008["message"], b008["message"]
+    assert "message 21 (at +0.920 s)" in b008["message"], b008["message"]  # 1.0 + 21 / 50 - 0.5
 
 
 def test_renamed_joint_is_said_and_no_fixed_joint_is_suggested(tmp_path):

@@ -136,6 +136,8 @@ def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
         c = conns.get(cid)
         if c is None:
             raise ContainerError(f"a message of connection {cid}, which no connection record declares")
+        if "start" not in facts:  # the recording's first message, of any topic: locations count from it
+            facts["start"] = _time(fields.get("time", b""))
         if c[3]:
             return (c[0], c[1], _time(fields.get("time", b"")), data, c[2], False)
         return None
@@ -258,6 +260,8 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
             c = channels.get(cid)
             if c is None:
                 raise ContainerError(f"a message on channel {cid}, which no channel record declares")
+            if "start" not in facts:  # the recording's first message, of any topic: locations count from it
+                facts["start"] = struct.unpack_from("<Q", body, 6)[0]
             if c[2]:
                 (t,) = struct.unpack_from("<Q", body, 6)
                 return (c[0], c[1], t, body[22:], "", c[3])
@@ -422,6 +426,9 @@ def sqlite_messages(path: str, want, facts: dict, runner: bool, inflater: Inflat
                 wanted[int(tid)] = (name, typ, str(fmt or "cdr") != "ros1")
         if not wanted:
             return
+        first = conn.execute("SELECT min(timestamp) FROM messages").fetchone()
+        if first and isinstance(first[0], int) and "start" not in facts:
+            facts["start"] = first[0]  # the recording's first message, of any topic: locations count from it
         ids = ",".join(str(i) for i in wanted)
         cur = conn.execute(f"SELECT topic_id, timestamp, data FROM messages WHERE topic_id IN ({ids}) "  # noqa: S608
                            "ORDER BY timestamp")

@@ -118,7 +118,7 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterat
                 i = counters.get(topic, 0)
                 counters[topic] = i + 1
                 if not n:
-                    start = t
+                    start = facts.get("start", t)
                 n += 1
                 if kind == "joint_state":
                     st, names, pos, vel, eff = decode.joint_state(payload, cdr)
