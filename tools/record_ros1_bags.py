@@ -177,6 +177,9 @@ def record(name: str, out_dir: str, seconds: float = 3.0) -> str:
             p.wait(timeout=10)
         except subprocess.TimeoutExpired:
             os.killpg(p.pid, signal.SIGKILL)
+    import shutil
+
+    shutil.rmtree(home, ignore_errors=True)  # the master's logs
     return path
 
 
