@@ -329,3 +329,41 @@ def test_publish_joint_states_fifo_and_bomb_are_usage_errors(tmp_path):
     (tmp_path / "bomb.yaml").write_text(BOMB)
     code, _, err = run_cli(["publish", "robot.urdf", "--joint-states", "bomb.yaml"], cwd=tmp_path)
     assert code == 2 and "bomb" in err
+
+
+@pytest.mark.parametrize("fmt", ["ros1", "sqlite3", "mcap", "yaml"])
+def test_recordings_are_read_only_through_the_door(fmt, tmp_path, monkeypatch):
+    """No reader of a recording opens a file by itself: `open` is gone while it reads; sqlite3 is handed the
+    door's admitted path, read-only and immutable."""
+    import builtins
+    from pathlib import Path
+
+    from urdfcheck.bag import check_recording
+
+    if fmt == "yaml":
+        rec = tmp_path / "rec.yaml"
+        rec.write_text("- {name: [shoulder], position: [0.1], stamp: 1.0}\n")
+    else:
+        rec = write(tmp_path / "rec", fmt, [("js", 1.0 + i / 50, ["shoulder"], [0.1]) for i in range(5)])
+    model = _model()
+    check_recording(model, str(rec))  # once before: the modules it imports lazily are imported (that is open())
+    connects = []
+    real_connect = sqlite3.connect
+
+    def connect(database, *a, **kw):
+        connects.append((str(database), kw.get("uri")))
+        return real_connect(database, *a, **kw)
+
+    def no_open(*a, **kw):
+        raise AssertionError(f"a direct open() of {a[:1]}")
+
+    monkeypatch.setattr(sqlite3, "connect", connect)
+    monkeypatch.setattr(builtins, "open", no_open)  # (the door's own os.fdopen goes through io.open)
+    for name in ("open", "read_bytes", "read_text"):
+        monkeypatch.setattr(Path, name, no_open)
+    found = check_recording(model, str(rec))
+    monkeypatch.undo()
+    assert not found, _messages(found)
+    for database, uri in connects:
+        assert uri and database.startswith("file:") and database.endswith("?mode=ro&immutable=1"), database
+    assert bool(connects) == (fmt == "sqlite3")
