@@ -72,7 +72,7 @@ class TfChecks:
         self.static_tolerance = static_tolerance
         self.count = 0
         self.tf_messages = 0
-        self.states: OrderedDict[int, dict] = OrderedDict()
+        self.states: OrderedDict[int, dict | tuple] = OrderedDict()  # stamp -> positions, or (names, positions)
         self.predicted: OrderedDict[int, dict] = OrderedDict()
         self.pending: deque = deque()
         self.pending_stamps: dict[int, int] = {}
@@ -127,14 +127,16 @@ class TfChecks:
         if len(js.names) != len(js.position):
             return
         st = js.stamp_ns
-        have = self.states.get(st)
-        if have is None:
-            self.states[st] = dict(zip(js.names, js.position))
+        states = self.states
+        have = states.get(st)
+        if have is None:  # kept as they came: made a mapping only when a /tf of that stamp asks (_positions)
+            states[st] = (js.names, js.position)
         else:  # several drivers, one stamp: robot_state_publisher handles each message; the union replays them
+            have = self._positions(st)
             have.update(zip(js.names, js.position))
             self.predicted.pop(st, None)
-        while len(self.states) > self.KEEP_STATES:
-            self.states.popitem(last=False)
+        if len(states) > self.KEEP_STATES:
+            states.popitem(last=False)
         if st in self.pending_stamps:
             self._settle(m.time_ns, st)
 
@@ -268,8 +270,14 @@ class TfChecks:
             self._forget(e.stamp_ns)
             self._unmatched(m, key)
 
-    def _expected(self, stamp: int, seg):
+    def _positions(self, stamp: int) -> dict | None:
         pos = self.states.get(stamp)
+        if isinstance(pos, tuple):
+            pos = self.states[stamp] = dict(zip(*pos))
+        return pos
+
+    def _expected(self, stamp: int, seg):
+        pos = self._positions(stamp)
         if pos is None or seg.name not in pos and not _mimic_of(self.model, seg.name, pos):
             return None
         cache = self.predicted.get(stamp)
