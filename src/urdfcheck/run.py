@@ -171,6 +171,7 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
             chosen[str(t.path)] = t
     for t in chosen.values():
         t.bags = tuple(t.bags) + tuple(b for b in bags if b not in t.bags)
+        t.runner_bags = tuple(bags)  # typed on the command line (core.door: runner=True)
         t.joint_states = topic
 
 
@@ -276,7 +277,7 @@ def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_
     return _check(t, pending.result(), selection, config)
 
 
-def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding]:
+def _bag_findings(model, t: Target, selection: engine.Selection, contracts=None) -> list[Finding]:
     """The recordings of this target against its model (urdfcheck.bag), with the B rules' options."""
     from urdfcheck.bag import CODES, BagOptions, check_recording
 
@@ -289,10 +290,12 @@ def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding
         return options_for((code,), selection.options)["tolerance"]
 
     options = BagOptions(joint_topic=t.joint_states, tolerance=tolerance("B005"),
-                         replay_tolerance=tolerance("B013"), static_tolerance=tolerance("B011"))
+                         replay_tolerance=tolerance("B013"), static_tolerance=tolerance("B011"),
+                         frame_prefix=getattr(contracts, "rsp_prefix", "") or "")  # the config's or deployment's
     out = []
+    runner = getattr(t, "runner_bags", ())
     for bag in t.bags:
-        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag)))
+        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag), runner=bag in runner))
     return out
 
 
@@ -331,7 +334,7 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
                              evidence=t.evidence)
         findings.extend(engine.run_checks(model, ctx))
         if t.bags:
-            findings.extend(_bag_findings(model, t, selection))
+            findings.extend(_bag_findings(model, t, selection, contracts))
         if yaml is not None:
             yaml.read(contracts, selection)
     return engine.finish(findings, selection, exp.suppressions, model=exp.entry, variant=t.variant,

@@ -236,3 +236,14 @@ def _regular(mode: int) -> bool:
     import stat
 
     return stat.S_ISREG(mode)
+
+
+def runner_folder(path) -> str:
+    """The real path of a folder the runner typed (a recording folder): confined as `runner=True`; when it lies
+    outside every root it becomes one, so the files inside it are the runner's too. A folder typed inside the
+    checkout stays the checkout's: its files must stay inside the roots (appended for urdfcheck.bag)."""
+    real = confine(path, runner=True)
+    run = _current()
+    if run is not None and run.roots and not any(_under(real, r) for r in run.roots):
+        run.add_root(real)
+    return real
