@@ -49,20 +49,24 @@ def cmd_diff(ns) -> int:
         if len(ns.paths) != 2:
             raise UsageError("give OLD and NEW (two files or folders), or --git REV")
         old, new = ns.paths
-        result = stage.diff([old], [new], _root(old), _root(new), seeds=ns.seeds, **_options(ns))
+        result = stage.diff([old], [new], _root(old), _root(new), seeds=ns.seeds, old_label=_label(old),
+                            new_label=_label(new), **_options(ns))
     else:
-        from urdfcheck.diff import gitside
+        from urdfcheck.core import git
 
         paths = ns.paths or ["."]
-        repo = gitside.repo_root(os.path.abspath(paths[0]) if os.path.isdir(paths[0])
-                                 else os.path.dirname(os.path.abspath(paths[0])))
-        with gitside.export(ns.git, repo) as tmp:
-            rel = [os.path.relpath(os.path.abspath(p), repo) for p in paths]
+        with revision(ns.git, paths[0], "--git") as (repo, tree):
+            rel = [os.path.relpath(os.path.realpath(p), repo.work_tree) for p in paths]
             if any(r == ".." or r.startswith(".." + os.sep) for r in rel):
-                raise UsageError(f"--git: every path must be inside the repository {repo}")
-            old = [o for o in (os.path.join(tmp, r) for r in rel) if os.path.exists(o)]  # else: all added
-            result = stage.diff(old, [os.path.abspath(p) for p in paths], tmp, repo, seeds=ns.seeds,
-                                **_options(ns))
+                raise UsageError("--git: every path must be inside the repository")
+            old = [o for o in (os.path.join(tree.root, r) for r in rel) if os.path.exists(o)]  # else: all added
+            try:
+                result = stage.diff(old, [os.path.realpath(p) for p in paths], tree.root, repo.work_tree,
+                                    seeds=ns.seeds, old_label=git.shown_name(ns.git.encode()),
+                                    new_label="working tree", **_options(ns))
+            except git.GitError as e:
+                raise UsageError(f"--git: {e}") from None
+            result.notes[:0] = tree.notes
     from urdfcheck.report.diff import render
 
     text = render(ns.format, result)
@@ -77,6 +81,41 @@ def cmd_diff(ns) -> int:
     if any(p.status == "unloadable" for p in result.pairs):
         return EXIT_FINDINGS
     return EXIT_FINDINGS if ns.fail_on_change and result.changed else EXIT_CLEAN
+
+
+def _label(path: str) -> str:
+    """A side as the report names it: the path as typed, relative when it lies below the working directory."""
+    from urdfcheck.core import git
+
+    p = os.path.abspath(path)
+    rel = os.path.relpath(p)
+    return git.shown_name(os.fsencode(rel if not rel.startswith("..") else os.path.basename(p) or p))
+
+
+class revision:
+    """`with revision(REV, PATH, flag) as (repo, tree)`: the repository around PATH (found by urdfcheck, never
+    by git) and REV's files in a private temporary folder, removed on leaving. UsageError when either fails."""
+
+    def __init__(self, rev: str, path: str, flag: str):
+        self.rev, self.path, self.flag = rev, path, flag
+        self.tree = None
+
+    def __enter__(self):
+        from urdfcheck.core import git
+
+        start = os.path.abspath(self.path)
+        repo = git.find(start)
+        if repo is None:
+            raise UsageError(f"{self.flag}: no git repository (a .git folder) around {_label(self.path)}")
+        try:
+            self.tree = git.export(repo, self.rev)
+        except git.GitError as e:
+            raise UsageError(f"{self.flag}: {e}") from None
+        return repo, self.tree
+
+    def __exit__(self, *exc) -> None:
+        if self.tree is not None:
+            self.tree.cleanup()
 
 
 def _root(path: str) -> str:

@@ -233,3 +233,10 @@ def _regular(mode: int) -> bool:
     import stat
 
     return stat.S_ISREG(mode)
+
+
+def budget() -> RunBytes | None:
+    """The byte budget of the run in progress (None outside `guarded`): for readers that count bytes they do not
+    read from a file, such as git blobs streamed from `git cat-file`."""
+    run = _current()
+    return run.budget if run is not None else None
