@@ -357,6 +357,8 @@ def _place(broot: bytes, name: bytes, chunks, out: Export, link: bytes | None = 
                 f.write(piece)
                 out.written += len(piece)
         return dest
+    except door.Refused:
+        raise
     except OSError as e:
         out.notes.append(f"{out.rev}:{shown_name(name)}: not read ({e.strerror or 'cannot be written'})")
         for _ in chunks or ():  # the stream moves on to the next object

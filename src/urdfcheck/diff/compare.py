@@ -147,6 +147,18 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
     return DiffResult(old_label, new_label, pairs)
 
 
+def _where(loc, root: str | None) -> str:
+    """A location with its file relative to the compared tree (the report adds which side it is)."""
+    if loc is None:
+        return "?"
+    file = str(loc.file)
+    if root is not None:  # loaders show a file relative to the working directory, or absolute
+        full = os.path.abspath(file)
+        if (full + os.sep).startswith(root.rstrip(os.sep) + os.sep):
+            file = _rel(full, root)
+    return str(type(loc)(file, loc.line, loc.column))
+
+
 def _scrub(text: str, roots) -> str:
     """`text` with each root's absolute path (and its real path) replaced by the side's label."""
     for root, label in roots:
@@ -160,11 +172,12 @@ def compare_targets(key, old_t, new_t, *, seeds: int = SEEDS, roots=(None, None)
 
     sides = []
     errors = {}
-    for label, t in (("old", old_t), ("new", new_t)):
+    for (label, t), root in zip((("old", old_t), ("new", new_t)), roots):
         model, exp, findings = load_target(t)
         bad = [f for f in findings if f.severity >= Severity.ERROR]
         if model is None or bad:
-            errors[label] = [f"{f.location}: {f.code} {f.message}" for f in (bad or findings)] or ["not loaded"]
+            errors[label] = [f"{_where(f.location, root)}: {f.code} {f.message}"
+                             for f in (bad or findings)] or ["not loaded"]
         sides.append((model, exp, t))
     if errors:
         return Pair(key[0], key[1], "unloadable", errors=errors)
