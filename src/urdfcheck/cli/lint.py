@@ -31,6 +31,34 @@ def request_from_flags(ns) -> LintRequest:
 
 def run(ns, usage_error=UsageError) -> int:
     """`usage_error`: raised (with the message) for an unusable invocation; UsageError by default."""
+    rev = getattr(ns, "config_from", None)
+    if not rev:
+        return _run(ns, usage_error)
+    if ns.config or ns.no_config:
+        raise usage_error("--config-from REV names the config: give it alone (not with --config or --no-config)")
+    from urdfcheck.core.findings import clean_text
+    from urdfcheck.core.git import GitError
+    from urdfcheck.diff import basecfg
+
+    try:
+        base = basecfg.load(rev, ns.paths[0] if ns.paths else ".")
+    except GitError as e:
+        raise usage_error(f"--config-from: {e}") from None
+    with base:
+        print(f"urdfcheck: info: {clean_text(base.info, 4096)}", file=sys.stderr)
+        if base.path is None:
+            ns.no_config = True
+        else:
+            ns.config, ns.trust_config = base.path, True
+            ns.config_from_tree = base.for_tree
+        ns.scrub = base.scrub
+        try:
+            return _run(ns, usage_error)
+        except UsageError as e:
+            raise usage_error(base.scrub(str(e))) from None
+
+
+def _run(ns, usage_error) -> int:
     from urdfcheck import run as pipeline
 
     try:
@@ -74,14 +102,15 @@ def run(ns, usage_error=UsageError) -> int:
 
     colour = ns.color == "always" or (ns.color == "auto" and ns.output is None and sys.stdout.isatty()
                                       and not os.environ.get("NO_COLOR"))
-    text = _with_changes(ns.format, render(ns.format, result, colour=colour, fail_on=result.fail_on), result)
+    scrub = getattr(ns, "scrub", None) or (lambda t: t)  # --config-from: its temporary file is REV:path
+    text = scrub(_with_changes(ns.format, render(ns.format, result, colour=colour, fail_on=result.fail_on), result))
     if ns.output:
         _write(ns.output, text, usage_error)
     else:
         sys.stdout.write(text)
     for fmt, path in ns.report:
         try:
-            extra = _with_changes(fmt, render(fmt, result, colour=False, fail_on=result.fail_on), result)
+            extra = scrub(_with_changes(fmt, render(fmt, result, colour=False, fail_on=result.fail_on), result))
         except ValueError as e:
             raise usage_error(str(e)) from None
         _write(path, extra, usage_error)
@@ -108,10 +137,13 @@ def _diff_base(ns, usage_error):
     from urdfcheck.core.git import GitError
     from urdfcheck.diff import findings as changes
 
-    def make(paths, map_root):
+    def make(paths, map_root, in_tree):
         base = argparse.Namespace(**vars(ns))
         base.paths, base.root = paths, map_root(getattr(ns, "root", None))
-        base.config = os.path.abspath(ns.config) if ns.config else None
+        if getattr(ns, "config_from_tree", None) is not None:  # --config-from: its paths in the base tree
+            base.config = ns.config_from_tree(in_tree)
+        elif ns.config:  # a config of the repository: the base's own copy of it; else the runner's file
+            base.config = in_tree(ns.config) or os.path.abspath(ns.config)
         base.baseline = base.write_baseline = None
         base.bags = [os.path.abspath(b) for b in getattr(ns, "bags", None) or ()]
         return request_from_flags(base)

@@ -230,9 +230,8 @@ def find(start) -> Repo | None:
 
 
 def _gitfile(dot: str, d: str) -> str | None:
-    try:
-        with open(dot, "rb") as f:  # a .git file of a worktree or submodule: one short line, written by git
-            line = f.read(4097).split(b"\n", 1)[0].decode("utf-8", "strict")
+    try:  # a .git file of a worktree or submodule: one short line, written by git
+        line = door.read_bytes(dot, limit=4096, runner=True).split(b"\n", 1)[0].decode("utf-8", "strict")
     except (OSError, UnicodeDecodeError):
         return None
     if not line.startswith("gitdir:"):

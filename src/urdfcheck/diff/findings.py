@@ -113,8 +113,9 @@ def classify(rev: str, base: list[tuple[tuple, dict]], findings: list[Finding], 
 def base_findings(rev: str, paths: list[str], make_request, *, start: str | None = None):
     """Lint `rev`'s version of `paths`: (root of the repository, [(key, summary)], notes).
 
-    `make_request(paths, root) -> LintRequest`: the working tree's flags with these paths (and --root) in the
-    revision's tree. Raises core.git.GitError when there is no repository or no such revision."""
+    `make_request(paths, map_root, in_tree) -> LintRequest`: the working tree's flags with these paths (and
+    --root, through `map_root`) in the revision's tree; `in_tree(path)`: the revision's copy of a working-tree
+    file (absolute; None when it has none or the path lies outside the repository). Raises core.git.GitError when there is no repository or no such revision."""
     from urdfcheck import run as pipeline
     from urdfcheck.core import git
     from urdfcheck.request.request import UsageError
@@ -147,7 +148,8 @@ def base_findings(rev: str, paths: list[str], make_request, *, start: str | None
         os.chdir(base_here)  # paths and messages read as in the working tree
         try:
             try:
-                result = pipeline.run(make_request(mapped, lambda r: _map_root(r, inside, tree.root, base_here)))
+                result = pipeline.run(make_request(mapped, lambda r: _map_root(r, inside, tree.root, base_here),
+                                                   lambda p: _in_tree(p, inside, tree.root)))
             except UsageError as e:
                 if "no URDF or xacro model found" in str(e):
                     return wt, [], tree.notes
@@ -170,6 +172,14 @@ def _scrubbed(summary: dict, tree_root: str, shown_wt: str) -> dict:
             text = text.replace(r, shown_wt)
         summary[field] = os.path.normpath(text) if field == "file" and text else text
     return summary
+
+
+def _in_tree(p: str, inside, tree_root: str) -> str | None:
+    rel = inside(p)
+    if rel is None:
+        return None
+    full = os.path.join(tree_root, rel)
+    return full if os.path.exists(full) else None
 
 
 def _map_root(root, inside, tree_root: str, base_here: str):
