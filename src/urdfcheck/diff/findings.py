@@ -10,6 +10,7 @@ moved lines is unchanged; a third identical finding where the base had two is ne
 from __future__ import annotations
 
 import os
+
 from urdfcheck.core.findings import Finding, clean_text
 from urdfcheck.core.records import Record
 
@@ -115,7 +116,8 @@ def base_findings(rev: str, paths: list[str], make_request, *, start: str | None
 
     `make_request(paths, map_root, in_tree) -> LintRequest`: the working tree's flags with these paths (and
     --root, through `map_root`) in the revision's tree; `in_tree(path)`: the revision's copy of a working-tree
-    file (absolute; None when it has none or the path lies outside the repository). Raises core.git.GitError when there is no repository or no such revision."""
+    file (absolute; None when it has none or the path lies outside the repository). Raises core.git.GitError
+    when there is no repository or no such revision."""
     from urdfcheck import run as pipeline
     from urdfcheck.core import git
     from urdfcheck.request.request import UsageError
