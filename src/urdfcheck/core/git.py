@@ -83,6 +83,8 @@ class Repo:
         msg = lines[-1] if lines else ""
         for p in (self.git_dir, self.work_tree):
             msg = msg.replace(p, "<repository>" if p == self.work_tree else "<repository>/.git")
+        if "promisor remote" in msg or "lazy fetch" in msg:
+            msg += " (a partial clone: urdfcheck never fetches; fetch the revision's files first)"
         return _escape(msg)
 
     # --- revisions -------------------------------------------------------------------------------------------------
