@@ -289,3 +289,15 @@ def test_per_variant_repeats_are_collapsed(two):
     assert "urdf/agv.urdf.xacro: changed in 2 of 2 variants" in text
     md = cli(old, new, "--format", "markdown").stdout
     assert md.count("origin.xyz") == 1, md
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_a_renamed_model_is_compared_with_its_old_self(tmp_path):
+    repo = _repo(tmp_path)
+    _git("mv", "agv_description/urdf/agv.urdf", "agv_description/urdf/agv_v2.urdf", cwd=repo)
+    edit(repo / "agv_description/urdf/agv_v2.urdf", 'rpy="0 0 0" xyz="0.25 0 0.15"', 'rpy="0 0 0" xyz="0.26 0 0.15"')
+    data = as_json(cli("--git", "HEAD", "--format", "json", cwd=repo))
+    mine = [m for m in data["models"] if "agv_v2" in m["model"] or m["model"].endswith("agv.urdf")]
+    assert [m["status"] for m in mine] == ["changed"], mine
+    fields = [(c["kind"], c["field"]) for c in mine[0]["changes"]]
+    assert ("model", "file") in fields and [x["frame"] for x in mine[0]["moved"]] == ["laser_link"]

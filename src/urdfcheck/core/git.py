@@ -322,7 +322,11 @@ def export(repo: Repo, rev: str, *, max_file: int = MAX_FILE, budget: door.RunBy
         broot = os.fsencode(root)
         wanted = []
         for oid, names in by_oid.items():
-            if sizes.get(oid, max_file + 1) > max_file:
+            if oid not in sizes:  # not in the local repository (and never fetched): said, not guessed
+                out.notes.extend(f"{rev}:{shown_name(n)}: not read (its contents are not in the local repository)"
+                                 for n in names)
+                continue
+            if sizes[oid] > max_file:
                 for n in names:
                     _place(broot, n, None, out)
             else:

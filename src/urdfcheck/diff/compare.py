@@ -82,13 +82,37 @@ def load_target(t):
     return loader.build_model(exp), exp, list(exp.findings)
 
 
-def plan_side(paths, root: str, options: dict):
-    """The targets `urdfcheck lint PATHS` plans, with labels relative to `root`."""
+def plan_side(paths, root: str, options: dict, cwd: str | None = None):
+    """The targets `urdfcheck lint PATHS` plans, with labels relative to `root`. `cwd`: the folder to plan from
+    (a launch file's relative paths and what the planner lists read from the working directory: the old side
+    of `diff --git` is planned from its own copy of it, so both sides see the same)."""
     from urdfcheck.plan.plan import plan
     from urdfcheck.request.request import make_request
 
-    request = make_request(list(paths), root=root, **options)
-    return plan(request, here=root)
+    paths = [os.path.abspath(p) for p in paths]
+    request = make_request(paths, root=root, **options)
+    here = os.getcwd()
+    if cwd is not None:
+        os.chdir(cwd)
+    try:
+        targets = plan(request, here=root)
+        for t in targets:  # what the planner made relative to the folder it planned from: absolute, read later
+            if not os.path.isabs(str(t.path)):
+                t.path = type(t.path)(os.path.abspath(str(t.path))) if hasattr(t.path, "__fspath__") \
+                    else os.path.abspath(t.path)
+        return [(_key(t, root), t) for t in targets]
+    finally:
+        os.chdir(here)
+
+
+def _same_place(old_root: str, new_root: str) -> str | None:
+    """The old tree's copy of the working directory, when the working directory lies in the new tree."""
+    here = os.path.realpath(os.getcwd())
+    rel = os.path.relpath(here, os.path.realpath(new_root))
+    if rel == ".." or rel.startswith(".." + os.sep):
+        return None
+    place = os.path.normpath(os.path.join(old_root, rel))
+    return place if os.path.isdir(place) else old_root
 
 
 def _key(t, root: str) -> tuple[str, str]:
@@ -116,8 +140,8 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
     old_root, new_root = os.path.abspath(old_root), os.path.abspath(new_root)
     old_label = old_label or "old"
     new_label = new_label or "new"
-    old_t = {_key(t, old_root): t for t in plan_side(old_paths, old_root, options)} if old_paths else {}
-    new_t = {_key(t, new_root): t for t in plan_side(new_paths, new_root, options)} if new_paths else {}
+    old_t = dict(plan_side(old_paths, old_root, options, _same_place(old_root, new_root))) if old_paths else {}
+    new_t = dict(plan_side(new_paths, new_root, options)) if new_paths else {}
     if not old_t and not new_t:
         from urdfcheck.request.request import UsageError
 
@@ -133,14 +157,28 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
         elif len(new_t) == 1 and set(old_t) != set(new_t):
             only = next(iter(new_t.values()))
             new_t = {k: only for k in old_t}
+    renamed = _renamed(old_t, new_t)
+    for (old_model, _), key in renamed.items():
+        old_t[key + (old_model,)] = old_t.pop((old_model, _))
     pairs = []
     with run_budget(options.get("budget")):
         for key in list(dict.fromkeys([*old_t, *new_t])):
+            if len(key) == 3:
+                continue
             o, n = old_t.get(key), new_t.get(key)
+            moved_from = None
+            if o is None:
+                moved_from = next((k for k in old_t if len(k) == 3 and k[:2] == key), None)
+                o = old_t.get(moved_from) if moved_from else None
             if o is None or n is None:
                 pairs.append(Pair(key[0], key[1], "added" if o is None else "removed"))
                 continue
-            pairs.append(compare_targets(key, o, n, seeds=seeds, roots=(old_root, new_root)))
+            pair = compare_targets(key, o, n, seeds=seeds, roots=(old_root, new_root))
+            if moved_from is not None:  # the model's file was renamed (git mv): compared with its old self
+                pair.changes.insert(0, {"kind": "model", "name": key[0], "field": "file", "old": moved_from[2],
+                                        "new": key[0]})
+                pair.status = "changed"
+            pairs.append(pair)
     for p in pairs:  # load errors name files by path: the side's label, never its folder
         p.errors = {side: [_scrub(e, ((old_root, old_label), (new_root, new_label))) for e in errs]
                     for side, errs in p.errors.items()}
@@ -157,6 +195,28 @@ def _where(loc, root: str | None) -> str:
         if (full + os.sep).startswith(root.rstrip(os.sep) + os.sep):
             file = _rel(full, root)
     return str(type(loc)(file, loc.line, loc.column))
+
+
+def _renamed(old_t: dict, new_t: dict) -> dict:
+    """old key -> new key for a model whose file was renamed: exactly one model only on the old side and one only
+    on the new side, in the same folder, whose variants match once the old file name is read as the new one."""
+    gone = {m for m, _ in old_t} - {m for m, _ in new_t}
+    came = {m for m, _ in new_t} - {m for m, _ in old_t}
+    if len(gone) != 1 or len(came) != 1:
+        return {}
+    a, b = next(iter(gone)), next(iter(came))
+    if os.path.dirname(a) != os.path.dirname(b):
+        return {}
+    base_a, base_b = os.path.basename(a), os.path.basename(b)
+    out = {}
+    for m, v in old_t:
+        if m != a:
+            continue
+        key = (b, v.replace(base_a, base_b))
+        if key not in new_t:
+            return {}
+        out[(m, v)] = key
+    return out
 
 
 def _scrub(text: str, roots) -> str:
