@@ -110,3 +110,17 @@ def test_no_repository_or_revision_is_a_usage_error(repo, tmp_path):
     shutil.copytree(AGV, alone)
     res = lint("--diff-base", "HEAD", cwd=alone, tmp=tmp_path / "tmp")
     assert res.returncode == 2 and "no git repository" in res.stderr
+
+
+def test_diff_findings_tells_what_the_change_adds(repo, tmp_path):
+    edit(repo / CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [left_wheel_jointX]")
+    env_tmp = tmp_path / "tmp"
+    cmd = [sys.executable, "-m", "urdfcheck", "diff", "--git", "HEAD", "--findings"]
+    env = {**os.environ, "PYTHONPATH": SRC + os.pathsep + os.environ.get("PYTHONPATH", ""), "TMPDIR": str(env_tmp)}
+    res = subprocess.run([*cmd, "--format", "json"], cwd=repo, capture_output=True, text=True, env=env, timeout=180)
+    data = json.loads(res.stdout)
+    assert [(x["code"], x["file"], x["line"]) for x in data["findings"]["new"]] == [("C001", CTRL, 15)]
+    md = subprocess.run([*cmd, "--format", "markdown"], cwd=repo, capture_output=True, text=True, env=env,
+                        timeout=180).stdout
+    assert "New in this change" in md and f"C001` error at `{CTRL}:15`" in md
+    assert os.listdir(env_tmp) == []

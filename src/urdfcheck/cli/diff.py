@@ -23,6 +23,9 @@ def add_parser(sub) -> None:
     p.add_argument("--format", choices=["text", "json", "markdown"], default="text")
     p.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
     p.add_argument("--fail-on-change", action="store_true", help="exit 1 when anything changed (frozen descriptions)")
+    p.add_argument("--findings", action="store_true",
+                   help="with --git: also lint both sides and tell the findings the change adds and fixes (as "
+                   "`lint --diff-base REV`; informational: the exit code stays diff's)")
     p.add_argument("--seeds", type=int, default=5, metavar="N",
                    help="random joint configurations besides zero at which frame poses are compared (default 5)")
     p.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
@@ -67,6 +70,8 @@ def cmd_diff(ns) -> int:
             except git.GitError as e:
                 raise UsageError(f"--git: {e}") from None
             result.notes[:0] = tree.notes
+        if ns.findings:
+            result.findings = _findings(ns, paths)
     from urdfcheck.report.diff import render
 
     text = render(ns.format, result)
@@ -81,6 +86,30 @@ def cmd_diff(ns) -> int:
     if any(p.status == "unloadable" for p in result.pairs):
         return EXIT_FINDINGS
     return EXIT_FINDINGS if ns.fail_on_change and result.changed else EXIT_CLEAN
+
+
+def _findings(ns, paths):
+    """What the change does to lint's findings: the revision and the working tree linted with diff's options."""
+    from urdfcheck import run as pipeline
+    from urdfcheck.core.git import GitError
+    from urdfcheck.diff import findings as changes
+    from urdfcheck.request.request import make_request
+
+    def options(in_tree=None):
+        opts = _options(ns)
+        if opts.get("config"):
+            opts["config"] = (in_tree and in_tree(opts["config"])) or os.path.abspath(opts["config"])
+        return opts
+
+    def make(base_paths, map_root, in_tree):
+        return make_request(base_paths, **options(in_tree))
+
+    try:
+        root, base, _ = changes.base_findings(ns.git, paths, make)
+    except GitError as e:
+        raise UsageError(f"--git: {e}") from None
+    result = pipeline.run(make_request(paths, **options()))
+    return changes.classify(ns.git, base, result.findings, root)  # its notes: already the diff's
 
 
 def _label(path: str) -> str:
