@@ -181,3 +181,19 @@ def test_no_temp_folder_in_messages_of_an_old_side_that_does_not_load(tmp_path):
         assert res.returncode == 1
         assert "urdfcheck-rev-" not in res.stdout and "/tmp" not in res.stdout and str(repo) not in res.stdout
         assert "does not load" in res.stdout or '"unloadable"' in res.stdout
+
+
+def test_a_listing_past_the_file_cap_is_stopped(tmp_path, monkeypatch):
+    from urdfcheck.core import git as gitdoor
+
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    for i in range(30):
+        (repo / f"f{i}.txt").write_text(str(i))
+    git("init", "-q", cwd=repo)
+    git("add", "-A", cwd=repo)
+    git("commit", "-qm", "many", cwd=repo)
+    found = gitdoor.find(repo)
+    monkeypatch.setattr(gitdoor, "MAX_FILES", 10)
+    with pytest.raises(gitdoor.GitError, match="more than 10 files"):
+        gitdoor.export(found, "HEAD")

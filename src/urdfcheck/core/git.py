@@ -104,9 +104,7 @@ class Repo:
         if path:
             args += ["--", path]
         out = []
-        for rec in self.run(*args).split(b"\0"):
-            if not rec:
-                continue
+        for rec in self._records(args):
             meta, _, name = rec.partition(b"\t")
             parts = meta.split()
             if len(parts) != 3:
@@ -116,6 +114,37 @@ class Repo:
             if len(out) > MAX_FILES:
                 raise GitError(f"more than {MAX_FILES} files in the revision")
         return out
+
+    def _records(self, args):
+        """The NUL-separated records git prints, read as they come: a listing of millions of entries is stopped
+        at MAX_FILES, never held whole."""
+        try:
+            proc = subprocess.Popen(self.argv(*args), stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                    stderr=subprocess.PIPE, env=env(), cwd=self.work_tree)
+        except FileNotFoundError:
+            raise GitError("git is not installed") from None
+        timer = threading.Timer(TIMEOUT, proc.kill)
+        timer.start()
+        try:
+            rest = b""
+            while True:
+                piece = proc.stdout.read(CHUNK)
+                if not piece:
+                    break
+                *done, rest = (rest + piece).split(b"\0")
+                yield from (r for r in done if r)
+            if rest:
+                yield rest
+            err = proc.stderr.read(65536)
+            if proc.wait() != 0:
+                raise GitError(self._said(err) or f"git {args[0]} failed")
+        finally:
+            timer.cancel()
+            if proc.poll() is None:
+                proc.kill()
+                proc.wait()
+            proc.stdout.close()
+            proc.stderr.close()
 
     def sizes(self, oids) -> dict[str, int]:
         oids = list(dict.fromkeys(oids))
