@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -301,3 +302,19 @@ def test_a_renamed_model_is_compared_with_its_old_self(tmp_path):
     assert [m["status"] for m in mine] == ["changed"], mine
     fields = [(c["kind"], c["field"]) for c in mine[0]["changes"]]
     assert ("model", "file") in fields and [x["frame"] for x in mine[0]["moved"]] == ["laser_link"]
+
+
+def test_markdown_and_text_are_inert_for_hostile_names(tmp_path):
+    """Link and joint names are the pull request's: no HTML, links, @mentions or bidi controls."""
+    evil = "x&lt;img src=y onerror=alert(1)&gt;@octocat[z](https://e.example)\u202eevil"
+    a, b = tmp_path / "a.urdf", tmp_path / "b.urdf"
+    a.write_text('<robot name="r"><link name="base"/></robot>')
+    b.write_text(f'<robot name="r"><link name="base"/><link name="{evil}"/>'
+                 f'<joint name="j{evil}" type="fixed"><parent link="base"/><child link="{evil}"/></joint></robot>')
+    md = cli(a, b, "--format", "markdown").stdout
+    text = cli(a, b).stdout
+    assert "added" in text and "added" in md
+    for out in (md, text):
+        assert "\u202e" not in out
+    assert "<img" not in md and "@octocat" not in md
+    assert not re.search(r"(?<!\\)\]\(https", md)  # a link only where the bracket is not escaped

@@ -10,6 +10,7 @@ moved lines is unchanged; a third identical finding where the base had two is ne
 from __future__ import annotations
 
 import os
+import re
 
 from urdfcheck.core.findings import Finding, clean_text
 from urdfcheck.core.records import Record
@@ -44,12 +45,12 @@ class FindingsDiff(Record):
         out = [f"### Findings {_md(self.tally())}", ""]
         if self.new:
             out += ["**New in this change:**", ""]
-            out += [f"- :new: `{_md(x['code'])}` {_md(x['severity'])} at `{_md(_where(x))}`: {_md(x['message'])}"
+            out += [f"- :new: `{_code(x['code'])}` {_md(x['severity'])} at `{_code(_where(x))}`: {_md(x['message'])}"
                     for x in map(_summary, self.new)]
             out.append("")
         if self.fixed:
             out += ["**Fixed by this change:**", ""]
-            out += [f"- `{_md(x['code'])}` at `{_md(_where(x))}`: {_md(x['message'])}" for x in self.fixed]
+            out += [f"- `{_code(x['code'])}` at `{_code(_where(x))}`: {_md(x['message'])}" for x in self.fixed]
             out.append("")
         out += [f"- note: {_md(n)}" for n in self.notes]
         return out
@@ -66,11 +67,27 @@ def _where(x: dict) -> str:
 
 
 def _line(x: dict) -> str:
-    return clean_text(f"{_where(x)}: {x['severity']} {x['code']} {x['message']}", 4096)
+    return _clean(f"{_where(x)}: {x['severity']} {x['code']} {x['message']}", 4096)
+
+
+_BIDI = re.compile("[\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+_MD_SPECIAL = re.compile(r"([\\`*_\[\]|~#!$])")
+
+
+def _clean(s, limit: int = 500) -> str:
+    return _BIDI.sub("", clean_text(s, limit))
+
+
+def _code(s) -> str:
+    """Text for inside a code span (where nothing is interpreted but the closing backtick)."""
+    return _clean(str(s), 4096).replace("`", "'")
 
 
 def _md(s) -> str:
-    return clean_text(str(s)).replace("|", "\\|").replace("`", "'").replace("@", "@\u200b").replace("<", "&lt;")
+    """Text from the checkout as inert Markdown (no HTML, links, emphasis or @mentions), as report.markdown does."""
+    s = _clean(str(s), 4096)
+    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")
+    return _MD_SPECIAL.sub(r"\\\1", s).replace("@", "@\u200b")
 
 
 def key(f: Finding, root: str) -> tuple[str, str, str, str]:

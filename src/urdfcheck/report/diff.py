@@ -4,7 +4,17 @@ from __future__ import annotations
 
 import json
 
-from urdfcheck.core.findings import clean_text
+from urdfcheck.core import lazyre
+from urdfcheck.core.findings import clean_text as _clean
+from urdfcheck.report.markdown import md
+from urdfcheck.report.markdown import mermaid as _mermaid_label
+
+# bidi controls reorder what a reviewer reads (a link name that displays as another); dropped from every format
+_BIDI = lazyre.compile("[\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+
+
+def clean_text(text, limit: int = 500) -> str:
+    return _BIDI.sub("", _clean(text, limit))
 
 MAX_MERMAID_EDGES = 300  # GitHub renders larger diagrams poorly (and stops at its text limit)
 
@@ -136,7 +146,7 @@ def _cell(s) -> str:
 def markdown(result, shown=str) -> str:
     out = ["## urdfcheck diff", ""]
     out += [_tally(result), ""]
-    out += [f"- note: {_cell(n)}" for n in result.notes] + ([""] if result.notes else [])
+    out += [f"- note: {md(n, 4096)}" for n in result.notes] + ([""] if result.notes else [])
     fd = getattr(result, "findings", None)
     if fd is not None:
         out += fd.markdown_lines() + [""]
@@ -159,7 +169,7 @@ def markdown(result, shown=str) -> str:
             out += [f"### `{_cell(group[0].model)}`: changed in {len(changed)} of {len(group)} variants", ""]
         m = len(changed)
         tables = {_change_line(c) for p in changed for c in p.changes}
-        out.extend(f"- {_cell(line)}{_cell(_in(n, m, vs))}" for line, n, vs in _collapsed(changed)
+        out.extend(f"- {md(line, 4096)}{md(_in(n, m, vs))}" for line, n, vs in _collapsed(changed)
                    if line not in tables)
         rows: dict[tuple, list[str]] = {}
         for p in changed:
@@ -171,15 +181,15 @@ def markdown(result, shown=str) -> str:
             out += ["", "| what | field | before | after |" + (" variants |" if m > 1 else ""),
                     "| --- | --- | --- | --- |" + (" --- |" if m > 1 else "")]
             for (kind, name, field, old, new), vs in rows.items():
-                where = f" {_cell(_in(len(vs), m, vs).strip(' []') or 'all')} |" if m > 1 else ""
-                out.append(f"| {_cell(kind)} `{_cell(name)}` | {_cell(field)} | {_cell(old)} | {_cell(new)} |{where}")
+                where = f" {md(_in(len(vs), m, vs).strip(' []') or 'all')} |" if m > 1 else ""
+                out.append(f"| {md(kind)} `{_cell(name)}` | {md(field)} | {md(old)} | {md(new)} |{where}")
         first = changed[0]
         if first.moved:
             out += ["", "| frame | moved (mm) | rotated (deg) | at zero (mm, deg) | changed joint |",
                     "| --- | ---: | ---: | --- | --- |"]
             for m in first.moved:
                 out.append(f"| `{_cell(m['frame'])}` | {m['mm']:g} | {m['deg']:g} | {m['zero_mm']:g}, "
-                           f"{m['zero_deg']:g} | {_cell(m['because'] or '')} |")
+                           f"{m['zero_deg']:g} | {md(m['because'] or '')} |")
         diagram = mermaid(first)
         if diagram:
             out += ["", "```mermaid", diagram, "```"]
@@ -206,7 +216,7 @@ def mermaid(p) -> str:
         return ids[name]
 
     def label(s):
-        return clean_text(str(s)).replace('"', "#quot;")
+        return _mermaid_label(_BIDI.sub("", str(s)))
 
     lines = ["graph TD"]
     for r in roots:
