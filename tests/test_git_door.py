@@ -197,3 +197,56 @@ def test_a_listing_past_the_file_cap_is_stopped(tmp_path, monkeypatch):
     monkeypatch.setattr(gitdoor, "MAX_FILES", 10)
     with pytest.raises(gitdoor.GitError, match="more than 10 files"):
         gitdoor.export(found, "HEAD")
+
+
+def test_any_revision_tree_is_written_or_noted(tmp_path):
+    """Property (bounded): whatever names and contents a revision holds, `export` writes each file inside its
+    folder with its contents, or notes it with a printable name; it raises nothing but GitError."""
+    hypothesis = pytest.importorskip("hypothesis")
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+
+    from urdfcheck.core import door
+    from urdfcheck.core import git as gitdoor
+
+    part = st.binary(min_size=1, max_size=300).filter(lambda b: b"/" not in b and b"\0" not in b
+                                                      and b not in (b".", b".."))
+    name = st.lists(part, min_size=1, max_size=3).map(lambda ps: b"/".join(ps))
+    entries = st.lists(st.tuples(name, st.sampled_from([b"", b"x", b"<robot name='r'/>", b"\xff\xfe" * 40])),
+                       min_size=1, max_size=6, unique_by=lambda e: e[0].split(b"/")[0])
+    counter = iter(range(10**6))
+
+    @settings(max_examples=25, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(entries)
+    def check(files):
+        repo = tmp_path / f"r{next(counter)}"
+        repo.mkdir()
+        git("init", "-q", cwd=repo)
+        for n, data in files:
+            oid = git("hash-object", "-w", "--stdin", cwd=repo, data=data).decode().strip()
+            r = subprocess.run(["git", "update-index", "--add", "--cacheinfo", f"100644,{oid},{os.fsdecode(n)}"],
+                               cwd=repo, capture_output=True)
+            if r.returncode:  # git itself refuses the name (.git, ./, a file under a file): nothing to read
+                files = [f for f in files if f[0] != n]
+        if not files:
+            return
+        git("commit", "-qm", "x", "--allow-empty", cwd=repo)
+        try:
+            tree = gitdoor.export(gitdoor.find(repo), "HEAD", budget=door.RunBytes(1 << 20))
+        except gitdoor.GitError:
+            return
+        with tree:
+            root = os.path.realpath(tree.root)
+            for note in tree.notes:
+                assert note.isprintable(), note
+            noted = "\n".join(tree.notes)
+            for n, data in files:
+                dest = os.path.join(os.fsencode(root), n)
+                if os.path.isfile(dest):
+                    assert os.path.realpath(dest).startswith(os.fsencode(root))
+                    with open(dest, "rb") as f:
+                        assert f.read() == data
+                else:
+                    assert gitdoor.shown_name(n) in noted, (n, tree.notes)
+
+    check()

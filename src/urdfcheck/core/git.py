@@ -277,9 +277,10 @@ def _budget() -> door.RunBytes:
 
 
 def _escape(s: str) -> str:
-    """`s` with control, bidi and undecodable characters written as escapes (safe in any report)."""
+    """`s` with every character a terminal or report would not show as itself (control, bidi and other format
+    characters, unassigned code points, undecodable bytes) written as an escape."""
     s = s.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
-    return _ODD.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), s)
+    return "".join(ch if ch.isprintable() else ch.encode("unicode_escape").decode("ascii") for ch in s)
 
 
 def shown_name(name: bytes) -> str:
@@ -293,8 +294,8 @@ def odd(name: bytes) -> str | None:
         text = name.decode("utf-8")
     except UnicodeDecodeError:
         return "its name is not UTF-8"
-    if _ODD.search(text):
-        return "its name holds control or bidi characters"
+    if _ODD.search(text) or not text.isprintable():
+        return "its name holds control, bidi or unassigned characters"
     parts = name.split(b"/")
     if name.startswith(b"/") or any(p in (b"", b".", b"..") or p.lower() == b".git" for p in parts):
         return "its name is not a plain relative path"
