@@ -202,7 +202,7 @@ def test_a_listing_past_the_file_cap_is_stopped(tmp_path, monkeypatch):
 def test_any_revision_tree_is_written_or_noted(tmp_path):
     """Property (bounded): whatever names and contents a revision holds, `export` writes each file inside its
     folder with its contents, or notes it with a printable name; it raises nothing but GitError."""
-    hypothesis = pytest.importorskip("hypothesis")
+    pytest.importorskip("hypothesis")
     from hypothesis import HealthCheck, given, settings
     from hypothesis import strategies as st
 
