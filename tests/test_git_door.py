@@ -250,3 +250,13 @@ def test_any_revision_tree_is_written_or_noted(tmp_path):
                     assert gitdoor.shown_name(n) in noted, (n, tree.notes)
 
     check()
+
+
+def test_git_is_run_through_the_one_door_only():
+    import re
+
+    pattern = re.compile(r"""[\[(]\s*["']git["']\s*,""")
+    src = ROOT / "src" / "urdfcheck"
+    offenders = [str(p.relative_to(src)) for p in src.rglob("*.py")
+                 if p != src / "core" / "git.py" and pattern.search(p.read_text(encoding="utf-8"))]
+    assert offenders == []
