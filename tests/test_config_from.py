@@ -97,7 +97,22 @@ def test_with_diff_base_the_base_is_linted_with_its_own_files(repo, tmp_path):
     assert res.returncode == 0
 
 
-def test_config_from_is_given_alone(repo, tmp_path):
+def test_a_config_the_runner_names_wins(repo, tmp_path):
+    """--config FILE or --no-config typed beside --config-from (an Action's default and the workflow's flag)."""
+    break_controller(repo)
+    with open(repo / "agv_description/urdfcheck.yaml", "a") as f:
+        f.write("ignore: [C001]\n")
     res = lint("--config-from", "HEAD", "--no-config", cwd=repo, tmp=tmp_path / "tmp")
-    assert res.returncode == 2 and "alone" in res.stderr
+    assert res.returncode == 1 and "--config-from HEAD is not used: --no-config is given" in res.stderr
     assert lint("--config-from", "nope", cwd=repo, tmp=tmp_path / "tmp").returncode == 2
+
+
+def test_messages_name_no_temporary_or_absolute_path(repo, tmp_path):
+    """The base config names a model the pull request deleted: a usage error naming REV:path and the model's
+    path relative to the working directory (also with --root)."""
+    (repo / "agv_description/urdf/agv.urdf").unlink()
+    for extra in ((), ("--root", str(repo))):
+        res = lint("--config-from", "HEAD", *extra, cwd=repo / "agv_description", tmp=tmp_path / "tmp")
+        assert res.returncode == 2, res.stdout + res.stderr
+        assert "HEAD:agv_description/urdfcheck.yaml" in res.stderr and "urdf/agv.urdf" in res.stderr
+        assert str(tmp_path) not in res.stderr and "urdfcheck-cfg-" not in res.stderr

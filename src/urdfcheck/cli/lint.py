@@ -34,9 +34,12 @@ def run(ns, usage_error=UsageError) -> int:
     rev = getattr(ns, "config_from", None)
     if not rev:
         return _run(ns, usage_error)
-    if ns.config or ns.no_config:
-        raise usage_error("--config-from REV names the config: give it alone (not with --config or --no-config)")
     from urdfcheck.core.findings import clean_text
+
+    if ns.config or ns.no_config:  # both typed by the runner (an Action's default and a workflow's own flag)
+        what = "--config FILE" if ns.config else "--no-config"
+        print(f"urdfcheck: info: --config-from {clean_text(rev)} is not used: {what} is given", file=sys.stderr)
+        return _run(ns, usage_error)
     from urdfcheck.core.git import GitError
     from urdfcheck.diff import basecfg
 
@@ -51,7 +54,7 @@ def run(ns, usage_error=UsageError) -> int:
         else:
             ns.config, ns.trust_config = base.path, True
             ns.config_from_tree = base.for_tree
-        ns.scrub = base.scrub
+        ns.scrub = lambda text: base.scrub(text, getattr(ns, "root", None))
         try:
             return _run(ns, usage_error)
         except UsageError as e:

@@ -41,12 +41,18 @@ class BaseConfig:
         if self.folder:
             shutil.rmtree(self.folder, ignore_errors=True)
 
-    def scrub(self, text: str) -> str:
-        """`text` with the temporary config's path (absolute or relative to here) replaced by REV:path."""
+    def scrub(self, text: str, root: str | None = None) -> str:
+        """`text` with the temporary config's path (absolute, or relative to here or to --root) replaced by
+        REV:path."""
         if not self.path:
             return text
-        for p in dict.fromkeys((self.path, os.path.realpath(self.path), os.path.relpath(self.path))):
-            text = text.replace(p, self.shown)
+        # whatever form a report gives it (absolute, relative to here, to --root or to the checkout's top)
+        name = re.escape(os.path.basename(self.folder))
+        text = re.sub(r"[^\s'\"(]*" + name + r"/(?:base-[^/\s]+/)?urdfcheck\.yaml", self.shown, text)
+        config_dir = getattr(self, "config_dir", None)
+        if config_dir:  # its paths were made absolute in the working tree: shown relative again
+            rel = os.path.relpath(config_dir, root or os.getcwd())
+            text = text.replace(config_dir.rstrip(os.sep) + os.sep, "" if rel == "." else rel + os.sep)
         return text
 
     def __enter__(self):
