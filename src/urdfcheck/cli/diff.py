@@ -140,6 +140,9 @@ class revision:
             self.tree = git.export(repo, self.rev)
         except git.GitError as e:
             raise UsageError(f"{self.flag}: {e}") from None
+        from urdfcheck.core import door
+
+        door.add_root(self.tree.root)  # in a guarded run, the revision's files are readable like the checkout's
         return repo, self.tree
 
     def __exit__(self, *exc) -> None:

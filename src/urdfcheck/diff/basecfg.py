@@ -156,6 +156,9 @@ def load(rev: str, start: str) -> BaseConfig:
         info += (f"; the checkout's {where} is the same" if same else
                  f"; the checkout's {where} differs from it (not used: what this change does to the config "
                  "is not applied)")
+    from urdfcheck.core import door
+
+    door.add_root(folder)  # in a guarded run, the config is readable (the runner named the revision)
     out = BaseConfig(folder, path, shown, info, data, found)
     out.config_dir = config_dir
     return out

@@ -150,7 +150,10 @@ def base_findings(rev: str, paths: list[str], make_request, *, start: str | None
         rel = os.path.relpath(real, wt)
         return None if rel == ".." or rel.startswith(".." + os.sep) else rel
 
+    from urdfcheck.core import door
+
     with git.export(repo, rev) as tree:
+        door.add_root(tree.root)  # a run guarded already (the command line's): the base's files are readable too
         here = os.getcwd()
         rel_here = inside(here)
         base_here = os.path.join(tree.root, rel_here) if rel_here is not None else tree.root
