@@ -139,14 +139,20 @@ def _tally(result) -> str:
     return out
 
 
-def _cell(s) -> str:
+def _cell(s, limit: int = 500) -> str:
+    """Untrusted text in a table cell or list item: HTML, links and @mentions made inert."""
+    return md(_BIDI.sub("", str(s)), limit)
+
+
+def _code(s) -> str:
+    """Untrusted text inside a `code span` (nothing is interpreted there but a backtick and a table's bar)."""
     return clean_text(str(s)).replace("|", "\\|").replace("`", "'")
 
 
 def markdown(result, shown=str) -> str:
     out = ["## urdfcheck diff", ""]
     out += [_tally(result), ""]
-    out += [f"- note: {md(n, 4096)}" for n in result.notes] + ([""] if result.notes else [])
+    out += [f"- note: {_cell(n, 4096)}" for n in result.notes] + ([""] if result.notes else [])
     fd = getattr(result, "findings", None)
     if fd is not None:
         out += fd.markdown_lines() + [""]
@@ -156,20 +162,20 @@ def markdown(result, shown=str) -> str:
         changed = [p for p in group if p.status == "changed"]
         for p in group:
             if p.status in ("added", "removed", "unloadable"):
-                out += [f"### `{_cell(_title(p))}`: {p.status}", ""]
+                out += [f"### `{_code(_title(p))}`: {p.status}", ""]
             if p.status == "unloadable":
                 for side, errs in p.errors.items():
-                    out.extend(f"- {side}: `{_cell(e)}`" for e in errs[:10])
+                    out.extend(f"- {side}: `{_code(e)}`" for e in errs[:10])
                 out.append("")
         if not changed:
             continue
         if len(group) == 1:
-            out += [f"### `{_cell(_title(changed[0]))}`: changed", ""]
+            out += [f"### `{_code(_title(changed[0]))}`: changed", ""]
         else:
-            out += [f"### `{_cell(group[0].model)}`: changed in {len(changed)} of {len(group)} variants", ""]
+            out += [f"### `{_code(group[0].model)}`: changed in {len(changed)} of {len(group)} variants", ""]
         m = len(changed)
         tables = {_change_line(c) for p in changed for c in p.changes}
-        out.extend(f"- {md(line, 4096)}{md(_in(n, m, vs))}" for line, n, vs in _collapsed(changed)
+        out.extend(f"- {_cell(line, 4096)}{_cell(_in(n, m, vs))}" for line, n, vs in _collapsed(changed)
                    if line not in tables)
         rows: dict[tuple, list[str]] = {}
         for p in changed:
@@ -181,15 +187,15 @@ def markdown(result, shown=str) -> str:
             out += ["", "| what | field | before | after |" + (" variants |" if m > 1 else ""),
                     "| --- | --- | --- | --- |" + (" --- |" if m > 1 else "")]
             for (kind, name, field, old, new), vs in rows.items():
-                where = f" {md(_in(len(vs), m, vs).strip(' []') or 'all')} |" if m > 1 else ""
-                out.append(f"| {md(kind)} `{_cell(name)}` | {md(field)} | {md(old)} | {md(new)} |{where}")
+                where = f" {_cell(_in(len(vs), m, vs).strip(' []') or 'all')} |" if m > 1 else ""
+                out.append(f"| {_cell(kind)} `{_code(name)}` | {_cell(field)} | {_cell(old)} | {_cell(new)} |{where}")
         first = changed[0]
         if first.moved:
             out += ["", "| frame | moved (mm) | rotated (deg) | at zero (mm, deg) | changed joint |",
                     "| --- | ---: | ---: | --- | --- |"]
             for m in first.moved:
-                out.append(f"| `{_cell(m['frame'])}` | {m['mm']:g} | {m['deg']:g} | {m['zero_mm']:g}, "
-                           f"{m['zero_deg']:g} | {md(m['because'] or '')} |")
+                out.append(f"| `{_code(m['frame'])}` | {m['mm']:g} | {m['deg']:g} | {m['zero_mm']:g}, "
+                           f"{m['zero_deg']:g} | {_cell(m['because'] or '')} |")
         diagram = mermaid(first)
         if diagram:
             out += ["", "```mermaid", diagram, "```"]
