@@ -139,9 +139,9 @@ def _tally(result) -> str:
     return out
 
 
-def _cell(s, limit: int = 500) -> str:
+def _cell(s) -> str:
     """Untrusted text in a table cell or list item: HTML, links and @mentions made inert."""
-    return md(_BIDI.sub("", str(s)), limit)
+    return md(_BIDI.sub("", str(s)))
 
 
 def _code(s) -> str:
@@ -152,7 +152,7 @@ def _code(s) -> str:
 def markdown(result, shown=str) -> str:
     out = ["## urdfcheck diff", ""]
     out += [_tally(result), ""]
-    out += [f"- note: {_cell(n, 4096)}" for n in result.notes] + ([""] if result.notes else [])
+    out += [f"- note: {_cell(n)}" for n in result.notes] + ([""] if result.notes else [])
     fd = getattr(result, "findings", None)
     if fd is not None:
         out += fd.markdown_lines() + [""]
@@ -175,7 +175,7 @@ def markdown(result, shown=str) -> str:
             out += [f"### `{_code(group[0].model)}`: changed in {len(changed)} of {len(group)} variants", ""]
         m = len(changed)
         tables = {_change_line(c) for p in changed for c in p.changes}
-        out.extend(f"- {_cell(line, 4096)}{_cell(_in(n, m, vs))}" for line, n, vs in _collapsed(changed)
+        out.extend(f"- {_cell(line)}{_cell(_in(n, m, vs))}" for line, n, vs in _collapsed(changed)
                    if line not in tables)
         rows: dict[tuple, list[str]] = {}
         for p in changed:
