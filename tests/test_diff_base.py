@@ -124,3 +124,18 @@ def test_diff_findings_tells_what_the_change_adds(repo, tmp_path):
                         timeout=180).stdout
     assert "New in this change" in md and f"C001` error at `{CTRL}:15`" in md
     assert os.listdir(env_tmp) == []
+
+
+def test_a_xacro_finding_fixed_when_linting_a_named_model_from_the_package(repo, tmp_path):
+    """The base's xacro is expanded from the base's files (also by a worker forked before the base was written)."""
+    macro = repo / "agv_description/urdf/macros/components.xacro"
+    edit(macro, '<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>')
+    git("commit", "-qam", "debt", cwd=repo)
+    pkg = repo / "agv_description"
+    res = lint("--diff-base", "HEAD", "urdf/agv.urdf.xacro", cwd=pkg, tmp=tmp_path / "tmp")
+    assert "0 new, 0 fixed, 1 unchanged" in res.stdout, res.stdout + res.stderr
+    edit(macro, '<axis xyz="0 0 0"/>', '<axis xyz="0 1 0"/>')
+    res = lint("--diff-base", "HEAD", "urdf/agv.urdf.xacro", "--format", "json", cwd=pkg, tmp=tmp_path / "tmp")
+    d = json.loads(res.stdout)["diff_base"]
+    assert (len(d["new"]), d["unchanged"]) == (0, 0) and [x["code"] for x in d["fixed"]] == ["J006"], d
+    assert res.returncode == 0

@@ -163,8 +163,8 @@ def base_findings(rev: str, paths: list[str], make_request, *, start: str | None
             rel = inside(p)
             if rel is None:
                 mapped.append(os.path.abspath(p))  # outside the repository: the runner's file, the same one
-            elif os.path.exists(os.path.join(tree.root, rel)):
-                mapped.append(os.path.relpath(os.path.join(tree.root, rel), base_here))
+            elif os.path.exists(os.path.join(tree.root, rel)):  # absolute: a worker forked earlier has another cwd
+                mapped.append(os.path.join(tree.root, rel))
         if not mapped:  # the paths are new in this change: every finding is new
             return wt, [], tree.notes
         os.chdir(base_here)  # paths and messages read as in the working tree
