@@ -17,6 +17,7 @@ SRC = str(Path(__file__).resolve().parents[1] / "src")
 MIRRORS = Path(os.environ.get("URDFCHECK_HISTORY_MIRRORS", "/work/.mirror"))
 LINO = "linorobot+linorobot2"
 DEMOS = "ros-controls+ros2_control_demos"
+UR = "UniversalRobots+Universal_Robots_ROS2_Description"
 
 pytestmark = pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
 
@@ -47,13 +48,14 @@ def clones(tmp_path_factory):
     return get
 
 
-def diff_at(clones, name: str, commit: str):
+def diff_at(clones, name: str, commit: str, *extra: str):
     repo = clones(name)
     if _git("cat-file", "-e", f"{commit}^{{commit}}", cwd=repo).returncode:
         pytest.skip(f"{commit} is not in the mirror of {name}")
     _git("checkout", "-q", "-f", commit, cwd=repo)
     env = {**os.environ, "PYTHONPATH": SRC + os.pathsep + os.environ.get("PYTHONPATH", ""), "URDFCHECK_NO_CACHE": "1"}
-    res = subprocess.run([sys.executable, "-m", "urdfcheck", "diff", "--git", f"{commit}~1", "--format", "json"],
+    res = subprocess.run([sys.executable, "-m", "urdfcheck", "diff", "--git", f"{commit}~1", "--format", "json",
+                          *extra],
                          cwd=repo, capture_output=True, text=True, env=env, timeout=300)
     assert res.returncode in (0, 1), res.stderr
     out = res.stdout + res.stderr
@@ -180,3 +182,23 @@ def test_ros2_control_demos_controller_keys_not_read_by_a_contract(clones, commi
     limiter parameters: nothing a contract with the model reads."""
     code, models = diff_at(clones, DEMOS, commit)
     assert changed(models) == {}
+
+
+def test_ur_absolute_mesh_paths_whitespace_edit(clones):
+    """dcb7db0 "Whitespace fixes" in the UR description, expanded for Gazebo (sim_gazebo:=true makes every mesh a
+    `file://$(find ur_description)/meshes/...` path, absolute): no change, though the revision's copy lies
+    elsewhere than the checkout."""
+    code, models = diff_at(clones, UR, "dcb7db0", "--arg", "sim_gazebo:=true")
+    ur = [m for m in models if m["model"] == "urdf/ur.urdf.xacro"]
+    assert ur and code == 0 and changed(ur) == {}
+
+
+def test_ur_dynamic_properties(clones):
+    """60e6974 "Update dynamic properties": centres of mass and inertia of the arm's links, no mesh (absolute
+    paths again) and no joint."""
+    _, models = diff_at(clones, UR, "60e6974", "--arg", "sim_gazebo:=true")
+    got = changed([m for m in models if m["model"] == "urdf/ur.urdf.xacro"])
+    fields, moved = got["ur.urdf.xacro"]
+    assert {f for _, _, f in fields} == {"com", "inertia"} and moved == set()
+    assert {n for _, n, _ in fields} == {"shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link",
+                                         "wrist_2_link"}
