@@ -131,6 +131,10 @@ def test_linorobot2_camera_moved(clones):
     _, models = diff_at(clones, LINO, "c25f22e")
     assert changed(models) == {"4wd.urdf.xacro": ({("joint", "camera_to_base_link", "origin.xyz")},
                                                   {"camera_link", "camera_depth_link"})}
+    _, models = diff_at(clones, LINO, "84ae70e")  # "updated sensor pose" (2wd): moved and untilted
+    assert changed(models) == {"2wd.urdf.xacro": ({("joint", "camera_to_base_link", "origin.xyz"),
+                                                   ("joint", "camera_to_base_link", "origin.rotation")},
+                                                  {"camera_link", "camera_depth_link"})}
     _, models = diff_at(clones, LINO, "185ad8f")
     assert changed(models) == {"2wd.urdf.xacro": ({("joint", "camera_to_base_link", "origin.xyz"),
                                                    ("joint", "camera_to_base_link", "origin.rotation")},
@@ -149,10 +153,12 @@ def test_linorobot2_caster_mass_and_a_copied_macro(clones):
     assert masses == {(0.1, 0.01)}
 
 
-@pytest.mark.parametrize("commit", ["b934e9f", "91ca638", "63fe5ae"])
+@pytest.mark.parametrize("commit", ["b934e9f", "91ca638", "63fe5ae", "550153d", "e4fef1d"])
 def test_linorobot2_no_model_change(clones, commit):
     """b934e9f spacing in xacro files; 91ca638 a laser node dropped from sensors.launch.py; 63fe5ae use_sim_time
-    for joint_state_publisher: no model, contract or deployment changes."""
+    for joint_state_publisher; 550153d Gazebo sensor and plugin names; e4fef1d a Gazebo ray sensor's min_range
+    (inside <gazebo>: what diff compares is the kinematic and inertial model and its contracts, not simulator
+    plugins): no model, contract or deployment changes."""
     code, models = diff_at(clones, LINO, commit)
     assert code == 0 and changed(models) == {} and models
 
