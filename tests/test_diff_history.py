@@ -208,3 +208,30 @@ def test_ur_dynamic_properties(clones):
     assert {f for _, _, f in fields} == {"com", "inertia"} and moved == set()
     assert {n for _, n, _ in fields} == {"shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link",
                                          "wrist_2_link"}
+
+
+def lint_base_at(clones, name: str, commit: str) -> dict:
+    repo = clones(name)
+    if _git("cat-file", "-e", f"{commit}^{{commit}}", cwd=repo).returncode:
+        pytest.skip(f"{commit} is not in the mirror of {name}")
+    _git("checkout", "-q", "-f", commit, cwd=repo)
+    env = {**os.environ, "PYTHONPATH": SRC + os.pathsep + os.environ.get("PYTHONPATH", ""), "URDFCHECK_NO_CACHE": "1"}
+    res = subprocess.run([sys.executable, "-m", "urdfcheck", "lint", "--diff-base", f"{commit}~1", "--format", "json",
+                          "-q"], cwd=repo, capture_output=True, text=True, env=env, timeout=300)
+    assert res.returncode in (0, 1), res.stderr
+    assert "urdfcheck-rev-" not in res.stdout + res.stderr
+    return json.loads(res.stdout)["diff_base"]
+
+
+def test_linorobot2_findings_the_fix_removes(clones):
+    """a6d9e72 fixed the laser macro's undefined parameters: X010 is fixed."""
+    d = lint_base_at(clones, LINO, "a6d9e72")
+    assert ("X010", "linorobot2_description/urdf/sensors/ld06.urdf.xacro", 5) in \
+        {(x["code"], x["file"], x["line"]) for x in d["fixed"]}
+
+
+@pytest.mark.parametrize("commit", ["b934e9f", "46347df"])
+def test_linorobot2_findings_unchanged_by_spacing_and_a_collision_origin(clones, commit):
+    """Spacing (lines move) and a collision origin: the findings of the base are all still there, none new."""
+    d = lint_base_at(clones, LINO, commit)
+    assert d["new"] == [] and d["fixed"] == [] and d["unchanged"] >= 1
