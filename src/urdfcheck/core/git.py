@@ -212,8 +212,8 @@ class Repo:
             writer.join(timeout=5)
 
     def read(self, commit: str, path: str, limit: int, budget: door.RunBytes | None = None) -> bytes | None:
-        """The contents of the blob at `path` in `commit` (None when there is none, or it is a link), at most
-        `limit + 1` bytes."""
+        """The contents of the blob at `path` in `commit` (None when there is none, or it is a link or submodule);
+        GitError when it is larger than `limit` bytes."""
         entries = [e for e in self.tree(commit, path) if e[0] == path.encode("utf-8", "surrogateescape")]
         if not entries or entries[0][1] not in ("100644", "100755"):
             return None
