@@ -139,3 +139,12 @@ def test_a_xacro_finding_fixed_when_linting_a_named_model_from_the_package(repo,
     d = json.loads(res.stdout)["diff_base"]
     assert (len(d["new"]), d["unchanged"]) == (0, 0) and [x["code"] for x in d["fixed"]] == ["J006"], d
     assert res.returncode == 0
+
+
+def test_the_json_report_with_diff_base_follows_the_schema(repo, tmp_path):
+    jsonschema = pytest.importorskip("jsonschema")
+    edit(repo / CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [left_wheel_jointX]")
+    data = json.loads(lint("--diff-base", "HEAD", "--format", "json", cwd=repo, tmp=tmp_path / "tmp").stdout)
+    schema = json.loads((ROOT / "src/urdfcheck/schemas/report.schema.json").read_text())
+    jsonschema.validate(data, schema)
+    assert data["diff_base"]["new"]
