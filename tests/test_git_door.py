@@ -148,8 +148,17 @@ def test_copies_of_one_blob_are_read_once_within_the_budget(tmp_path):
         assert files[0].read_bytes() == blob
         root = tree.root
     assert not os.path.exists(root)  # removed afterwards
-    with pytest.raises(gitdoor.GitError, match="budget"):
-        gitdoor.export(found, "HEAD", budget=door.RunBytes(len(blob) // 2))
+    import tempfile
+
+    private = tmp_path / "private-tmp"
+    private.mkdir()
+    tempfile.tempdir, before = str(private), tempfile.tempdir
+    try:
+        with pytest.raises(gitdoor.GitError, match="budget"):
+            gitdoor.export(found, "HEAD", budget=door.RunBytes(len(blob) // 2))
+    finally:
+        tempfile.tempdir = before
+    assert os.listdir(private) == []  # what was written before the budget ran out is removed
 
 
 def test_odd_names_are_notes_not_crashes(tmp_path):
