@@ -269,3 +269,22 @@ def test_git_is_run_through_the_one_door_only():
     offenders = [str(p.relative_to(src)) for p in src.rglob("*.py")
                  if p != src / "core" / "git.py" and pattern.search(p.read_text(encoding="utf-8"))]
     assert offenders == []
+
+
+def test_a_blob_over_the_cap_is_written_empty_and_noted(tmp_path):
+    from urdfcheck.core import door
+    from urdfcheck.core import git as gitdoor
+
+    repo = tmp_path / "repo"
+    repo.mkdir()
+    (repo / "big.stl").write_bytes(b"x" * 5000)
+    (repo / "small.urdf").write_text("<robot name='r'/>")
+    git("init", "-q", cwd=repo)
+    git("add", "-A", cwd=repo)
+    git("commit", "-qm", "big", cwd=repo)
+    budget = door.RunBytes(1 << 20)
+    with gitdoor.export(gitdoor.find(repo), "HEAD", max_file=1000, budget=budget) as tree:
+        assert Path(tree.root, "big.stl").read_bytes() == b""
+        assert Path(tree.root, "small.urdf").read_text() == "<robot name='r'/>"
+        assert [n for n in tree.notes if "big.stl" in n and "written empty" in n]
+        assert budget.used == len("<robot name='r'/>")  # the big blob was never read

@@ -32,7 +32,8 @@ import threading
 
 from urdfcheck.core import door
 
-MAX_FILE = 8 * 1024 * 1024  # a blob above it is written empty: a mesh's existence is what a description needs
+# a blob above the door's cap for one file is written empty (and noted): the working tree's copy is not read either
+MAX_FILE = door.DEFAULT_FILE_BYTES
 MAX_FILES = 50_000
 NAME_MAX = 255
 TIMEOUT = 120
@@ -358,7 +359,9 @@ def export(repo: Repo, rev: str, *, max_file: int = MAX_FILE, budget: door.RunBy
                 continue
             if sizes[oid] > max_file:
                 for n in names:
-                    _place(broot, n, None, out)
+                    if _place(broot, n, None, out) is not None:
+                        out.notes.append(f"{rev}:{shown_name(n)}: written empty (larger than "
+                                         f"{max_file // 2**20} MiB)")
             else:
                 wanted.append(oid)
         for oid, chunks in repo.blobs(wanted, budget, shown=f"{rev} (git)"):
