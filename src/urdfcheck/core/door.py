@@ -247,3 +247,10 @@ def runner_folder(path) -> str:
     if run is not None and run.roots and not any(_under(real, r) for r in run.roots):
         run.add_root(real)
     return real
+
+
+def budget() -> RunBytes | None:
+    """The byte budget of the run in progress (None outside `guarded`): for readers that count bytes they do not
+    read from a file, such as git blobs streamed from `git cat-file`."""
+    run = _current()
+    return run.budget if run is not None else None
