@@ -314,6 +314,11 @@ def _list(values) -> tuple:
 
 
 def _reason(e: Exception) -> str:
+    if isinstance(e, OSError) and e.filename is not None and not hasattr(e, "why"):
+        # an OSError's text holds the real (absolute) path: a dangling link inside a recording folder would print
+        # the runner's temp or workspace path; its own name says which file
+        text = f"{e.strerror or type(e).__name__}: {os.path.basename(os.fspath(e.filename))}"
+        return text if len(text) < 300 else text[:299] + "\u2026"
     text = str(e).strip() or type(e).__name__
     return text if len(text) < 300 else text[:299] + "\u2026"
 
@@ -436,7 +441,8 @@ def _yaml_items(text: str) -> list:
         docs = [d for d in yaml.load_all(text, Loader=loader) if d is not None]
     except yamlguard.YamlRefused as e:
         raise RecordingError(f"refused: {e.message}") from None
-    except (yaml.YAMLError, RecursionError) as e:
+    except (yaml.YAMLError, RecursionError, ValueError, OverflowError) as e:
+        # ValueError: an integer past Python's 4300-digit conversion limit (PyYAML converts it as it composes)
         raise RecordingError(f"neither JSON nor YAML: {_reason(e)}") from None
     items = []
     for d in docs:

@@ -1,0 +1,201 @@
+"""What the wave-4 fuzzers (recordings.py, gitrev.py, configs.py) share: batches of inputs run in a forked child
+that holds the canaries, a per-input wall limit enforced from the parent, and the properties counted per input.
+
+A child runs the real CLI in-process (`urdfcheck.cli.main.main`, with URDFCHECK_DEBUG=1 so an internal error is
+raised, not hidden behind exit 2) in a throw-away checkout it `chdir`s into, and reports one JSON line per input.
+The parent kills a child that says nothing for `hang` seconds, counts a hang for the input it was on, and goes on
+with the next one in a fresh child.
+
+Counted per input:
+  leaks       the canary secret of the environment, the canary file's text (outside the checkout), or an absolute
+              temp/runner path (the checkout's, the outside folder's, the temp base's) in any output;
+  tracebacks  an exception out of main(), "Traceback" or "internal error" in any output, an exit code other than
+              0/1/2, or exit 2 without a one-line "urdfcheck: ..." reason;
+  hangs       an input slower than `hang` seconds;
+  silent      exit 0 or "All checks passed" where the case says something broken is present (`must_fail`), or
+              exit 0 where nothing was checked;
+  writes      a file created, changed or removed in the checkout by the run.
+"""
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import os
+import select
+import signal
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE.parent / "src"))
+
+SECRET_VAR = "URDFCHECK_FUZZ_SECRET"
+SECRET = "fuzz-w4-s3cr3t-9b2d"
+FILE_SECRET = "fuzz-w4-file-s3cr3t-c41e"
+SECRET_VARS = (SECRET_VAR, "GITHUB_TOKEN", "AWS_SECRET_ACCESS_KEY")
+INTERNAL = ("Traceback (most recent call last)", "internal error")
+KINDS = ("leaks", "tracebacks", "hangs", "silent", "writes")
+
+
+def base_dir(prefix: str) -> Path:
+    shm = "/dev/shm" if os.path.isdir("/dev/shm") and os.access("/dev/shm", os.W_OK) else None
+    return Path(tempfile.mkdtemp(prefix=prefix, dir=shm))
+
+
+def outside(base: Path) -> Path:
+    """A folder outside every checkout holding the canary file."""
+    out = base / "outside"
+    out.mkdir(exist_ok=True)
+    (out / "secret.yaml").write_text(f"token: {FILE_SECRET}\nname: [{FILE_SECRET}]\n")
+    (out / "secret.txt").write_text(FILE_SECRET + "\n")
+    return out
+
+
+def markers(base: Path) -> tuple[str, ...]:
+    """What no output may hold: the canaries and the absolute temp paths (as given and resolved)."""
+    paths = {str(base), os.path.realpath(base)}
+    return (SECRET, FILE_SECRET, *sorted(paths, key=len, reverse=True))
+
+
+def snapshot(root: Path) -> dict:
+    """name -> (kind, size, mtime) of every entry under root (symlinks not followed)."""
+    out = {}
+    for dirpath, dirnames, filenames in os.walk(root):
+        for n in dirnames + filenames:
+            p = os.path.join(dirpath, n)
+            try:
+                st = os.lstat(p)
+            except OSError:
+                continue
+            out[os.path.relpath(p, root)] = (st.st_mode >> 12, st.st_size if n not in dirnames else 0, st.st_mtime_ns
+                                             if n not in dirnames else 0)
+    return out
+
+
+def cli(argv: list[str]) -> tuple[int | str, str]:
+    """The real CLI in-process: (exit code or 'EXC', everything it printed)."""
+    import gc
+
+    from urdfcheck.cli.main import main
+
+    out, err = io.StringIO(), io.StringIO()
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main(argv)
+    except SystemExit as e:
+        code = e.code if isinstance(e.code, int) else 2
+        if not isinstance(e.code, int) and e.code:
+            err.write(str(e.code))
+    except BaseException as e:  # noqa: BLE001 - what is counted
+        if isinstance(e, KeyboardInterrupt):
+            raise
+        import traceback
+
+        return "EXC", (out.getvalue() + err.getvalue())[-3000:] + "\n" + "".join(
+            traceback.format_exception(type(e), e, e.__traceback__))[-3000:]
+    finally:
+        gc.enable()  # a console run pauses the collector for the rest of its process
+    return code, out.getvalue() + err.getvalue()
+
+
+def judge(code, text: str, marks, must_fail: bool, checked: bool = True) -> list[str]:
+    """The problem kinds of one run."""
+    bad = []
+    if any(m and m in text for m in marks):
+        bad.append("leaks")
+    if code == "EXC" or code not in (0, 1, 2) or any(m in text for m in INTERNAL):
+        bad.append("tracebacks")
+    elif code == 2 and "urdfcheck" not in text:
+        bad.append("tracebacks")  # exit 2 with no reason given
+    if code == 0 and (must_fail or not checked):
+        bad.append("silent")
+    elif must_fail and "All checks passed" in text:
+        bad.append("silent")
+    return bad
+
+
+def run_batches(cases, do_one, hang: float, batch: int, stats: dict, examples: list, env: dict | None = None,
+                show=lambda case: case, progress=None) -> None:
+    """Run `do_one(case) -> {"bad": [...], "outcome": str, "detail": str}` for every case in forked children."""
+    cases = list(cases)
+    i = 0
+    while i < len(cases):
+        chunk = cases[i:i + batch]
+        r, w = os.pipe()
+        pid = os.fork()
+        if pid == 0:  # the child: canaries in its environment, one JSON line per input
+            os.close(r)
+            try:
+                import resource
+
+                resource.setrlimit(resource.RLIMIT_AS, (4 * 1024**3, 4 * 1024**3))
+                os.environ.update(env or {})
+                for v in SECRET_VARS:
+                    os.environ[v] = SECRET
+                os.environ["URDFCHECK_DEBUG"] = "1"
+                for case in chunk:
+                    try:
+                        out = do_one(case)
+                    except BaseException as e:  # noqa: BLE001 - a fault of the harness is a finding too
+                        import traceback
+
+                        out = {"bad": ["tracebacks"], "outcome": "harness",
+                               "detail": "".join(traceback.format_exception(type(e), e, e.__traceback__))[-1500:]}
+                    os.write(w, (json.dumps(out) + "\n").encode())
+            finally:
+                os._exit(0)
+        os.close(w)
+        buf, done, last = b"", 0, time.monotonic()
+        while done < len(chunk):
+            ready, _, _ = select.select([r], [], [], 0.2)
+            if ready:
+                block = os.read(r, 1 << 16)
+                if not block:
+                    break
+                buf += block
+                while b"\n" in buf:
+                    line, buf = buf.split(b"\n", 1)
+                    _account(stats, examples, chunk[done], json.loads(line), show)
+                    done += 1
+                    last = time.monotonic()
+            elif time.monotonic() - last > hang:
+                break
+        if done < len(chunk):  # the child hung (or died) on chunk[done]
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+            _account(stats, examples, chunk[done], {"bad": ["hangs"], "outcome": "hang",
+                                                    "detail": f"no answer within {hang:g} s"}, show)
+            done += 1
+        os.waitpid(pid, 0)
+        os.close(r)
+        i += done
+        if progress is not None:
+            progress(i)
+
+
+def _account(stats: dict, examples: list, case, out: dict, show) -> None:
+    stats["inputs"] += 1
+    o = out.get("outcome", "?")
+    stats["outcomes"][o] = stats["outcomes"].get(o, 0) + 1
+    for kind in dict.fromkeys(out.get("bad", [])):
+        stats[kind] += 1
+        if len(examples) < 40:
+            examples.append({"kind": kind, "outcome": o, "detail": str(out.get("detail", ""))[:1500],
+                             "case": show(case)})
+
+
+def new_stats() -> dict:
+    return {"inputs": 0, **{k: 0 for k in KINDS}, "outcomes": {}}
+
+
+def finish(stats: dict, examples: list, t0: float, report: str | None, show: int = 5) -> int:
+    stats["seconds"] = round(time.monotonic() - t0, 1)
+    print(json.dumps(stats, indent=1))
+    for ex in examples[:show]:
+        print("---", json.dumps(ex)[:2000])
+    if report:
+        Path(report).write_text(json.dumps({**stats, "examples": examples}, indent=1))
+    return 1 if any(stats[k] for k in KINDS) else 0
