@@ -138,6 +138,7 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
     from urdfcheck.load.budget import run_budget
 
     old_root, new_root = os.path.abspath(old_root), os.path.abspath(new_root)
+    named_old = old_label is not None  # `diff --git REV`: the old side lives in a temporary folder
     old_label = old_label or "old"
     new_label = new_label or "new"
     old_t = dict(plan_side(old_paths, old_root, options, _same_place(old_root, new_root))) if old_paths else {}
@@ -145,7 +146,12 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
     if not old_t and not new_t:
         from urdfcheck.request.request import UsageError
 
-        raise UsageError(f"no URDF or xacro model found in {', '.join(map(str, [*old_paths, *new_paths]))}")
+        from urdfcheck.core.paths import shown
+
+        # never the absolute path of the runner's tree or of the revision's temporary folder
+        said = [f"{old_label}:{_rel(p, old_root)}" if named_old else shown(str(p)) for p in old_paths]
+        said += [shown(str(p)) for p in new_paths]
+        raise UsageError(f"no URDF or xacro model found in {', '.join(said)}")
     if len({m for m, _ in old_t}) == 1 and len({m for m, _ in new_t}) == 1 and set(old_t) != set(new_t):
         # one model each side (two files named differently): pair by variant
         name = next(iter(new_t))[0]

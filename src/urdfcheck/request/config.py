@@ -411,6 +411,9 @@ def load_config(path: str | os.PathLike, trusted: bool = False, root: str | None
     locs: dict[tuple, Location] = {}
 
     def resolve(p: str, *keypath, must_exist=True, kind="file") -> str:
+        if "\x00" in str(p):  # no file system takes it (os.path.realpath raises ValueError)
+            raise ConfigError(f"'{'.'.join(str(k) for k in keypath)}': a path holding a NUL character",
+                              val_loc(*keypath))
         full = os.path.normpath(os.path.join(root, os.path.expanduser(p) if trusted else p))
         why = trust.confine(full, root, trusted)
         if why is not None:
