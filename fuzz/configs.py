@@ -252,7 +252,7 @@ def do_one_factory(base: Path, out: Path, marks):
     return do_one
 
 
-def run(count: int, seed: int, hang: float, batch: int, report: str | None):
+def run(count: int, seed: int, hang: float, batch: int, report: str | None, seconds: float | None = None):
     base = harness.base_dir("urdfcheck-fuzzcfg-")
     out = harness.outside(base)
     marks = harness.markers(base)
@@ -262,7 +262,7 @@ def run(count: int, seed: int, hang: float, batch: int, report: str | None):
     do_one = do_one_factory(base, out, marks)
     try:
         done, step = 0, 1000
-        while done < count:
+        while done < count and (seconds is None or time.monotonic() - t0 < seconds):
             n = min(step, count - done)
             cases = [generate(r, done + k) for k in range(n)]
             harness.run_batches(cases, do_one, hang, batch, stats, examples)
@@ -281,9 +281,10 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=3636)
     ap.add_argument("--hang", type=float, default=20.0)
     ap.add_argument("--batch", type=int, default=100)
+    ap.add_argument("--seconds", type=float, help="start no new step of inputs after this many seconds")
     ap.add_argument("--report")
     ns = ap.parse_args(argv)
-    stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report)
+    stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report, seconds=ns.seconds)
     return harness.finish(stats, examples, t0, ns.report)
 
 

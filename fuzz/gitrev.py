@@ -301,7 +301,7 @@ def do_one_factory(base: Path, repos: list[dict], marks, pwned: Path, tmp: Path)
     return do_one
 
 
-def run(count: int, seed: int, nrepos: int, hang: float, batch: int, report: str | None):
+def run(count: int, seed: int, nrepos: int, hang: float, batch: int, report: str | None, seconds: float | None = None):
     base = harness.base_dir("urdfcheck-fuzzgit-")
     out = harness.outside(base)
     marks = harness.markers(base)
@@ -324,7 +324,7 @@ def run(count: int, seed: int, nrepos: int, hang: float, batch: int, report: str
 
         done, step = 0, 500
         env = {"TMPDIR": str(tmp), "HOME": str(home)}
-        while done < count:
+        while done < count and (seconds is None or time.monotonic() - t0 < seconds):
             n = min(step, count - done)
             cases = [generate(r, repos, done + k) for k in range(n)]
             harness.run_batches(cases, do_one, hang, batch, stats, examples, env=env, show=show)
@@ -344,9 +344,10 @@ def main(argv=None) -> int:
     ap.add_argument("--repos", type=int, default=24)
     ap.add_argument("--hang", type=float, default=30.0)
     ap.add_argument("--batch", type=int, default=50)
+    ap.add_argument("--seconds", type=float, help="start no new step of inputs after this many seconds")
     ap.add_argument("--report")
     ns = ap.parse_args(argv)
-    stats, examples, t0 = run(ns.count, ns.seed, ns.repos, ns.hang, ns.batch, ns.report)
+    stats, examples, t0 = run(ns.count, ns.seed, ns.repos, ns.hang, ns.batch, ns.report, seconds=ns.seconds)
     rc = harness.finish(stats, examples, t0, ns.report)
     return rc or (1 if stats["exec"] else 0)
 

@@ -128,6 +128,7 @@ def run_batches(cases, do_one, hang: float, batch: int, stats: dict, examples: l
         pid = os.fork()
         if pid == 0:  # the child: canaries in its environment, one JSON line per input
             os.close(r)
+            signal.signal(signal.SIGTERM, signal.SIG_DFL)
             try:
                 import resource
 
@@ -188,6 +189,8 @@ def _account(stats: dict, examples: list, case, out: dict, show) -> None:
 
 
 def new_stats() -> dict:
+    # a run stopped with SIGTERM still removes its temp folder (the callers' `finally`)
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     return {"inputs": 0, **{k: 0 for k in KINDS}, "outcomes": {}}
 
 

@@ -206,8 +206,11 @@ def make_seeds(tmp: Path) -> dict:
 
 
 # --- hostile pieces made once ---------------------------------------------------------------------------------
-def make_bombs() -> dict:
-    zeros = bytes(64 * 1024**2)
+def make_bombs(small: bool = False) -> dict:
+    """Chunks of zeros; `small` (the test suite's slice): 8 MiB each, still far past any size they declare."""
+    zeros = bytes((8 if small else 64) * 1024**2)
+    if small:
+        return {"zstd": compress("zstd", zeros), "lz4": compress("lz4", zeros), "bz2": bz2.compress(zeros, 9)}
     return {"zstd": compress("zstd", zeros * 16),  # 1 GiB
             "lz4": compress("lz4", zeros * 4),  # 256 MiB
             "bz2": bz2.compress(zeros[: 16 * 1024**2], 9)}  # 16 MiB (bz2 is slow to make)
@@ -339,7 +342,7 @@ def _text_hostile(r: random.Random) -> bytes:
     return b"- &x {name: [ghost_joint], position: [0.1], stamp: 0.1}\n" + b"- *x\n" * 2000
 
 
-def generate(r: random.Random, seeds: dict, bombs: dict, dbs: dict, i: int) -> dict:
+def generate(r: random.Random, seeds: dict, bombs: dict, dbs: dict, i: int, small: bool = False) -> dict:
     """One input: {"files": {rel: bytes | ("symlink", target) | ("fifo",)}, "rec": rel, "strict": bool, ...}."""
     name = r.choice(sorted(seeds))
     files = dict(seeds[name])
@@ -378,7 +381,7 @@ def generate(r: random.Random, seeds: dict, bombs: dict, dbs: dict, i: int) -> d
                 data = data.replace(b"\x00\x00\x00\x00" + b"\x00" * 0, b"\x00\x00\x00\x00", 1)
             files, rec = {"rec.mcap": data}, "rec.mcap"
         elif kind == "mcap-many":
-            recs = _mcap_many(seeds["mcap-alone"]["rec.mcap"], r.choice([2000, 200000, 2000000]))
+            recs = _mcap_many(seeds["mcap-alone"]["rec.mcap"], r.choice([2000, 200000, 2000000][:2 if small else 3]))
             files = {"rec.mcap": mcap_rechunk(seeds["mcap-alone"]["rec.mcap"], r.choice(["zstd", "lz4"]),
                                               inner=recs)}
             rec = "rec.mcap"
@@ -604,7 +607,7 @@ def show(case: dict) -> dict:
 
 
 def run(count: int, seed: int, hang: float, batch: int = 100, report: str | None = None, only: str | None = None,
-        cli_every: int = 5):
+        cli_every: int = 5, seconds: float | None = None, small: bool = False):
     base = harness.base_dir("urdfcheck-fuzzrec-")
     out = harness.outside(base)
     marks = harness.markers(base)
@@ -612,7 +615,7 @@ def run(count: int, seed: int, hang: float, batch: int = 100, report: str | None
     t0 = time.monotonic()
     try:
         seeds = make_seeds(base / "seeds")
-        bombs = make_bombs()
+        bombs = make_bombs(small)
         dbs = sqlite_variants(next(v for k, v in seeds["sqlite3"].items() if k.endswith(".db3")), base / "seeds")
         r = random.Random(seed)
         do_one = do_one_factory(base, out, marks, cli_every)
@@ -624,11 +627,11 @@ def run(count: int, seed: int, hang: float, batch: int = 100, report: str | None
                                                     "seconds": round(time.monotonic() - t0, 1)}, indent=1))
 
         done = 0
-        while done < count:
+        while done < count and (seconds is None or time.monotonic() - t0 < seconds):
             n = min(step, count - done)
             cases = []
             while len(cases) < n:
-                c = generate(r, seeds, bombs, dbs, done + len(cases))
+                c = generate(r, seeds, bombs, dbs, done + len(cases), small)
                 if only is None or c["kind"].startswith(only):
                     cases.append(c)
             harness.run_batches(cases, do_one, hang, batch, stats, examples, show=show)
@@ -648,9 +651,10 @@ def main(argv=None) -> int:
     ap.add_argument("--only", help="only inputs whose kind starts with this (mutate, bomb, sqlite, symlink, ...)")
     ap.add_argument("--cli-every", type=int, default=5, help="every N-th input through the whole CLI (the others "
                     "call check_recording in-process, as `urdfcheck bag` does)")
+    ap.add_argument("--seconds", type=float, help="start no new step of inputs after this many seconds")
     ap.add_argument("--report")
     ns = ap.parse_args(argv)
-    stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report, ns.only, max(ns.cli_every, 1))
+    stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report, ns.only, max(ns.cli_every, 1), seconds=ns.seconds)
     return harness.finish(stats, examples, t0, ns.report)
 
 
