@@ -39,6 +39,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "tests"))
+import bagwriter  # noqa: E402
 import harness  # noqa: E402
 
 FIXTURES = HERE.parent / "tests" / "fixtures" / "ros1"
@@ -57,8 +58,6 @@ def _events(n: int = 6):
 
 def _ros1_compressed(dst: Path, fmt: str) -> Path:
     from rosbags.rosbag1 import Writer
-
-    import bagwriter
 
     class W(Writer):
         def __init__(self, path, *a, **k):
@@ -106,6 +105,8 @@ def mcap_rechunk(data: bytes, comp: str, declared=None, inner: bytes | None = No
             c = comp.encode()
             body = struct.pack("<QQQI", start, end, size, 0) + struct.pack("<I", len(c)) + c + \
                 struct.pack("<Q", len(packed)) + packed
+        elif op == 0x02:  # footer: the summary's offsets moved; say there is none (readers stream the file)
+            body = bytes(20)
         out.append(bytes([op]) + struct.pack("<Q", len(body)) + body)
     out.append(data[-8:])
     return b"".join(out)
@@ -168,6 +169,24 @@ def ros1_rechunk(data: bytes, comp: str, declared=None, inner: bytes | None = No
                 (b"compression", comp.encode()), (b"size", struct.pack("<I", size & 0xFFFFFFFF))]
             h = _header(f)
         out.append(struct.pack("<I", len(h)) + h + struct.pack("<I", len(d)) + d)
+    return _index_pos(out)
+
+
+def _index_pos(out: list) -> bytes:
+    """The bag header's index_pos pointed at the new offset of the index (the first top-level connection
+    record), so readers that start from the index see the rewritten chunks' bag as valid."""
+    pos, at = 0, None
+    for rec in out[1:]:
+        (hl,) = struct.unpack_from("<I", rec, 0)
+        if dict(_fields(rec[4:4 + hl])).get(b"op") == b"\x07" and at is None:
+            at = len(out[0]) + pos
+        pos += len(rec)
+    first = out[1]
+    (hl,) = struct.unpack_from("<I", first, 0)
+    f = _fields(first[4:4 + hl])
+    if at is not None and dict(f).get(b"op") == b"\x03":
+        h = _header([(k, struct.pack("<Q", at) if k == b"index_pos" else v) for k, v in f])
+        out[1] = struct.pack("<I", len(h)) + h + first[4 + hl:]
     return b"".join(out)
 
 
@@ -177,8 +196,6 @@ def _folder_bytes(folder: Path) -> dict:
 
 def make_seeds(tmp: Path) -> dict:
     """name -> {relative path: bytes}: each seed is the set of files of one recording (first: what to name)."""
-    import bagwriter
-
     tmp.mkdir(parents=True, exist_ok=True)
     seeds: dict = {}
     plain = bagwriter.write(tmp / "plain", "ros1", _events()).read_bytes()
@@ -496,6 +513,8 @@ def _swap_mcap_chunk(data: bytes, bomb: bytes, comp: str) -> bytes:
             (cl,) = struct.unpack_from("<I", body, 28)
             head = body[:32 + cl]
             body = head + struct.pack("<Q", len(bomb)) + bomb
+        elif op == 0x02:
+            body = bytes(20)
         out.append(bytes([op]) + struct.pack("<Q", len(body)) + body)
     out.append(data[-8:])
     return b"".join(out)
