@@ -63,7 +63,9 @@ def pick(r: random.Random, valid, hostile, p: float = 0.85):
 
 
 def _num(r: random.Random):
-    return r.choice([1, 1000, 2_000_000, 10**12, 2**63 - 1, 10**9, 0, -1]) if r.random() < 0.8 else r.choice([0, -1, 1, 1e309, -1e309, 10**400, 2**63, -(2**63), 1e-320, 0.5, "1e9", "nan", float("nan"),
+    if r.random() < 0.8:
+        return r.choice([1, 1000, 2_000_000, 10**12, 2**63 - 1, 10**9, 0, -1])
+    return r.choice([0, -1, 1, 1e309, -1e309, 10**400, 2**63, -(2**63), 1e-320, 0.5, "1e9", "nan", float("nan"),
                      True, None, "", 10**9, 3, 1e9])
 
 

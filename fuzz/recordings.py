@@ -217,7 +217,8 @@ def make_seeds(tmp: Path) -> dict:
                                                          "translation": [0.1, 0, 0.2], "rotation": [0, 0, 0, 1]}]})
     seeds["json"] = {"rec.json": json.dumps(items).encode()}
     seeds["yaml"] = {"rec.yaml": "".join(
-        f"- topic: /joint_states\n  stamp: {0.1 * i:.1f}\n  name: [{', '.join(JOINTS)}]\n  position: [0.1, 0.2, 0.3, 0.4]\n"
+        f"- topic: /joint_states\n  stamp: {0.1 * i:.1f}\n  name: [{', '.join(JOINTS)}]\n"
+        "  position: [0.1, 0.2, 0.3, 0.4]\n"
         for i in range(5)).encode()}
     return seeds
 
@@ -673,7 +674,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seconds", type=float, help="start no new step of inputs after this many seconds")
     ap.add_argument("--report")
     ns = ap.parse_args(argv)
-    stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report, ns.only, max(ns.cli_every, 1), seconds=ns.seconds)
+    stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report, ns.only, max(ns.cli_every, 1),
+                              seconds=ns.seconds)
     return harness.finish(stats, examples, t0, ns.report)
 
 

@@ -144,9 +144,8 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
     old_t = dict(plan_side(old_paths, old_root, options, _same_place(old_root, new_root))) if old_paths else {}
     new_t = dict(plan_side(new_paths, new_root, options)) if new_paths else {}
     if not old_t and not new_t:
-        from urdfcheck.request.request import UsageError
-
         from urdfcheck.core.paths import shown
+        from urdfcheck.request.request import UsageError
 
         # never the absolute path of the runner's tree or of the revision's temporary folder
         said = [f"{old_label}:{_rel(p, old_root)}" if named_old else shown(str(p)) for p in old_paths]
