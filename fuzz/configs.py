@@ -249,7 +249,7 @@ def do_one_factory(base: Path, out: Path, marks):
         bad = harness.judge(code, text, marks, must_fail=True)
         if harness.snapshot(ws) != before:
             bad.append("writes")
-        return {"bad": bad, "outcome": f"exit {code}", "detail": text[-1500:]}
+        return {"bad": bad, "outcome": f"exit {code}", "detail": text[:4000] if code == "EXC" else text[-1500:]}
 
     return do_one
 

@@ -297,7 +297,8 @@ def do_one_factory(base: Path, repos: list[dict], marks, pwned: Path, tmp: Path)
                 shutil.rmtree(tmp / n, ignore_errors=True)
                 if (tmp / n).exists():
                     os.unlink(tmp / n)
-        return {"bad": bad, "outcome": f"{case['cmd']} exit {code}", "detail": text[-1500:]}
+        return {"bad": bad, "outcome": f"{case['cmd']} exit {code}",
+                "detail": text[:4000] if code == "EXC" else text[-1500:]}
 
     return do_one
 

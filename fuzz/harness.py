@@ -94,8 +94,9 @@ def cli(argv: list[str]) -> tuple[int | str, str]:
             raise
         import traceback
 
-        return "EXC", (out.getvalue() + err.getvalue())[-3000:] + "\n" + "".join(
-            traceback.format_exception(type(e), e, e.__traceback__))[-3000:]
+        tb = "".join(traceback.format_exception(type(e), e, e.__traceback__))
+        tb = tb if len(tb) < 6000 else tb[:3000] + "\n...\n" + tb[-3000:]  # where it started and where it broke
+        return "EXC", (out.getvalue() + err.getvalue())[-2000:] + "\n" + tb
     finally:
         gc.enable()  # a console run pauses the collector for the rest of its process
     return code, out.getvalue() + err.getvalue()
@@ -184,7 +185,7 @@ def _account(stats: dict, examples: list, case, out: dict, show) -> None:
     for kind in dict.fromkeys(out.get("bad", [])):
         stats[kind] += 1
         if len(examples) < 40:
-            examples.append({"kind": kind, "outcome": o, "detail": str(out.get("detail", ""))[:1500],
+            examples.append({"kind": kind, "outcome": o, "detail": str(out.get("detail", ""))[:8000],
                              "case": show(case)})
 
 

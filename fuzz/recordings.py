@@ -598,7 +598,7 @@ def do_one_factory(base: Path, out: Path, marks, cli_every: int):
         outcome = f"{case['kind']} exit {code}" + (" cli" if case["argv"][0] != "(direct)" else "")
         return {"bad": bad, "outcome": outcome if not case["kind"].startswith("mutate") else f"mutate exit {code}" + (
             " cli" if case["argv"][0] != "(direct)" else ""),
-                "detail": text[-1500:]}
+                "detail": text[:4000] if code == "EXC" else text[-1500:]}
 
     return do_one
 
