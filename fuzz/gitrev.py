@@ -324,7 +324,7 @@ def run(count: int, seed: int, nrepos: int, hang: float, batch: int, report: str
         def show(case):
             return {**case, "feats": repos[case["repo"]]["feats"]}
 
-        done, step = 0, 500
+        done, step = 0, 50
         env = {"TMPDIR": str(tmp), "HOME": str(home)}
         while done < count and (seconds is None or time.monotonic() - t0 < seconds):
             n = min(step, count - done)
