@@ -87,3 +87,27 @@ def test_a_chunk_of_millions_of_empty_records_stops_at_the_budget(tmp_path):
                              cwd=tmp_path)
     assert code == 1, err
     assert "B014" in out and "time budget" in out
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
+@pytest.mark.parametrize("flags", [["--config-from", "HEAD"], ["--diff-base", "HEAD", "--config-from", "HEAD"]])
+def test_config_from_a_path_leaving_the_config_folder_names_no_absolute_path(tmp_path, flags):
+    """fuzz/gitrev.py: the base revision's config names `../nothere/c.yaml`; its paths are made absolute to be
+    read from a temporary copy, and the error said "no such file: /abs/runner/nothere/c.yaml" (with --diff-base:
+    a path in the base revision's temporary folder)."""
+    env = dict(os.environ, GIT_CONFIG_NOSYSTEM="1", HOME=str(tmp_path), GIT_AUTHOR_NAME="a",
+               GIT_AUTHOR_EMAIL="a@b", GIT_COMMITTER_NAME="a", GIT_COMMITTER_EMAIL="a@b")
+    repo = tmp_path / "r"
+    (repo / "pkg" / "urdf").mkdir(parents=True)
+    (repo / "pkg" / "urdf" / "robot.urdf").write_text("<robot name='r'><link name='base_link'/></robot>\n")
+    (repo / "urdfcheck.yaml").write_text("models:\n  - path: pkg/urdf/robot.urdf\n"
+                                         "    controllers: [../nothere/c.yaml]\n")
+    for args in (["init", "-q"], ["add", "-A"], ["commit", "-q", "-m", "x"]):
+        subprocess.run(["git", *args], cwd=repo, env=env, check=True, capture_output=True)
+    code, out, err = run_cli(["lint", *flags], cwd=repo)
+    assert code == 2
+    assert "../nothere/c.yaml" in err
+    import tempfile
+
+    for p in (str(tmp_path), os.path.realpath(tmp_path), tempfile.gettempdir() + "/nothere"):
+        assert p not in out + err

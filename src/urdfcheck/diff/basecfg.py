@@ -28,6 +28,7 @@ class BaseConfig:
                  found: str = ""):
         self.folder, self.path, self.shown, self.info = folder, path, shown, info
         self.data, self.found = data, found
+        self.said: dict[str, str] = {}  # a path made absolute -> as the config wrote it (for `scrub`)
 
     def for_tree(self, in_tree) -> str | None:
         """The same config with its paths in another tree (`lint --diff-base`: the base revision's files);
@@ -35,7 +36,7 @@ class BaseConfig:
         if self.path is None:
             return None
         sub = tempfile.mkdtemp(prefix="base-", dir=self.folder)
-        return _rewrite(self.data, os.path.basename(self.found), sub, _tree_dir(self.config_dir, in_tree))
+        return _rewrite(self.data, os.path.basename(self.found), sub, _tree_dir(self.config_dir, in_tree), self.said)
 
     def cleanup(self) -> None:
         if self.folder:
@@ -46,6 +47,10 @@ class BaseConfig:
         REV:path."""
         if not self.path:
             return text
+        # a path the rewrite made absolute, as the config wrote it: one that leaves the config's folder (`../x`)
+        # would otherwise show the runner's tree or the base revision's temporary folder
+        for full in sorted(self.said, key=len, reverse=True):
+            text = text.replace(full, self.said[full])
         # whatever form a report gives it (absolute, relative to here, to --root or to the checkout's top)
         name = re.escape(os.path.basename(self.folder))
         text = re.sub(r"[^\s'\"(]*" + name + r"/(?:base-[^/\s]+/)?urdfcheck\.yaml", self.shown, text)
@@ -134,7 +139,8 @@ def load(rev: str, start: str) -> BaseConfig:
     folder = tempfile.mkdtemp(prefix="urdfcheck-cfg-")
     try:
         config_dir = os.path.join(repo.work_tree, os.path.dirname(found))
-        path = _rewrite(data, os.path.basename(found), folder, config_dir)
+        said: dict[str, str] = {}
+        path = _rewrite(data, os.path.basename(found), folder, config_dir, said)
     except BaseException:
         shutil.rmtree(folder, ignore_errors=True)
         raise
@@ -161,6 +167,7 @@ def load(rev: str, start: str) -> BaseConfig:
     door.add_root(folder)  # in a guarded run, the config is readable (the runner named the revision)
     out = BaseConfig(folder, path, shown, info, data, found)
     out.config_dir = config_dir
+    out.said = said
     return out
 
 
@@ -186,8 +193,9 @@ def _rel(p: str) -> str:
 _MODEL_LISTS = ("controllers", "launch", "localization", "bags")
 
 
-def _rewrite(data: bytes, name: str, folder: str, config_dir: str) -> str:
-    """Write the config into `folder` as YAML, its relative paths made absolute against `config_dir`."""
+def _rewrite(data: bytes, name: str, folder: str, config_dir: str, said: dict | None = None) -> str:
+    """Write the config into `folder` as YAML, its relative paths made absolute against `config_dir`; `said`
+    gets each absolute path -> the text the config wrote."""
     from urdfcheck.request.config import PYPROJECT, ConfigError, _read_pyproject, _read_yaml
     from urdfcheck.request.request import UsageError
 
@@ -204,7 +212,13 @@ def _rewrite(data: bytes, name: str, folder: str, config_dir: str) -> str:
         raise UsageError("--config-from: the config must be a mapping of keys")
 
     def absolute(p):
-        return os.path.normpath(os.path.join(config_dir, p)) if isinstance(p, str) else p
+        if not isinstance(p, str):
+            return p
+        full = os.path.normpath(os.path.join(config_dir, p))
+        rel = os.path.relpath(full, config_dir)
+        if said is not None and (rel == ".." or rel.startswith(".." + os.sep)) and full != p and len(full) > 1:
+            said[full] = p  # a path below config_dir is shown relative by `scrub` already
+        return full
 
     for m in table.get("models") or []:
         if not isinstance(m, dict):
