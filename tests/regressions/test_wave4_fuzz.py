@@ -68,7 +68,8 @@ def test_diff_git_of_a_folder_without_models_names_no_absolute_path(tmp_path):
         assert p not in out + err
 
 
-def test_a_chunk_of_millions_of_empty_records_stops_at_the_budget(tmp_path):
+@pytest.mark.parametrize("fmt", ["ros1", "mcap"])
+def test_a_chunk_of_millions_of_empty_records_stops_at_the_budget(tmp_path, fmt):
     """fuzz/recordings.py: a ROS 1 chunk (bz2 or lz4, a few KB) inflating to its declared size in zeros: millions
     of empty records, read with no look at the run's budget (`--budget 3` ran for 7.5 s and then said "nothing
     was checked"). Now the budget holds inside a chunk: B014 says the budget ran out."""
@@ -81,9 +82,16 @@ def test_a_chunk_of_millions_of_empty_records_stops_at_the_budget(tmp_path):
 
     _robot(tmp_path)
     size = 128 * 1024**2  # 16 million empty records: far longer than a one-second budget to walk
-    plain = recordings.bagwriter.write(tmp_path / "plain", "ros1", recordings._events()).read_bytes()
-    (tmp_path / "rec.bag").write_bytes(recordings.ros1_rechunk(plain, "lz4", size, inner=bytes(size)))
-    code, out, err = run_cli(["bag", "robot.urdf", "rec.bag", "--no-config", "--format", "json", "--budget", "1"],
+    if fmt == "ros1":
+        plain = recordings.bagwriter.write(tmp_path / "plain", "ros1", recordings._events()).read_bytes()
+        rec = "rec.bag"
+        (tmp_path / rec).write_bytes(recordings.ros1_rechunk(plain, "lz4", size, inner=bytes(size)))
+    else:  # 14 million empty MCAP records (opcode 0, length 0)
+        folder = recordings.bagwriter.write(tmp_path / "plain", "mcap", recordings._events())
+        plain = next(folder.glob("*.mcap")).read_bytes()
+        rec = "rec.mcap"
+        (tmp_path / rec).write_bytes(recordings.mcap_rechunk(plain, "lz4", size, inner=bytes(size)))
+    code, out, err = run_cli(["bag", "robot.urdf", rec, "--no-config", "--format", "json", "--budget", "1"],
                              cwd=tmp_path)
     assert code == 1, err
     assert "B014" in out and "time budget" in out
