@@ -125,9 +125,13 @@ def _run(request: LintRequest, retain, targets) -> Result:
     noted = [f._replace(location=f.location.shown())
              for f in getattr(targets, "findings", ())]  # about the plan: a config's ignored keys, a walk cut short
     if not targets:
-        if infos or noted:  # xacro libraries only: nothing to lint alone, not an unusable invocation
+        # xacro libraries only, or deployments whose model is no URDF (an SDFormat model): nothing to lint
+        # alone, not an unusable invocation; a deployment not understood is still said (C021)
+        unread = list(getattr(targets, "not_understood", ()))
+        if infos or noted or unread:
             result = Result(noted, [], fail_on=request.fail_on or Severity.WARNING, root=request.root)
             result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
+            _not_understood(result, unread, request)
             return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     if request.bags:
@@ -549,6 +553,7 @@ def _missing_packages_once(result: Result) -> dict[str, Finding]:
     from urdfcheck.load.packages import Resolver, missing_packages
 
     template: dict[str, Finding] = {}
+    owners: dict[str, list] = {}  # package -> the targets that stopped at it
     places: dict[str, list[tuple[str, int]]] = {}
     variants: dict[str, list] = {}  # package -> the (model, variant) places the loader stopped at it
     for t, found in zip(result.targets, result.by_target):
@@ -558,6 +563,8 @@ def _missing_packages_once(result: Result) -> dict[str, Finding]:
         names = {m.group(1) for f in hits if (m := _MISSING.search(f.message))}
         if not names:
             continue
+        for n in names:
+            owners.setdefault(n, []).append(t)
         find = Resolver(dict(t.packages), near=Path(os.path.abspath(t.path))).find
         missing = missing_packages([str(t.path)], find)
         for f in hits:
@@ -587,11 +594,35 @@ def _missing_packages_once(result: Result) -> dict[str, Finding]:
         msg = (f"package {name!r} not found (pass --package {name}=PATH)"
                + (f"; referenced in {n} places" if n > 1 else ""))
         seen_in = variants.get(name, [])
-        merged[name] = base._replace(message=msg, location=first, related=rest,
-                                     where=tuple(seen_in) if len(seen_in) > 1 else ())
+        merged[name] = _outside(base._replace(message=msg, location=first, related=rest,
+                                              where=tuple(seen_in) if len(seen_in) > 1 else ()),
+                                name, owners.get(name, ()))
     result.findings = sorted([f for f in result.findings if f.code != "X013"] + list(merged.values()),
                              key=Finding.sort_key)
     return merged
+
+
+def _outside(f: Finding, name: str, targets) -> Finding:
+    """The evidence rule for a package not found (issue 37): one the checkout references but does not hold is a
+    dependency the workspace provides (colcon builds the repository beside its dependencies): linted alone, its
+    absence is no defect of the repository, so an info saying how to confirm. It stays an error when the runner
+    named the package (--package, the config's packages:) or when a package of the checkout has a name it
+    nearly matches (a misspelt name: that package never provides it)."""
+    import difflib
+
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    have: set[str] = set()
+    for t in targets:
+        settings = getattr(t, "settings", None)
+        if settings is not None and name in dict(settings.packages):
+            return f
+        have.update(t.packages)
+    if difflib.get_close_matches(name, sorted(have), n=1, cutoff=0.85):
+        return f
+    step = Step("package", name, "outside", f"pass --package {name}=PATH, or lint from a workspace that holds it")
+    return engine.on_evidence([f], (step,))[0]
 
 
 # --- for tests and scripts ---------------------------------------------------------------------------------

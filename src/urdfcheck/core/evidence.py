@@ -30,6 +30,9 @@ HOW = {
     "probe": (False, "a file that may be a fragment of another model"),
     "shape": (False, "picked by its shape"),
     "guess": (False, "a guess"),
+    # a package the checkout references but does not hold: the workspace's business (a dependency), unless the
+    # runner named where it lives
+    "outside": (False, "a package outside the checkout, which the workspace that builds it provides"),
 }
 
 

@@ -168,6 +168,35 @@ class Deployment(Record):
         return out
 
 
+def _model_like(path: str) -> bool:
+    """A file a launch-time pattern may pick as the robot: a `.urdf`/`.xacro` (the loader says what is wrong
+    with it), or any other whose root element is <robot>; never an SDFormat file, a text or a YAML."""
+    low = path.lower()
+    if low.endswith((".urdf", ".xacro")):
+        return True
+    if low.endswith(_NOT_URDF):
+        return False
+    from urdfcheck.load.discover import _read_head, _root_tag
+
+    tag = _root_tag(_read_head(path))
+    return tag is not None and tag.split(":")[-1] == "robot"
+
+
+_NOT_URDF = (".sdf", ".world", ".yaml", ".yml", ".json", ".py", ".md", ".txt", ".rst", ".srdf", ".launch",
+             ".stl", ".dae", ".obj", ".png", ".jpg", ".xml")
+
+
+def sdformat(path: str) -> bool:
+    """An SDFormat model (`.sdf`, or root <sdf>): robot_state_publisher reads it through sdformat_urdf, but it
+    is no URDF, and linting it as one reports its every element."""
+    if path.lower().endswith((".sdf", ".world")):
+        return True
+    from urdfcheck.load.discover import _read_head, _root_tag
+
+    tag = _root_tag(_read_head(path))
+    return tag is not None and tag.split(":")[-1] == "sdf"
+
+
 def _same_file(path: str, files) -> str | None:
     """`path` as read (a source file), or the file of `files` it names in the install layout."""
     if os.path.isfile(path):
@@ -252,7 +281,12 @@ class _Workspace:
         return None
 
     def match(self, pattern: str) -> list[str]:
-        """Files matching a path with pieces decided at launch time (UNKNOWN), in the source layout too."""
+        """Model files matching a path with pieces decided at launch time (UNKNOWN), in the source layout too.
+        A path that is nothing but launch-time pieces (`robot_xacro_file` with no default), or is relative (to a
+        working directory the launch file never had), names no file: matching it would take a LICENSE or a
+        README of the checkout for the robot. Only files that may be URDF robots are matched (`_model_like`)."""
+        if not os.path.isabs(pattern):
+            return []
         pat = glob.escape(pattern).replace("\x00", "*")
         hits = [h for h in sorted(glob.glob(pat)) if os.path.isfile(h)]
         if not hits:
@@ -267,7 +301,7 @@ class _Workspace:
                         if hits:
                             break
                     break
-        return [h for h in hits if self.inside(h)][:MAX_MODEL_FILES]
+        return [h for h in hits if self.inside(h) and _model_like(h)][:MAX_MODEL_FILES]
 
     def inactive_includes(self, path: str) -> list[str]:
         """Files a Python launch file includes under a condition that is false with its defaults."""
@@ -452,6 +486,10 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
             picked = [(f, "")] if f else []
             if not picked:
                 notes.append((f"model file {_show(ref.path)} not found in the workspace", ref.loc))
+            elif sdformat(f):
+                notes.append((f"{_show(f)} is an SDFormat model (read through sdformat_urdf), not a URDF: "
+                              "not checked", ref.loc))
+                picked = []
         if not picked:
             out.append(Deployment(None, notes=notes, **common))
             continue
