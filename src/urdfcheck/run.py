@@ -179,6 +179,34 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
         t.joint_states = topic
 
 
+_NO_DEFAULT = None
+
+
+def _required_args(t: Target, found: list[Finding]) -> list[Finding]:
+    """The evidence rule for a required xacro argument (no default) that nothing sets, on a model found by
+    discovery (no launch file runs it, no one named it): the argument is an input of the model (UR's `name`), the
+    deployment that gives it is what is missing, so an info naming it. A launch file that runs the model without
+    it, or a model the runner named, keeps the error."""
+    global _NO_DEFAULT
+    if any(s.how in ("named", "config", "launched") for s in t.evidence) or getattr(t, "deployment", None):
+        return found
+    import re
+
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    _NO_DEFAULT = _NO_DEFAULT or re.compile(r"^xacro argument '([^']+)' has no default and nothing sets it")
+    out = []
+    for f in found:
+        m = _NO_DEFAULT.match(f.message) if f.code == "X010" else None
+        if m is not None:
+            step = Step("deployment", f"a launch file running {shown(str(t.path))}", "undeployed",
+                        "lint the launch file that runs it")
+            f = engine.on_evidence([f], (step,))[0]
+        out.append(f)
+    return out
+
+
 def _fragment(t: Target) -> bool:
     """A probe whose load failed only on symbols the files that include it provide (`_load_findings`)."""
     return bool(t.probe) and getattr(t, "fragment", False)
@@ -191,7 +219,7 @@ def _load_findings(t: Target, exp) -> list[Finding]:
     keeps its severity (a decoy include never hides a broken robot)."""
     from urdfcheck.rules import engine
 
-    found = engine.on_evidence(exp.findings, t.evidence)
+    found = _required_args(t, engine.on_evidence(exp.findings, t.evidence))
     if not (t.probe and t.includers and exp.findings):
         return found
     from urdfcheck.core.evidence import Step

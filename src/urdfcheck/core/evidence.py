@@ -32,6 +32,8 @@ HOW = {
     "guess": (False, "a guess"),
     # a package the checkout references but does not hold: the workspace's business (a dependency), unless the
     # runner named where it lives
+    # a discovered model no launch file runs: the values its required xacro arguments get are unknown
+    "undeployed": (False, "no launch file of the checkout runs it, so what its required arguments are set to is unknown"),
     "outside": (False, "a package outside the checkout, which the workspace that builds it provides"),
 }
 
