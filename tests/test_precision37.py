@@ -78,3 +78,12 @@ def test_a_required_xacro_argument_of_a_model_no_launch_file_runs_is_an_info(rep
     # named by the runner, the model is theirs to give arguments to: the error stays
     code, report = lint_json(["arm_description/urdf/arm.urdf.xacro"], cwd=root)
     assert [f["severity"] for f in report["findings"] if f["code"] == "X010"] == ["error"] and code == 1
+
+
+def test_other_tools_yaml_in_a_config_folder_is_not_read_as_ros_parameters(repo):
+    # tracked_vehicle_demo's VINS camera files (OpenCV FileStorage, `%YAML:1.0`) and ar4's ros_gz_bridge topic
+    # list were C007 errors "YAML syntax error" / "must be a mapping"; a broken ROS parameter file still is one
+    root = repo("foreign_yaml")
+    code, report = lint_json([], cwd=root)
+    c007 = [(f["location"]["file"], f["severity"]) for f in report["findings"] if f["code"] == "C007"]
+    assert c007 == [("rover_description/config/broken.yaml", "error")] and code == 1
