@@ -87,3 +87,26 @@ def test_other_tools_yaml_in_a_config_folder_is_not_read_as_ros_parameters(repo)
     code, report = lint_json([], cwd=root)
     c007 = [(f["location"]["file"], f["severity"]) for f in report["findings"] if f["code"] == "C007"]
     assert c007 == [("rover_description/config/broken.yaml", "error")] and code == 1
+
+
+def test_an_option_alone_keeps_the_error_and_a_combination_of_options_is_an_info(repo):
+    # franka_description / vrx: five options, so pairwise variants, each flipping several at once; what one
+    # option breaks is now shown in the variant of that option alone, and what only a combination no launch
+    # file uses breaks rests on a guess
+    root = repo("variants")
+    code, report = lint_json([], cwd=root)
+    hard = [(f["code"], f["location"]["line"], f["variant"]) for f in report["findings"]
+            if f["severity"] in ("warning", "error")]
+    assert hard == [("S007", 11, "mirror=true")] and code == 1
+    hitch = [f for f in report["findings"] if f["location"]["line"] in (18, 19)]
+    assert hitch and all(f["severity"] == "info" for f in hitch)
+    assert all("options set together" in f["message"] for f in hitch)
+
+
+def test_a_file_whose_path_is_handed_to_a_macro_that_includes_it_is_a_fragment(repo):
+    # vrx: `<xacro:wamv_gazebo thruster_layout="$(find wamv_gazebo)/urdf/thruster_layouts/wamv_aft_thrusters.xacro"/>`
+    # and the macro's `<xacro:include filename="${thruster_layout}"/>`: the layout, linted alone, failed on the
+    # includer's `namespace` (X010 error)
+    root = repo("macro_path")
+    code, report = lint_json([], cwd=root)
+    assert _hard(report) == [] and code == 0

@@ -197,9 +197,13 @@ def _required_args(t: Target, found: list[Finding]) -> list[Finding]:
 
     _NO_DEFAULT = _NO_DEFAULT or re.compile(r"^xacro argument '([^']+)' has no default and nothing sets it")
     out = []
+    flipped = t.variant not in ("", "defaults")
     for f in found:
         m = _NO_DEFAULT.match(f.message) if f.code == "X010" else None
-        if m is not None:
+        # an option flipped on its own whose branch includes a file named by another argument left empty
+        # (vrx's yaml_component_generation and component_xacro_file): that argument is the deployment's too
+        empty = f.code == "X010" and flipped and f.message.startswith("not a regular file (a folder)")
+        if m is not None or empty:
             step = Step("deployment", f"a launch file running {shown(str(t.path))}", "undeployed",
                         "lint the launch file that runs it")
             f = engine.on_evidence([f], (step,))[0]

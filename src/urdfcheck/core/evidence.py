@@ -34,6 +34,8 @@ HOW = {
     # runner named where it lives
     # a discovered model no launch file runs: the values its required xacro arguments get are unknown
     "undeployed": (False, "no launch file of the checkout runs it, so what its required arguments are set to is unknown"),
+    # boolean options flipped together (automatic variants): each option alone is linted as a variant of its own
+    "combination": (False, "options set together in a way no launch file or config was seen to use"),
     "outside": (False, "a package outside the checkout, which the workspace that builds it provides"),
 }
 
