@@ -179,6 +179,30 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
         t.joint_states = topic
 
 
+def _combinations(targets: list[Target], by_target: list[list[Finding]]) -> None:
+    """The evidence rule for automatic variants (issue 37): a problem that only a combination of several options
+    shows (a variant of a discovered model that no launch file or config was seen to use) is an info saying how
+    to confirm it; one that the defaults or an option alone show too keeps its severity in every variant."""
+    if not any(getattr(t, "combination", False) for t in targets):
+        return
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.finish.collapse import _shape
+    from urdfcheck.rules import engine
+
+    def key(t, f):
+        loc = f.location
+        return (os.path.realpath(str(t.path)), f.code, loc.file, loc.line, loc.column, _shape(f.message))
+
+    plain = {key(t, f) for t, found in zip(targets, by_target) if not getattr(t, "combination", False)
+             for f in found}
+    step = Step("variant", "with several options", "combination", "name the combination under the model's "
+                "variants: in urdfcheck.yaml, or pass it with --arg, if a deployment uses it")
+    for i, t in enumerate(targets):
+        if getattr(t, "combination", False):
+            by_target[i] = [f if f.severity <= Severity.INFO or key(t, f) in plain
+                            else engine.on_evidence([f], (step,))[0] for f in by_target[i]]
+
+
 _NO_DEFAULT = None
 
 
@@ -481,6 +505,7 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                 p.cancel()
     for i, f in yaml.unused():
         by_target[i].append(f)
+    _combinations(targets, by_target)
     result = Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
     result.read = read
     return result

@@ -67,6 +67,7 @@ class Target(Record):
     # how the model and its deployment were chosen (core.evidence.Step), which every finding of it rests on
     evidence: tuple = ()
     library = False  # a probe whose expansion has no link: not a robot, not checked as one
+    combination = False  # an automatic variant of a discovered model flipping several options (run._combinations)
     twin = False  # a declared model linted again with the consumers found beside it (an unvouched config's)
 
     def __init__(self, path: Path,
@@ -501,12 +502,10 @@ class Planner:
         for name, vargs in auto_variants(str(entry), dict(self.request.args),
                                          dict(settings.packages) if packages is None else packages):
             out.append(self.target(entry, vargs, name, None, settings, packages))
-            if found and name.count(",") >= 1:
-                # several options flipped together: a combination no launch file or config was seen to use, so
-                # what only it shows rests on a guess (issue 37); each option alone is a variant of its own
-                out[-1].evidence = (_step("variant", "with several options", "combination", "name the "
-                                          "combination under the model's variants: in urdfcheck.yaml, or pass it "
-                                          "with --arg, if a deployment uses it"),)
+            # several options flipped together on a discovered model: a combination no launch file or config
+            # was seen to use, so what only it shows rests on a guess (issue 37; run._combinations); each option
+            # alone is a variant of its own
+            out[-1].combination = found and name.count(",") >= 1
         return out
 
     def target(self, path: Path, args: dict, variant: str, consumers, settings: Settings,
