@@ -110,3 +110,10 @@ def test_a_file_whose_path_is_handed_to_a_macro_that_includes_it_is_a_fragment(r
     root = repo("macro_path")
     code, report = lint_json([], cwd=root)
     assert _hard(report) == [] and code == 0
+
+
+def test_a_file_of_includes_only_is_a_library_when_its_expansion_has_no_link(repo):
+    # uuv_simulator's snippets.xacro / sensor_snippets.xacro: S011 error "the model defines no <link>"
+    root = repo("include_only")
+    _, report = lint_json([], cwd=root)
+    assert _hard(report) == []

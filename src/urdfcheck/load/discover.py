@@ -117,7 +117,10 @@ def _is_library(text: str, includes: bool = False) -> bool:
     defs = _definitions(kids, 0)
     # macros or properties only (an `xacro:if` holding only definitions counts): a library, certainly (its
     # expansion is an empty robot). An include may bring a robot body: such a file is expanded to tell
-    return defs is not None and bool(defs & {"macro", "property"}) and (includes or "include" not in defs)
+    # with `includes`, a file of includes only (uuv_simulator's snippets.xacro: the macro libraries of a package
+    # in one include) is a probe too: its expansion has no link unless an included file brings a robot body
+    return defs is not None and (bool(defs & {"macro", "property"}) or (includes and defs == {"include"})) and (
+        includes or "include" not in defs)
 
 
 def _definitions(kids, depth: int) -> set[str] | None:
