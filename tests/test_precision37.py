@@ -117,3 +117,14 @@ def test_a_file_of_includes_only_is_a_library_when_its_expansion_has_no_link(rep
     root = repo("include_only")
     _, report = lint_json([], cwd=root)
     assert _hard(report) == []
+
+
+def test_parts_attached_to_another_robots_link_are_no_robot_but_a_misspelt_parent_is_an_error(repo):
+    # intera_common's controller_box.urdf: every link hangs from Sawyer's `base` (S003 error "parent link 'base'
+    # is not defined"); arm.urdf has its root link and a misspelt parent
+    root = repo("attachable")
+    code, report = lint_json([], cwd=root)
+    s003 = sorted((f["location"]["file"].rsplit("/", 1)[-1], f["severity"]) for f in report["findings"]
+                  if f["code"] == "S003")
+    assert s003 == [("arm.urdf", "error"), ("controller_box.urdf", "info"), ("controller_box.urdf", "info")]
+    assert code == 1

@@ -179,6 +179,23 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
         t.joint_states = topic
 
 
+def _attachable(t: Target, model) -> tuple:
+    """A discovered model with no root link of its own, every link a child of a joint and some parent link
+    defined nowhere in it (intera's controller_box.urdf: parts attached to Sawyer's `base` at run time), is a
+    fragment for another robot, not a robot: what it says rests on that guess (issue 37). A robot with a
+    misspelt parent still has its root link, and one named or launched is a robot by evidence."""
+    if any(s.how in ("named", "config", "launched") for s in t.evidence) or getattr(t, "deployment", None):
+        return ()
+    if not model.links or model.roots:
+        return ()
+    if not any(j.parent is not None and j.parent not in model.links for j in model.joint_list):
+        return ()
+    from urdfcheck.core.evidence import Step
+
+    return (Step("model", shown(str(t.path)), "probe", "name it under models: in urdfcheck.yaml if it is a whole "
+                 "robot"),)
+
+
 def _combinations(targets: list[Target], by_target: list[list[Finding]]) -> None:
     """The evidence rule for automatic variants (issue 37): a problem that only a combination of several options
     shows (a variant of a discovered model that no launch file or config was seen to use) is an info saying how
@@ -391,7 +408,7 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
                              variant=t.variant, target=t.settings.target if t.settings is not None else None,
                              profiles=t.settings.profiles if t.settings is not None else (),
-                             evidence=t.evidence)
+                             evidence=t.evidence + _attachable(t, model))
         findings.extend(engine.run_checks(model, ctx))
         if t.bags:
             findings.extend(_bag_findings(model, t, selection, contracts))
