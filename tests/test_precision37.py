@@ -128,3 +128,14 @@ def test_parts_attached_to_another_robots_link_are_no_robot_but_a_misspelt_paren
                   if f["code"] == "S003")
     assert s003 == [("arm.urdf", "error"), ("controller_box.urdf", "info"), ("controller_box.urdf", "info")]
     assert code == 1
+
+
+def test_a_model_chosen_by_eval_conditions_is_the_one_the_launch_file_runs(repo):
+    # ned_ros: `<arg name="urdf_path" value="...gripper1_n_camera.urdf.xacro" if="$(eval simulation_mode and
+    # gazebo and simu_gripper)"/>`: the `and`/`not` conditions were undecided, the last definition won, and the
+    # gripper's controller file was checked against the model without the gripper (C001 error)
+    root = repo("eval_model")
+    code, report = lint_json([], cwd=root)
+    assert _hard(report) == [] and code == 0
+    # and a path decided at launch time is shown as reports show paths, never the runner's absolute folder
+    assert not [f for f in report["findings"] if str(root) in f["message"]]

@@ -479,7 +479,7 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
             files = ws.match(ref.path)
             picked = [(f, f"model={os.path.basename(f)}") for f in files]
             if not picked:
-                notes.append((f"model path {ref.path.replace(UNKNOWN, '*')} is decided at launch time and "
+                notes.append((f"model path {_show(ref.path).replace(UNKNOWN, '*')} is decided at launch time and "
                                "matches no file", ref.loc))
         else:
             f = ws.locate(ref.path)
