@@ -139,3 +139,11 @@ def test_a_model_chosen_by_eval_conditions_is_the_one_the_launch_file_runs(repo)
     assert _hard(report) == [] and code == 0
     # and a path decided at launch time is shown as reports show paths, never the runner's absolute folder
     assert not [f for f in report["findings"] if str(root) in f["message"]]
+
+
+def test_a_missing_mesh_named_by_a_file_uri_is_shown_without_the_runners_folder(repo):
+    # denso_robot_ros2: G001 "mesh 'file:////work/shared/corpus2/...'": the runner's absolute path in a report
+    root = repo("file_uri")
+    _, report = lint_json([], cwd=root)
+    (g001,) = [f for f in report["findings"] if f["code"] == "G001"]
+    assert str(root) not in g001["message"] and "cam_description/meshes/base.dae" in g001["message"]
