@@ -147,3 +147,13 @@ def test_a_missing_mesh_named_by_a_file_uri_is_shown_without_the_runners_folder(
     _, report = lint_json([], cwd=root)
     (g001,) = [f for f in report["findings"] if f["code"] == "G001"]
     assert str(root) not in g001["message"] and "cam_description/meshes/base.dae" in g001["message"]
+
+
+def test_a_controller_the_deployment_configures_but_does_not_spawn_rests_on_a_guess(repo):
+    # schunk_svh_ros_driver: the launch file spawns only the hand its `control` argument names (right_hand);
+    # left_hand, configured in the same file for the other choice, was checked against the right hand (C001)
+    root = repo("idle_controller")
+    code, report = lint_json([], cwd=root)
+    assert _hard(report) == [] and code == 0
+    (c001,) = [f for f in report["findings"] if f["code"] == "C001"]
+    assert "Left_Finger" in c001["message"] and "not spawned by this deployment" in c001["message"]

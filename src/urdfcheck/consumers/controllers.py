@@ -183,6 +183,9 @@ class Controller(Record):
     _fields = ('name', 'node', 'type', 'type_loc', 'loc', 'kind', 'ros', 'file', 'params', 'joints', 'broadcasts_all',
                'state_joints', 'drive', 'odom_tf', 'frames', 'notes', 'components', 'wheels')
     inferred = False
+    # configured in a file the deployment loads, while the deployment's spawners (all read) start others: a
+    # controller for another launch-argument choice (schunk_svh's left_hand when `control` is right_hand)
+    idle = False
 
     def __init__(self, name: str,
                  node: str,

@@ -36,6 +36,7 @@ HOW = {
     "undeployed": (False, "no launch file of the checkout runs it, so what its required arguments are set to is unknown"),
     # boolean options flipped together (automatic variants): each option alone is linted as a variant of its own
     "combination": (False, "options set together in a way no launch file or config was seen to use"),
+    "idle": (False, "configured but not spawned by this deployment (another launch-argument choice may start it)"),
     "outside": (False, "a package outside the checkout, which the workspace that builds it provides"),
 }
 

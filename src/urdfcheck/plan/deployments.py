@@ -130,6 +130,16 @@ class Deployment(Record):
             out.notes.append((f"controller {name} is spawned here and taken to be a joint_state_broadcaster "
                               "(its parameter file is not among the files read)", loc))
 
+    def _idle(self, out) -> None:
+        """Mark the controllers this deployment configures but does not spawn, when its spawners were all read
+        (every argument literal or resolved): what names them rests on a guess (rules.contracts, issue 37)."""
+        if not self.spawned or any(getattr(li, "unread_spawners", False) for li in self.infos):
+            return
+        started = {n.strip("/").split("/")[-1] for n, _ in self.spawned}
+        for c in out.controllers:
+            if c.name not in started and "joint_state" not in (c.type or ""):
+                c.idle = True
+
     def consumers(self):
         """The contract checks' view of this deployment (read on each call; cheap, files are small)."""
         from urdfcheck.consumers.consumers import Consumers, _Reader, tf_owners
@@ -143,6 +153,7 @@ class Deployment(Record):
         for c in out.controllers:
             out.notes.extend(c.notes)
         self._spawned_broadcasters(out)
+        self._idle(out)
         lpfs = [pf for pf in (r.params(p, out.errors) for p in self.localization_files) if pf is not None]
         out.drivers = infer_drivers(self.driver_nodes, r)
         out.launch = list(self.infos)
