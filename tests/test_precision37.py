@@ -157,3 +157,17 @@ def test_a_controller_the_deployment_configures_but_does_not_spawn_rests_on_a_gu
     assert _hard(report) == [] and code == 0
     (c001,) = [f for f in report["findings"] if f["code"] == "C001"]
     assert "Left_Finger" in c001["message"] and "not spawned by this deployment" in c001["message"]
+
+
+def test_a_launch_argument_choice_that_needs_the_users_own_file_is_an_info(repo):
+    # panther_ros: `wheel_type:=custom` reads config/custom.yaml, which its users provide (X010 error); the
+    # default choice keeps the error if its file is missing
+    root = repo("choice_files")
+    _, report = lint_json([], cwd=root)
+    (x010,) = [f for f in report["findings"] if f["code"] == "X010"]
+    assert x010["severity"] == "info" and "custom.yaml" in x010["message"]
+    assert "a launch-argument value other than the default" in x010["message"]
+    (root / "wh_description" / "config" / "WH01.yaml").unlink()
+    code, report = lint_json([], cwd=root)
+    assert [f["severity"] for f in report["findings"] if f["code"] == "X010" and "WH01" in f["message"]] == ["error"]
+    assert code == 1

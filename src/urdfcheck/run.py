@@ -229,7 +229,10 @@ def _required_args(t: Target, found: list[Finding]) -> list[Finding]:
     deployment that gives it is what is missing, so an info naming it. A launch file that runs the model without
     it, or a model the runner named, keeps the error."""
     global _NO_DEFAULT
-    if any(s.how in ("named", "config", "launched") for s in t.evidence) or getattr(t, "deployment", None):
+    d = getattr(t, "deployment", None)
+    if d is not None and getattr(d, "variant", "") and not d.variant.startswith("model="):
+        return _choice(t, found)
+    if any(s.how in ("named", "config", "launched") for s in t.evidence) or d is not None:
         return found
     import re
 
@@ -247,6 +250,24 @@ def _required_args(t: Target, found: list[Finding]) -> list[Finding]:
         if m is not None or empty:
             step = Step("deployment", f"a launch file running {shown(str(t.path))}", "undeployed",
                         "lint the launch file that runs it")
+            f = engine.on_evidence([f], (step,))[0]
+        out.append(f)
+    return out
+
+
+def _choice(t: Target, found: list[Finding]) -> list[Finding]:
+    """A deployment of a launch-argument value other than the default (panther's wheel_type:=custom, which its
+    description says needs the user's own wheel_config_path) whose model reads a file that does not exist: the
+    value needs arguments the launch file's users give, so an info (issue 37). The defaults keep the error."""
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    out = []
+    for f in found:
+        if f.code == "X010" and f.severity > Severity.INFO and (
+                "No such file or directory" in f.message or f.message.startswith("not a regular file")):
+            step = Step("deployment", f"{shown(t.deployment.launch.file)} [{t.deployment.variant}]", "choice",
+                        "name the arguments that value needs under models: in urdfcheck.yaml")
             f = engine.on_evidence([f], (step,))[0]
         out.append(f)
     return out
