@@ -171,3 +171,16 @@ def test_a_launch_argument_choice_that_needs_the_users_own_file_is_an_info(repo)
     code, report = lint_json([], cwd=root)
     assert [f["severity"] for f in report["findings"] if f["code"] == "X010" and "WH01" in f["message"]] == ["error"]
     assert code == 1
+
+
+def test_ros1_joint_state_controller_extra_joints_are_state_sources():
+    # diffbot: joint_state_controller `extra_joints: [{name: rear_caster_rotation_joint, ...}]` publishes the
+    # passive caster's joint; C003 said nothing publishes it
+    from urdfcheck.consumers.controllers import read_controllers
+    from urdfcheck.consumers.params import parse_params
+
+    text = ("diffbot:\n  joint_state_controller:\n    type: joint_state_controller/JointStateController\n"
+            "    extra_joints:\n      - name: rear_caster_rotation_joint\n        position: 0.01\n"
+            "      - name: rear_caster_wheel_joint\n")
+    (jsc,) = list(read_controllers([parse_params(text, "diffbot_control.yaml")]))
+    assert [u.joint for u in jsc.state_joints] == ["rear_caster_rotation_joint", "rear_caster_wheel_joint"]
