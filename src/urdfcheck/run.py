@@ -107,8 +107,11 @@ def run(request: LintRequest, *, retain: list | None = None, targets: list[Targe
     from urdfcheck.load.budget import run_budget
     from urdfcheck.load.discover import remembering
 
+    from urdfcheck.core import door
+
     reset_hints()
-    with showing(request.root), run_budget(request.budget), remembering():
+    typed = (*request.paths, request.config, request.baseline, *request.bags)
+    with door.guarding(typed), showing(request.root), run_budget(request.budget), remembering():
         try:
             return _run(request, retain, targets)
         except MemoryError:

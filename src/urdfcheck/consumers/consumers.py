@@ -348,8 +348,8 @@ def _mentions(path: str, name: str) -> bool:
     if leaves_cwd(path):
         return False
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        return name.encode() in read_file(path, 2 * 1024 * 1024)
+        return name.encode() in door.read_bytes(path, limit=2 * 1024 * 1024)
     except OSError:
         return False

@@ -36,3 +36,30 @@ def relative(p: str, base: str) -> str | None:
     if t is not None and (p == t or p.startswith(t.rstrip(os.sep) + os.sep)):
         return os.path.relpath(p, base)
     return None
+
+
+def around(folder: str) -> str:
+    """The checkout holding the folder `folder` (absolute): the nearest folder above holding `.git`, else the
+    outermost holding a package.xml, else `folder` itself."""
+    found = top(folder)
+    if found is not None:
+        return found
+    return folder
+
+
+def run_roots(typed=(), cwd: str | None = None) -> list[str]:
+    """The folders a run may read below before any package is resolved (core.door.guarded): the checkout
+    around the working directory, and the checkout around each path the runner typed that lies outside it.
+    A typed path inside the working directory's checkout adds nothing: its real path must stay inside (a link
+    committed there that leads out is refused by the door)."""
+    base = os.path.abspath(cwd or os.getcwd())
+    roots = [around(base)]
+    for p in typed:
+        if not p:
+            continue
+        a = os.path.abspath(os.fspath(p))
+        if any(a == r or a.startswith(r.rstrip(os.sep) + os.sep) for r in roots):
+            continue
+        folder = a if os.path.isdir(a) else os.path.dirname(a)
+        roots.append(around(folder))
+    return roots

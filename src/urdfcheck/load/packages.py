@@ -20,9 +20,9 @@ SCAN_LIMIT = 5000  # directories visited at most
 
 def package_name(package_xml: Path) -> str | None:
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        head = read_file(package_xml, 65536)
+        head = door.read_bytes(package_xml, limit=65536)
     except OSError:
         return None
     m = _NAME.search(head)
@@ -247,10 +247,20 @@ class Resolver:
         self._ros_scanned: dict[str, Path] | None = None
         self._own_pkg: tuple | None = None
         self.used: dict[str, Path] = {}
+        from urdfcheck.core import door
+
+        # the folders this resolver lets files be read from are the run's roots too (core.door)
+        for root in (*self.explicit.values(), self.workspace, self.named_workspace):
+            if root is not None:
+                door.add_root(root)
 
     def find(self, name: str) -> Path | None:
         hit = self._find(name)
         if hit is not None:
+            if name not in self.used:
+                from urdfcheck.core import door
+
+                door.add_root(hit)  # a package the run resolved: its files may be read (core.door)
             self.used[name] = hit
         return hit
 
@@ -435,7 +445,7 @@ def literal_includes(entries, find, max_files: int = MAX_REF_FILES, allow=None):
     name or `$(find known_package)/literal`), breadth first, each once, read as text without expanding: what
     the unresolved packages, a library's robots and a model's Gazebo parameter files are found from.
     `allow(path)`: whether an included file may be looked at at all (asked before any stat or read)."""
-    from urdfcheck.core.safeio import read_file  # a regular file only: a FIFO must not block
+    from urdfcheck.core import door  # a regular file inside the run's roots only: a FIFO must not block
 
     queue, seen = [os.path.abspath(e) for e in entries], set()
     while queue and len(seen) < max_files:
@@ -446,7 +456,7 @@ def literal_includes(entries, find, max_files: int = MAX_REF_FILES, allow=None):
             continue
         seen.add(path)
         try:
-            text = read_file(path, MAX_REF_BYTES)[:MAX_REF_BYTES].decode("utf-8", "replace")
+            text = door.read_bytes(path, limit=MAX_REF_BYTES)[:MAX_REF_BYTES].decode("utf-8", "replace")
         except OSError:
             continue
         yield path, text

@@ -194,9 +194,9 @@ class Config(FrozenRecord):
 # --- finding and reading -------------------------------------------------------------------------------
 def _pyproject_has_table(path: Path) -> bool:
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        text = read_file(path, 1024 * 1024).decode("utf-8", "replace")
+        text = door.read_bytes(path, limit=1024 * 1024).decode("utf-8", "replace")
     except OSError:
         return False
     return re.search(r"^\s*\[\[?\s*tool\.urdfcheck(\s*\]|\.)", text, re.M) is not None
@@ -259,9 +259,9 @@ def _read_pyproject(path: str):
     import tomllib
 
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        raw = read_file(path, 1024 * 1024)
+        raw = door.read_bytes(path, limit=1024 * 1024)
         text = raw.decode("utf-8")
         data = tomllib.loads(text)
     except OSError as e:
