@@ -90,8 +90,13 @@ def _model_path(ns) -> str:
 
 def _run(fn):
     def wrapped(ns) -> int:
+        from urdfcheck.core import door
+
+        # every read of the command through the door: the checkout, the packages resolved, what is typed
+        typed = (getattr(ns, "model", None), getattr(ns, "joint_states", None), getattr(ns, "config", None))
         try:
-            return fn(ns)
+            with door.guarding(typed):
+                return fn(ns)
         except UsageError as e:
             print(usage_message(ns.command, e), file=sys.stderr)
             return EXIT_USAGE
@@ -214,9 +219,11 @@ def cmd_tf(ns) -> int:
 
 # --- publish ----------------------------------------------------------------------------------------------------
 def _read_joint_states(path: str) -> list:
+    from urdfcheck.core import door
+
     try:
-        with open(path, "rb") as f:
-            data = f.read(64 * 1024 * 1024 + 1)
+        # typed by the runner; inside the checkout its real path must stay there (a link the pull request made)
+        data = door.read_bytes(path, limit=64 * 1024 * 1024, runner=True)
     except OSError as e:
         raise UsageError(f"cannot read {path}: {e.strerror}") from None
     if len(data) > 64 * 1024 * 1024:
@@ -231,7 +238,8 @@ def _read_joint_states(path: str) -> list:
         try:
             docs = [d for d in yaml.safe_load_all(text) if d is not None]
         except yaml.YAMLError as e:
-            raise UsageError(f"{path} is neither JSON nor YAML: {e}") from None
+            # the place and the problem only: PyYAML's text quotes the offending line, which may be anything
+            raise UsageError(f"{path} is neither JSON nor YAML: {_yaml_problem(e)}") from None
     msgs = []
     for d in docs:
         if isinstance(d, dict) and isinstance(d.get("messages"), list):
@@ -241,6 +249,15 @@ def _read_joint_states(path: str) -> list:
         else:
             msgs.append(d)
     return msgs
+
+
+def _yaml_problem(e) -> str:
+    """A YAML error as `line L, column C: problem`, never the quoted line PyYAML's own text holds."""
+    mark = getattr(e, "problem_mark", None)
+    problem = getattr(e, "problem", None) or "not valid YAML"
+    if mark is None:
+        return problem
+    return f"line {mark.line + 1}, column {mark.column + 1}: {problem}"
 
 
 def _tf_dict(t) -> dict:
