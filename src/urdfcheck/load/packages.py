@@ -18,6 +18,18 @@ SCAN_DEPTH = 6
 SCAN_LIMIT = 5000  # directories visited at most
 
 
+def _listed_name(package_xml: Path, root) -> str | None:
+    """`package_name` of a package.xml a workspace scan below `root` listed: the scan looks at folders beside the
+    checkout, not yet roots of the run, so the read is not confined to them, but to `root` (never a link out)."""
+    from urdfcheck.core import door
+
+    real = os.path.realpath(package_xml)
+    if not _below(real, os.path.realpath(root)):
+        return None
+    with door.unconfined():
+        return package_name(package_xml)
+
+
 def package_name(package_xml: Path) -> str | None:
     try:
         from urdfcheck.core import door
@@ -91,7 +103,7 @@ def scan(root: Path, near: Path | None = None) -> dict[str, Path]:
     for d, entries in folders(root, max_dirs=SCAN_LIMIT, max_depth=SCAN_DEPTH):
         for e in entries:
             if e.name == "package.xml" and e.is_file():
-                name = package_name(Path(e.path))
+                name = _listed_name(Path(e.path), root)
                 if name and (name not in found or _closer(Path(d), found[name], near)):
                     found[name] = Path(d)
     return found
@@ -114,7 +126,7 @@ def workspace_packages(root: str | os.PathLike) -> dict[str, list[Path]]:
     for d, entries in folders(key, max_dirs=WORKSPACE_LIMIT):
         for e in entries:
             if e.name == "package.xml" and e.is_file(follow_symlinks=False):
-                name = package_name(Path(e.path))
+                name = _listed_name(Path(e.path), key)
                 if name:
                     found.setdefault(name, []).append(Path(d))
     _WORKSPACES[key] = found
@@ -250,7 +262,9 @@ class Resolver:
         from urdfcheck.core import door
 
         # the folders this resolver lets files be read from are the run's roots too (core.door)
-        for root in (*self.explicit.values(), self.workspace, self.named_workspace):
+        # (not the workspace around the input, which may be the folder above the checkout: its packages become
+        # roots one by one, as `find` resolves them)
+        for root in (*self.explicit.values(), self.named_workspace):
             if root is not None:
                 door.add_root(root)
 
