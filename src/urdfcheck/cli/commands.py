@@ -2,4 +2,4 @@
 importing argparse or cli.main; a first word that is none of them is a path (`urdfcheck robot.urdf`)."""
 
 PUBLISH_COMMANDS = ("tree", "tf", "publish", "verify", "diff", "consumers")
-COMMANDS = ("lint", "expand", "rules", "help", "bag") + PUBLISH_COMMANDS
+COMMANDS = ("lint", "expand", "rules", "help", "bag", "server") + PUBLISH_COMMANDS

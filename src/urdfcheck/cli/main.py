@@ -129,6 +129,11 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
     rules.add_argument("--format", choices=["text", "json", "markdown"], default="text")
     rules.set_defaults(func=cmd_rules)
 
+    srv = sub.add_parser("server", help="a language server (LSP over stdio) for editors: findings as you type")
+    srv.add_argument("--stdio", action="store_true", help="speak over standard input and output (the default)")
+    add_config_options(srv)
+    srv.set_defaults(func=cmd_server)
+
     if with_publish:  # skipped for lint/expand/rules: its import is a measurable part of a lint run
         from urdfcheck.cli import publish as cli_publish
 
@@ -141,6 +146,20 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
 
         cli_consumers.add_parser(sub)
     return parser
+
+
+def cmd_server(ns) -> int:
+    try:
+        from urdfcheck.server import lsp
+    except ImportError as e:
+        raise UsageError(f"the language server needs the 'server' extra (pip install 'urdfcheck[server]'): {e}"
+                         ) from None
+    options = {}
+    if getattr(ns, "config", None):
+        options["config"] = ns.config
+    if getattr(ns, "no_config", False):
+        options["no_config"] = True
+    return lsp.main(options)
 
 
 def cmd_expand(ns) -> int:
@@ -294,14 +313,11 @@ def run(after=None) -> None:
         atexit._run_exitfuncs()  # what others registered still runs (coverage's subprocess mode, logging)
     except Exception:  # noqa: BLE001 - a failing handler must not change the exit code
         pass
-    try:
-        sys.stdout.flush()
-    except BrokenPipeError:
-        pass
-    try:
-        sys.stderr.flush()
-    except BrokenPipeError:
-        pass
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (BrokenPipeError, ValueError):  # ValueError: closed (the language server's client hung up)
+            pass
     os._exit(code)
 
 

@@ -32,7 +32,7 @@ import threading
 
 from urdfcheck.core import safeio
 
-DEFAULT_RUN_BYTES = 2 * 1024**3  # what one run may read in all (every file of every reader), unless the runner raises it
+DEFAULT_RUN_BYTES = 2 * 1024**3  # what one run may read in all, every reader together, unless the runner raises it
 DEFAULT_FILE_BYTES = 64 * 1024**2  # one file read whole, unless the reader asks for a smaller or larger cap
 
 
@@ -145,6 +145,9 @@ def admit(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) -> str
     if run is not None:
         run.budget.take(st.st_size, _shown(path))
     return real
+
+
+overlaid = safeio.overlaid  # the unsaved text of an editor's open documents (`urdfcheck server`)
 
 
 def read_bytes(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) -> bytes:

@@ -8,9 +8,11 @@ tell "too large" from "exactly the cap".
 """
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import stat
+import threading
 
 _KINDS = ((stat.S_ISFIFO, "a named pipe"), (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
           (stat.S_ISSOCK, "a socket"), (stat.S_ISDIR, "a folder"))
@@ -43,9 +45,29 @@ def check_regular(path) -> os.stat_result:
     return st
 
 
+_overlay = threading.local()
+
+
+@contextlib.contextmanager
+def overlaid(texts):
+    """Reads of these files (path -> bytes) return these bytes instead of the disk's: the unsaved text of an
+    editor's open documents (`urdfcheck server`). Set per thread; a forked worker inherits it."""
+    prev = getattr(_overlay, "texts", None)
+    _overlay.texts = {os.path.realpath(os.fspath(k)): bytes(v) for k, v in dict(texts).items()}
+    try:
+        yield
+    finally:
+        _overlay.texts = prev
+
+
 def read_file(path, limit: int) -> bytes:
     """At most `limit + 1` bytes of the regular file `path`. OSError (NotRegularFile for a FIFO, device,
     socket or folder) otherwise; never blocks on the file type."""
+    texts = getattr(_overlay, "texts", None)
+    if texts:
+        data = texts.get(os.path.realpath(os.fspath(path)))
+        if data is not None:
+            return data[: limit + 1]
     check_regular(path)
     fd = os.open(path, _FLAGS)
     try:
