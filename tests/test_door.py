@@ -55,6 +55,7 @@ ALLOWED = {
     ("verify/consumers.py", "mujoco.MjModel.from_xml_path"), ("verify/consumers.py", "pybullet.loadURDF"),
     ("verify/consumers.py", "pinocchio.buildModelFromUrdf"), ("verify/consumers.py", "yourdfpy.URDF.load"),
     ("verify/consumers.py", "pybullet.connect"), ("verify/compare.py", "yourdfpy.URDF.load"),  # (a BytesIO)
+    ("server/lsp.py", "ls.get_session().open"),  # an editor's document into the session's memory: no file read
 }
 # Being moved to the door in parallel by the helpers who own these modules (bag/, diff/): the lead empties this
 # set at merge. Nothing else may be added here.
@@ -85,22 +86,10 @@ def _direct_reads(path: Path):
                 yield node.lineno, name
 
 
-def test_every_read_goes_through_the_door():
-    found = []
-    for p in sorted(SRC.rglob("*.py")):
-        rel = p.relative_to(SRC).as_posix()
-        if rel in _DOOR:
-            continue
-        for line, what in _direct_reads(p):
-            if (rel, what) not in ALLOWED and (rel, what) not in PENDING_OTHER_HELPERS:
-                found.append(f"{rel}:{line}: {what}")
-    assert found == [], "read through core.door (read_bytes/read_text/open_stream/admit):\n" + "\n".join(found)
-
-
-def test_the_scan_sees_what_it_must(tmp_path):
+def test_every_read_goes_through_the_door(tmp_path):
     import textwrap
 
-    probe = tmp_path / "door_probe.py"
+    probe = tmp_path / "door_probe.py"  # what the scan must see (and what it must let pass: the door)
     probe.write_text(textwrap.dedent("""\
         from pathlib import Path
         import json, sqlite3, yaml
@@ -119,42 +108,18 @@ def test_the_scan_sees_what_it_must(tmp_path):
     got = [w for _, w in _direct_reads(probe)]
     assert sorted(got) == sorted(["safeio.read_file", "open", "Path('x').read_text", "Path('x').read_bytes",
                                   "sqlite3.connect", "etree.parse", "open", "json.load"]), got
+    found = []
+    for p in sorted(SRC.rglob("*.py")):
+        rel = p.relative_to(SRC).as_posix()
+        if rel in _DOOR:
+            continue
+        for line, what in _direct_reads(p):
+            if (rel, what) not in ALLOWED and (rel, what) not in PENDING_OTHER_HELPERS:
+                found.append(f"{rel}:{line}: {what}")
+    assert found == [], "read through core.door (read_bytes/read_text/open_stream/admit):\n" + "\n".join(found)
 
 
-# --- 2. the door itself ---------------------------------------------------------------------------------------
-def test_a_guarded_run_refuses_a_link_out_and_counts_bytes(tmp_path):
-    inside, outside = tmp_path / "ws", tmp_path / "out"
-    inside.mkdir(), outside.mkdir()
-    (outside / "s.yaml").write_text(SECRET)
-    (inside / "ok.yaml").write_text("a: 1\n")
-    os.symlink(outside / "s.yaml", inside / "link.yaml")
-    from urdfcheck.core.paths import showing
-
-    assert door.read_text(inside / "link.yaml") == SECRET  # outside a run: nothing to confine to
-    with door.guarded([inside]), showing(str(inside)):
-        assert door.read_text(inside / "ok.yaml") == "a: 1\n"
-        with pytest.raises(door.Refused) as e:
-            door.read_text(inside / "link.yaml")
-        assert str(tmp_path) not in str(e.value) and SECRET not in str(e.value)
-        with pytest.raises(door.Refused):  # typed by the runner inside the checkout: still a planted link
-            door.read_text(inside / "link.yaml", runner=True)
-    with door.guarded([inside]):
-        assert door.read_text(outside / "s.yaml", runner=True) == SECRET  # typed outside: the runner's choice
-        with pytest.raises(door.Refused):
-            door.read_text(outside / "s.yaml")
-        door.add_root(outside)
-        assert door.read_text(outside / "s.yaml") == SECRET
-
-
-def test_the_run_budget_is_counted(tmp_path):
-    (tmp_path / "a").write_bytes(b"x" * 8)
-    with door.guarded([tmp_path], total_bytes=10):
-        door.read_bytes(tmp_path / "a")
-        with pytest.raises(door.Refused) as e:
-            door.read_bytes(tmp_path / "a")
-        assert "budget" in str(e.value)
-
-
+# --- 2. every run is guarded ---------------------------------------------------------------------------------------
 def test_lint_is_guarded_by_the_checkout_and_its_packages(tmp_path, monkeypatch):
     seen = []
     real = door.read_bytes
@@ -278,18 +243,12 @@ def test_a_linked_yaml_in_the_config_folder_is_refused_when_run_from_elsewhere(t
     elsewhere.mkdir()
     _, text = lint_report(elsewhere, str(root))
     _no_leak(text, outside)
-
-
-def test_the_clean_twin_inside_the_checkout_is_still_read(tmp_path):
-    # the same parameter file, inside the package: read, its frames reported (nothing legitimate is refused)
-    node = '''        Node(package="robot_localization", executable="ekf_node", name="ekf_second",
-             parameters=[os.path.join(share, "config", "ekf.yaml")]),
-'''
-    root = _checkout(package(tmp_path, EKF_ODOM + node))
-    (root / "config").mkdir()
+    # the clean twin: the same file inside the package is read, its frames reported (T003: base_link has two
+    # parents, odom and leaked_odom); nothing legitimate is refused
+    (root / "config" / "ekf.yaml").unlink()
     _ekf(root / "config")
-    code, text = lint_report(root)
-    assert code == 1 and LEAK in text  # T003: base_link has two parents, odom and leaked_odom
+    code, text = lint_report(elsewhere, str(root))
+    assert code == 1 and LEAK in text, text
 
 
 JOINTS = "name: [j1]\nposition: [0.5]\n"
@@ -355,20 +314,14 @@ def test_a_committed_cache_link_does_not_redirect_the_cache(tmp_path, outside):
         assert proc.returncode in (0, 1), proc.stderr
     assert list(outside.iterdir()) == [], list(outside.rglob("*"))
     assert "cache off" in proc.stderr
-
-
-def test_the_cache_in_a_real_folder_of_the_checkout_still_works(tmp_path):
-    ws = _checkout(tmp_path / "ws")
-    shutil.copytree(REPO / "examples" / "agv", ws / "agv")
-    env = {**os.environ, "PYTHONPATH": str(REPO / "src") + os.pathsep + os.environ.get("PYTHONPATH", ""),
-           "URDFCHECK_CACHE_DIR": str(ws / ".urdfcheck-cache"), "URDFCHECK_CACHE_TRACE": "1"}
-    env.pop("URDFCHECK_NO_CACHE", None)
+    # the twin: a real cache folder in the checkout (the runner's choice) is used, the second run a hit
+    (ws / ".urdfcheck-cache").unlink()
     said = []
     for _ in range(2):
         proc = subprocess.run([sys.executable, "-m", "urdfcheck", "lint", "agv/urdf/agv.urdf.xacro"], cwd=ws,
                               env=env, capture_output=True, text=True, timeout=300)
         said += [ln for ln in proc.stderr.splitlines() if ln.startswith("urdfcheck: cache ")]
-    assert any("hit" in s for s in said), said
+    assert said[-1] == "urdfcheck: cache hit", said
 
 
 def test_a_linked_entry_or_key_folder_is_not_read(tmp_path, outside):

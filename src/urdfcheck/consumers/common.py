@@ -49,7 +49,7 @@ class Value(FrozenRecord):
         return str(self.value)
 
 
-def read_capped(path, max_bytes: int, what: str = "file") -> bytes:
+def read_capped(path, max_bytes: int, what: str = "file", *, runner: bool = False) -> bytes:
     """The bytes of a consumer file, refusing one over `max_bytes`. Raises ConsumerError."""
     import os
 
@@ -63,10 +63,10 @@ def read_capped(path, max_bytes: int, what: str = "file") -> bytes:
 
     try:
         # confined first: the size of a file outside the run's roots is not told either
-        size = os.path.getsize(door.confine(file))
+        size = os.path.getsize(door.confine(file, runner=runner))
         if size > max_bytes:
             raise ConsumerError(f"{what} is larger than {max_bytes} bytes ({size}); refused", Location(file))
-        return door.read_bytes(file, limit=max_bytes)  # a regular file inside the roots only; never a FIFO
+        return door.read_bytes(file, limit=max_bytes, runner=runner)  # a regular file inside the roots only; never a FIFO
     except OSError as e:
         raise ConsumerError(f"cannot read file: {e.strerror or e}", Location(file)) from None
 
