@@ -103,12 +103,11 @@ def run(request: LintRequest, *, retain: list | None = None, targets: list[Targe
     Paths are shown relative to the request's root from the start (`core.paths.showing`): nothing is
     rewritten afterwards. The run's budget (load.budget) covers the planning too: launch files are read there.
     Raises UsageError when there is nothing to lint or an input is unusable."""
+    from urdfcheck.core import door
     from urdfcheck.core.findings import reset_hints
     from urdfcheck.core.paths import showing
     from urdfcheck.load.budget import run_budget
     from urdfcheck.load.discover import remembering
-
-    from urdfcheck.core import door
 
     reset_hints()
     typed = (*request.paths, request.config, request.baseline, *request.bags)

@@ -66,7 +66,7 @@ def read_capped(path, max_bytes: int, what: str = "file", *, runner: bool = Fals
         size = os.path.getsize(door.confine(file, runner=runner))
         if size > max_bytes:
             raise ConsumerError(f"{what} is larger than {max_bytes} bytes ({size}); refused", Location(file))
-        return door.read_bytes(file, limit=max_bytes, runner=runner)  # a regular file inside the roots only; never a FIFO
+        return door.read_bytes(file, limit=max_bytes, runner=runner)  # inside the roots; never a FIFO
     except OSError as e:
         raise ConsumerError(f"cannot read file: {e.strerror or e}", Location(file)) from None
 

@@ -62,7 +62,8 @@ def _source_line(file: str, line: int | None) -> str:
         try:
             from urdfcheck.core import door
 
-            lines = door.read_bytes(file, limit=64 * 1024 * 1024)[:64 * 1024 * 1024].decode("utf-8", "replace").splitlines()
+            data = door.read_bytes(file, limit=64 * 1024 * 1024)[:64 * 1024 * 1024]
+            lines = data.decode("utf-8", "replace").splitlines()
         except OSError:
             lines = []
         _LINES_CACHE[file] = lines

@@ -9,10 +9,9 @@ import os
 import re
 from pathlib import Path
 
-from urdfcheck.core import bytescan, lazyre, paths, xmlfront
+from urdfcheck.core import bytescan, door, lazyre, paths, xmlfront
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
-from urdfcheck.core import door
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem
 from urdfcheck.core.suppress import Suppression
 from urdfcheck.load import budget, reuse

@@ -17,9 +17,8 @@ import sys
 import xml.dom.minidom
 from xml.dom import expatbuilder
 
-from urdfcheck.core import lazyre, xmlfront
+from urdfcheck.core import door, lazyre, xmlfront
 from urdfcheck.core.paths import showing, shown
-from urdfcheck.core import door
 from urdfcheck.core.safeio import encoding_problem
 from urdfcheck.load.xacro import SRC_ATTR, STRIP_RE  # noqa: F401 - the markers, shared with the loader
 
