@@ -180,6 +180,19 @@ def test_robot_localization_absolute_parameter_file_is_refused(tmp_path, outside
     _no_leak(text, outside)
 
 
+def test_a_working_directory_in_no_checkout_is_no_root(tmp_path):
+    # `/` in a container, a home folder: run from there on a typed checkout, the files beside it stay outside
+    secret = tmp_path / "secret"
+    secret.mkdir()
+    ekf = _ekf(secret)
+    node = f'''        Node(package="robot_localization", executable="ekf_node", name="ekf_second",
+             parameters=["{ekf}"]),
+'''
+    root = _checkout(package(tmp_path / "ws", EKF_ODOM + node))
+    _, text = lint_report(tmp_path, str(root))
+    _no_leak(text, secret)
+
+
 def test_cartographer_configuration_directory_outside_is_refused(tmp_path, outside):
     lua = LUA.replace("{published}", "base_link").replace("{provide}", "true")
     (outside / "bot.lua").write_text(lua.replace('odom_frame = "odom"', f'odom_frame = "{LEAK}"')
