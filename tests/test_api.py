@@ -122,8 +122,11 @@ def test_a_valid_rule_option_reaches_the_check(tmp_path):
     code, out, err = run_cli(["lint", "--format", "json", "--select", "F002", "r.urdf"], cwd=tmp_path)
     assert [f["code"] for f in json.loads(out)["findings"]] == ["F002"], err
     (tmp_path / "urdfcheck.yaml").write_text("rules:\n  F002:\n    expected: [chassis]\n")
-    code, out, err = run_cli(["lint", "--format", "json", "--select", "F002", "r.urdf"], cwd=tmp_path)
+    trust = ["--config", "urdfcheck.yaml", "--trust-config"]  # accepting another name loosens F002: the runner's
+    code, out, err = run_cli(["lint", "--format", "json", *trust, "--select", "F002", "r.urdf"], cwd=tmp_path)
     assert code == 0 and json.loads(out)["findings"] == [], err
+    code, out, err = run_cli(["lint", "--format", "json", "--select", "F002", "r.urdf"], cwd=tmp_path)
+    assert sorted(f["code"] for f in json.loads(out)["findings"]) == ["F002", "X018"], err  # found: refused
 
 
 def test_every_catalogue_option_is_declared_with_type_default_and_doc():
@@ -151,16 +154,19 @@ def _package(folder: Path, name: str, config: str | None) -> None:
 
 def test_workspace_run_uses_each_package_config(tmp_path):
     ws = tmp_path / "ws"
-    _package(ws / "src" / "quiet", "quiet", "ignore: [U002]\n")
+    _package(ws / "src" / "quiet", "quiet", "ignore: [U002]\n")  # hides nothing (issue 36): refused, X018
     _package(ws / "src" / "loud", "loud", None)
+    _package(ws / "src" / "strict", "strict", "severity: {U002: error}\n")  # tightening is anyone's right
     code, out, err = run_cli(["lint", "--format", "json", "src"], cwd=ws)
-    found = sorted((f["code"], f["location"]["file"]) for f in json.loads(out)["findings"])
-    assert ("U002", os.path.join("src", "loud", "urdf", "robot.urdf")) in found
-    assert not any("quiet" in f for _, f in found), found
+    found = sorted((f["code"], f["location"]["file"], f["severity"]) for f in json.loads(out)["findings"])
+    assert ("U002", os.path.join("src", "loud", "urdf", "robot.urdf"), "warning") in found
+    assert ("U002", os.path.join("src", "strict", "urdf", "robot.urdf"), "error") in found
+    assert ("U002", os.path.join("src", "quiet", "urdf", "robot.urdf"), "warning") in found
+    assert ("X018", os.path.join("src", "quiet", "urdfcheck.yaml"), "error") in found
     per_package = []
-    for name in ("quiet", "loud"):
+    for name in ("quiet", "loud", "strict"):
         _, o, _ = run_cli(["lint", "--format", "json"], cwd=ws / "src" / name)
-        per_package += [(f["code"], os.path.join("src", name, f["location"]["file"]))
+        per_package += [(f["code"], os.path.join("src", name, f["location"]["file"]), f["severity"])
                         for f in json.loads(o)["findings"]]
     assert found == sorted(per_package)
 
@@ -187,16 +193,20 @@ def test_root_flag_sets_where_paths_start(tmp_path):
 
 
 def test_each_package_fails_at_its_own_level(tmp_path):
-    # U002 is a warning: the package whose config says fail_on: error passes with it, the other fails
+    # U002 is a warning; a package config may raise its bar (fail_on: info), never lower it: fail_on: error found
+    # in the checkout is refused (issue 36)
     ws = tmp_path / "ws"
     _package(ws / "lenient", "lenient", "fail_on: error\n")
-    code, _, err = run_cli(["lint", "."], cwd=ws)
-    assert code == 0, err
-    _package(ws / "strict", "strict", None)
     code, out, err = run_cli(["lint", "."], cwd=ws)
-    assert code == 1 and "strict" in out, err
-    code, _, err = run_cli(["lint", "--fail-on", "error", "."], cwd=ws)
+    assert code == 1 and "X018" in out, err
+    code, _, err = run_cli(["lint", "--config", "lenient/urdfcheck.yaml", "--trust-config", "."], cwd=ws)
+    assert code == 0, err  # the runner vouches for it
+    code, _, err = run_cli(["lint", "--fail-on", "error", "--no-config", "."], cwd=ws)
     assert code == 0, err
+    (ws / "lenient" / "urdfcheck.yaml").write_text("fail_on: info\n")  # raising the bar: kept
+    assert urdfcheck.lint([ws], select=["U"], severity={"U002": "info"}).failed()
+    (ws / "lenient" / "urdfcheck.yaml").unlink()
+    assert urdfcheck.lint([ws], select=["U"], severity={"U002": "info"}).failed() is False
 
 
 def test_a_launch_file_or_a_yaml_file_lints_the_models_that_use_it():
@@ -211,23 +221,23 @@ def test_a_launch_file_or_a_yaml_file_lints_the_models_that_use_it():
 
 def test_a_workspace_config_applies_below_it_unless_a_package_has_its_own(tmp_path):
     ws = tmp_path / "ws"
-    _package(ws / "src" / "own", "own", "select: [S]\n")       # its own config: no U rules
-    _package(ws / "src" / "plain", "plain", None)              # the workspace config applies
-    (ws / "urdfcheck.yaml").write_text("select: [U]\nfail_on: error\n")
+    _package(ws / "src" / "own", "own", "severity: {U002: warning}\n")  # its own: U002 stays a warning
+    _package(ws / "src" / "plain", "plain", None)                      # the workspace config applies
+    (ws / "urdfcheck.yaml").write_text("severity: {U002: error}\n")
     code, out, err = run_cli(["lint", "--format", "json", "src"], cwd=ws)
-    found = sorted((f["code"], f["location"]["file"]) for f in json.loads(out)["findings"])
-    assert found == [("U002", os.path.join("src", "plain", "urdf", "robot.urdf"))], err
-    assert code == 0  # the workspace config's fail_on: error (U002 is a warning)
+    found = sorted((f["code"], f["location"]["file"], f["severity"]) for f in json.loads(out)["findings"])
+    assert found == [("U002", os.path.join("src", "own", "urdf", "robot.urdf"), "warning"),
+                     ("U002", os.path.join("src", "plain", "urdf", "robot.urdf"), "error")], err
     _, out2, _ = run_cli(["lint", "--format", "json"], cwd=ws / "src" / "plain")
-    assert [(f["code"], f["location"]["file"]) for f in json.loads(out2)["findings"]] == \
-        [("U002", os.path.join("urdf", "robot.urdf"))]
+    assert [(f["code"], f["location"]["file"], f["severity"]) for f in json.loads(out2)["findings"]] == \
+        [("U002", os.path.join("urdf", "robot.urdf"), "error")]
 
 
 def test_no_path_lints_the_folder_here_not_the_whole_workspace_of_the_config(tmp_path):
     ws = tmp_path / "ws"
     _package(ws / "a", "a", None)
     _package(ws / "b", "b", None)
-    (ws / "urdfcheck.yaml").write_text("select: [U]\n")
+    (ws / "urdfcheck.yaml").write_text("severity: {U002: error}\n")
     _, out, _ = run_cli(["lint", "--format", "json"], cwd=ws / "a")
     assert {f["location"]["file"] for f in json.loads(out)["findings"]} == {os.path.join("urdf", "robot.urdf")}
 

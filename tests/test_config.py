@@ -70,7 +70,7 @@ max_elements: 5000
 def test_full_config(tmp_path):
     root = make_pkg(tmp_path / "agv")
     (root / "urdfcheck.yaml").write_text(FULL)
-    cfg = load_config(root / "urdfcheck.yaml")
+    cfg = load_config(root / "urdfcheck.yaml", trusted=True)  # the runner vouches for it: every key counts
     (m,) = cfg.models
     assert m.path == str(root / "urdf" / "agv.urdf.xacro")
     assert m.controllers == (str(root / "config" / "ctrl.yaml"),)
@@ -90,15 +90,31 @@ def test_full_config(tmp_path):
     assert cfg.select == ("ALL",) and cfg.ignore == ("I005", "G0") and cfg.fail_on == Severity.ERROR
     assert dict(cfg.severity) == {"F002": Severity.WARNING, "J": Severity.INFO}
     assert dict(cfg.rules["C010"]) == {"tolerance": 0.002}
-    # found in the checkout: allow_env is the runner's to give (issue 19); a lower limit stays
-    assert cfg.allow_env == () and cfg.trusted is False and cfg.max_elements == 5000
-    assert [(f.code, f.location.line) for f in cfg.notes] == [("X018", 28)]
-    assert load_config(root / "urdfcheck.yaml", trusted=True).allow_env == ("HOME",)
+    assert cfg.allow_env == ("HOME",) and cfg.notes == () and cfg.vouched
     assert cfg.loc("models", 0, "path").line == 2
     with pytest.raises(AttributeError):
         cfg.trusted = True
     with pytest.raises(TypeError):
         cfg.rules["C010"]["tolerance"] = 1
+
+
+def test_full_config_found_in_the_checkout_adds_never_hides(tmp_path):
+    """Issue 19 and 36: allow_env is the runner's to give, a lower limit stays; what lowers the gate is an X018
+    error at its key and ignored (ignore; fail_on: error; J down to info; a C010 tolerance above the default),
+    what tightens stays (F002 up to warning, fewer accepted F002 names); args replacing defaults add the
+    defaults variant (tests/test_gate.py)."""
+    root = make_pkg(tmp_path / "agv")
+    (root / "urdfcheck.yaml").write_text(FULL)
+    cfg = load_config(root / "urdfcheck.yaml")
+    assert cfg.allow_env == () and cfg.trusted is False and cfg.max_elements == 5000 and not cfg.vouched
+    assert cfg.select == ("ALL",) and cfg.ignore == () and cfg.fail_on is None
+    assert dict(cfg.severity) == {"F002": Severity.WARNING}
+    assert "C010" not in cfg.rules and dict(cfg.rules["F002"]) == {"expected": ["base_link", "base_footprint"]}
+    notes = [(f.code, f.severity, f.location.line) for f in cfg.notes]
+    assert notes == [("X018", Severity.WARNING, 28), ("X018", Severity.ERROR, 23), ("X018", Severity.ERROR, 25),
+                     ("X018", Severity.ERROR, 24), ("X018", Severity.ERROR, 26)]
+    # name: agv and the camera variant are the xacro defaults: no variant is added
+    assert [n for n, _ in cfg.models[0].variant_args()] == ["camera", "no_camera"]
 
 
 def test_defaults(tmp_path):
@@ -146,8 +162,10 @@ path = "urdf/plain.urdf"
 controllers = ["config/ctrl.yaml"]
 """)
     cfg = load_config(tmp_path / "pyproject.toml")
-    # load and sandbox findings stay selected (issue 19: a config cannot deselect them)
-    assert cfg.select == ("S", "J002", "X0") and cfg.fail_on == Severity.INFO
+    # a select narrower than ALL is the runner's to give (issue 36): refused at its line; fail_on info tightens
+    assert cfg.select is None and cfg.fail_on == Severity.INFO
+    assert [(f.code, f.severity, f.location.line) for f in cfg.notes] == [("X018", Severity.ERROR, 5)]
+    assert load_config(tmp_path / "pyproject.toml", trusted=True).select == ("S", "J002")
     assert cfg.frames["base"] == "base_footprint"
     assert cfg.models[0].path == str(tmp_path / "urdf" / "plain.urdf")
 
@@ -240,17 +258,26 @@ def test_targets(tmp_path):
     from urdfcheck.request.request import make_request
 
     cfg = str(root / "urdfcheck.yaml")
-    ts = plan(make_request([], config=cfg))
+    # named by itself (no --trust-config) it adds (issue 36): the defaults of the arg it replaces, and the model
+    # it does not declare
+    ts = plan(make_request([], config=cfg), here=str(root))  # run in the package
+    assert [(t.path.name, t.variant, t.args) for t in ts] == [
+        ("agv.urdf.xacro", "defaults", {"use_lidar": "true", "use_camera": "true"}),
+        ("agv.urdf.xacro", "use_camera=false", {"use_lidar": "true", "use_camera": "false"}),
+        ("agv.urdf.xacro", "xacro defaults", {}), ("plain.urdf", "", {})]
+    assert len(plan(make_request([str(root)], config=cfg))) == 4
+    ts = plan(make_request([], config=cfg, trust_config=True))  # the runner vouches: its models are all
     assert [(t.variant, t.args) for t in ts] == [("defaults", {"use_lidar": "true", "use_camera": "true"}),
                                                  ("use_camera=false", {"use_lidar": "true", "use_camera": "false"})]
     assert ts[0].contracts is ts[1].contracts  # consumers are read once per model
     assert ts[0].contracts.files["controllers"] == [str(root / "config" / "ctrl.yaml")]
     assert ts[0].packages == {"agv_description": str(root)}
-    over = plan(make_request([], config=cfg, args={"use_camera": "false"}, packages={"other": "/x"}))
+    over = plan(make_request([], config=cfg, args={"use_camera": "false"}, packages={"other": "/x"},
+                             trust_config=True))
     assert all(t.args["use_camera"] == "false" for t in over) and over[0].packages["other"] == "/x"
     only = plan(make_request([str(root / "urdf" / "plain.urdf")], config=cfg))
     assert [t.path.name for t in only] == ["plain.urdf"] and only[0].contracts is None  # not configured: zero-config
-    assert len(plan(make_request([str(root)], config=cfg))) == 2
+    assert len(plan(make_request([str(root)], config=cfg, trust_config=True))) == 2
 
 
 def test_cli_reports_the_bad_key(tmp_path):

@@ -282,7 +282,7 @@ def ros1_pkg(tmp_path, launch_body, extra=None):
     (tmp_path / "launch" / "bot.launch").write_text(f"<launch>\n{launch_body}</launch>\n")
     (tmp_path / "urdfcheck.yaml").write_text("models:\n  - path: urdf/agv.urdf\n    controllers: [config/ctrl.yaml]\n"
                                              "    launch: [launch/bot.launch]\npackages: {bot: .}\nselect: [C, T]\n")
-    code, report = lint_cfg([], cwd=tmp_path)
+    code, report = lint_cfg(["--config", "urdfcheck.yaml", "--trust-config"], cwd=tmp_path)  # select: the runner's
     return [(f["code"], Path(f["location"]["file"]).name, f["location"]["line"]) for f in report["findings"]]
 
 

@@ -248,6 +248,7 @@ def test_discovery_of_a_package(tmp_path):
     (tmp_path / "launch" / "b.launch.xml").write_text("<launch/>")
     (tmp_path / "launch" / "notes.txt").write_text("")
     (tmp_path / "build" / "x.urdf").write_text("<robot/>")
+    (tmp_path / "build" / "COLCON_IGNORE").write_text("")  # colcon's build base: skipped by its marker, not its name
     d = discover(tmp_path)
     rel = lambda xs: [str(Path(x).relative_to(tmp_path)) for x in xs]  # noqa: E731
     assert rel(d.models) == ["urdf/plain.urdf", "urdf/robot.urdf.xacro"]

@@ -155,7 +155,7 @@ def test_plugin_equals_the_cli_with_a_missing_package_and_a_baseline(tmp_path, m
         <robot name="c"><link name="base_link"/><link name="x"/>
         <joint name="j" type="fixed"><parent link="base_link"/><child link="x"/><orign xyz="0 0 1"/></joint>
         </robot>"""))
-    (pkg / "urdfcheck.yaml").write_text("select: [X, S]\n")
+    (pkg / "urdfcheck.yaml").write_text("frames: {base: base_link}\n")  # no select: a found config may not narrow
     monkeypatch.chdir(pkg)
     code, _, err = run_cli(["lint", "--write-baseline", "base.json"])
     assert code == 0, err
@@ -185,7 +185,7 @@ def test_plugin_items_show_the_cli_findings(tmp_path, monkeypatch):
     (pkg / "urdf" / "a.urdf.xacro").write_text(MISSING.format(name="a"))
     (pkg / "urdf" / "b.urdf.xacro").write_text(MISSING.format(name="b"))
     (pkg / "urdf" / "d.urdf").write_text("<robot name='d'><link name='a'/><link name='a'/></robot>")
-    (pkg / "urdfcheck.yaml").write_text("select: [X, S]\n")
+    (pkg / "urdfcheck.yaml").write_text("frames: {base: base_link}\n")  # no select: a found config may not narrow
     monkeypatch.chdir(pkg)
     code, _, err = run_cli(["lint", "--write-baseline", "base.json"])
     (pkg / "urdf" / "e.urdf").write_text("<robot name='e'><link name='a'/><link name='a'/></robot>")

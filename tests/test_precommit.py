@@ -134,7 +134,8 @@ def test_installed_hook_blocks_a_bad_commit(env, configured):
     git("reset", "-q", "bad.urdf", cwd=configured, env=e)
 
 
-def test_package_hook_lints_what_the_config_declares(env, configured):
+def test_package_hook_lints_what_the_config_declares_and_what_it_does_not(env, configured):
+    # issue 36: a config found in the checkout adds to discovery; a clean model it declares hides no robot
     e = env["environ"]
     (configured / "urdf").mkdir()
     (configured / "urdf" / "arm.urdf").write_text(BAD)
@@ -142,9 +143,10 @@ def test_package_hook_lints_what_the_config_declares(env, configured):
     run = ("run", "urdfcheck-package", "--hook-stage", "manual", "--all-files")
     git("add", "-A", cwd=configured, env=e)
     r = pre_commit(*run, cwd=configured, env=env)
-    assert r.returncode == 0, r.stdout + r.stderr  # bad.urdf and urdf/arm.urdf are not declared
+    assert r.returncode == 1, r.stdout + r.stderr
+    assert "urdf/arm.urdf:5  U002" in r.stdout and "bad.urdf:5  U002" in r.stdout
     (configured / "urdfcheck.yaml").write_text("models:\n  - path: good.urdf\n  - path: urdf/arm.urdf\n")
     git("add", "-A", cwd=configured, env=e)
     r = pre_commit(*run, cwd=configured, env=env)
     assert r.returncode == 1, r.stdout + r.stderr
-    assert "urdf/arm.urdf:5  U002" in r.stdout and "bad.urdf" not in r.stdout
+    assert "urdf/arm.urdf:5  U002" in r.stdout and "bad.urdf:5  U002" in r.stdout

@@ -10,17 +10,18 @@ from urdfcheck.core.walk import files, folders
 def _tree(tmp_path):
     for d in ("b/y", "a/x", "a/build/z", ".hidden/q", "c"):
         (tmp_path / d).mkdir(parents=True)
-    for f in ("a/x/f.urdf", "b/g.xacro", "c/h.txt", "top.txt"):
+    for f in ("a/x/f.urdf", "b/g.xacro", "c/h.txt", "top.txt", "a/build/COLCON_IGNORE"):
         (tmp_path / f).write_text("x")
     os.symlink(tmp_path / "b", tmp_path / "c" / "link_to_b")
     return tmp_path
 
 
-def test_same_order_as_a_sorted_os_walk_without_hidden_build_or_linked_folders(tmp_path):
+def test_same_order_as_a_sorted_os_walk_without_hidden_ignored_or_linked_folders(tmp_path):
     root = _tree(tmp_path)
     want = []
     for here, dirs, names in os.walk(root):
-        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d != "build")
+        dirs[:] = sorted(d for d in dirs if not d.startswith(".")
+                         and not os.path.exists(os.path.join(here, d, "COLCON_IGNORE")))
         want.append((here, sorted(names)))
     got = [(here, files(entries)) for here, entries in folders(root)]
     assert got == want
@@ -51,12 +52,13 @@ def test_a_run_lists_each_folder_once(tmp_path, monkeypatch):
     root = _tree(tmp_path)
     calls = _listings(monkeypatch)
     first = [(h, files(e)) for h, e in folders(root)]
-    assert len(calls) == len(first)
+    listed = len(calls)  # the folders walked, and a/build, listed to find its COLCON_IGNORE
+    assert listed == len(first) + 1
     with remembered():
         inside = [(h, files(e)) for h, e in folders(root)]
         again = [(h, files(e)) for h, e in folders(root / "a")]  # a walk of a part of what was walked
         assert inside == first and again == [x for x in first if x[0].startswith(str(root / "a"))]
-        assert len(calls) == 2 * len(first)
+        assert len(calls) == 2 * listed
         (root / "a" / "new.urdf").write_text("x")  # within a run, files do not change: the listing is kept
         assert "new.urdf" not in files(dict(folders(root))[str(root / "a")])
     assert "new.urdf" in files(dict(folders(root))[str(root / "a")])
@@ -107,3 +109,24 @@ def test_shown_paths_match_the_plain_computation(text, root, run_root, cwd):
             assert paths.shown(text, root) == expected  # remembered
     finally:
         os.chdir(old)
+
+
+def test_skipped_by_the_marker_files_ros_tools_read_never_by_name(tmp_path):
+    """Issue 36: colcon builds a package under a plain folder named build, log, install, venv (it skips by the
+    COLCON_IGNORE it writes into its own bases); a venv is skipped by its pyvenv.cfg, a catkin space by .catkin,
+    and a marker beside a package.xml other than *_IGNORE does not hide the package."""
+    plain = ["build/p", "log/p", "install/p", "venv/p", "devel/p", "node_modules/p", "__pycache__/p"]
+    marked = {"ws/build": "COLCON_IGNORE", "ws/install": "COLCON_IGNORE", "ws/log": "COLCON_IGNORE",
+              "amen": "AMENT_IGNORE", "cat": "CATKIN_IGNORE", "env": "pyvenv.cfg", "ws/devel": ".catkin",
+              "web/node_modules": ".package-lock.json"}
+    for d in plain + [f"{m}/p" for m in marked]:
+        (tmp_path / d).mkdir(parents=True)
+        (tmp_path / d / "package.xml").write_text("<package/>")
+    for d, marker in marked.items():
+        (tmp_path / d / marker).write_text("")
+    (tmp_path / "pkgvenv").mkdir()
+    for f in ("package.xml", "pyvenv.cfg"):  # a package beside a venv marker: colcon builds it
+        (tmp_path / "pkgvenv" / f).write_text("")
+    got = {os.path.relpath(h, tmp_path) for h, e in folders(tmp_path) if "package.xml" in files(e)}
+    assert got == set(plain) | {"pkgvenv"}
+    assert [h for h, _ in folders(tmp_path / "amen")][:2] == [str(tmp_path / "amen"), str(tmp_path / "amen" / "p")]

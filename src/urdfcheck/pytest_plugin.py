@@ -6,9 +6,11 @@ Registered through the `pytest11` entry point, so installing urdfcheck is enough
 * the pytest rootdir holds a urdfcheck config (`urdfcheck.yaml`, `.urdfcheck.yaml`, or `pyproject.toml`
   with `[tool.urdfcheck]`).
 
-The models are what the config declares (each variant is its own item), else the entry models found
-below the rootdir. An item fails when the model has findings at or above the fail level
-(`--urdfcheck-fail-on`, else the config's `fail_on`, else `warning`); the failure text lists the located
+The models are what the config declares (each variant is its own item) and the entry models found below the
+rootdir that it does not declare (a config found in the checkout adds, never hides: issue 36); what the config
+asked and was refused (X018) is the item `urdfcheck-config`. An item fails when the model has findings at or
+above the fail level (`--urdfcheck-fail-on`, else the config's `fail_on` when it may set it, else `warning`);
+the failure text lists the located
 findings. The plugin makes the request `urdfcheck lint` run in the rootdir makes and runs the same pipeline
 (plan/plan.py, run.py) once, on the first item: every item shows its model's share, and an unused
 suppression in a YAML file fails the item of the first model that read the file, as R002 fails the CLI.
@@ -129,6 +131,9 @@ def pytest_collection_modifyitems(session, config, items):
             parent, kids = parent_for(t.path)
             name = f"urdfcheck[{t.variant}]" if t.variant else "urdfcheck"
             kids.append(UrdfcheckItem.from_parent(parent, name=name, target=t, state=state, index=i))
+        if getattr(state.targets, "findings", None):  # about the plan itself (a refused config key, X018; X019)
+            parent, kids = parent_for(Path(state.config_path or state.rootdir))
+            kids.append(UrdfcheckItem.from_parent(parent, name="urdfcheck-config", target=None, state=state))
     new = []
     for path, parent in parents.items():
         # report the collection like pytest does for files it collects (counts, --co, junitxml)
@@ -162,6 +167,15 @@ class UrdfcheckItem(pytest.Item):
         if self.state.error is not None:
             raise UrdfcheckFailure(f"invalid urdfcheck config: {self.state.error}")
         result = _result(self.state)
+        if self.target is None:  # the plan's own findings: what the config asked and was refused (issue 36)
+            from urdfcheck.core.findings import Severity
+
+            findings, fail_on = list(self.state.targets.findings), self.state.fail_on or Severity.WARNING
+            failing = [f for f in findings if f.severity >= fail_on]
+            if failing:
+                raise UrdfcheckFailure("\n".join([f"{len(failing)} urdfcheck finding(s) about the plan (config, "
+                                                  "file walk)"] + [_line(f) for f in failing]))
+            return
         findings = result.shares[self.index]
         fail_on = self.state.fail_on or self.target.settings.fail_on
         failing = [f for f in findings if f.severity >= fail_on]

@@ -38,6 +38,7 @@ class Result(Record):
     _finished: tuple = ((), {})  # (each target's findings the baseline kept, the run's X013 per package)
     libraries: int = 0  # xacro libraries the plan saw (not linted alone)
     read: set = frozenset()  # the files the expansions read
+    baselined: int = 0  # findings the baseline file hid (said in the text report)
 
     def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
                  by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
@@ -148,6 +149,9 @@ def _run(request: LintRequest, retain, targets) -> Result:
             new = {id(f) for f in baseline.filter_new(request.baseline, result.raw())}
         except (OSError, ValueError) as e:
             raise UsageError(f"cannot read baseline {request.baseline}: {e}") from None
+        # a baseline is a file that hides findings: the runner names it, but its content may be the pull
+        # request's, so the report says how many it hid (issue 36), never a bare "All checks passed"
+        result.baselined = len(_dedupe([f for fs in kept for f in fs if id(f) not in new]))
         kept = [[f for f in fs if id(f) in new] for fs in kept]
         result.findings = _dedupe([f for fs in kept for f in fs])
     result._finished = (kept, _missing_packages_once(result))

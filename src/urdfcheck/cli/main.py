@@ -79,7 +79,9 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
     lint.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
     lint.add_argument("--trust-config", action="store_true", default=None,
                       help="the --config FILE is yours: honour what lowers the guard there (trusted, allow_env, "
-                           "higher limits, paths outside the checkout); a config found in the checkout never is")
+                           "higher limits, paths outside the checkout, ignore, select, severity, fail_on, rule "
+                           "options, packages, models as the only ones); a config found in the checkout, or named "
+                           "without this flag, may only add checks")
     lint.add_argument("--max-files", type=int, default=None, metavar="N",
                       help="files the walk of one package looks at (default 20000); a walk cut short is X019")
     lint.add_argument("--no-config", action="store_true", help="ignore config files")

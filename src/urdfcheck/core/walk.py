@@ -1,7 +1,19 @@
 """The one walk over a folder tree (discovery, the planner's workspace pass, package scans).
 
-Depth-first in name order (the same order on every machine), hidden folders and build/install spaces skipped,
-a symbolic link to a folder never entered (a committed link must not take the walk out of the checkout).
+Depth-first in name order (the same order on every machine), a symbolic link to a folder never entered (a
+committed link must not take the walk out of the checkout).
+
+What is skipped is what ROS's own tools skip, by the marker files they read, never by a folder's name (a package
+under a plain folder named `build`, `log`, `install` or `venv` is built by colcon, so it is linted; issue 36):
+- a folder holding COLCON_IGNORE, AMENT_IGNORE or CATKIN_IGNORE (colcon, ament and catkin skip it; colcon writes
+  COLCON_IGNORE into the build, install and log bases it creates: colcon_core verb/build.py `_create_path`,
+  location.py `create_log_path`; catkin's CMake writes CATKIN_IGNORE into its build folder);
+- hidden folders (.git and the like: colcon's crawl and catkin_pkg skip names starting with a dot);
+- outputs of other tools, by the file the tool writes, and only in a folder that is no package (a package.xml
+  beside the marker wins, as colcon would build it): a Python venv (`pyvenv.cfg`), a catkin devel or install
+  space (`.catkin`, which catkin_pkg's `exclude_subspaces` reads), a `node_modules` folder that npm, yarn or pnpm
+  filled (`.package-lock.json`, `.yarn-integrity`, `.modules.yaml`).
+The folder a walk starts at is never skipped: the person running the tool named it.
 """
 from __future__ import annotations
 
@@ -9,7 +21,10 @@ import operator
 import os
 from collections.abc import Iterator
 
-SKIP_DIRS = frozenset({"build", "install", "log", "devel", "node_modules", "__pycache__", "venv"})
+SKIP_DIRS: frozenset = frozenset()  # no folder is skipped by its name (kept for importers; see the module doc)
+IGNORE_MARKERS = frozenset({"COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE"})
+OUTPUT_MARKERS = frozenset({"pyvenv.cfg", ".catkin"})
+NODE_MARKERS = frozenset({".package-lock.json", ".yarn-integrity", ".modules.yaml"})
 MEMO_ENTRIES = 50_000  # entries one run keeps listed (a few MB); a larger tree is listed again where walked again
 _NAME = operator.attrgetter("name")
 _LISTED: list[dict] = []  # one memo per run in progress (see `remembered`)
@@ -85,11 +100,25 @@ def folders(top, *, max_dirs: int | None = None, max_depth: int | None = None
             entries = _entries(here)
         except OSError:
             continue
+        if depth and skipped(here, entries):
+            continue
         yield here, entries
         if max_depth is not None and depth >= max_depth:
             continue
         stack.extend((e.path, depth + 1) for e in reversed(entries)
-                     if not e.name.startswith(".") and e.name not in SKIP_DIRS and _is_folder(e))
+                     if not e.name.startswith(".") and _is_folder(e))
+
+
+def skipped(folder: str, entries) -> bool:
+    """Does a ROS tool skip `folder` (its entries listed) by a marker file it holds? See the module doc."""
+    names = {e.name for e in entries}
+    if names & IGNORE_MARKERS:
+        return True
+    if "package.xml" in names:
+        return False
+    if names & OUTPUT_MARKERS:
+        return True
+    return os.path.basename(folder) == "node_modules" and bool(names & NODE_MARKERS)
 
 
 def _is_folder(e: os.DirEntry) -> bool:

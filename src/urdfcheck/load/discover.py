@@ -9,7 +9,8 @@
 * launch files: `*.launch`, `*.launch.xml`, `*.launch.py`, `*.launch.yaml`, `*.launch.yml` in any `launch/`
   directory.
 
-Hidden directories and build output (`build`, `install`, `log`, `devel`, `node_modules`) are skipped; at most
+Hidden directories and the folders ROS's tools skip by their marker files (COLCON_IGNORE, AMENT_IGNORE,
+CATKIN_IGNORE, which colcon writes into its build/install/log bases; core.walk), never by name, are skipped; at most
 `max_files` files are looked at. Output lists are sorted. Files are only read (and the xacro ones only their
 first `HEAD_BYTES` for the root check), never expanded.
 """

@@ -54,6 +54,27 @@ def boolean_args(path: str, packages: Mapping[str, str] | None = None, *, includ
     return {k: v for k, v in declared.items() if v in _BOOLS}
 
 
+def defaulted_args(path: str, packages: Mapping[str, str] | None = None) -> dict[str, str]:
+    """The xacro:args declared with a default (name -> its text, the first declaration's), in the entry and its
+    literal includes: what a config's `args` replace rather than supply (request.config; issue 36)."""
+    from urdfcheck.core.safeio import read_file
+
+    try:
+        text = read_file(path, 4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
+    except OSError:
+        return set()
+    texts = [text]
+    if "include" in text:
+        texts.extend(inc for _, inc in _included(path, packages or {}))
+    out: dict[str, str] = {}
+    for t in texts:
+        for m in _ARG.finditer(re.sub(r"<!--.*?-->", "", t, flags=re.S)):
+            attrs = {k: v for k, _, v in _ATTR.findall(m.group(1))}
+            if attrs.get("name") and "default" in attrs and attrs["name"] not in out:
+                out[attrs["name"]] = attrs["default"].strip()
+    return out
+
+
 def _included(path: str, packages: Mapping[str, str]):
     from urdfcheck.load.packages import Resolver, enclosing_package, literal_includes, real
 

@@ -66,6 +66,7 @@ class Target(Record):
     # how the model and its deployment were chosen (core.evidence.Step), which every finding of it rests on
     evidence: tuple = ()
     library = False  # a probe whose expansion has no link: not a robot, not checked as one
+    twin = False  # a declared model linted again with the consumers found beside it (an unvouched config's)
 
     def __init__(self, path: Path,
                  args: dict | None = None,
@@ -164,7 +165,8 @@ class Planner:
 
             try:
                 named = self.request.config is not None and os.path.abspath(self.request.config) == path
-                self._configs[path] = cfgmod.load_config(path, trusted=bool(named and self.request.trust_config))
+                self._configs[path] = cfgmod.load_config(path, trusted=bool(named and self.request.trust_config),
+                                                         root=self.request.config_root if named else None)
             except cfgmod.ConfigError as e:
                 where = e.location or cfgmod.Location(path)
                 at = shown(where.file) + "".join(f":{n}" for n in (where.line, where.column) if n)
@@ -211,7 +213,13 @@ class Planner:
         if not paths:
             cfg = self.nearest(os.path.abspath(self.here))
             if cfg is not None and cfg.models:
-                got = TargetList(_unique(self.declared(cfg, None)), self.infos)
+                found = self.declared(cfg, None)
+                if not _vouched(cfg):  # its models add to the tree it governs, planned as a path (nested configs)
+                    here = os.path.abspath(self.here)
+                    near = _below(here, cfg.root) or _below(cfg.root, here)  # not a config kept elsewhere
+                    found += self.path_targets(cfg.root if near else here)
+                got = TargetList(_unique(found), dict.fromkeys(self.infos))
+                got.not_understood = list(self.not_understood)
                 got.findings, got.libraries = self.plan_findings(), len(self.libraries)
                 got.included = list(dict.fromkeys(self.included))
                 return got
@@ -247,7 +255,7 @@ class Planner:
                 from urdfcheck.plan.dependents import targets_reading
 
                 return targets_reading(self, raw, settings)  # the per-file hook names a parameter file
-            if raw.lower().endswith(".srdf.xacro"):  # the per-file hook passes every *.xacro: not an error
+            if raw.lower().endswith(".srdf.xacro") and _srdf_text(raw):  # the per-file hook passes every *.xacro
                 self.infos.append(f"{shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
                 return []
             if raw.lower().endswith(NOT_MODELS):
@@ -260,8 +268,8 @@ class Planner:
             [c for c in walk.configs if cfg is None or os.path.dirname(c) != cfg.root]
         nested_roots = [os.path.dirname(c) for c in nested]
         # the deployments of the whole named tree, once; a folder whose config declares its models keeps them
-        declaring = [self.config(c).root for c in nested if self.config(c).models]
-        if cfg is not None and _models_at(cfg, raw):
+        declaring = [self.config(c).root for c in nested if self.config(c).models and _vouched(self.config(c))]
+        if cfg is not None and _models_at(cfg, raw) and _vouched(cfg):
             declaring.append(os.path.abspath(raw))
         named = self.named(raw, settings, skip=declaring)
         out = self.scope(cfg, raw, walk, exclude=nested_roots, named=named)
@@ -270,6 +278,7 @@ class Planner:
             deeper = [r for r in nested_roots if _below(r, sub.root) and r != sub.root]
             if sub.models:
                 out.extend(t for t in self.declared(sub, None) if not _under_any(str(t.path), deeper))
+                out.extend(self.added(sub, sub.root, self.walk(sub.root), exclude=deeper, named=named))
             else:
                 out.extend(self.scope(sub, sub.root, self.walk(sub.root), exclude=deeper, named=named))
         return out
@@ -278,8 +287,21 @@ class Planner:
         """The models of `folder` under one config (or none): declared ones, else discovered."""
         settings = self.settings(cfg)
         if cfg is not None and _models_at(cfg, folder):
-            return [t for t in self.declared(cfg, [folder]) if not _under_any(str(t.path), exclude)]
+            return [t for t in self.declared(cfg, [folder]) if not _under_any(str(t.path), exclude)] \
+                + self.added(cfg, folder, walk, exclude, named)
         return self.discovered(folder, walk, settings, exclude, named)
+
+    def added(self, cfg, folder: str, walk=None, exclude=(), named: _Named | None = None) -> list[Target]:
+        """What a config the runner did not vouch for cannot hide (issue 36): its `models:` add to discovery, so
+        the robots of `folder` it does not declare are linted zero-config beside them (a clean decoy declared
+        there does not hide the broken robot next to it). A vouched config's models are all that is linted."""
+        if _vouched(cfg) or not os.path.isdir(folder):
+            return []
+        declared = {os.path.realpath(m.path) for m in cfg.models}
+        got = self.discovered(folder, walk if walk is not None else self.walk(folder), self.settings(cfg),
+                              exclude, named)
+        return [t for t in got if not _covered(t, cfg) if t.deployment is not None
+                or os.path.realpath(t.path) not in declared]
 
     def declared(self, cfg, paths) -> list[Target]:
         """The config's models (at or below `paths` when given); paths no model covers: discovered."""
@@ -299,6 +321,12 @@ class Planner:
             for vname, vargs in m.variant_args():
                 out.append(self.target(Path(m.path), vargs, vname, consumers, settings))
                 out[-1].bags = m.bags
+            if not _vouched(cfg) and _undeclared_consumers(m):
+                # declared consumers add to those found beside the model, never replace them (issue 36): the
+                # package's parameter and launch files the config leaves out are checked as zero config would
+                twin = self.target(Path(m.path), m.variant_args()[0][1], "consumers found beside it", None, settings)
+                twin.twin = True
+                out.append(twin)
         for raw in rest:
             out.extend(self.file_targets(Path(raw), settings) if not os.path.isdir(raw)
                        else self.discovered(raw, self.walk(raw), settings))
@@ -356,7 +384,10 @@ class Planner:
         resolver = Resolver(dict(settings.packages), near=Path(root), workspace=root)
         found = find_deployments(root, resolver, packages=dict(settings.packages), files=files)
         self.not_understood.extend(d for d in found if d.model is None and d not in self.not_understood)
-        return [d for d in found if d.model is not None and d.launch is not None and not _is_srdf_name(d.model)]
+        # what robot_state_publisher is given is a robot, whatever its name (issue 36: a robot.srdf.xacro
+        # loaded as robot_description is not skipped); only a file whose text is MoveIt's semantic description
+        # (groups, no link) is none
+        return [d for d in found if d.model is not None and d.launch is not None and not _srdf_text(d.model)]
 
     def deployed(self, d, root: str, settings: Settings) -> Target:
         """A deployment's target: the launch file's xacro arguments, its controllers and localization as the
@@ -486,8 +517,42 @@ def _cut_short(folder: str, limit: str):
                    Location(folder), name="walk-truncated")
 
 
-def _is_srdf_name(path: str) -> bool:
-    return path.lower().endswith((".srdf", ".srdf.xacro"))
+def _covered(t: Target, cfg) -> bool:
+    """A deployment the config already lints as planned: its model declared with that launch file among the
+    model's `launch:`, and the launch file's xacro arguments one of the model's variants (or none at all)."""
+    d = t.deployment
+    if d is None:
+        return False
+    m = cfg.model_for(t.path)
+    if m is None or os.path.realpath(d.launch.file) not in {os.path.realpath(x) for x in m.launch}:
+        return False
+    return not d.args or any(dict(d.args) == a for _, a in m.variant_args())
+
+
+def _undeclared_consumers(m) -> bool:
+    """Does the declared model's package hold parameter or launch files (as zero config finds them) that the
+    config does not name for it?"""
+    from urdfcheck.load.discover import discover
+    from urdfcheck.load.packages import enclosing_package
+
+    pkg = enclosing_package(Path(os.path.abspath(m.path)).parent)
+    if pkg is None:
+        return False
+    named = {os.path.realpath(p) for p in (*m.controllers, *m.launch, *m.localization, *(d.file for d in m.drivers))}
+    found = discover(str(pkg))
+    return any(os.path.realpath(p) not in named for p in (*found.params, *found.launch))
+
+
+def _vouched(cfg) -> bool:
+    """The runner named this config with --config FILE --trust-config (request.config.Config.vouched)."""
+    return bool(getattr(cfg, "vouched", True))
+
+
+def _srdf_text(path: str) -> bool:
+    """MoveIt's semantic description by its text (SRDF elements, no <link>), whatever the file's name."""
+    from urdfcheck.load.discover import _is_srdf, _read_head
+
+    return os.path.isfile(path) and _is_srdf(_read_head(str(path)))
 
 
 def _is_launch(path: str) -> bool:
@@ -513,7 +578,8 @@ def _unique(targets: list[Target]) -> list[Target]:
     seen, out = set(), []
     for t in targets:
         launch = getattr(getattr(t.deployment, "launch", None), "file", None)
-        key = (os.path.realpath(t.path), tuple(sorted(t.args.items())), launch)  # realpath: no stat of a link's target
+        key = (os.path.realpath(t.path), tuple(sorted(t.args.items())), launch,  # realpath: no stat of a link's target
+               getattr(t, "twin", False))
         if key not in seen:
             seen.add(key)
             out.append(t)
@@ -540,7 +606,7 @@ class _Walk(Record):
 
 
 def _walk(folder: str) -> _Walk:
-    """One pass over a folder tree: nested config files and packages (hidden and build folders skipped)."""
+    """One pass over a folder tree: nested config files and packages (what core.walk skips skipped)."""
     from urdfcheck.core import walk
     from urdfcheck.request.config import PYPROJECT, _pyproject_has_table
 

@@ -64,6 +64,12 @@ def render(result, colour: bool = False, **_) -> str:
             lines.append(f"Not a pass: {why_not}.")
     elif why_not:
         lines.append(f"Nothing checked: {why_not}, no findings.")
+    elif getattr(result, "baselined", 0):  # the baseline is a file too: what it hides is said (issue 36)
+        hidden = result.baselined
+        lines.append(f"No new findings: {n_models} model{'s' if n_models != 1 else ''}{deployed}; {hidden} "
+                     f"finding{'s' if hidden != 1 else ''} hidden by the baseline (--baseline).")
     else:
         lines.append(f"All checks passed: {n_models} model{'s' if n_models != 1 else ''}{deployed}, no findings.")
+    if result.findings and getattr(result, "baselined", 0):
+        lines.append(f"{result.baselined} more hidden by the baseline (--baseline).")
     return "\n".join(lines) + "\n"

@@ -90,7 +90,7 @@ class ModelConfig(FrozenRecord):
     # variants: "auto", a mapping, or None
     # drivers: consumers.controllers.DriverSpec, one per declared custom driver
     _fields = ('path', 'loc', 'args', 'variants', 'controllers', 'drivers', 'launch', 'launch_args', 'localization',
-               'frame_prefix', 'bags')
+               'frame_prefix', 'bags', 'defaults')
 
     def __init__(self, path: str,
                  loc: Location,
@@ -102,7 +102,8 @@ class ModelConfig(FrozenRecord):
                  launch_args: Mapping[str, str] | None = None,
                  localization: tuple[str, ...] = (),
                  frame_prefix: str = "",
-                 bags: tuple[str, ...] = ()):
+                 bags: tuple[str, ...] = (),
+                 defaults: Mapping[str, str] | None = None):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
         d["loc"] = loc
@@ -115,15 +116,23 @@ class ModelConfig(FrozenRecord):
         d["localization"] = localization
         d["frame_prefix"] = frame_prefix
         d["bags"] = bags  # recordings checked against this model (urdfcheck.bag)
+        # xacro args whose default an untrusted config replaces: the defaults are linted too (issue 36)
+        d["defaults"] = _ro({}) if defaults is None else defaults
 
     def variant_args(self) -> list[tuple[str, dict]]:
         """(variant name, xacro args) pairs: one ("", args) when there are no variants."""
         base = dict(self.args)
         if self.variants == "auto":
-            return [(n, {**base, **a}) for n, a in auto_variants(self.path, base)]
-        if isinstance(self.variants, Mapping) and self.variants:
-            return [(n, {**base, **dict(a)}) for n, a in self.variants.items()]
-        return [("", base)]
+            out = [(n, {**base, **a}) for n, a in auto_variants(self.path, base)]
+        elif isinstance(self.variants, Mapping) and self.variants:
+            out = [(n, {**base, **dict(a)}) for n, a in self.variants.items()]
+        else:
+            out = [("", base)]
+        if self.defaults:  # an untrusted config's args may add variants, never replace the defaults
+            d = self.defaults
+            if not any(all(a.get(k, v) == v for k, v in d.items()) for _, a in out):
+                out.append(("xacro defaults", {k: v for k, v in base.items() if k not in d}))
+        return out
 
 
 class Config(FrozenRecord):
@@ -131,7 +140,7 @@ class Config(FrozenRecord):
     # root: its folder; relative paths start here
     _fields = ('path', 'root', 'models', 'frames', 'tf_owners', 'tf_owner_locs', 'packages', 'select', 'ignore',
                'fail_on', 'severity', 'rules', 'trusted', 'allow_env', 'max_elements', 'locs', 'target',
-               'profiles', 'notes')
+               'profiles', 'notes', 'vouched')
 
     def __init__(self, path: str,
                  root: str,
@@ -151,7 +160,8 @@ class Config(FrozenRecord):
                  locs: Mapping[tuple, Location] | None = None,
                  target: str | None = None,
                  profiles: tuple[str, ...] = (),
-                 notes: tuple = ()):
+                 notes: tuple = (),
+                 vouched: bool = True):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["path"] = path
         d["root"] = root
@@ -173,6 +183,9 @@ class Config(FrozenRecord):
         d["profiles"] = profiles  # issue 25: rules/checks/profiles/common.PROFILES
         d["target"] = target  # issue 14: noetic | humble | jazzy | kilted | rolling (model.grammar.TARGETS)
         d["notes"] = notes  # findings about the config itself (request.trust: keys it may not set)
+        # the runner named it with --config FILE --trust-config: it may lower the gate, and its `models:` are all
+        # that is linted; otherwise they add to discovery (plan.plan; issue 36)
+        d["vouched"] = vouched
 
     def loc(self, *path) -> Location:
         """Where a key was written (the file when unknown)."""
@@ -375,9 +388,11 @@ def _str_args(d) -> dict[str, str]:
     return out
 
 
-def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
+def load_config(path: str | os.PathLike, trusted: bool = False, root: str | None = None) -> Config:
     """`trusted`: the person running the tool named this config (--config FILE --trust-config); otherwise
-    what lowers the guard is ignored, with a finding, and its paths stay in the checkout (request.trust)."""
+    what lowers the guard is ignored, with a finding, and its paths stay in the checkout (request.trust).
+    `root`: the folder its relative paths start at (default: its own folder; a trusted config kept in a private
+    temp file, such as the base revision's, names the checkout folder it belongs to)."""
     from urdfcheck.request import trust
 
     path = os.path.abspath(str(path))
@@ -394,7 +409,7 @@ def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
     except RecursionError:
         raise ConfigError("the config is nested too deeply", Location(path)) from None
     notes = tuple(trust.screen(data, path, key_loc, trusted))
-    root = os.path.dirname(path)
+    root = os.path.abspath(root) if root else os.path.dirname(path)
     locs: dict[tuple, Location] = {}
 
     def resolve(p: str, *keypath, must_exist=True, kind="file") -> str:
@@ -431,8 +446,10 @@ def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
                 frames=_as_tuple(d.get("frames")), odom_tf=d.get("odom_tf"),
                 odom_frame=d.get("odom_frame"), base_frame=d.get("base_frame"),
             ))
+        replaced = _ro({}) if trusted else _replaced_defaults(mp, m)
         models.append(ModelConfig(
-            path=mp, loc=val_loc("models", i, "path"), args=_ro(_str_args(m.get("args"))), variants=variants,
+            defaults=replaced, path=mp, loc=val_loc("models", i, "path"), args=_ro(_str_args(m.get("args"))),
+            variants=variants,
             controllers=tuple(resolve(p, "models", i, "controllers", k)
                               for k, p in enumerate(m.get("controllers") or [])),
             drivers=tuple(drivers),
@@ -443,10 +460,15 @@ def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
             frame_prefix=str(m.get("frame_prefix") or ""),
             bags=tuple(resolve(p, "models", i, "bags", k, kind="recording") for k, p in enumerate(m.get("bags") or [])),
         ))
+        if replaced and any(n == "xacro defaults" for n, _ in models[-1].variant_args()):
+            key = "args" if m.get("args") else "variants"
+            notes += (trust.defaults_kept(str(m["path"]), replaced, key_loc("models", i, key)),)
     packages = {str(k): resolve(v, "packages", k, kind="folder") for k, v in (data.get("packages") or {}).items()}
     for k, p in packages.items():
         if not os.path.isdir(p):
             raise ConfigError(f"'packages.{k}': not a folder: {data['packages'][k]}", val_loc("packages", k))
+    if not trusted and packages:
+        notes += tuple(_own_packages(packages, data, root, key_loc))
     tf_owners = {str(k): str(v) for k, v in (data.get("tf_owners") or {}).items()}
     tf_owner_locs = {k: key_loc("tf_owners", k) for k in tf_owners}
     severity = {str(k): Severity.parse(v) for k, v in (data.get("severity") or {}).items()}
@@ -469,8 +491,42 @@ def load_config(path: str | os.PathLike, trusted: bool = False) -> Config:
         max_elements=int(data["max_elements"]) if data.get("max_elements") is not None else None, locs=_ro(locs),
         target=str(data["target"]) if data.get("target") else None,
         profiles=tuple(dict.fromkeys(str(p) for p in data.get("profiles") or ())),
-        notes=notes,
+        notes=notes, vouched=trusted,
     )
+
+
+def _replaced_defaults(model: str, m: dict) -> Mapping:
+    """The xacro args with a default in `model` (name -> default) that the config's `args` or `variants` set."""
+    given = {str(k) for k in m.get("args") or {}}
+    if isinstance(m.get("variants"), dict):
+        for v in m["variants"].values():
+            given |= {str(k) for k in v or {}}
+    if not given or not model.endswith(".xacro"):
+        return _ro({})
+    from urdfcheck.load.variants import defaulted_args
+
+    return _ro({k: v for k, v in defaulted_args(model).items() if k in given})
+
+
+def _own_packages(packages: dict, data: dict, root: str, key_loc) -> list:
+    """Refuse (X018, and drop) `packages:` entries that point a package the checkout defines (a package.xml of
+    that name in the config's repository) at another folder, or choose among two copies of it: the pull request
+    would lint a clean copy."""
+    from urdfcheck.load.packages import workspace_packages
+    from urdfcheck.request import trust
+
+    top = trust.repo_root(root)
+    own = workspace_packages(top)
+    out = []
+    for name in list(packages):
+        homes = own.get(name)
+        # two copies of one package in the checkout: choosing one is the runner's (the pull request could commit a
+        # clean copy under the same name); zero config resolves the copy nearest each model
+        if homes and (len(homes) > 1 or os.path.realpath(packages[name]) != os.path.realpath(homes[0])):
+            shown = [os.path.relpath(h, top) for h in homes]  # no absolute runner path in a message
+            out.append(trust.refuse_package(name, str(data["packages"][name]), shown, key_loc("packages", name)))
+            del packages[name]
+    return out
 
 
 # --- variants: auto (load.variants; imported from here too) ----------------------------------------------

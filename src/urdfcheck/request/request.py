@@ -51,6 +51,10 @@ class LintRequest(Record):
         "config": None,          # an explicit config file (else found upward from each path)
         "use_config": True,      # False: ignore config files (--no-config)
         "trust_config": False,   # the explicit `config` may lower the guard (--trust-config; request.trust)
+        # the folder the explicit config's relative paths start at (None: its own folder). A config kept outside
+        # the checkout (the base revision's, read through git into a private temp file: --config-from) names the
+        # checkout folder it came from here
+        "config_root": None,
         "max_files": None,       # files one package walk looks at (None: load.discover.MAX_FILES)
         "root": "",              # reports show paths relative to this folder (default: working directory)
         "baseline": None,        # only findings not in this baseline file
@@ -153,7 +157,7 @@ def make_request(paths=(), **options) -> LintRequest:
         kw["bags"] = tuple(os.fsdecode(b) for b in ([options["bags"]] if isinstance(options["bags"], str)
                                                      else options["bags"]))
     for key in ("trusted", "timeout", "max_elements", "config", "use_config", "root", "baseline", "budget",
-                "target", "joint_states", "trust_config", "max_files"):
+                "target", "joint_states", "trust_config", "max_files", "config_root"):
         if options.get(key) is not None:
             kw[key] = options[key]
     if options.get("profiles") is not None:
@@ -172,6 +176,12 @@ def make_request(paths=(), **options) -> LintRequest:
         raise UsageError(f"no such file or folder: {', '.join(missing)}")
     if kw.get("config") is not None and not os.path.isfile(kw["config"]):
         raise UsageError(f"no such config file: {kw['config']}")
+    if kw.get("config_root") is not None:
+        if kw.get("config") is None:
+            raise UsageError("config_root needs an explicit config file")
+        if not os.path.isdir(kw["config_root"]):
+            raise UsageError(f"no such folder: {kw['config_root']}")
+        kw["config_root"] = os.path.abspath(kw["config_root"])
     if kw.get("trust_config") and kw.get("config") is None:
         raise UsageError("--trust-config needs --config FILE (a config found in the checkout is never trusted)")
     return LintRequest(**kw)

@@ -7,7 +7,14 @@ command line, the environment, the Python API, or a config the command line name
 `--config FILE --trust-config`. A config found on disk (urdfcheck.yaml, .urdfcheck.yaml, [tool.urdfcheck],
 a nested sub/urdfcheck.yaml) that asks for one gets an X018 finding at the key, and the key is ignored.
 
+The same holds for the gate itself (issue 36): such a config adds, never hides. `ignore`, a `select` narrower
+than ALL, a `severity` below a rule's default, a `fail_on` above warning, a rule option that loosens its check,
+`packages` pointing a package the checkout defines elsewhere: each an X018 error at the key, and ignored. Its
+`models` add to discovery (plan.plan), and `args` that replace a xacro default add the defaults variant
+(request.config). A config named with `--config FILE` alone is as untrusted as one found.
+
     screen(data, path, key_loc, trusted) -> [Finding]   # drops what an untrusted config may not say
+    tightens(code, option, value) -> bool               # may an untrusted config set this rule option?
     confine(full, root, trusted) -> str | None          # why a config path leaves the checkout, or None
     repo_root(folder) -> str                            # the repository a config belongs to
 """
@@ -41,7 +48,7 @@ def screen(data: dict, path: str, key_loc, trusted: bool) -> list[Finding]:
         out.append(_finding(f"'allow_env' ({names}) in a config found in the checkout is ignored (it would put "
                             f"environment values into the report); {how}", key_loc("allow_env")))
     data.pop("allow_env", None)
-    out.extend(_keep_load_findings(data, key_loc))
+    out.extend(_keep_gate(data, key_loc))
     limit = data.get("max_elements")
     if isinstance(limit, int) and limit > DEFAULT_MAX_ELEMENTS:
         out.append(_finding(f"'max_elements: {limit}' above the default ({DEFAULT_MAX_ELEMENTS}) in a config found "
@@ -50,34 +57,124 @@ def screen(data: dict, path: str, key_loc, trusted: bool) -> list[Finding]:
     return out
 
 
-LOAD_PREFIX = "X0"  # load and sandbox findings: X001-X029
+DEFAULT_FAIL_ON = Severity.WARNING  # request.Settings' default
 
 
-def _hides_load(pattern) -> bool:
-    p = str(pattern).upper()
-    return p == "ALL" or LOAD_PREFIX.startswith(p) or p.startswith(LOAD_PREFIX)
+def _gate(message: str, loc: Location) -> Finding:
+    """A refused gate-lowering key: an error, so that the run that ignored it cannot pass silently."""
+    return Finding("X018", Severity.ERROR, message, loc, name="untrusted-config")
 
 
-def _keep_load_findings(data: dict, key_loc) -> list[Finding]:
-    """A config found in the checkout cannot deselect or soften load and sandbox findings (X0xx): a refused
-    expansion must not become "All checks passed"."""
+GATE_HOW = ("the key is ignored (a config found in the checkout, or named without --trust-config, may add checks, "
+            "never remove them; pass it on the command line, or name a config the pull request cannot change with "
+            "--config FILE --trust-config)")
+
+
+def _keep_gate(data: dict, key_loc) -> list[Finding]:
+    """The gate belongs to the person running the tool (issue 36): an untrusted config may add to what is checked
+    and make it stricter, never hide or soften a finding. Each refused key is one X018 error at the key, saying
+    what was refused; the key is dropped."""
     out = []
-    hidden = [p for p in data.get("ignore") or () if _hides_load(p)]
-    if hidden:
-        data["ignore"] = [p for p in data["ignore"] if not _hides_load(p)]
-        out.append(_finding(f"'ignore: {', '.join(map(str, hidden))[:200]}' in a config found in the checkout does "
-                            "not hide load and sandbox findings (X0xx); ignore them on the command line",
-                            key_loc("ignore")))
-    select = data.get("select")
-    if select and not any(str(p).upper() in ("ALL", "X", LOAD_PREFIX) for p in select):  # X017 alone is not all
-        data["select"] = [*select, LOAD_PREFIX]  # selected anyway: silently, as `select` lists what to add
-    softened = [k for k in data.get("severity") or {} if _hides_load(k)]
-    if softened:
-        for k in softened:
-            del data["severity"][k]
-        out.append(_finding(f"'severity: {', '.join(map(str, softened))[:200]}' in a config found in the checkout "
-                            "does not change load and sandbox findings (X0xx)", key_loc("severity")))
+    ignore = [str(p) for p in data.pop("ignore", None) or ()]
+    if ignore:
+        out.append(_gate(f"'ignore: {', '.join(ignore)[:200]}' would hide findings; {GATE_HOW}", key_loc("ignore")))
+    select = [str(p) for p in data.get("select") or ()]
+    if select and not any(p.upper() == "ALL" for p in select):
+        del data["select"]
+        out.append(_gate(f"'select: {', '.join(select)[:200]}' would leave the other rules unchecked; {GATE_HOW}",
+                         key_loc("select")))
+    lowered = [k for k, v in (data.get("severity") or {}).items() if _lowers(str(k), v)]
+    for k in lowered:
+        v = data["severity"].pop(k)
+        out.append(_gate(f"'severity: {k}: {v}' would lower the default severity of {_what(str(k))}; {GATE_HOW}",
+                         key_loc("severity", k)))
+    fail_on = data.get("fail_on")
+    if isinstance(fail_on, str) and _parse(fail_on) is not None and _parse(fail_on) > DEFAULT_FAIL_ON:
+        del data["fail_on"]
+        out.append(_gate(f"'fail_on: {fail_on}' would pass a run with {DEFAULT_FAIL_ON} findings; {GATE_HOW}",
+                         key_loc("fail_on")))
+    for code, opts in list((data.get("rules") or {}).items()):
+        for name in list(opts or {}):
+            if not tightens(str(code), str(name), opts[name]):
+                value = opts.pop(name)
+                out.append(_gate(f"'rules: {code}: {name}: {str(value)[:80]}' would loosen {code} (an untrusted "
+                                 f"config may only tighten a rule's options); {GATE_HOW}",
+                                 key_loc("rules", code, name)))
+        if not opts:
+            del data["rules"][code]
     return out
+
+
+def _parse(v) -> Severity | None:
+    if isinstance(v, Severity):
+        return v
+    try:
+        return Severity.parse(str(v))
+    except ValueError:
+        return None
+
+
+def _lowers(pattern: str, value) -> bool:
+    """Does `severity: {pattern: value}` put any rule it matches below that rule's default?"""
+    from urdfcheck.rules.catalogue import catalogue, matches
+
+    new = _parse(value)
+    if new is None:
+        return False  # the schema reports it
+    return any(info.severity > new for code, info in catalogue().items() if matches(code, [pattern.upper()]))
+
+
+def _what(pattern: str) -> str:
+    from urdfcheck.rules.catalogue import catalogue, matches
+
+    hit = [c for c in catalogue() if matches(c, [pattern.upper()])]
+    return hit[0] if len(hit) == 1 else f"{len(hit)} rules"
+
+
+# How a rule option's value tightens its check, decided per option type (issue 36). A number option is always
+# a tolerance or a threshold below which a check does not judge (tolerance, angle_tolerance, atol, rtol, min_mass):
+# a smaller value reports more. A list of names tightens when it grows (names reported) or shrinks (names
+# accepted or skipped), per option below. A boolean, string or integer option tightens only where named here;
+# any other change from an untrusted config is refused: when in doubt, the runner decides.
+GROWS_TIGHTER = {("F001", "frames")}                        # names a check reports: more is stricter
+SHRINKS_TIGHTER = {("F002", "expected"), ("G001", "ignore")}  # names a check accepts or skips: fewer is stricter
+TIGHT_VALUES = {("I003", "allow_singular"): False}          # the value that reports more
+
+
+def tightens(code: str, name: str, value) -> bool:
+    """May an untrusted config set rule option `code.name` to `value`? Only when the check reports at least what
+    it reports at the option's default (an unknown option: the schema reports it)."""
+    from urdfcheck.rules.catalogue import catalogue
+
+    info = catalogue().get(code)
+    spec = info.option_specs.get(name) if info is not None else None
+    if spec is None:
+        return True
+    default = spec.default
+    if value == default and type(value) is type(default):
+        return True
+    if spec.type == "number":
+        return isinstance(value, (int, float)) and not isinstance(value, bool) and value <= default
+    if spec.type == "strings" and isinstance(value, (list, tuple)):
+        if (code, name) in GROWS_TIGHTER:
+            return set(default) <= set(value)
+        if (code, name) in SHRINKS_TIGHTER:
+            return set(value) <= set(default)
+        return False
+    return (code, name) in TIGHT_VALUES and value == TIGHT_VALUES[(code, name)]
+
+
+def refuse_package(name: str, given: str, own: list, loc: Location) -> Finding:
+    where = ", ".join(sorted({str(p) for p in own}))[:200]
+    return _gate(f"'packages: {name}: {given}' would point the checkout's own package {name} (its package.xml is "
+                 f"in {where}) at another folder; {GATE_HOW}", loc)
+
+
+def defaults_kept(model: str, names, loc: Location) -> Finding:
+    """A note, not a refusal: the model is linted with its xacro defaults too."""
+    return Finding("X018", Severity.INFO, f"the args of {model} replace the default of {', '.join(sorted(names))[:200]}"
+                   " in a config the runner did not trust: the model is linted with its defaults too (variant "
+                   "'xacro defaults')", loc, name="untrusted-config")
 
 
 _ROOTS: dict[str, str] = {}

@@ -1,0 +1,280 @@
+"""The gate belongs to the runner (issue 36): a config found in the checkout (or named without --trust-config)
+adds, never hides; discovery skips by ROS's marker files, never by folder names; whatever robot_state_publisher
+is given is a robot, whatever its name. Each case: a broken robot that passed on the old code ("All checks
+passed", exit 0) and fails now, with the refused key said at its line (X018)."""
+import json
+import os
+
+import pytest
+from conftest import run_cli
+from samples import BAD, GOOD
+
+BROKEN = ("bot/urdf/broken.urdf", 5)  # U002 (<orign>), a warning
+
+
+def _ws(tmp_path, config: str | None = None, where: str = "urdfcheck.yaml"):
+    """A repository (.git) with the package bot: a broken robot beside a clean one."""
+    ws = tmp_path / "ws"
+    (ws / ".git").mkdir(parents=True)
+    (ws / "bot" / "urdf").mkdir(parents=True)
+    (ws / "bot" / "package.xml").write_text("<package format='3'><name>bot</name></package>")
+    (ws / "bot" / "urdf" / "broken.urdf").write_text(BAD)
+    (ws / "bot" / "urdf" / "clean.urdf").write_text(GOOD)
+    if config is not None:
+        (ws / where).parent.mkdir(parents=True, exist_ok=True)
+        (ws / where).write_text(config)
+    return ws
+
+
+def _lint(ws, *args):
+    code, out, err = run_cli(["lint", "--format", "json", *args], cwd=ws)
+    assert code in (0, 1), err
+    return code, [(f["code"], f["location"]["file"], f["location"]["line"], f["severity"])
+                  for f in json.loads(out)["findings"]]
+
+
+def _x018(found):
+    return [(f, line) for c, f, line, sev in found if c == "X018" and sev == "error"]
+
+
+def _has_broken(found, severity="warning"):
+    return ("U002", *BROKEN, severity) in found
+
+
+# --- models: adds to discovery ---------------------------------------------------------------------------------
+DECOY = {
+    "urdfcheck.yaml": ("urdfcheck.yaml", "models:\n  - path: bot/urdf/clean.urdf\n"),
+    ".urdfcheck.yaml": (".urdfcheck.yaml", "models:\n  - path: bot/urdf/clean.urdf\n"),
+    "pyproject": ("pyproject.toml",
+                  '[project]\nname = "x"\n\n[[tool.urdfcheck.models]]\npath = "bot/urdf/clean.urdf"\n'),
+    "nested": ("bot/urdfcheck.yaml", "models:\n  - path: urdf/clean.urdf\n"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(DECOY))
+def test_a_declared_decoy_does_not_hide_the_robot_beside_it(tmp_path, case):
+    where, text = DECOY[case]
+    ws = _ws(tmp_path, text, where)
+    code, found = _lint(ws)
+    assert code == 1 and _has_broken(found), found
+    code, found = _lint(ws, ".")
+    assert code == 1 and _has_broken(found), found
+    if case != "nested":  # the runner vouching for it: its models are all that is linted
+        code, found = _lint(ws, "--config", where, "--trust-config")
+        assert code == 0 and found == [], found
+
+
+# --- what lowers the gate: refused at its key, an error -----------------------------------------------------------
+def _all_families_but_x():
+    from urdfcheck.rules.catalogue import catalogue
+
+    return sorted({c[0] for c in catalogue()} - {"X"})
+
+
+LOWERING = {
+    "ignore all but X": (lambda: f"ignore: [{', '.join(_all_families_but_x())}]\n", 1, "warning"),
+    "ignore the code": (lambda: "ignore: [U002]\n", 1, "warning"),
+    "severity down to info": (lambda: "severity: {U: info}\n", 1, "warning"),
+    "severity of the code": (lambda: "severity:\n  U002: info\n", 2, "warning"),
+    "select B": (lambda: "select: [B]\n", 1, "warning"),
+    "fail_on error with lowered severities": (lambda: "fail_on: error\nseverity: {U002: info, X: info}\n", None,
+                                              "warning"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(LOWERING))
+def test_what_lowers_the_gate_is_refused_at_its_key(tmp_path, case):
+    text, line, severity = LOWERING[case]
+    ws = _ws(tmp_path, text())
+    code, found = _lint(ws)
+    assert code == 1 and _has_broken(found, severity), found
+    refused = _x018(found)
+    assert refused and all(f == "urdfcheck.yaml" for f, _ in refused), found
+    if line is not None:
+        assert refused == [("urdfcheck.yaml", line)]
+    # named with --config alone it is as untrusted as found; with --trust-config the runner lowers the gate
+    code, found = _lint(ws, "--config", "urdfcheck.yaml")
+    assert code == 1 and _has_broken(found, severity) and _x018(found), found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert not _x018(found) and code == 0, found
+
+
+def test_fail_on_error_with_lowered_severities_says_each_refused_key(tmp_path):
+    ws = _ws(tmp_path, "fail_on: error\nseverity: {U002: info, X: info}\n")
+    code, found = _lint(ws)
+    assert code == 1 and sorted(_x018(found)) == [("urdfcheck.yaml", 1), ("urdfcheck.yaml", 2),
+                                                   ("urdfcheck.yaml", 2)], found
+
+
+def test_a_rule_option_that_loosens_the_check_is_refused(tmp_path):
+    ws = _ws(tmp_path, "rules:\n  J007:\n    tolerance: 1.0e+9\n")
+    (ws / "bot" / "urdf" / "broken.urdf").write_text(
+        '<robot name="r">\n  <link name="base_link"/>\n  <link name="arm"/>\n'
+        '  <joint name="j" type="revolute">\n    <axis xyz="0 0 2"/>\n    <parent link="base_link"/>\n'
+        '    <child link="arm"/>\n    <limit lower="0" upper="1" effort="1" velocity="1"/>\n  </joint>\n</robot>\n')
+    code, found = _lint(ws)
+    assert code == 1 and "J007" in [c for c, *_ in found] and _x018(found) == [("urdfcheck.yaml", 3)], found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert "J007" not in [c for c, *_ in found], found
+    # tightening is anyone's right: kept, no X018
+    (ws / "urdfcheck.yaml").write_text("select: [ALL]\nseverity: {J007: error}\nfail_on: info\n"
+                                       "rules: {J007: {tolerance: 1.0e-9}}\n")
+    code, found = _lint(ws)
+    assert code == 1 and ("J007", "bot/urdf/broken.urdf", 5, "error") in found, found
+    assert not [c for c in found if c[0] == "X018"], found
+
+
+@pytest.mark.parametrize("code, option, value, ok", [
+    ("J007", "tolerance", 1e-9, True), ("J007", "tolerance", 1e9, False), ("J007", "tolerance", True, False),
+    ("I003", "min_mass", 0.0, True), ("I003", "min_mass", 10.0, False),
+    ("I003", "allow_singular", False, True), ("I003", "allow_singular", True, True),
+    ("F001", "frames", ["map", "odom", "earth"], True), ("F001", "frames", [], False),
+    ("F002", "expected", ["base_link"], True), ("F002", "expected", ["chassis"], False),
+    ("G001", "ignore", [], True), ("G001", "ignore", ["*"], False),
+])
+def test_rule_options_tighten_per_type(code, option, value, ok):
+    from urdfcheck.request.trust import tightens
+
+    assert tightens(code, option, value) is ok
+
+
+def test_packages_may_not_point_the_checkouts_own_package_at_a_clean_copy(tmp_path):
+    ws = _ws(tmp_path, "packages: {bot: vendor/bot_clean}\n")
+    (ws / "bot" / "urdf" / "robot.urdf.xacro").write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+        '  <xacro:include filename="$(find bot)/urdf/parts.xacro"/>\n  <xacro:parts/>\n</robot>\n')
+    (ws / "bot" / "urdf" / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <xacro:macro name="parts">\n'
+        '    <link name="base_link"/>\n    <link name="arm"/>\n    <joint name="j" type="fixed">\n'
+        '      <orign xyz="0 0 1"/>\n      <parent link="base_link"/>\n      <child link="arm"/>\n    </joint>\n'
+        '  </xacro:macro>\n</robot>\n')
+    (ws / "bot" / "urdf" / "broken.urdf").unlink()
+    clean = ws / "vendor" / "bot_clean" / "urdf"
+    clean.mkdir(parents=True)
+    (clean / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <xacro:macro name="parts">\n'
+        '    <link name="base_link"/>\n  </xacro:macro>\n</robot>\n')
+    code, found = _lint(ws, "bot")
+    assert code == 1 and ("U002", "bot/urdf/parts.xacro", 6, "warning") in found, found
+    assert _x018(found) == [("urdfcheck.yaml", 1)]
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config", "bot")
+    assert code == 0 and found == [], found
+    (ws / "urdfcheck.yaml").write_text("packages: {bot: bot, other: vendor/bot_clean}\n")  # its own folder: fine
+    code, found = _lint(ws, "bot")
+    assert not _x018(found) and ("U002", "bot/urdf/parts.xacro", 6, "warning") in found, found
+    # a clean copy committed under the same name: choosing it is the runner's too
+    (ws / "vendor" / "bot_clean" / "package.xml").write_text("<package format='3'><name>bot</name></package>")
+    (ws / "urdfcheck.yaml").write_text("packages: {bot: vendor/bot_clean}\n")
+    code, found = _lint(ws, "bot")
+    assert code == 1 and ("U002", "bot/urdf/parts.xacro", 6, "warning") in found, found
+    assert _x018(found) == [("urdfcheck.yaml", 1)]
+
+
+TYPO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <xacro:arg name="typo" default="true"/>
+  <link name="base_link"/>
+  <link name="arm"/>
+  <joint name="j" type="fixed">
+    <xacro:if value="$(arg typo)"><orign xyz="0 0 1"/></xacro:if>
+    <parent link="base_link"/>
+    <child link="arm"/>
+  </joint>
+</robot>
+"""
+
+
+@pytest.mark.parametrize("spec", ["    args: {typo: 'false'}\n", "    variants: {clean: {typo: 'false'}}\n"])
+def test_args_that_replace_a_default_add_a_variant_never_the_defaults_away(tmp_path, spec):
+    ws = _ws(tmp_path, "models:\n  - path: bot/urdf/robot.urdf.xacro\n" + spec)
+    (ws / "bot" / "urdf" / "broken.urdf").unlink()
+    (ws / "bot" / "urdf" / "robot.urdf.xacro").write_text(TYPO)
+    code, out, err = run_cli(["lint", "--format", "json"], cwd=ws)
+    report = json.loads(out)
+    assert code == 1, err
+    assert any(f["code"] == "U002" and f["location"]["line"] == 6 for f in report["findings"]), report["findings"]
+    assert {m["variant"] for m in report["models"]} >= {"xacro defaults"}
+    x018 = [f for f in report["findings"] if f["code"] == "X018"]
+    assert [(f["severity"], f["location"]["line"]) for f in x018] == [("info", 3)]
+    code, out, _ = run_cli(["lint", "--format", "json", "--config", "urdfcheck.yaml", "--trust-config"], cwd=ws)
+    assert code == 0 and json.loads(out)["findings"] == []
+
+
+# --- a trusted config outside the checkout (the base revision's, in a private temp file) ---------------------------
+def test_a_trusted_config_kept_outside_the_checkout(tmp_path):
+    ws = _ws(tmp_path)
+    private = tmp_path / "private"
+    private.mkdir()
+    (private / "base.yaml").write_text("models:\n  - path: bot/urdf/broken.urdf\nignore: [U002]\n")
+    from urdfcheck.request.request import make_request
+    from urdfcheck.run import run
+
+    old = os.getcwd()
+    os.chdir(ws)
+    try:
+        result = run(make_request([], config=str(private / "base.yaml"), trust_config=True, config_root=str(ws)))
+        assert result.findings == [] and [t.path.name for t in result.targets] == ["broken.urdf"]
+        untrusted = run(make_request([], config=str(private / "base.yaml"), config_root=str(ws)))
+        assert {f.code for f in untrusted.findings} == {"U002", "X018"}
+    finally:
+        os.chdir(old)
+
+
+# --- the pytest plugin reads the same plan ------------------------------------------------------------------------
+def test_the_plugin_gives_the_undeclared_robot_an_item(tmp_path):
+    from urdfcheck.plan.plan import plan
+    from urdfcheck.request.request import make_request
+
+    ws = _ws(tmp_path, "models:\n  - path: urdf/clean.urdf\n", "bot/urdfcheck.yaml")
+    targets = plan(make_request([], root=str(ws / "bot")), here=str(ws / "bot"))  # what the plugin plans
+    assert sorted(t.path.name for t in targets) == ["broken.urdf", "clean.urdf"]
+
+
+# --- discovery: marker files, not folder names --------------------------------------------------------------------
+@pytest.mark.parametrize("folder", ["log", "build", "install", "venv", "devel", "node_modules"])
+def test_a_package_under_a_plain_output_folder_name_is_linted(tmp_path, folder):
+    ws = tmp_path / "ws"
+    (ws / "clean" / "urdf").mkdir(parents=True)
+    (ws / "clean" / "package.xml").write_text("<package format='3'><name>clean</name></package>")
+    (ws / "clean" / "urdf" / "clean.urdf").write_text(GOOD)
+    pkg = ws / folder / "bot"
+    (pkg / "urdf").mkdir(parents=True)
+    (pkg / "package.xml").write_text("<package format='3'><name>bot</name></package>")
+    (pkg / "urdf" / "broken.urdf").write_text(BAD)
+    code, found = _lint(ws, "--no-config", ".")
+    assert code == 1 and ("U002", f"{folder}/bot/urdf/broken.urdf", 5, "warning") in found, found
+    marker = {"venv": "pyvenv.cfg", "devel": ".catkin", "node_modules": ".package-lock.json"}.get(folder,
+                                                                                                  "COLCON_IGNORE")
+    (ws / folder / marker).write_text("")  # what colcon (or venv, catkin, npm) writes there
+    code, found = _lint(ws, "--no-config", ".")
+    assert code == 0 and found == [], found
+
+
+# --- whatever robot_state_publisher is given is a robot -----------------------------------------------------------
+def test_a_robot_in_an_srdf_named_file_loaded_by_a_launch_file_is_linted(tmp_path):
+    ws = _ws(tmp_path)
+    (ws / "bot" / "urdf" / "broken.urdf").unlink()
+    (ws / "bot" / "urdf" / "robot.srdf.xacro").write_text(TYPO)
+    (ws / "bot" / "launch").mkdir()
+    (ws / "bot" / "launch" / "bot.launch.xml").write_text(
+        "<launch>\n  <node pkg=\"robot_state_publisher\" exec=\"robot_state_publisher\">\n"
+        "    <param name=\"robot_description\" "
+        "value=\"$(command 'xacro $(find-pkg-share bot)/urdf/robot.srdf.xacro')\"/>\n  </node>\n</launch>\n")
+    code, found = _lint(ws, "--no-config", ".")
+    assert code == 1 and ("U002", "bot/urdf/robot.srdf.xacro", 6, "warning") in found, found
+
+
+def test_declared_consumers_add_to_those_found_beside_the_model(tmp_path):
+    """A config that declares a model with a clean controllers file does not hide the driver file beside it whose
+    wheel separation is wrong: the model is linted again with the consumers zero config finds."""
+    import shutil
+
+    from conftest import REPO
+
+    ws = tmp_path / "ws"
+    shutil.copytree(REPO / "examples" / "broken" / "contract_wheel_separation", ws)
+    (ws / ".git").mkdir()
+    (ws / "urdfcheck.yaml").write_text("models:\n  - path: urdf/agv.urdf\n    controllers: [config/agv_controllers.yaml]\n")
+    code, found = _lint(ws)
+    assert code == 1 and ("C010", "config/agv_driver_ros1.yaml", 7, "warning") in found, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert code == 0 and found == [], found
