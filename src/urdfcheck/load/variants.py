@@ -57,10 +57,10 @@ def boolean_args(path: str, packages: Mapping[str, str] | None = None, *, includ
 def defaulted_args(path: str, packages: Mapping[str, str] | None = None) -> dict[str, str]:
     """The xacro:args declared with a default (name -> its text, the first declaration's), in the entry and its
     literal includes: what a config's `args` replace rather than supply (request.config; issue 36)."""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
     try:
-        text = read_file(path, 4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
+        text = door.read_bytes(path, limit=4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
     except OSError:
         return set()
     texts = [text]
