@@ -37,7 +37,9 @@ _FIELDS = frozenset(("schema", "key", "code", "stdout", "stderr", "observed", "e
 _VOLATILE = frozenset(("PWD", "OLDPWD", "SHLVL", "_", "URDFCHECK_CACHE_TRACE"))
 # lint options that write files or print something else than the report: such a run is not stored
 # --bag: recordings are read by rosbags and sqlite, whose reads the observer does not see (bag/check.py taints too)
-_NOT_STORED = ("--list", "--write-baseline", "--output", "--report", "--help", "--version", "--bag")
+# --diff-base, --config-from: what a revision names (a branch moving) is no file the observer sees
+_NOT_STORED = ("--list", "--write-baseline", "--output", "--report", "--help", "--version", "--bag", "--diff-base",
+               "--config-from")
 
 
 MAX_VERSIONS = 4  # entries kept per key: the states a pre-commit user goes back and forth between

@@ -219,45 +219,13 @@ def cmd_tf(ns) -> int:
 
 # --- publish ----------------------------------------------------------------------------------------------------
 def _read_joint_states(path: str) -> list:
-    from urdfcheck.core import door
+    """The runner's joint-state file (urdfcheck.bag.source: through core.door, bounded, YAML guarded)."""
+    from urdfcheck.bag.source import RecordingError, text_items
 
     try:
-        # typed by the runner; inside the checkout its real path must stay there (a link the pull request made)
-        data = door.read_bytes(path, limit=64 * 1024 * 1024, runner=True)
-    except OSError as e:
-        raise UsageError(f"cannot read {path}: {e.strerror}") from None
-    if len(data) > 64 * 1024 * 1024:
-        raise UsageError(f"{path} is larger than 64 MiB")
-    text = data.decode("utf-8", "replace")
-    try:
-        doc = json.loads(text)
-        docs = [doc]
-    except ValueError:
-        from urdfcheck.core.yamlimport import yaml
-
-        try:
-            docs = [d for d in yaml.safe_load_all(text) if d is not None]
-        except yaml.YAMLError as e:
-            # the place and the problem only: PyYAML's text quotes the offending line, which may be anything
-            raise UsageError(f"{path} is neither JSON nor YAML: {_yaml_problem(e)}") from None
-    msgs = []
-    for d in docs:
-        if isinstance(d, dict) and isinstance(d.get("messages"), list):
-            d = d["messages"]
-        if isinstance(d, list):
-            msgs.extend(d)
-        else:
-            msgs.append(d)
-    return msgs
-
-
-def _yaml_problem(e) -> str:
-    """A YAML error as `line L, column C: problem`, never the quoted line PyYAML's own text holds."""
-    mark = getattr(e, "problem_mark", None)
-    problem = getattr(e, "problem", None) or "not valid YAML"
-    if mark is None:
-        return problem
-    return f"line {mark.line + 1}, column {mark.column + 1}: {problem}"
+        return list(text_items(path, runner=True))
+    except RecordingError as e:
+        raise UsageError(f"{path}: {e}") from None
 
 
 def _tf_dict(t) -> dict:
@@ -339,7 +307,7 @@ def _check_states(model, path: str) -> bool:
     from urdfcheck.bag import BagOptions, check_recording
     from urdfcheck.core.findings import Severity
 
-    found = check_recording(model, path, BagOptions(), text=True)
+    found = check_recording(model, path, BagOptions(), text=True, runner=True)
     found = [f for f in found if f.code != "B015"]  # a list without JointState fields is said above already
     print_findings(found)
     return any(f.severity >= Severity.WARNING for f in found)

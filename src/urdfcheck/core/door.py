@@ -246,12 +246,18 @@ def active() -> bool:
 
 def guarding(typed=()):
     """`guarded` around the checkout of the working directory and the paths the runner `typed`
-    (core.checkout.run_roots), unless a run is guarded already (then nothing: its roots and budget go on)."""
-    if active():
-        return contextlib.nullcontext()
+    (core.checkout.run_roots), unless a run is guarded already: then its roots and budget go on, and the roots of
+    what is typed are added to it."""
     from urdfcheck.core.checkout import run_roots
 
-    return guarded(run_roots([p for p in typed if p]))
+    roots = run_roots([p for p in typed if p])
+    run = _current()
+    if run is None:
+        return guarded(roots)
+    for r in roots:  # an inner run (the base revision's tree of --diff-base): what it was typed is the runner's
+        if not any(_under(os.path.realpath(r), x) for x in run.roots):
+            run.add_root(r)
+    return contextlib.nullcontext()
 
 
 @contextlib.contextmanager
@@ -267,3 +273,21 @@ def unconfined():
         yield
     finally:
         run.unconfined = False
+
+
+def runner_folder(path) -> str:
+    """The real path of a folder the runner typed (a recording folder): confined as `runner=True`; when it lies
+    outside every root it becomes one, so the files inside it are the runner's too. A folder typed inside the
+    checkout stays the checkout's: its files must stay inside the roots (appended for urdfcheck.bag)."""
+    real = confine(path, runner=True)
+    run = _current()
+    if run is not None and run.roots and not any(_under(real, r) for r in run.roots):
+        run.add_root(real)
+    return real
+
+
+def budget() -> RunBytes | None:
+    """The byte budget of the run in progress (None outside `guarded`): for readers that count bytes they do not
+    read from a file, such as git blobs streamed from `git cat-file`."""
+    run = _current()
+    return run.budget if run is not None else None

@@ -76,7 +76,7 @@ def context(f: Finding) -> str:
     """Hash of the source text the finding points at (its line and its macro call-site lines)."""
     parts = [_source_line(f.location.file, f.location.line)]
     parts += [_source_line(v.file, v.line) for v in f.location.via]
-    return hashlib.sha256("\n".join(parts).encode("utf-8")).hexdigest()[:16]
+    return hashlib.sha256("\n".join(parts).encode("utf-8", "surrogateescape")).hexdigest()[:16]
 
 
 def key(f: Finding, base: str | None = None) -> tuple[str, str, str, str]:
@@ -99,6 +99,10 @@ def write(path: str, findings: list[Finding]) -> None:
     """Write `findings` as a baseline to `path` (deterministic, sorted: diffs stay small)."""
     data = as_dict(findings, _base_of(path))
     text = json.dumps(data, indent=2, sort_keys=True, ensure_ascii=False) + "\n"
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:  # a file name that is not UTF-8: as `\udcff` escapes, read back as the same key
+        text = json.dumps(data, indent=2, sort_keys=True) + "\n"
     with open(path, "w", encoding="utf-8") as f:
         f.write(text)
 

@@ -40,16 +40,26 @@ def _no_xacro_elements(data: bytes) -> bool:
     declared for its URI, literally."""
     if b"xacro" not in data:
         return True
-    return not any(b"<" + p + b":" in data for p in set(_XACRO_PREFIX.findall(data)))
+    prefixes = set(_XACRO_PREFIX.findall(data))
+    if prefixes and (b"${" in data or b"$(" in data):
+        return False  # substitutions in a file that declares xacro: see is_xacro
+    return not any(b"<" + p + b":" in data for p in prefixes)
 
 
 def is_xacro(path: Path, root=None) -> bool:
-    """A .xacro file, or a file whose parsed tree uses xacro elements (some packages name them .urdf)."""
+    """A .xacro file, or a file whose parsed tree uses xacro elements (some packages name them .urdf), or one that
+    declares the xacro namespace and writes ${...} or $(...) in its attributes: a .urdf its launch file runs
+    through xacro (read raw, every such number would be U005). A URDF exported by xacro keeps the declaration but
+    no substitution."""
     if path.name.endswith(".xacro"):
         return True
     if root is None:
         return False
-    return next(root.iter("{" + XACRO_NS + "}*"), None) is not None  # lxml filters in C
+    if next(root.iter("{" + XACRO_NS + "}*"), None) is not None:  # lxml filters in C
+        return True
+    if XACRO_NS not in root.nsmap.values():
+        return False
+    return bool(root.xpath('boolean(//@*[contains(., "${") or contains(., "$(")])'))  # in C, as iter above
 
 
 class Expanded(Record):
