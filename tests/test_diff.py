@@ -224,10 +224,12 @@ def test_two_launch_files_match_their_own_deployment(tmp_path):
     assert {"agv_description/launch/agv.launch.xml", "agv_description/launch/sim.launch.xml"} <= variants
     assert "urdfcheck-" not in res.stdout and str(tmp_path) not in res.stdout and "/tmp" not in res.stdout
     assert data["old"] == "HEAD" and not os.path.isabs(data["new"])
-    # the launch file added since HEAD~1 is the one thing added
+    # the launch file added since HEAD~1 is the one thing added (with each of its launch-argument variants)
     data = as_json(cli("--git", "HEAD~1", "--format", "json", cwd=repo))
-    assert {(m["variant"], m["status"]) for m in data["models"] if m["status"] != "unchanged"} == \
-        {("agv_description/launch/sim.launch.xml", "added")}
+    added = {(m["variant"], m["status"]) for m in data["models"] if m["status"] != "unchanged"}
+    assert ("agv_description/launch/sim.launch.xml", "added") in added
+    assert {v.split(" [")[0] for v, _ in added} == {"agv_description/launch/sim.launch.xml"}
+    assert {s for _, s in added} == {"added"}
 
 
 def test_two_folders_json_names_no_absolute_path(two):
@@ -273,7 +275,11 @@ def test_controller_parameters_a_contract_reads_are_shown(tmp_path):
     edit(f, "enable_odom_tf: true", "enable_odom_tf: false")
     res = cli("--git", "HEAD", "--format", "json", cwd=repo)
     data = as_json(res)
-    for m in data["models"]:
+    # the deployments whose launch file loads the controller file; the package's other model (agv.urdf) is not
+    # paired with it (pairing by reference first, issue 37)
+    deployed = [m for m in data["models"] if m["variant"].startswith("agv_description/launch/")]
+    assert deployed
+    for m in deployed:
         got = {c["name"]: (c["old"], c["new"]) for c in m["changes"]}
         assert got["controller diff_drive_controller wheel_separation"] == (0.5, 0.45)
         assert got["controller diff_drive_controller odom tf odom -> base_link"] == ("on", "off")
