@@ -73,11 +73,14 @@ def without_meshes(xml: str, folder: str | None = None) -> tuple[str, int]:
         return xml, 0  # the consumers get it as it is, and say what they think of it
     n = 0
     boxes: dict[tuple, str] = {}
-    for mesh in list(root.iter("mesh")):
+    # by local name, whatever the namespace: MuJoCo's and PyBullet's readers ignore namespaces, so a
+    # `<mesh xmlns="urn:x" filename="/abs/...">` is a mesh they open (issue 36); no file the model names is
+    # ever handed to a consumer
+    for mesh in [el for el in root.iter() if isinstance(el.tag, str) and etree.QName(el).localname == "mesh"]:
         parent = mesh.getparent()
-        if parent is None or parent.tag != "geometry":
+        if parent is None:
             continue
-        n += 1
+        n += isinstance(parent.tag, str) and etree.QName(parent).localname == "geometry"
         if folder is None:
             box = etree.Element("box", size=MESH_BOX)
             box.tail = mesh.tail
@@ -86,7 +89,14 @@ def without_meshes(xml: str, folder: str | None = None) -> tuple[str, int]:
         scale = _scale(mesh.get("scale"))
         if scale not in boxes:
             boxes[scale] = _box_stl(folder, [0.1 / s if s else 0.1 for s in scale], len(boxes))
+        for name in [a for a in mesh.attrib if etree.QName(a).localname == "filename"]:
+            del mesh.attrib[name]
         mesh.set("filename", boxes[scale])
+    for el in root.iter():  # any other file the model names (a texture, a namespaced copy): dropped
+        if not isinstance(el.tag, str) or etree.QName(el).localname == "mesh":
+            continue
+        for name in [a for a in el.attrib if etree.QName(a).localname == "filename"]:
+            del el.attrib[name]
     return etree.tostring(root, encoding="unicode"), n
 
 
