@@ -174,10 +174,10 @@ def foreign(path: str, error) -> bool:
     takes one). Said only of files found by their folder: a file a launch file or the model names stays C007."""
     if str(getattr(error, "message", error)).startswith(NOT_A_MAPPING):
         return True
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core.door import read_bytes
 
     try:
-        head = read_file(path, 256)
+        head = read_bytes(path, limit=256)
     except OSError:
         return False
     return head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"%YAML:")
