@@ -15,27 +15,22 @@ PROFILES = {
     "moveit": "MoveIt",
 }
 
-# General rules whose findings are, for a profile's consumer, the consumer's own refusal of the model: with the
-# profile on, those findings carry the profile (JSON "profile"), so a report filtered by profile is complete.
-# Each entry was checked by loading a model with the defect into the consumer (tests/test_consumers_diff.py).
-ANNOTATES = {
-    # urdfdom refuses these while parsing; Pinocchio reads URDF through urdfdom (parsers/urdf/model.cxx)
-    "pinocchio": frozenset(("U001", "U004", "U005", "U006", "U007", "S001", "S002", "S003", "S004", "S005", "S006",
-                            "S007", "S008", "S011", "J001", "J002", "I001")),
-    # MuJoCo: "axis too small in joint" (user_objects.cc mjCJoint::Compile); xml_urdf.cc: a joint naming a missing
-    # link, a body with two parents, a cycle or no root ("URDF body not found"), a repeated link name; a value
-    # that is no number or has the wrong count ("bad format in attribute", "too much data": ReadAttr)
-    "mujoco": frozenset(("J006", "S002", "S003", "S004", "S005", "S007", "U004", "U005")),
-    # kdl_parser's root inertia warning is this profile's own subject
-    "kdl": frozenset(("I005",)),
-}
+# General rules whose findings are, for a profile's consumer, the consumer's own refusal or change of the model:
+# with the profile on, those findings carry the profile (JSON "profile", "profiles"), so a report filtered by
+# profile says whether the consumer loads the model and what it does to it. The data, measured per consumer:
+# behaviour.GENERAL.
+
+
+def annotating(code: str, active) -> tuple[str, ...]:
+    """Every active profile whose consumer refuses or changes the model for a finding of general rule `code`."""
+    from urdfcheck.rules.checks.profiles.behaviour import GENERAL
+
+    return tuple(name for name in active if code in GENERAL.get(name, ()))
 
 
 def annotates(code: str, active) -> str:
-    for name in active:
-        if code in ANNOTATES.get(name, ()):
-            return name
-    return ""
+    got = annotating(code, active)
+    return got[0] if got else ""
 
 
 def speak(ctx, profiles: tuple[str, ...], message: str, at, *, quiet: bool = False, related=()):
@@ -44,7 +39,7 @@ def speak(ctx, profiles: tuple[str, ...], message: str, at, *, quiet: bool = Fal
     nothing when `quiet` (a general rule already reports the same defect, or the behaviour is only a change)."""
     active = [p for p in profiles if p in getattr(ctx, "profiles", ())]
     if active:
-        return Problem(message, at=at, related=related, data={"profile": active[0]})
+        return Problem(message, at=at, related=related, data={"profile": active[0], "profiles": tuple(active)})
     if quiet:
         return None
     flags = " or ".join(f"--profile {p}" for p in profiles)

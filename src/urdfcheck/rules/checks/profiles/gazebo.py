@@ -22,17 +22,14 @@ def kept_fixed_joints(model) -> set[str]:
             if b.tag == "gazebo" and b.parent_tag == "robot" and _KEEP.search(b.xml)}
 
 
-def _massless(link) -> bool:
-    inr = link.inertial
-    return inr is None or inr.mass is None or inr.mass == 0.0
-
-
 @check("P010")
 def fixed_joint_lumping(model, ctx):
     if "gazebo" not in ctx.profiles or len(model.roots) != 1:
         return
-    group = fixed_groups(model, kept_fixed_joints(model))
-    lumped = [n for n, g in group.items() if n != g]
+    from urdfcheck.rules.checks.profiles.behaviour import gazebo_keep
+
+    group = fixed_groups(model, gazebo_keep(model))  # a fixed joint from `world` anchors the model, never lumped
+    lumped = [n for n, g in group.items() if n != g and g != "world"]
     if lumped:
         yield speak(ctx, ("gazebo",),
                     f"Gazebo lumps {len(lumped)} link(s) attached by fixed joints into their parents (sdformat "
@@ -43,33 +40,78 @@ def fixed_joint_lumping(model, ctx):
 
 @check("P011")
 def massless_link_dropped(model, ctx):
+    from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies
+
     if not is_tree(model):
         return
-    group = fixed_groups(model, kept_fixed_joints(model))
-    members: dict[str, list[str]] = {}
-    for n, g in group.items():
-        members.setdefault(g, []).append(n)
+    version = str(ctx.options["sdformat"])
+    group, kept, dropped = gazebo_bodies(model, version)
     root = model.roots[0]
-    gone: set[str] = set()  # below a dropped link: already named by its finding
+    if not kept:
+        return  # nothing left at all: P012 says Gazebo refuses the model
     known = model.links
     for body in model.descendants_in_order(root):
-        links = members.get(body)
-        if links is None or body == root or body == "world" or body not in known or body in gone:
+        if body not in dropped or group.get(body) != body or body == root:
             continue
-        if not _massless(known[body]) or not all(_massless(known[n]) for n in links):
-            continue
-        below = [d for d in model.descendants_in_order(body)[1:] if group.get(d) != body]
-        gone.update(below)
         j = model.parent_joint.get(body)
+        if j is None or group.get(j.parent) in dropped:
+            continue  # below a dropped link: already named by its finding
+        below = [d for d in model.descendants_in_order(body)[1:] if group.get(d) != body]
+        inr = known[body].inertial
+        why = ("no <inertial>" if inr is None else f"mass {inr.mass:g}" if inr.mass is not None else "no mass")
         p = speak(ctx, ("gazebo",),
                   f"Gazebo drops link '{body}'" + (f" and the {len(below)} link(s) below it ({names(below)})"
                                                    if below else "")
-                  + f": it has no <inertial> or a mass of 0 (sdformat parser_urdf.cc CreateSDF: \"has no inertia, "
-                  f"not modeled in sdf\"), so joint '{j.name if j else '?'}' and everything attached below it are "
-                  "missing from the simulation; give it an <inertial> with a small positive mass",
-                  model.links[body].inertial or model.links[body], quiet=True)  # P001's info names Gazebo too
+                  + f": it has {why} (sdformat {version} parser_urdf.cc CreateSDF skips a link without <inertial> "
+                  "or with a mass of 0, and from 12.7 on a mass <= 0: \"has no inertia, not modeled in sdf\"), so "
+                  f"joint '{j.name}' and everything attached below it are missing from the simulation; give it an "
+                  "<inertial> with a small positive mass",
+                  inr or known[body], quiet=True)  # P001's info names Gazebo too
         if p is not None:
             yield p
+
+
+@check("P012")
+def gazebo_refuses(model, ctx):
+    """What sdformat's converter leaves that its own validation (`ign sdf -k`, and Gazebo's loader) refuses, or a
+    model with no link left at all. Measured with sdformat 12.3."""
+    from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies, version_tuple
+
+    if not is_tree(model):
+        return  # S rules; urdfdom refuses those models before sdformat converts anything
+    version = str(ctx.options["sdformat"])
+    group, kept, dropped = gazebo_bodies(model, version)
+    root = model.roots[0]
+    if not kept:
+        first = root if root != "world" else next((j.child for j in model.child_joints.get(root, ())), root)
+        p = speak(ctx, ("gazebo",),
+                  f"Gazebo refuses the model: its root link '{first}' has no <inertial> or a mass of 0, so sdformat's "
+                  "URDF converter drops it with everything below it (parser_urdf.cc CreateSDF: \"has no inertia, "
+                  "not modeled in sdf\") and the model has no link left; give the root an <inertial>, or attach it "
+                  "by a fixed joint to a link that has one (it is then lumped into that link's mass)",
+                  model.links[first] if first in model.links else model)
+        if p is not None:
+            yield p
+        return
+    for j in model.joint_list:
+        if j.type in ("floating", "planar") and j.child in kept and group.get(j.child) == j.child:
+            p = speak(ctx, ("gazebo",),
+                      f"Gazebo refuses the model: sdformat's URDF converter has no SDFormat joint for {j.type} "
+                      f"joint '{j.name}' (parser_urdf.cc CreateJoint) and drops it, while link '{j.child}' keeps "
+                      f"its pose relative to it: \"relative_to name[{j.name}] ... does not match\" (ign sdf -k, "
+                      "PoseRelativeToGraph); use a fixed joint, or spawn the part as its own model", j)
+            if p is not None:
+                yield p
+    if version_tuple(version) < (12, 7):
+        for body, total in kept.items():
+            if total is not None and total < 0:
+                p = speak(ctx, ("gazebo",),
+                          f"Gazebo refuses the model: link '{body}' ends with mass {total:g} (sdformat {version} "
+                          f"keeps a negative mass, then its validation says \"A link named {body} has invalid "
+                          "inertia\"; from 12.7 on the link is dropped instead); give it its real, positive mass",
+                          model.links[body].inertial or model.links[body])
+                if p is not None:
+                    yield p
 
 
 @check("P013")

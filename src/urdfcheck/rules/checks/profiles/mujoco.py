@@ -233,3 +233,30 @@ def fused_links(model, ctx):
                       + (f"; {names(world)} and the root '{root}' are welded to the world" if world else
                          f"; the root '{root}' is welded to the world (no free joint)"),
                       at=model, data={"profile": "mujoco"})
+
+
+@check("P007")
+def joint_refused(model, ctx):
+    """Joints MuJoCo's compiler refuses (measured with mujoco 4.0): a floating joint whose parent is not welded to
+    the world becomes a free joint below a moving body ("free joint can only be used on top level"); a <mimic>
+    naming its own joint makes an equality constraint on one joint twice ("element 'X' is repeated in equality
+    constraint")."""
+    if not is_tree(model):
+        return
+    group = fixed_groups(model)
+    top = set(model.roots) | {"world"}
+    for j in model.joint_list:
+        if j.type == "floating" and group.get(j.parent, j.parent) not in top:
+            p = speak(ctx, ("mujoco",),
+                      f"MuJoCo refuses the model: floating joint '{j.name}' hangs below a moving body, and MuJoCo "
+                      "makes it a free joint: \"free joint can only be used on top level\" (user_objects.cc); "
+                      "attach the part to the root, or make it a model of its own", j, quiet=True)  # J010
+            if p is not None:
+                yield p
+        if j.mimic is not None and j.mimic.joint == j.name and j.type in ("revolute", "continuous", "prismatic"):
+            p = speak(ctx, ("mujoco",),
+                      f"MuJoCo refuses the model: joint '{j.name}' mimics itself, and the equality constraint "
+                      f"MuJoCo makes of it names the joint twice: \"element '{j.name}' is repeated in equality "
+                      "constraint\" (user_objects.cc mjCEquality)", j.mimic, quiet=True)  # J008
+            if p is not None:
+                yield p

@@ -1,0 +1,203 @@
+"""What each consumer does with a URDF it loads, as data: which findings mean it refuses the model, and, for a model
+it loads, the links it keeps, the masses it gives them, what becomes of each joint and which <mimic> it honours.
+
+The profile rules speak from the same facts (kept links, lumping, default masses); tests/differential.py loads
+models into the real consumers and compares, point by point, with `predict` (issue 40). Measured with MuJoCo 4.0,
+Pinocchio 4.1, PyBullet 3.2 (API 202010061), sdformat 12.3 (`ign sdf -p`, `-k`, Debian bookworm) and kdl_parser
+1.14 on urdfdom 3.0; where a consumer's behaviour changed with its version, the version is an argument.
+"""
+from __future__ import annotations
+
+from urdfcheck.rules.checks.profiles.common import fixed_groups
+
+# urdfdom (urdf_parser/src/model.cpp, joint.cpp, link.cpp) refuses these while parsing; Pinocchio, sdformat's URDF
+# converter and kdl_parser read URDF through it
+URDFDOM = ("U001", "U004", "U005", "U006", "U007", "S001", "S002", "S003", "S004", "S005", "S006", "S007", "S008",
+           "S011", "J001", "J002", "I001")
+
+# consumer -> general rule -> what the consumer does about that finding's defect. "refuses": it will not load the
+# model; anything else says how it changes the model. Each entry was measured on a mutant and its clean twin
+# (tests/profile_mutants.py) unless it says "source".
+GENERAL = {
+    "pinocchio": dict.fromkeys(URDFDOM, "refuses"),
+    "kdl": {**dict.fromkeys(URDFDOM, "refuses"),
+            "I005": "ignores the root link's inertia (kdl_parser.cpp treeFromUrdfModel)"},
+    "gazebo": {**dict.fromkeys(URDFDOM, "refuses"),
+               # sdformat's validation of the converted model (ign sdf -k; Gazebo loads through the same checks):
+               # "The norm of the xyz vector cannot be zero", "A link named X has invalid inertia"
+               "J006": "refuses", "I003": "refuses", "I004": "refuses"},
+    # Bullet's own UrdfParser.cpp: "Expected a single base link", "Joint ... not found", duplicate names
+    # (a crash on two roots and on a repeated joint name), a revolute/prismatic joint without <limit>
+    "pybullet": {**dict.fromkeys(("U001", "S001", "S002", "S003", "S004", "S005", "S006", "S007", "S008", "S011",
+                                  "J002"),
+                                 "refuses"),
+                 # UrdfParser.cpp parseJointLimits / btMultiBody: lower > upper is read as no limit at all
+                 "J003": "reads inverted limits as no limit (lower > upper disables the joint limit)"},
+    # MuJoCo: "axis too small in joint" (user_objects.cc mjCJoint::Compile); xml_urdf.cc: a joint naming a missing
+    # link, a body with two parents, a cycle or no root ("URDF body not found"), a repeated link name ("repeated
+    # URDF name"); a value that is no number or has the wrong count ("bad format in attribute", "too much data")
+    "mujoco": dict.fromkeys(("J006", "S002", "S003", "S004", "S005", "S007", "U004", "U005"), "refuses"),
+}
+
+# the profile rules that say the consumer refuses the model (their catalogue severity is error)
+REFUSING = {
+    "mujoco": ("P001", "P002", "P005", "P006", "P007", "P008"),
+    "gazebo": ("P012",),
+    "pinocchio": ("P040",),
+}
+
+# sdformat releases where its URDF converter changed what it does (parser_urdf.cc)
+SDFORMAT_DROPS_NEGATIVE_MASS = (12, 7)  # "mass <= 0" dropped like no <inertial>; before, only mass == 0
+SDFORMAT_KEEPS_MIMIC = (14, 1)  # <mimic> converted into the SDFormat joint axis's <mimic>
+SDFORMAT_DEFAULT = "12.3"  # Debian bookworm's libsdformat12, the version measured here
+
+
+def version_tuple(text: str) -> tuple[int, ...]:
+    out = []
+    for part in str(text or "").split("."):
+        digits = "".join(c for c in part if c.isdigit())
+        if not digits:
+            break
+        out.append(int(digits))
+    return tuple(out)
+
+
+def refuses(code: str, consumer: str) -> bool:
+    return code in REFUSING.get(consumer, ()) or GENERAL.get(consumer, {}).get(code) == "refuses"
+
+
+def kind(joint_type: str) -> str:
+    return {"revolute": "hinge", "continuous": "hinge", "prismatic": "slide", "fixed": "fixed",
+            "floating": "free", "planar": "planar"}.get(joint_type, joint_type)
+
+
+def _mass(link):
+    """(has <inertial>, its mass or None when not a plain number)."""
+    inr = link.inertial
+    if inr is None:
+        return False, 0.0
+    return True, inr.mass
+
+
+# --- Gazebo ---------------------------------------------------------------------------------------------------
+def gazebo_keep(model) -> set[str]:
+    """Fixed joints sdformat does not lump: <preserveFixedJoint>/<disableFixedJointLumping>, and a joint from the
+    link `world`, which is no link in SDFormat but the world itself (parser_urdf.cc: the joint to "world" becomes a
+    fixed joint of the model, its child stays a link)."""
+    from urdfcheck.rules.checks.profiles.gazebo import kept_fixed_joints
+
+    return kept_fixed_joints(model) | {j.name for j in model.joint_list if j.parent == "world"}
+
+
+def gazebo_massless(total, has_inertial: bool, version: str = SDFORMAT_DEFAULT) -> bool:
+    """Does sdformat's CreateSDF skip a link (after lumping) with this <inertial> mass?"""
+    if not has_inertial or total is None:
+        return not has_inertial
+    if version_tuple(version) >= SDFORMAT_DROPS_NEGATIVE_MASS:
+        return total <= 0.0
+    return total == 0.0
+
+
+def gazebo_bodies(model, version: str = SDFORMAT_DEFAULT):
+    """(group, kept, dropped): link -> the SDFormat link it ends in; the SDFormat links kept with their total mass;
+    the links dropped (no inertia: with everything below them). `world` is never a link."""
+    group = fixed_groups(model, gazebo_keep(model))
+    members: dict[str, list[str]] = {}
+    for n, g in group.items():
+        members.setdefault(g, []).append(n)
+    kept: dict[str, float | None] = {}
+    dropped: set[str] = set()
+    for root in model.roots:
+        for body in model.descendants_in_order(root):
+            if group.get(body) != body or body == "world" or body not in model.links:
+                continue
+            j = model.parent_joint.get(body)
+            above = group.get(j.parent) if j is not None else None
+            if above in dropped:
+                dropped.update(members[body])
+                continue
+            facts = [_mass(model.links[n]) for n in members[body] if n in model.links]
+            has = any(h for h, _ in facts)
+            total = None if any(h and m is None for h, m in facts) else sum(m for h, m in facts if h)
+            if gazebo_massless(total, has, version):
+                dropped.update(members[body])
+            else:
+                kept[body] = total
+    return group, kept, dropped
+
+
+# --- the prediction -------------------------------------------------------------------------------------------
+def predict(consumer: str, model, version: str = "") -> dict:
+    """links kept, mass per kept link (None: not predicted), URDF joint -> what it becomes ("gone": no joint of that
+    name), and the joints whose <mimic> is honoured."""
+    return _PREDICT[consumer](model, version)
+
+
+def _movable(model):
+    return [j for j in model.joint_list if j.type != "fixed"]
+
+
+def _mujoco(model, version):
+    group = fixed_groups(model)
+    bodies = sorted({g for g in group.values() if g not in model.roots and g != "world"})  # roots: the world
+    mass: dict[str, float | None] = {}
+    for b in bodies:
+        facts = [_mass(model.links[n]) for n, g in group.items() if g == b and n in model.links]
+        mass[b] = sum(m for _, m in facts) if all(h and m is not None for h, m in facts) else None
+    joints = {j.name: kind(j.type) for j in _movable(model)}
+    names = {j.name for j in model.joint_list}
+    mimic = [j.name for j in model.joint_list if j.mimic is not None and j.type in ("revolute", "continuous",
+                                                                                       "prismatic")
+             and j.mimic.joint in names and j.mimic.joint != j.name]
+    return {"links": bodies, "mass": mass, "joints": joints, "mimic": mimic}
+
+
+def _pinocchio(model, version):
+    group = fixed_groups(model)
+    mass: dict[str, float | None] = {}
+    for j in _movable(model):
+        facts = [_mass(model.links[n]) for n, g in group.items() if g == j.child and n in model.links]
+        mass[j.child] = None if any(h and m is None for h, m in facts) else sum(m for h, m in facts if h)
+    return {"links": [lk.name for lk in model.link_list], "mass": mass,
+            "joints": {j.name: kind(j.type) for j in _movable(model)}, "mimic": []}
+
+
+def _pybullet(model, version):
+    mass: dict[str, float | None] = {}
+    for lk in model.link_list:
+        has, m = _mass(lk)
+        # UrdfParser.cpp parseLink: no <inertial> is mass 1 (the root too, in the default free-base load), except
+        # a link named "world", which stays massless (measured)
+        mass[lk.name] = m if has else (0.0 if lk.name == "world" else 1.0)
+    joints = {j.name: {"free": "fixed"}.get(kind(j.type), kind(j.type)) for j in model.joint_list}
+    return {"links": [lk.name for lk in model.link_list], "mass": mass, "joints": joints, "mimic": []}
+
+
+def _gazebo(model, version):
+    version = version or SDFORMAT_DEFAULT
+    group, kept, _ = gazebo_bodies(model, version)
+    joints = {}
+    for j in model.joint_list:
+        if j.child not in kept or group.get(j.child) != j.child:
+            joints[j.name] = "gone"  # lumped, or below a dropped link
+        elif j.type in ("floating", "planar"):
+            joints[j.name] = "gone"  # CreateJoint has no SDFormat type for them
+        else:
+            joints[j.name] = kind(j.type)
+    keeps = version_tuple(version) >= SDFORMAT_KEEPS_MIMIC
+    mimic = [j.name for j in model.joint_list if keeps and j.mimic is not None and joints.get(j.name) != "gone"]
+    return {"links": sorted(kept), "mass": dict(kept), "joints": joints, "mimic": mimic}
+
+
+def _kdl(model, version):
+    root = model.roots[0] if model.roots else None
+    mass = {}
+    for lk in model.link_list:
+        has, m = _mass(lk)
+        mass[lk.name] = 0.0 if lk.name == root or not has else m  # the root segment's inertia is dropped (I005)
+    joints = {j.name: {"free": "fixed", "planar": "fixed"}.get(kind(j.type), kind(j.type))
+              for j in model.joint_list}
+    return {"links": [lk.name for lk in model.link_list], "mass": mass, "joints": joints, "mimic": []}
+
+
+_PREDICT = {"mujoco": _mujoco, "pinocchio": _pinocchio, "pybullet": _pybullet, "gazebo": _gazebo, "kdl": _kdl}

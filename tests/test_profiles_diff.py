@@ -1,0 +1,99 @@
+"""The consumer profiles against the real consumers (issue 40): every seeded mutant and its clean twin loaded into
+each consumer installable here (MuJoCo, Pinocchio, PyBullet, sdformat's `ign sdf`, kdl_parser through a C++ probe),
+compared with the prediction on each point; and the rules the measurements changed, one by one."""
+import json
+
+import pytest
+
+from conftest import lint_json, run_cli
+
+import differential
+import profile_mutants
+
+
+@pytest.fixture(scope="module")
+def table(tmp_path_factory):
+    if not differential.installed():
+        pytest.skip("no consumer installed (mujoco, pinocchio, pybullet, ign sdf, kdl_parser)")
+    folder = tmp_path_factory.mktemp("mutants")
+    return differential.run(profile_mutants.write(str(folder)))
+
+
+@pytest.mark.parametrize("consumer", differential.CONSUMERS)
+def test_mutants_and_twins_agree_on_every_point(table, consumer):
+    if consumer not in table:
+        pytest.skip(f"{consumer} not installed here")
+    row = table[consumer]
+    assert not row["disagree"], row["disagree"]
+    assert len(row["agree"]) == 2 * len(profile_mutants.MUTANTS)
+
+
+def _lint(tmp_path, text, profiles):
+    p = tmp_path / "robot.urdf"
+    p.write_text(text)
+    _, report = lint_json([str(p), "--profile", profiles], cwd=tmp_path)
+    return report["findings"]
+
+
+M = profile_mutants.MUTANTS
+
+
+def test_gazebo_refuses_a_model_whose_root_has_no_inertial(tmp_path):
+    bad, good = M["root without inertial, moving child"]
+    hits = [f for f in _lint(tmp_path, bad, "gazebo") if f["code"] == "P012"]
+    assert hits and hits[0]["severity"] == "error" and "no link left" in hits[0]["message"]
+    assert not [f for f in _lint(tmp_path, good, "gazebo") if f["code"] == "P012"]
+    # base_footprint without <inertial> above a massive base_link: lumped, kept
+    assert not [f for f in _lint(tmp_path, M["root without inertial, fixed child with mass"][0], "gazebo")
+                if f["code"] in ("P011", "P012")]
+
+
+def test_gazebo_refuses_floating_and_planar_joints_and_negative_mass(tmp_path):
+    for label in ("floating joint", "planar joint", "negative mass"):
+        assert [f for f in _lint(tmp_path, M[label][0], "gazebo") if f["code"] == "P012"], label
+        assert not [f for f in _lint(tmp_path, M[label][1], "gazebo") if f["code"] == "P012"], label
+    # from sdformat 12.7 on a negative mass drops the link instead (P011)
+    newer = tmp_path / "newer"
+    newer.mkdir()
+    (newer / "urdfcheck.yaml").write_text("rules:\n  P011: {sdformat: '12.7'}\n  P012: {sdformat: '12.7'}\n")
+    p = newer / "robot.urdf"
+    p.write_text(M["negative mass"][0])
+    _, out, _ = run_cli(["lint", "--format", "json", str(p), "--profile", "gazebo", "--config",
+                         str(newer / "urdfcheck.yaml")], cwd=newer)
+    codes = {f["code"] for f in json.loads(out)["findings"]}
+    assert "P011" in codes and "P012" not in codes
+
+
+def test_p010_does_not_lump_a_link_fixed_to_world(tmp_path):
+    assert not [f for f in _lint(tmp_path, M["fixed to world"][0], "gazebo") if f["code"] == "P010"]
+    hits = [f for f in _lint(tmp_path, M["fixed leaf without inertial"][0], "gazebo") if f["code"] == "P010"]
+    assert hits and "'tool0'" in hits[0]["message"]
+
+
+def test_mujoco_refuses_a_nested_floating_joint_and_a_self_mimic(tmp_path):
+    for label in ("floating joint", "self mimic"):
+        hits = [f for f in _lint(tmp_path, M[label][0], "mujoco") if f["code"] == "P007"]
+        assert hits and hits[0]["severity"] == "error", label
+        assert not [f for f in _lint(tmp_path, M[label][1], "mujoco") if f["code"] == "P007"]
+
+
+def test_mimic_ignored_names_each_consumer_that_ignores_it(tmp_path):
+    hits = [f for f in _lint(tmp_path, M["mimic"][0], "pybullet,gazebo,mujoco") if f["code"] == "P052"]
+    assert hits and hits[0]["profiles"] == ["pybullet", "gazebo"]
+    assert not [f for f in _lint(tmp_path, M["mimic"][1], "pybullet,gazebo") if f["code"] == "P052"]
+
+
+def test_pybullet_gives_the_root_1_kg_and_makes_floating_fixed(tmp_path):
+    hits = [f for f in _lint(tmp_path, M["root without inertial, moving child"][0], "pybullet")
+            if f["code"] == "P050"]
+    assert hits and "'base_link'" in hits[0]["message"]
+    hits = [f for f in _lint(tmp_path, M["floating joint"][0], "pybullet") if f["code"] == "P030"]
+    assert hits and hits[0]["profile"] == "pybullet"
+
+
+def test_a_defect_every_consumer_refuses_names_every_profile_asked(tmp_path):
+    hits = [f for f in _lint(tmp_path, M["revolute without limit"][0], "gazebo,kdl,pybullet,mujoco")
+            if f["code"] == "J002"]
+    assert hits and hits[0]["profiles"] == ["gazebo", "kdl", "pybullet"]
+    hits = [f for f in _lint(tmp_path, M["zero axis"][0], "gazebo,kdl,mujoco") if f["code"] == "J006"]
+    assert hits and hits[0]["profiles"] == ["gazebo", "mujoco"]
