@@ -294,13 +294,23 @@ def prepared(path: str, folder: str):
     return model_from_string(text, copy), copy
 
 
-def predict(consumer: str, copy: str, model, version: str = "") -> dict:
+def refusals(copy: str, consumers) -> dict[str, list[str]]:
+    """consumer -> the codes of the findings that say it refuses the model: one lint with every profile on (each
+    finding names every profile whose consumer it concerns)."""
     import urdfcheck
     from urdfcheck.rules.checks.profiles import behaviour
 
-    res = urdfcheck.lint([copy], profiles=[consumer], no_config=True, root=os.path.dirname(copy), select=["ALL"])
-    why = sorted({f.code for f in res.findings if consumer in (f.profiles or (f.profile,))
-                  and str(f.severity) == "error" and behaviour.refuses(f.code, consumer)})
+    res = urdfcheck.lint([copy], profiles=list(consumers), no_config=True, root=os.path.dirname(copy),
+                         select=["ALL"])
+    return {c: sorted({f.code for f in res.findings if c in (f.profiles or (f.profile,))
+                       and str(f.severity) == "error" and behaviour.refuses(f.code, c)}) for c in consumers}
+
+
+def predict(consumer: str, copy: str, model, version: str = "", why=None) -> dict:
+    from urdfcheck.rules.checks.profiles import behaviour
+
+    if why is None:
+        why = refusals(copy, (consumer,))[consumer]
     out = behaviour.predict(consumer, model, version)
     out["refused"] = bool(why)
     out["why"] = ",".join(why)
@@ -360,10 +370,11 @@ def run(paths, consumers=None, folder=None) -> dict:
             got = prepared(path, folder)
             if got is not None:
                 ready.append((label, *got))
+        said = [refusals(copy, consumers) for _, _, copy in ready]
         for c in consumers:
             truths = load_many(c, [copy for _, _, copy in ready])
-            for (label, model, copy), truth in zip(ready, truths):
-                pred = predict(c, copy, model, truth.get("version", ""))
+            for (label, model, copy), truth, why in zip(ready, truths, said):
+                pred = predict(c, copy, model, truth.get("version", ""), why[c])
                 bad = compare(pred, truth)
                 if bad:
                     table[c]["disagree"].append((label, bad[0], explain(pred, truth, bad[0])))

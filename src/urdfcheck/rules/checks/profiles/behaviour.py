@@ -24,8 +24,9 @@ GENERAL = {
             "I005": "ignores the root link's inertia (kdl_parser.cpp treeFromUrdfModel)"},
     "gazebo": {**dict.fromkeys(URDFDOM, "refuses"),
                # sdformat's validation of the converted model (ign sdf -k; Gazebo loads through the same checks):
-               # "The norm of the xyz vector cannot be zero", "A link named X has invalid inertia"
-               "J006": "refuses", "I003": "refuses", "I004": "refuses"},
+               # "The norm of the xyz vector cannot be zero". An invalid inertia is P012's: the tensor sdformat
+               # validates is the lumped one, and a link lumped into another is no longer judged alone
+               "J006": "refuses"},
     # Bullet's own UrdfParser.cpp: "Expected a single base link", "Joint ... not found", duplicate names
     # (a crash on two roots and on a repeated joint name), a revolute/prismatic joint without <limit>
     "pybullet": {**dict.fromkeys(("U001", "S001", "S002", "S003", "S004", "S005", "S006", "S007", "S008", "S011",
@@ -124,6 +125,22 @@ def gazebo_bodies(model, version: str = SDFORMAT_DEFAULT):
             else:
                 kept[body] = total
     return group, kept, dropped
+
+
+def gazebo_invalid_inertia(link) -> bool | None:
+    """Does sdformat's validation ("A link named X has invalid inertia") refuse this <inertial> as the only one of
+    its SDFormat link? gz-math MassMatrix3::IsValid: mass >= 0, the principal moments >= 0 and each pair adding up
+    to at least the third, within 10 machine epsilons of half their sum. None: not a tensor to judge."""
+    import math
+
+    from urdfcheck.rules.checks.inertial import principal_moments
+
+    inr = link.inertial
+    if inr is None or inr.inertia is None or not all(math.isfinite(v) for v in inr.inertia):
+        return None
+    a, b, c = principal_moments(tuple(inr.inertia))
+    eps = 10 * 2.220446049250313e-16 * 0.5 * abs(a + b + c)
+    return not (a + eps >= 0 and a + b + eps >= c)
 
 
 # --- the prediction -------------------------------------------------------------------------------------------

@@ -102,6 +102,24 @@ def gazebo_refuses(model, ctx):
                       "PoseRelativeToGraph); use a fixed joint, or spawn the part as its own model", j)
             if p is not None:
                 yield p
+    from urdfcheck.rules.checks.profiles.behaviour import gazebo_invalid_inertia
+
+    massive: dict[str, list[str]] = {}
+    for n, g in group.items():
+        if g in kept and n in model.links and model.links[n].inertial is not None:
+            massive.setdefault(g, []).append(n)
+    for body, links in massive.items():
+        # one <inertial> in the SDFormat link: lumping moves it but keeps its principal moments; several are summed
+        # about their common centre of mass, and only that sum is validated (not judged here)
+        if len(links) == 1 and gazebo_invalid_inertia(model.links[links[0]]):
+            inr = model.links[links[0]].inertial
+            p = speak(ctx, ("gazebo",),
+                      f"Gazebo refuses the model: the inertia of link '{links[0]}' (the only one in SDFormat link "
+                      f"'{body}') is not a rigid body's: \"A link named {body} has invalid inertia\" (sdformat "
+                      "validation, gz-math MassMatrix3::IsValid: principal moments >= 0 and each two adding up to "
+                      "the third); I003/I004 say what is wrong with it", inr.inertia_loc or inr)
+            if p is not None:
+                yield p
     if version_tuple(version) < (12, 7):
         for body, total in kept.items():
             if total is not None and total < 0:
