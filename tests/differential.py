@@ -287,6 +287,8 @@ def prepared(path: str, folder: str):
     exp = loader.expand(path, {})
     if exp.root is None:
         return None
+    if "urdfcheck-diff: keep meshes" in exp.clean_text():
+        return model_from_string(exp.clean_text(), path), path  # a mutant about its mesh files: as written
     text, _ = without_meshes(exp.clean_text(), folder)
     copy = os.path.join(folder, f"m{len(os.listdir(folder)):05d}.urdf")
     with open(copy, "w", encoding="utf-8") as f:
@@ -300,8 +302,13 @@ def refusals(copy: str, consumers) -> dict[str, list[str]]:
     import urdfcheck
     from urdfcheck.rules.checks.profiles import behaviour
 
-    res = urdfcheck.lint([copy], profiles=list(consumers), no_config=True, root=os.path.dirname(copy),
-                         select=["ALL"])
+    here = os.getcwd()
+    os.chdir(os.path.dirname(copy))  # the model's folder is the run's root, as when linted from there
+    try:
+        res = urdfcheck.lint([copy], profiles=list(consumers), no_config=True, root=os.path.dirname(copy),
+                             select=["ALL"])
+    finally:
+        os.chdir(here)
     return {c: sorted({f.code for f in res.findings if c in (f.profiles or (f.profile,))
                        and str(f.severity) == "error" and behaviour.refuses(f.code, c)}) for c in consumers}
 

@@ -95,10 +95,37 @@ MUTANTS = {
 }
 
 
+KEEP_MESHES = "<!-- urdfcheck-diff: keep meshes -->"  # loaded as written, next to the mesh files write() makes
+
+
+def keep(text: str) -> str:
+    return text.replace('<robot name="r">', '<robot name="r">' + KEEP_MESHES, 1)
+
+
+def meshed(filename: str) -> str:
+    return keep(arm(upper=inertial() + f'<collision><geometry><mesh filename="{filename}"/></geometry>'
+                             '</collision>'))
+
+
+MUTANTS.update({
+    "collada collision mesh": (meshed("box.dae"), meshed("box.stl")),
+    "missing collision mesh": (meshed("missing.stl"), meshed("box.stl")),
+    "package:// collision mesh": (meshed("package://r_description/box.stl"), meshed("box.stl")),
+    "missing visual mesh": (keep(arm(upper=inertial() + BOX + '<visual><geometry><mesh filename="missing.stl"/>'
+                                     '</geometry></visual>')), meshed("box.stl")),
+})
+
+
 def write(folder: str) -> list[tuple[str, str]]:
-    """(label, path) for every mutant and twin, written into `folder`."""
+    """(label, path) for every mutant and twin, written into `folder`, with the mesh files they name."""
     import os
 
+    from urdfcheck.verify.consumers import _box_stl
+
+    stl = _box_stl(folder, [0.1, 0.1, 0.1], 0)
+    os.replace(stl, os.path.join(folder, "box.stl"))
+    with open(os.path.join(folder, "box.stl"), "rb") as f, open(os.path.join(folder, "box.dae"), "wb") as g:
+        g.write(f.read())  # an STL by another name: MuJoCo refuses by the name, before reading a byte
     out = []
     for i, (label, pair) in enumerate(MUTANTS.items()):
         for kind, text in zip(("mutant", "twin"), pair):

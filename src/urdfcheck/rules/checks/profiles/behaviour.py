@@ -32,6 +32,9 @@ GENERAL = {
     "pybullet": {**dict.fromkeys(("U001", "S001", "S002", "S003", "S004", "S005", "S006", "S007", "S008", "S011",
                                   "J002"),
                                  "refuses"),
+                 # BulletUrdfImporter.cpp convertURDFToVisualShape/CollisionShape: a mesh file it cannot find
+                 # (visual or collision) fails the load, "Cannot load URDF file" (measured)
+                 "G001": "refuses",
                  # UrdfParser.cpp parseJointLimits / btMultiBody: lower > upper is read as no limit at all
                  "J003": "reads inverted limits as no limit (lower > upper disables the joint limit)"},
     # MuJoCo: "axis too small in joint" (user_objects.cc mjCJoint::Compile); xml_urdf.cc: a joint naming a missing
