@@ -97,3 +97,24 @@ def test_a_defect_every_consumer_refuses_names_every_profile_asked(tmp_path):
     assert hits and hits[0]["profiles"] == ["gazebo", "kdl", "pybullet"]
     hits = [f for f in _lint(tmp_path, M["zero axis"][0], "gazebo,kdl,mujoco") if f["code"] == "J006"]
     assert hits and hits[0]["profiles"] == ["gazebo", "mujoco"]
+
+
+def test_p051_skips_an_inertia_equal_to_bullets_own(tmp_path):
+    # a 0.1 m box of 1 kg: Bullet computes 1/12 * (0.01 + 0.01) = 0.0016667 on each axis (measured, PyBullet 3.2)
+    box = '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision>'
+    same = profile_mutants.inertial(a="0.00166667", b="0.00166667", c="0.00166667") + box
+    other = profile_mutants.inertial() + box
+    text = profile_mutants.arm(base=same, upper=same, fore=same)
+    assert not [f for f in _lint(tmp_path, text, "pybullet") if f["code"] == "P051"]
+    text = profile_mutants.arm(base=same, upper=other, fore=same)
+    hits = [f for f in _lint(tmp_path, text, "pybullet") if f["code"] == "P051"]
+    assert hits and "'upper'" in hits[0]["message"] and "'fore'" not in hits[0]["message"]
+
+
+def test_changes_carry_the_profile_of_the_consumer_that_makes_them(tmp_path):
+    # a negative effort: Pinocchio refuses (P040), Gazebo reads no limit (J004 carries gazebo)
+    hits = [f for f in _lint(tmp_path, M["negative effort"][0], "gazebo") if f["code"] == "J004"]
+    assert hits and hits[0]["profile"] == "gazebo"
+    # inverted limits: PyBullet has no limit at all (J003 carries pybullet), Gazebo is not named
+    hits = [f for f in _lint(tmp_path, M["inverted limits"][0], "gazebo,pybullet") if f["code"] == "J003"]
+    assert hits and hits[0]["profile"] == "pybullet" and "profiles" not in hits[0]

@@ -26,7 +26,10 @@ GENERAL = {
                # sdformat's validation of the converted model (ign sdf -k; Gazebo loads through the same checks):
                # "The norm of the xyz vector cannot be zero". An invalid inertia is P012's: the tensor sdformat
                # validates is the lumped one, and a link lumped into another is no longer judged alone
-               "J006": "refuses"},
+               "J006": "refuses",
+               # `ign sdf -p` copies <effort>-10</effort> as written; SDFormat's joint axis <effort> and <velocity>
+               # are "not enforced if negative" (the spec, sdf/1.9/joint.sdf): the joint has no such limit
+               "J004": "reads a negative effort or velocity as no limit"},
     # Bullet's own UrdfParser.cpp: "Expected a single base link", "Joint ... not found", duplicate names
     # (a crash on two roots and on a repeated joint name), a revolute/prismatic joint without <limit>
     "pybullet": {**dict.fromkeys(("U001", "S001", "S002", "S003", "S004", "S005", "S006", "S007", "S008", "S011",
@@ -35,7 +38,8 @@ GENERAL = {
                  # BulletUrdfImporter.cpp convertURDFToVisualShape/CollisionShape: a mesh file it cannot find
                  # (visual or collision) fails the load, "Cannot load URDF file" (measured)
                  "G001": "refuses",
-                 # UrdfParser.cpp parseJointLimits / btMultiBody: lower > upper is read as no limit at all
+                 # lower > upper is read as no limit at all (measured: a position motor takes the joint to 2.5
+                 # with lower 1, upper -1; btMultiBody's limit constraint is only made when lower <= upper)
                  "J003": "reads inverted limits as no limit (lower > upper disables the joint limit)"},
     # MuJoCo: "axis too small in joint" (user_objects.cc mjCJoint::Compile); xml_urdf.cc: a joint naming a missing
     # link, a body with two parents, a cycle or no root ("URDF body not found"), a repeated link name ("repeated

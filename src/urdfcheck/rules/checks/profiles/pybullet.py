@@ -30,12 +30,47 @@ def default_mass(model, ctx):
 def inertia_recomputed(model, ctx):
     if "pybullet" not in ctx.profiles:
         return
-    given = [lk for lk in model.link_list if lk.inertial is not None and lk.inertial.inertia is not None]
+    given = [lk for lk in model.link_list if lk.inertial is not None and lk.inertial.inertia is not None
+             and not same_as_bullet(lk)]
     if given:
         yield speak(ctx, ("pybullet",),
                     f"PyBullet ignores the <inertia> of {len(given)} link(s) unless loadURDF gets "
                     "flags=p.URDF_USE_INERTIA_FROM_FILE: it recomputes each tensor from the collision shapes "
-                    "(BulletURDFImporter getMassAndInertia, calculateLocalInertia)", given[0].inertial)
+                    f"(BulletURDFImporter getMassAndInertia, calculateLocalInertia): {names([g.name for g in given])}",
+                    given[0].inertial)
+
+
+def _still(pose) -> bool:
+    return pose.quat is None and not any(pose.xyz) and not any(pose.rpy)
+
+
+def same_as_bullet(link) -> bool:
+    """Is the written tensor what Bullet computes anyway? One box or sphere collision at the link frame, an inertial
+    frame without rotation and no products of inertia: Bullet's btBoxShape/btSphereShape calculateLocalInertia is
+    the solid's exact tensor (measured with PyBullet 3.2: a 0.1 x 0.2 x 0.3 box of 2 kg gives 0.021667, 0.016667,
+    0.008333). Anything else (a cylinder, a mesh, an offset or several shapes: a compound's bounding box with its
+    collision margin) differs from the written tensor and is reported."""
+    import math
+
+    inr = link.inertial
+    if len(link.collisions) != 1 or inr.mass is None or not _still(link.collisions[0].origin):
+        return False
+    if inr.origin.quat is not None or any(inr.origin.rpy):
+        return False
+    xx, xy, xz, yy, yz, zz = inr.inertia
+    if xy or xz or yz:
+        return False
+    g, m = link.collisions[0].geometry, inr.mass
+    if g is None:
+        return False
+    if g.kind == "box" and g.size:
+        a, b, c = (x * x for x in g.size)
+        want = (m / 12 * (b + c), m / 12 * (a + c), m / 12 * (a + b))
+    elif g.kind == "sphere" and g.radius is not None:
+        want = (0.4 * m * g.radius * g.radius,) * 3
+    else:
+        return False
+    return all(math.isclose(w, v, rel_tol=1e-4, abs_tol=1e-12) for w, v in zip(want, (xx, yy, zz)))
 
 
 @check("P052")
