@@ -73,7 +73,12 @@ def predict(path: str, consumer: str) -> tuple[bool, list[str]] | None:
     import urdfcheck
 
     folder = os.path.dirname(path)
-    res = urdfcheck.lint([path], profiles=[consumer], no_config=True, root=folder, select=["ALL"])
+    here = os.getcwd()
+    os.chdir(folder)  # the copy's folder is the run's root: the box meshes written next to it are inside
+    try:
+        res = urdfcheck.lint([path], profiles=[consumer], no_config=True, root=folder, select=["ALL"])
+    finally:
+        os.chdir(here)
     if any(f.code.startswith("X") and str(f.severity) == "error" for f in res.findings):
         return None
     codes = sorted({f.code for f in res.findings if f.profile == consumer and str(f.severity) == "error"})

@@ -56,6 +56,9 @@ def _pinocchio(path):
 
     try:
         m = pinocchio.buildModelFromUrdf(path)
+        # the geometry models too, as RobotWrapper.BuildFromURDF builds them: meshes are read here
+        for kind in (pinocchio.GeometryType.COLLISION, pinocchio.GeometryType.VISUAL):
+            pinocchio.buildGeomFromUrdf(m, path, kind, package_dirs=[os.path.dirname(path)])
     except Exception as e:
         return {"refused": True, "why": str(e)[:300], "version": pinocchio.__version__}
     joints = {}
@@ -107,7 +110,8 @@ def _gazebo(path):
     check = subprocess.run(["ign", "sdf", "-k", sdf], capture_output=True, text=True, timeout=TIMEOUT, env=env)
     from lxml import etree
 
-    root = etree.fromstring(open(sdf, "rb").read())
+    # sdformat copies <gazebo> extension XML as written, undeclared namespace prefixes (PR2's sensor:) included
+    root = etree.fromstring(open(sdf, "rb").read(), etree.XMLParser(recover=True, huge_tree=True))
     model = root.find("model")
     links = [] if model is None else model.findall("link")
     if check.returncode != 0 or "Error" in check.stderr + check.stdout or not links:
@@ -298,7 +302,8 @@ def prepared(path: str, folder: str):
 
 def refusals(copy: str, consumers) -> dict[str, list[str]]:
     """consumer -> the codes of the findings that say it refuses the model: one lint with every profile on (each
-    finding names every profile whose consumer it concerns)."""
+    finding names every profile whose consumer it concerns). Any severity: a general rule may say a defect at info
+    for its own reasons (S003 on an attachable fragment), the consumer still refuses the model as it is."""
     import urdfcheck
     from urdfcheck.rules.checks.profiles import behaviour
 
@@ -310,7 +315,7 @@ def refusals(copy: str, consumers) -> dict[str, list[str]]:
     finally:
         os.chdir(here)
     return {c: sorted({f.code for f in res.findings if c in (f.profiles or (f.profile,))
-                       and str(f.severity) == "error" and behaviour.refuses(f.code, c)}) for c in consumers}
+                       and behaviour.refuses(f.code, c)}) for c in consumers}
 
 
 def predict(consumer: str, copy: str, model, version: str = "", why=None) -> dict:

@@ -57,6 +57,18 @@ MUTANTS = {
         arm(tail=(link("tool0"), joint("tool", "fore", "tool0", "fixed"),
                   '<gazebo reference="tool"><preserveFixedJoint>true</preserveFixedJoint></gazebo>')),
         arm(tail=(link("tool0"), joint("tool", "fore", "tool0", "fixed")))),
+    "massless link fixed between moving links": (
+        arm(elbow=joint("elbow", "ft_sensor", "fore"),
+            tail=(link("ft_sensor", BARE), joint("sensor", "upper", "ft_sensor", "fixed"))),
+        arm(elbow=joint("elbow", "ft_sensor", "fore"),
+            tail=(link("ft_sensor"), joint("sensor", "upper", "ft_sensor", "fixed")))),
+    "massless fixed link carrying a massive fixed link": (
+        arm(elbow=joint("elbow", "pad", "fore"),
+            tail=(link("mount", BARE), link("pad"), joint("mount_joint", "upper", "mount", "fixed"),
+                  joint("pad_joint", "mount", "pad", "fixed"))),
+        arm(elbow=joint("elbow", "pad", "fore"),
+            tail=(link("mount"), link("pad"), joint("mount_joint", "upper", "mount", "fixed"),
+                  joint("pad_joint", "mount", "pad", "fixed")))),
     "zero mass": (arm(upper=inertial(m="0") + BOX), arm()),
     "negative mass": (arm(upper=inertial(m="-1") + BOX), arm()),
     "inertia not positive definite": (arm(upper=inertial(a="-0.01") + BOX), arm()),
@@ -119,13 +131,13 @@ MUTANTS.update({
 def write(folder: str) -> list[tuple[str, str]]:
     """(label, path) for every mutant and twin, written into `folder`, with the mesh files they name."""
     import os
+    import shutil
 
     from urdfcheck.verify.consumers import _box_stl
 
     stl = _box_stl(folder, [0.1, 0.1, 0.1], 0)
     os.replace(stl, os.path.join(folder, "box.stl"))
-    with open(os.path.join(folder, "box.stl"), "rb") as f, open(os.path.join(folder, "box.dae"), "wb") as g:
-        g.write(f.read())  # an STL by another name: MuJoCo refuses by the name, before reading a byte
+    shutil.copy(os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "box.dae"), folder)
     out = []
     for i, (label, pair) in enumerate(MUTANTS.items()):
         for kind, text in zip(("mutant", "twin"), pair):

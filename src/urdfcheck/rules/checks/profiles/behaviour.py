@@ -19,7 +19,9 @@ URDFDOM = ("U001", "U004", "U005", "U006", "U007", "S001", "S002", "S003", "S004
 # model; anything else says how it changes the model. Each entry was measured on a mutant and its clean twin
 # (tests/profile_mutants.py) unless it says "source".
 GENERAL = {
-    "pinocchio": dict.fromkeys(URDFDOM, "refuses"),
+    # and a mesh it cannot find or read when it builds the geometry models (buildGeomFromUrdf, as
+    # RobotWrapper.BuildFromURDF does: "Mesh X could not be found")
+    "pinocchio": {**dict.fromkeys(URDFDOM, "refuses"), "G001": "refuses"},
     "kdl": {**dict.fromkeys(URDFDOM, "refuses"),
             "I005": "ignores the root link's inertia (kdl_parser.cpp treeFromUrdfModel)"},
     "gazebo": {**dict.fromkeys(URDFDOM, "refuses"),
@@ -107,30 +109,46 @@ def gazebo_massless(total, has_inertial: bool, version: str = SDFORMAT_DEFAULT) 
 
 
 def gazebo_bodies(model, version: str = SDFORMAT_DEFAULT):
-    """(group, kept, dropped): link -> the SDFormat link it ends in; the SDFormat links kept with their total mass;
-    the links dropped (no inertia: with everything below them). `world` is never a link."""
-    group = fixed_groups(model, gazebo_keep(model))
-    members: dict[str, list[str]] = {}
-    for n, g in group.items():
-        members.setdefault(g, []).append(n)
-    kept: dict[str, float | None] = {}
+    """(group, kept, dropped): link -> the SDFormat link it is lumped into; the SDFormat links kept with their total
+    mass (None: not a plain number); the links dropped. `world` is never a link.
+
+    Measured with sdformat 12.3 (`ign sdf -p`): fixed joints are reduced from the leaves up, so a link first takes
+    the mass of every link fixed below it; then a link whose mass so gathered is none (no <inertial>) or 0 is
+    dropped with everything below it, whether its own joint moves or is fixed. A massless tool0 leaf goes
+    harmlessly; a massless force-torque sensor link between a hip and the thigh takes the whole leg with it; a
+    massless root takes the model, unless a fixed child brings it mass (base_footprint above base_link)."""
+    keep = gazebo_keep(model)
+    group = fixed_groups(model, keep)
+    children = model.child_joints.get
+    order = [n for root in model.roots for n in model.descendants_in_order(root)]
+    gathered: dict[str, tuple[bool, float | None]] = {}
+    for name in reversed(order):
+        lk = model.links.get(name)
+        has, total = _mass(lk) if lk is not None else (False, 0.0)
+        for j in children(name, ()):
+            if j.type == "fixed" and j.name not in keep and j.child in gathered:
+                h, m = gathered[j.child]
+                has = has or h
+                total = None if total is None or m is None else total + m
+        gathered[name] = (has, total)
     dropped: set[str] = set()
-    for root in model.roots:
-        for body in model.descendants_in_order(root):
-            if group.get(body) != body or body == "world" or body not in model.links:
-                continue
-            j = model.parent_joint.get(body)
-            above = group.get(j.parent) if j is not None else None
-            if above in dropped:
-                dropped.update(members[body])
-                continue
-            facts = [_mass(model.links[n]) for n in members[body] if n in model.links]
-            has = any(h for h, _ in facts)
-            total = None if any(h and m is None for h, m in facts) else sum(m for h, m in facts if h)
-            if gazebo_massless(total, has, version):
-                dropped.update(members[body])
-            else:
-                kept[body] = total
+    for name in order:
+        if name == "world" or name not in model.links:
+            continue
+        j = model.parent_joint.get(name)
+        has, total = gathered[name]
+        if (j is not None and j.parent in dropped) or gazebo_massless(total, has, version):
+            dropped.add(name)
+    kept: dict[str, float | None] = {}
+    for name in order:
+        head = group.get(name, name)
+        if name in dropped or head == "world" or name not in model.links:
+            continue
+        has, m = _mass(model.links[name])
+        if head not in kept:
+            kept[head] = 0.0
+        if has:
+            kept[head] = None if kept[head] is None or m is None else kept[head] + m
     return group, kept, dropped
 
 

@@ -51,21 +51,23 @@ def massless_link_dropped(model, ctx):
         return  # nothing left at all: P012 says Gazebo refuses the model
     known = model.links
     for body in model.descendants_in_order(root):
-        if body not in dropped or group.get(body) != body or body == root:
-            continue
         j = model.parent_joint.get(body)
-        if j is None or group.get(j.parent) in dropped:
-            continue  # below a dropped link: already named by its finding
-        below = [d for d in model.descendants_in_order(body)[1:] if group.get(d) != body]
+        if body not in dropped or j is None or j.parent in dropped:
+            continue  # kept, the root (P012), or below a dropped link: already named by its finding
+        below = model.descendants_in_order(body)[1:]
+        if j.type == "fixed" and not below:
+            continue  # a massless frame at a leaf: lumped or dropped, nothing is lost
         inr = known[body].inertial
         why = ("no <inertial>" if inr is None else f"mass {inr.mass:g}" if inr.mass is not None else "no mass")
+        fixed = " (fixed joints are lumped from the leaves up: the links fixed below it bring no mass either)" \
+            if any(c.type == "fixed" for c in model.child_joints.get(body, ())) else ""
         p = speak(ctx, ("gazebo",),
                   f"Gazebo drops link '{body}'" + (f" and the {len(below)} link(s) below it ({names(below)})"
                                                    if below else "")
-                  + f": it has {why} (sdformat {version} parser_urdf.cc CreateSDF skips a link without <inertial> "
-                  "or with a mass of 0, and from 12.7 on a mass <= 0: \"has no inertia, not modeled in sdf\"), so "
-                  f"joint '{j.name}' and everything attached below it are missing from the simulation; give it an "
-                  "<inertial> with a small positive mass",
+                  + f": it has {why}{fixed} (sdformat {version} parser_urdf.cc CreateSDF skips a link without "
+                  "<inertial> or with a mass of 0, and from 12.7 on a mass <= 0: \"has no inertia, not modeled in "
+                  f"sdf\"), so joint '{j.name}' and everything attached below it are missing from the simulation, "
+                  "even where the joint is fixed; give it an <inertial> with a small positive mass",
                   inr or known[body], quiet=True)  # P001's info names Gazebo too
         if p is not None:
             yield p
