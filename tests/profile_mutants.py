@@ -39,6 +39,9 @@ def gripper(mimic='<mimic joint="left"/>', right="revolute") -> str:
 
 
 BARE = ""
+# an SDFormat joint written into the model by a <gazebo> block (PR2's gripper linkage)
+PARALLEL = ('<gazebo><joint name="parallel" type="revolute"><parent>finger</parent><child>palm</child>'
+            '<axis><xyz>0 0 1</xyz></axis></joint></gazebo>')
 EMPTY_COLLISION = BOX  # no <inertial>, a collision box (MuJoCo gives it mass from the box)
 
 # label -> (mutant, clean twin)
@@ -70,6 +73,8 @@ MUTANTS = {
             tail=(link("mount"), link("pad"), joint("mount_joint", "upper", "mount", "fixed"),
                   joint("pad_joint", "mount", "pad", "fixed")))),
     "zero mass": (arm(upper=inertial(m="0") + BOX), arm()),
+    "mass 1e-6 (sdformat's zero)": (arm(upper=inertial(m="1e-6", a="1e-9", b="1e-9", c="1e-9") + BOX),
+                                    arm(upper=inertial(m="1.01e-6", a="1e-9", b="1e-9", c="1e-9") + BOX)),
     "negative mass": (arm(upper=inertial(m="-1") + BOX), arm()),
     "inertia not positive definite": (arm(upper=inertial(a="-0.01") + BOX), arm()),
     "inertia breaks triangle": (arm(upper=inertial(a="0.001", b="0.001", c="0.01") + BOX), arm()),
@@ -91,6 +96,12 @@ MUTANTS = {
     "zero effort, no actuator": (arm(elbow=joint("elbow", "upper", "fore",
                                                  limit='<limit lower="-1" upper="1" effort="0" velocity="1"/>')),
                                  arm()),
+    "gazebo joint naming a lumped link": (
+        arm(tail=(link("palm"), joint("palm_joint", "fore", "palm", "fixed"), link("finger"),
+                  joint("finger_joint", "fore", "finger"), PARALLEL)),
+        arm(tail=(link("palm"), joint("palm_joint", "fore", "palm", "fixed"), link("finger"),
+                  joint("finger_joint", "fore", "finger"), PARALLEL,
+                  '<gazebo reference="palm_joint"><preserveFixedJoint>true</preserveFixedJoint></gazebo>'))),
     "two roots": (arm(tail=(link("stray"),)), arm()),
     "loop": (arm(tail=(joint("back", "fore", "base_link"),)), arm()),
     "duplicate link": (arm(tail=(link("upper"),)), arm()),

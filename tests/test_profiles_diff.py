@@ -118,3 +118,22 @@ def test_changes_carry_the_profile_of_the_consumer_that_makes_them(tmp_path):
     # inverted limits: PyBullet has no limit at all (J003 carries pybullet), Gazebo is not named
     hits = [f for f in _lint(tmp_path, M["inverted limits"][0], "gazebo,pybullet") if f["code"] == "J003"]
     assert hits and hits[0]["profile"] == "pybullet" and "profiles" not in hits[0]
+
+
+def test_gazebo_extension_joint_naming_a_lumped_link_is_refused(tmp_path):
+    bad, good = M["gazebo joint naming a lumped link"]
+    hits = [f for f in _lint(tmp_path, bad, "gazebo") if f["code"] == "P012"]
+    assert hits and "'palm'" in hits[0]["message"] and "lumped" in hits[0]["message"]
+    assert not [f for f in _lint(tmp_path, good, "gazebo") if f["code"] == "P012"]
+
+
+def test_gazebo_reads_a_mass_within_1e_6_of_zero_as_none(tmp_path):
+    bad, good = M["mass 1e-6 (sdformat's zero)"]
+    hits = [f for f in _lint(tmp_path, bad, "gazebo") if f["code"] == "P011"]
+    assert hits and "'upper'" in hits[0]["message"] and "'fore'" in hits[0]["message"]
+    assert not [f for f in _lint(tmp_path, good, "gazebo") if f["code"] == "P011"]
+    # a massless force-torque link fixed between two moving links takes everything below it
+    bad, good = M["massless link fixed between moving links"]
+    hits = [f for f in _lint(tmp_path, bad, "gazebo") if f["code"] == "P011"]
+    assert hits and "'ft_sensor'" in hits[0]["message"] and "'fore'" in hits[0]["message"]
+    assert not [f for f in _lint(tmp_path, good, "gazebo") if f["code"] == "P011"]

@@ -16,6 +16,20 @@ from urdfcheck.rules.checks.profiles.common import actuated, fixed_groups, is_tr
 _KEEP = lazyre.compile(r"<\s*(preserveFixedJoint|disableFixedJointLumping)\s*>\s*(true|1)\s*<", re.I)
 
 
+_JOINT = lazyre.compile(r"<\s*joint\b[^>]*\bname\s*=\s*[\"']([^\"']*)[\"'][^>]*>(.*?)<\s*/\s*joint\s*>", re.S)
+_END = lazyre.compile(r"<\s*(parent|child)\s*>\s*([^<\s]+)\s*<")
+
+
+def _extension_joints(model):
+    """(block, joint, "parent"/"child", link) for each SDFormat <joint> written inside a robot-level <gazebo>."""
+    for b in model.blocks:
+        if b.tag != "gazebo" or b.parent_tag != "robot" or "joint" not in b.xml:
+            continue
+        for m in _JOINT.finditer(b.xml):
+            for end, link in _END.findall(m.group(2)):
+                yield b, m.group(1), end, link
+
+
 def kept_fixed_joints(model) -> set[str]:
     """Fixed joints sdformat does not lump: <gazebo reference="J"> with preserveFixedJoint/disableFixedJointLumping."""
     return {b.attrib.get("reference", "") for b in model.blocks
@@ -65,7 +79,8 @@ def massless_link_dropped(model, ctx):
                   f"Gazebo drops link '{body}'" + (f" and the {len(below)} link(s) below it ({names(below)})"
                                                    if below else "")
                   + f": it has {why}{fixed} (sdformat {version} parser_urdf.cc CreateSDF skips a link without "
-                  "<inertial> or with a mass of 0, and from 12.7 on a mass <= 0: \"has no inertia, not modeled in "
+                  "<inertial> or with a mass within 1e-6 of 0, and from 12.7 on any mass <= 1e-6: \"has no inertia, "
+                  "not modeled in "
                   f"sdf\"), so joint '{j.name}' and everything attached below it are missing from the simulation, "
                   "even where the joint is fixed; give it an <inertial> with a small positive mass",
                   inr or known[body], quiet=True)  # P001's info names Gazebo too
@@ -87,7 +102,7 @@ def gazebo_refuses(model, ctx):
     if not kept:
         first = root if root != "world" else next((j.child for j in model.child_joints.get(root, ())), root)
         p = speak(ctx, ("gazebo",),
-                  f"Gazebo refuses the model: its root link '{first}' has no <inertial> or a mass of 0, so sdformat's "
+                  f"Gazebo refuses the model: its root link '{first}' has no <inertial> or a mass within 1e-6 of 0, so sdformat's "
                   "URDF converter drops it with everything below it (parser_urdf.cc CreateSDF: \"has no inertia, "
                   "not modeled in sdf\") and the model has no link left; give the root an <inertial>, or attach it "
                   "by a fixed joint to a link that has one (it is then lumped into that link's mass)",
@@ -120,6 +135,16 @@ def gazebo_refuses(model, ctx):
                       f"'{body}') is not a rigid body's: \"A link named {body} has invalid inertia\" (sdformat "
                       "validation, gz-math MassMatrix3::IsValid: principal moments >= 0 and each two adding up to "
                       "the third); I003/I004 say what is wrong with it", inr.inertia_loc or inr)
+            if p is not None:
+                yield p
+    for block, joint, end, link in _extension_joints(model):
+        if link in model.links and (link in dropped or group.get(link, link) != link):
+            how = "dropped (no mass)" if link in dropped else f"lumped into '{group[link]}' (fixed joint)"
+            p = speak(ctx, ("gazebo",),
+                      f"Gazebo refuses the model: the SDFormat joint '{joint}' of a <gazebo> block names link "
+                      f"'{link}' as its <{end}>, and sdformat's URDF converter {how} that link: \"{end} frame with "
+                      f"name[{link}] specified by joint with name[{joint}] not found\" (ign sdf -k, measured on "
+                      "PR2's grippers); keep the link with <preserveFixedJoint>, or name the link it ends in", block)
             if p is not None:
                 yield p
     if version_tuple(version) < (12, 7):
