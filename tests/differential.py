@@ -181,7 +181,7 @@ int main() {
 """
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def kdl_probe() -> str | None:
     """The compiled probe, or None when g++ or kdl_parser's headers are missing."""
     cxx = shutil.which("g++") or shutil.which("c++")
@@ -196,12 +196,12 @@ def kdl_probe() -> str | None:
     return exe if proc.returncode == 0 else None
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def sdformat_version() -> str:
     return _deb_version("libsdformat12") or _deb_version("libsdformat14") or ""
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def kdl_version() -> str:
     return _deb_version("liburdfdom-model") or ""
 
@@ -219,7 +219,7 @@ def _deb_version(prefix: str) -> str:
     return ""
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def installed() -> tuple[str, ...]:
     import importlib.util
 

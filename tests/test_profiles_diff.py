@@ -3,12 +3,10 @@ each consumer installable here (MuJoCo, Pinocchio, PyBullet, sdformat's `ign sdf
 compared with the prediction on each point; and the rules the measurements changed, one by one."""
 import json
 
-import pytest
-
-from conftest import lint_json, run_cli
-
 import differential
 import profile_mutants
+import pytest
+from conftest import lint_json, run_cli
 
 
 @pytest.fixture(scope="module")

@@ -18,7 +18,8 @@ def _run(fn):
 
 
 def add_parser(subparsers) -> None:
-    p = subparsers.add_parser("consumers", help="load the model into MuJoCo, Pinocchio, PyBullet, yourdfpy, urdfdom, sdformat",
+    p = subparsers.add_parser("consumers",
+                              help="load the model into MuJoCo, Pinocchio, PyBullet, yourdfpy, urdfdom, sdformat",
                               description=__doc__.split("\n\n")[0])
     p.add_argument("model", metavar="MODEL")
     p.add_argument("--consumer", default=None, metavar="NAMES",

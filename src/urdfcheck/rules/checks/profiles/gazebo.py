@@ -13,9 +13,6 @@ from urdfcheck.core import lazyre
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import actuated, fixed_groups, is_tree, names, speak
 
-_KEEP = lazyre.compile(r"<\s*(preserveFixedJoint|disableFixedJointLumping)\s*>\s*(true|1)\s*<", re.I)
-
-
 _JOINT = lazyre.compile(r"<\s*joint\b[^>]*\bname\s*=\s*[\"']([^\"']*)[\"'][^>]*>(.*?)<\s*/\s*joint\s*>", re.S)
 _END = lazyre.compile(r"<\s*(parent|child)\s*>\s*([^<\s]+)\s*<")
 
@@ -28,12 +25,6 @@ def _extension_joints(model):
         for m in _JOINT.finditer(b.xml):
             for end, link in _END.findall(m.group(2)):
                 yield b, m.group(1), end, link
-
-
-def kept_fixed_joints(model) -> set[str]:
-    """Fixed joints sdformat does not lump: <gazebo reference="J"> with preserveFixedJoint/disableFixedJointLumping."""
-    return {b.attrib.get("reference", "") for b in model.blocks
-            if b.tag == "gazebo" and b.parent_tag == "robot" and _KEEP.search(b.xml)}
 
 
 @check("P010")
@@ -102,10 +93,10 @@ def gazebo_refuses(model, ctx):
     if not kept:
         first = root if root != "world" else next((j.child for j in model.child_joints.get(root, ())), root)
         p = speak(ctx, ("gazebo",),
-                  f"Gazebo refuses the model: its root link '{first}' has no <inertial> or a mass within 1e-6 of 0, so sdformat's "
-                  "URDF converter drops it with everything below it (parser_urdf.cc CreateSDF: \"has no inertia, "
-                  "not modeled in sdf\") and the model has no link left; give the root an <inertial>, or attach it "
-                  "by a fixed joint to a link that has one (it is then lumped into that link's mass)",
+                  f"Gazebo refuses the model: its root link '{first}' has no <inertial> or a mass within 1e-6 of 0, "
+                  "so sdformat's URDF converter drops it with everything below it (parser_urdf.cc CreateSDF: \"has "
+                  "no inertia, not modeled in sdf\") and the model has no link left; give the root an <inertial>, "
+                  "or attach it by a fixed joint to a link that has one (it is then lumped into that link's mass)",
                   model.links[first] if first in model.links else model)
         if p is not None:
             yield p

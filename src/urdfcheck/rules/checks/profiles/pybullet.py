@@ -2,10 +2,11 @@
 BulletUrdfImporter.cpp, URDF2Bullet.cpp).
 
 UrdfParser::parseLink: a link without <inertial> gets mass 1 and inertia 1 1 1 ("No inertial data for link,
-using mass=1, localinertiadiagonal = 1,1,1, identity local inertial frame"), the root link too in the default free-base
-load (useFixedBase=False); a link named "world" stays massless. BulletURDFImporter::getMassAndInertia: unless loadURDF is given flags=URDF_USE_INERTIA_FROM_FILE, the
-inertia tensor is recomputed from the collision shapes (calculateLocalInertia) and the URDF's <inertia> is
-ignored."""
+using mass=1, localinertiadiagonal = 1,1,1, identity local inertial frame"), the root link too in the default
+free-base load (useFixedBase=False); a link named "world" stays massless. BulletURDFImporter::getMassAndInertia:
+unless loadURDF is given flags=URDF_USE_INERTIA_FROM_FILE, the inertia tensor is recomputed from the collision
+shapes (calculateLocalInertia) and the URDF's <inertia> is ignored. Measured with PyBullet 3.2
+(tests/differential.py): <mimic> is never read, a floating joint becomes fixed, inverted limits are no limit."""
 from __future__ import annotations
 
 from urdfcheck.rules.catalogue import check
