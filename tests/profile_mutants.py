@@ -102,6 +102,12 @@ MUTANTS = {
         arm(tail=(link("palm"), joint("palm_joint", "fore", "palm", "fixed"), link("finger"),
                   joint("finger_joint", "fore", "finger"), PARALLEL,
                   '<gazebo reference="palm_joint"><preserveFixedJoint>true</preserveFixedJoint></gazebo>'))),
+    "floating joint from the root": (
+        robot(link("base_link"), link("body"), joint("free", "base_link", "body", "floating")),
+        robot(link("base_link"), link("body"), joint("free", "base_link", "body", "fixed"))),
+    "two trees": (arm(tail=(link("stray"), link("stray_child"), joint("stray_joint", "stray", "stray_child"))),
+                  arm(tail=(link("stray"), link("stray_child"), joint("stray_joint", "stray", "stray_child"),
+                            joint("stray_anchor", "fore", "stray", "fixed")))),
     "two roots": (arm(tail=(link("stray"),)), arm()),
     "loop": (arm(tail=(joint("back", "fore", "base_link"),)), arm()),
     "duplicate link": (arm(tail=(link("upper"),)), arm()),
