@@ -382,9 +382,15 @@ def run(paths, consumers=None, folder=None) -> dict:
             got = prepared(path, folder)
             if got is not None:
                 ready.append((label, *got))
-        said = [refusals(copy, consumers) for _, _, copy in ready]
+        from concurrent.futures import ThreadPoolExecutor
+
+        copies = [copy for _, _, copy in ready]
+        with ThreadPoolExecutor(max_workers=2) as pool:  # the consumers' subprocesses run while urdfcheck lints
+            loading = {c: pool.submit(load_many, c, copies) for c in consumers}
+            said = [refusals(copy, consumers) for copy in copies]
+            loaded = {c: f.result() for c, f in loading.items()}
         for c in consumers:
-            truths = load_many(c, [copy for _, _, copy in ready])
+            truths = loaded[c]
             for (label, model, copy), truth, why in zip(ready, truths, said):
                 pred = predict(c, copy, model, truth.get("version", ""), why[c])
                 bad = compare(pred, truth)
@@ -399,8 +405,16 @@ def run(paths, consumers=None, folder=None) -> dict:
 
 
 if __name__ == "__main__":
-    for target in sys.argv[2:]:
-        sys.stdout.flush()
-        out = json.dumps(PROBES[sys.argv[1]](target))
-        sys.stdout.flush()
-        print("\n@@" + out, flush=True)
+    probe, targets = PROBES[sys.argv[1]], sys.argv[2:]
+    if sys.argv[1] in ("gazebo", "kdl"):  # each load is its own process already: several at once, answers in order
+        from concurrent.futures import ThreadPoolExecutor
+
+        with ThreadPoolExecutor(max_workers=4) as pool:
+            for got in pool.map(probe, targets):
+                print("\n@@" + json.dumps(got), flush=True)
+    else:
+        for target in targets:
+            sys.stdout.flush()
+            out = json.dumps(probe(target))
+            sys.stdout.flush()
+            print("\n@@" + out, flush=True)
