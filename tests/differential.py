@@ -203,6 +203,11 @@ def sdformat_version() -> str:
 
 @functools.cache
 def kdl_version() -> str:
+    return _deb_version("libkdl-parser") or ""
+
+
+@functools.lru_cache(maxsize=None)
+def urdfdom_version() -> str:
     return _deb_version("liburdfdom-model") or ""
 
 

@@ -69,6 +69,20 @@ print(json.dumps(out))
 """
 
 
+def versions() -> dict:
+    import importlib.metadata as md
+
+    out = {}
+    for c, dist in (("mujoco", "mujoco"), ("pinocchio", "pin"), ("pybullet", "pybullet")):
+        try:
+            out[c] = md.version(dist)
+        except md.PackageNotFoundError:
+            pass
+    out["gazebo"] = "sdformat " + differential.sdformat_version()
+    out["kdl"] = f"kdl_parser {differential.kdl_version()} (urdfdom {differential.urdfdom_version()})"
+    return out
+
+
 def before(src: str, pairs) -> list[list[str]]:
     env = dict(os.environ, PYTHONPATH=src)
     proc = subprocess.run([sys.executable, "-c", BEFORE], input=json.dumps(pairs), capture_output=True, text=True,
@@ -84,7 +98,11 @@ def main(argv=None) -> int:
     ns = ap.parse_args(argv)
     folder = tempfile.mkdtemp(prefix="urdfcheck-table-")
     mutants = profile_mutants.write(tempfile.mkdtemp(prefix="urdfcheck-mutants-"))
-    ready = prepare(models(ns.limit), folder) + prepare(mutants, folder)
+    real = prepare(models(ns.limit), folder)
+    seeded = prepare(mutants, folder)
+    ready = real + seeded
+    print(f"{len(real)} models from the corpus and examples/ (each robot once), {len(seeded)} mutants and twins; "
+          f"consumers: {', '.join(f'{c} {v}' for c, v in versions().items())}\n")
     consumers = [c for c in differential.CONSUMERS if c in differential.installed()]
     rows = {}
     said = [differential.refusals(copy, consumers) for _, _, copy in ready]
