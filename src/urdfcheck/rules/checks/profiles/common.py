@@ -1,5 +1,5 @@
 """What the profile rules share: the profile names, when a rule speaks and how loudly, and which general rules a
-profile reads as its consumer's own rejection (`annotates`)."""
+profile reads as its consumer's own refusal or change of the model (`annotating`, GENERAL)."""
 from __future__ import annotations
 
 from urdfcheck.core.findings import Problem, Severity
@@ -22,7 +22,8 @@ PROFILES = {
 
 
 # urdfdom (urdf_parser/src/model.cpp, joint.cpp, link.cpp) refuses these while parsing; Pinocchio, sdformat's URDF
-# converter and kdl_parser read URDF through it
+# converter and kdl_parser read URDF through it (measured with Debian's urdfdom 3.0). Which urdfdom reads a model
+# (3.x up to Humble, 4.x from Jazzy on, which reads URDF 1.1) is the target distribution's (--target, U007, U008)
 URDFDOM = ("U001", "U004", "U005", "U006", "U007", "S001", "S002", "S003", "S004", "S005", "S006", "S007", "S008",
            "S011", "J001", "J002", "I001")
 
@@ -30,11 +31,12 @@ URDFDOM = ("U001", "U004", "U005", "U006", "U007", "S001", "S002", "S003", "S004
 # model; anything else says how it changes the model. Each entry was measured on a mutant and its clean twin
 # (tests/profile_mutants.py) unless it says "source".
 GENERAL = {
-    # and a mesh it cannot find or read when it builds the geometry models (buildGeomFromUrdf, as
-    # RobotWrapper.BuildFromURDF does: "Mesh X could not be found")
+    # Pinocchio: urdfdom's refusals, and a mesh it cannot find when it builds the geometry models
+    # (buildGeomFromUrdf, as RobotWrapper.BuildFromURDF does: "Mesh X could not be found")
     "pinocchio": {**dict.fromkeys(URDFDOM, "refuses"), "G001": "refuses"},
     "kdl": {**dict.fromkeys(URDFDOM, "refuses"),
-            "I005": "ignores the root link's inertia (kdl_parser.cpp treeFromUrdfModel)"},
+            # source: kdl_parser.cpp treeFromUrdfModel (measured too: the root segment's mass is 0)
+            "I005": "ignores the root link's inertia"},
     "gazebo": {**dict.fromkeys(URDFDOM, "refuses"),
                # sdformat's validation of the converted model (ign sdf -k; Gazebo loads through the same checks):
                # "The norm of the xyz vector cannot be zero". An invalid inertia is P012's: the tensor sdformat
