@@ -11,7 +11,7 @@ import re
 
 from urdfcheck.core import lazyre
 from urdfcheck.rules.catalogue import check
-from urdfcheck.rules.checks.profiles.common import actuated, fixed_groups, is_tree, names, speak
+from urdfcheck.rules.checks.profiles.common import actuated, dynamic, fixed_groups, is_tree, names, speak
 
 _JOINT = lazyre.compile(r"<\s*joint\b[^>]*\bname\s*=\s*[\"']([^\"']*)[\"'][^>]*>(.*?)<\s*/\s*joint\s*>", re.S)
 _END = lazyre.compile(r"<\s*(parent|child)\s*>\s*([^<\s]+)\s*<")
@@ -97,7 +97,8 @@ def gazebo_refuses(model, ctx):
                   "so sdformat's URDF converter drops it with everything below it (parser_urdf.cc CreateSDF: \"has "
                   "no inertia, not modeled in sdf\") and the model has no link left; give the root an <inertial>, "
                   "or attach it by a fixed joint to a link that has one (it is then lumped into that link's mass)",
-                  model.links[first] if first in model.links else model)
+                  model.links[first] if first in model.links else model,
+                  quiet=not dynamic(model))  # no <inertial> anywhere: kinematic by intent (a tutorial, MoveIt's)
         if p is not None:
             yield p
         return
@@ -107,7 +108,8 @@ def gazebo_refuses(model, ctx):
                       f"Gazebo refuses the model: sdformat's URDF converter has no SDFormat joint for {j.type} "
                       f"joint '{j.name}' (parser_urdf.cc CreateJoint) and drops it, while link '{j.child}' keeps "
                       f"its pose relative to it: \"relative_to name[{j.name}] ... does not match\" (ign sdf -k, "
-                      "PoseRelativeToGraph); use a fixed joint, or spawn the part as its own model", j)
+                      "PoseRelativeToGraph); use a fixed joint, or spawn the part as its own model", j,
+                      quiet=True)  # J010/J011 report the joint for every consumer
             if p is not None:
                 yield p
     from urdfcheck.rules.checks.profiles.behaviour import gazebo_invalid_inertia
@@ -125,7 +127,8 @@ def gazebo_refuses(model, ctx):
                       f"Gazebo refuses the model: the inertia of link '{links[0]}' (the only one in SDFormat link "
                       f"'{body}') is not a rigid body's: \"A link named {body} has invalid inertia\" (sdformat "
                       "validation, gz-math MassMatrix3::IsValid: principal moments >= 0 and each two adding up to "
-                      "the third); I003/I004 say what is wrong with it", inr.inertia_loc or inr)
+                      "the third); I003/I004 say what is wrong with it", inr.inertia_loc or inr,
+                      quiet=True)  # I003/I004 report the tensor for every consumer
             if p is not None:
                 yield p
     for block, joint, end, link in _extension_joints(model):
@@ -145,7 +148,7 @@ def gazebo_refuses(model, ctx):
                           f"Gazebo refuses the model: link '{body}' ends with mass {total:g} (sdformat {version} "
                           f"keeps a negative mass, then its validation says \"A link named {body} has invalid "
                           "inertia\"; from 12.7 on the link is dropped instead); give it its real, positive mass",
-                          model.links[body].inertial or model.links[body])
+                          model.links[body].inertial or model.links[body], quiet=True)  # I002
                 if p is not None:
                     yield p
 
