@@ -313,10 +313,14 @@ def refusals(copy: str, consumers) -> dict[str, list[str]]:
     from urdfcheck.rules.checks.profiles import behaviour
 
     here = os.getcwd()
-    os.chdir(os.path.dirname(copy))  # the model's folder is the run's root, as when linted from there
+    folder = os.path.dirname(copy)
+    config = os.path.join(folder, ".urdfcheck-diff.yaml")
+    version = sdformat_version() or "12.3"  # the rules' sdformat option: the version loaded here
+    with open(config, "w", encoding="utf-8") as f:
+        f.write("rules:\n" + "".join(f"  {c}: {{sdformat: '{version}'}}\n" for c in ("P011", "P012", "P052")))
+    os.chdir(folder)  # the model's folder is the run's root, as when linted from there
     try:
-        res = urdfcheck.lint([copy], profiles=list(consumers), no_config=True, root=os.path.dirname(copy),
-                             select=["ALL"])
+        res = urdfcheck.lint([copy], profiles=list(consumers), config=config, root=folder, select=["ALL"])
     finally:
         os.chdir(here)
     return {c: sorted({f.code for f in res.findings if c in (f.profiles or (f.profile,))
