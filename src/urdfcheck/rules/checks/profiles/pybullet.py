@@ -76,10 +76,10 @@ def same_as_bullet(link) -> bool:
 
 @check("P052")
 def mimic_ignored(model, ctx):
-    """<mimic> that a consumer drops: PyBullet's UrdfParser never reads it (measured: the joint moves on its own);
-    sdformat's URDF converter only converts it from 14.1 on (parser_urdf.cc; measured with 12.3: no <mimic> in the
-    SDFormat joint); Pinocchio's buildModelFromUrdf builds it only when asked (mimic=True, pinocchio 3.4 and later);
-    kdl_parser has no mimic (robot_state_publisher applies it itself)."""
+    """<mimic> that a consumer drops: PyBullet's UrdfParser never reads it (measured: a joint of its own, with its own
+    motor); sdformat's URDF converter only converts it from 14.1 on (parser_urdf.cc; measured with 12.3: no <mimic>
+    in the SDFormat joint); Pinocchio's buildModelFromUrdf builds it only when asked (mimic=True gives a
+    JointModelMimic, measured with pin 4.1); kdl_parser has no mimic (robot_state_publisher applies it itself)."""
     from urdfcheck.rules.checks.profiles.behaviour import version_tuple
 
     mimics = [j for j in model.joint_list if j.mimic is not None and j.type in ("revolute", "continuous",
