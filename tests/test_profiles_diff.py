@@ -50,10 +50,10 @@ def test_gazebo_refuses_floating_and_planar_joints_and_negative_mass(tmp_path):
     for label in ("floating joint", "planar joint", "negative mass"):
         assert [f for f in _lint(tmp_path, M[label][0], "gazebo") if f["code"] == "P012"], label
         assert not [f for f in _lint(tmp_path, M[label][1], "gazebo") if f["code"] == "P012"], label
-    # from sdformat 12.7 on a negative mass drops the link instead (P011)
+    # from sdformat 12.7.2 on (pull request 1238) a negative mass drops the link instead (P011)
     newer = tmp_path / "newer"
     newer.mkdir()
-    (newer / "urdfcheck.yaml").write_text("rules:\n  P011: {sdformat: '12.7'}\n  P012: {sdformat: '12.7'}\n")
+    (newer / "urdfcheck.yaml").write_text("rules:\n  P011: {sdformat: '12.7.2'}\n  P012: {sdformat: '12.7.2'}\n")
     p = newer / "robot.urdf"
     p.write_text(M["negative mass"][0])
     _, out, _ = run_cli(["lint", "--format", "json", str(p), "--profile", "gazebo", "--config",
@@ -135,3 +135,17 @@ def test_gazebo_reads_a_mass_within_1e_6_of_zero_as_none(tmp_path):
     hits = [f for f in _lint(tmp_path, bad, "gazebo") if f["code"] == "P011"]
     assert hits and "'ft_sensor'" in hits[0]["message"] and "'fore'" in hits[0]["message"]
     assert not [f for f in _lint(tmp_path, good, "gazebo") if f["code"] == "P011"]
+
+
+def test_newer_sdformat_keeps_a_massless_link_on_a_reduced_fixed_joint(tmp_path):
+    # read from sdformat's source (pull request 1238, 12.7.2 and 13.5 on): the massless sensor link is lumped and
+    # the thigh below it kept; 12.3 (measured) drops it all
+    bad = M["massless link fixed between moving links"][0]
+    (tmp_path / "robot.urdf").write_text(bad)
+    for version, dropped in (("12.3", True), ("12.7.2", False), ("14.1", False), ("13.4", True)):
+        cfg = tmp_path / f"{version}.yaml"
+        cfg.write_text(f"rules:\n  P011: {{sdformat: '{version}'}}\n")
+        _, out, _ = run_cli(["lint", "--format", "json", str(tmp_path / "robot.urdf"), "--profile", "gazebo",
+                             "--config", str(cfg)], cwd=tmp_path)
+        hits = [f for f in json.loads(out)["findings"] if f["code"] == "P011"]
+        assert bool(hits) == dropped, version

@@ -14,7 +14,10 @@ from urdfcheck.core import lazyre
 from urdfcheck.rules.checks.profiles.common import GENERAL, REFUSING, URDFDOM, fixed_groups  # noqa: F401
 
 # sdformat releases where its URDF converter changed what it does (parser_urdf.cc)
-SDFORMAT_DROPS_NEGATIVE_MASS = (12, 7)  # "mass <= 0" dropped like no <inertial>; before, only mass == 0
+# gazebosim/sdformat pull request 1238 ("URDF->SDF handle links with no inertia or small mass"; libsdformat 12.7.2,
+# 13.5.0, 14.x): CreateSDF tests `mass <= 0` instead of math::equal(mass, 0), and a massless link whose own fixed
+# joint is reduced is lumped, no longer dropped with everything below it
+SDFORMAT_DROPS_NEGATIVE_MASS = (12, 7, 2)
 SDFORMAT_KEEPS_MIMIC = (14, 1)  # <mimic> converted into the SDFormat joint axis's <mimic>
 SDFORMAT_DEFAULT = "12.3"  # Debian bookworm's libsdformat12, the version measured here
 
@@ -66,13 +69,20 @@ def gazebo_keep(model) -> set[str]:
 SDFORMAT_ZERO = 1e-6  # ignition::math::equal's default tolerance: parser_urdf.cc tests the mass with it
 
 
+def gazebo_new(version: str) -> bool:
+    """Is this an sdformat with pull request 1238 (12.7.2 and later 12.x, 13.5 and later)?"""
+    v = version_tuple(version)
+    return v >= (13, 5) or SDFORMAT_DROPS_NEGATIVE_MASS <= v < (13,)
+
+
 def gazebo_massless(total, has_inertial: bool, version: str = SDFORMAT_DEFAULT) -> bool:
     """Does sdformat's CreateSDF skip a link (with the mass gathered from the links fixed below it)? Measured with
-    12.3: no <inertial>, or a mass within 1e-6 of 0 (1e-6 and -1e-6 dropped, 1.01e-6 kept: math::equal)."""
+    12.3: no <inertial>, or a mass within 1e-6 of 0 (1e-6 and -1e-6 dropped, 1.01e-6 kept: math::equal). From
+    pull request 1238 on (read from the source): a mass <= 0."""
     if not has_inertial or total is None:
         return not has_inertial
-    if version_tuple(version) >= SDFORMAT_DROPS_NEGATIVE_MASS:
-        return total <= SDFORMAT_ZERO
+    if gazebo_new(version):
+        return total <= 0.0
     return abs(total) <= SDFORMAT_ZERO
 
 
@@ -84,7 +94,9 @@ def gazebo_bodies(model, version: str = SDFORMAT_DEFAULT):
     the mass of every link fixed below it; then a link whose mass so gathered is none (no <inertial>) or 0 is
     dropped with everything below it, whether its own joint moves or is fixed. A massless tool0 leaf goes
     harmlessly; a massless force-torque sensor link between a hip and the thigh takes the whole leg with it; a
-    massless root takes the model, unless a fixed child brings it mass (base_footprint above base_link)."""
+    massless root takes the model, unless a fixed child brings it mass (base_footprint above base_link). From pull
+    request 1238 on (read from the source, not measured), a massless link whose own fixed joint is reduced is lumped
+    and kept, and only a mass <= 0 counts as none."""
     keep = gazebo_keep(model)
     group = fixed_groups(model, keep)
     children = model.child_joints.get
@@ -105,7 +117,9 @@ def gazebo_bodies(model, version: str = SDFORMAT_DEFAULT):
             continue
         j = model.parent_joint.get(name)
         has, total = gathered[name]
-        if (j is not None and j.parent in dropped) or gazebo_massless(total, has, version):
+        reduced = j is not None and j.type == "fixed" and j.name not in keep
+        if (j is not None and j.parent in dropped) or (gazebo_massless(total, has, version)
+                                                       and not (reduced and gazebo_new(version))):
             dropped.add(name)
     kept: dict[str, float | None] = {}
     for name in order:

@@ -73,7 +73,7 @@ def massless_link_dropped(model, ctx):
                   f"Gazebo drops link '{body}'" + (f" and the {len(below)} link(s) below it ({names(below)})"
                                                    if below else "")
                   + f": it has {why}{fixed} (sdformat {version} parser_urdf.cc CreateSDF skips a link without "
-                  "<inertial> or with a mass within 1e-6 of 0, and from 12.7 on any mass <= 1e-6: \"has no inertia, "
+                  "<inertial> or with a mass within 1e-6 of 0, from 12.7.2 on a mass <= 0: \"has no inertia, "
                   "not modeled in "
                   f"sdf\"), so joint '{j.name}' and everything attached below it are missing from the simulation, "
                   "even where the joint is fixed; give it an <inertial> with a small positive mass",
@@ -86,7 +86,7 @@ def massless_link_dropped(model, ctx):
 def gazebo_refuses(model, ctx):
     """What sdformat's converter leaves that its own validation (`ign sdf -k`, and Gazebo's loader) refuses, or a
     model with no link left at all. Measured with sdformat 12.3."""
-    from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies, version_tuple
+    from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies
 
     if not is_tree(model):
         return  # S rules; urdfdom refuses those models before sdformat converts anything
@@ -115,7 +115,7 @@ def gazebo_refuses(model, ctx):
                       quiet=True)  # J010/J011 report the joint for every consumer
             if p is not None:
                 yield p
-    from urdfcheck.rules.checks.profiles.behaviour import gazebo_invalid_inertia
+    from urdfcheck.rules.checks.profiles.behaviour import gazebo_invalid_inertia, gazebo_new
 
     massive: dict[str, list[str]] = {}
     for n, g in group.items():
@@ -144,13 +144,13 @@ def gazebo_refuses(model, ctx):
                       "PR2's grippers); keep the link with <preserveFixedJoint>, or name the link it ends in", block)
             if p is not None:
                 yield p
-    if version_tuple(version) < (12, 7):
+    if not gazebo_new(version):
         for body, total in kept.items():
             if total is not None and total < 0:
                 p = speak(ctx, ("gazebo",),
                           f"Gazebo refuses the model: link '{body}' ends with mass {total:g} (sdformat {version} "
                           f"keeps a negative mass, then its validation says \"A link named {body} has invalid "
-                          "inertia\"; from 12.7 on the link is dropped instead); give it its real, positive mass",
+                          "inertia\"; from 12.7.2 on the link is dropped instead); give it its real, positive mass",
                           model.links[body].inertial or model.links[body], quiet=True)  # I002
                 if p is not None:
                     yield p
