@@ -206,7 +206,7 @@ def kdl_version() -> str:
     return _deb_version("libkdl-parser") or ""
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def urdfdom_version() -> str:
     return _deb_version("liburdfdom-model") or ""
 

@@ -26,11 +26,18 @@ def test_mutants_and_twins_agree_on_every_point(table, consumer):
     assert len(row["agree"]) == 2 * len(profile_mutants.MUTANTS)
 
 
-def _lint(tmp_path, text, profiles):
+def _lint(tmp_path, text, profiles, sdformat=None):
+    """The findings; with `sdformat`, the Gazebo rules predict for that version (the one measured here: 12.3)."""
     p = tmp_path / "robot.urdf"
     p.write_text(text)
-    _, report = lint_json([str(p), "--profile", profiles], cwd=tmp_path)
-    return report["findings"]
+    if sdformat is None:
+        _, report = lint_json([str(p), "--profile", profiles], cwd=tmp_path)
+        return report["findings"]
+    cfg = tmp_path / f"sdformat-{sdformat}.yaml"
+    cfg.write_text("rules:\n" + "".join(f"  {c}: {{sdformat: '{sdformat}'}}\n" for c in ("P011", "P012", "P052")))
+    _, out, _ = run_cli(["lint", "--format", "json", str(p), "--profile", profiles, "--config", str(cfg)],
+                        cwd=tmp_path)
+    return json.loads(out)["findings"]
 
 
 M = profile_mutants.MUTANTS
@@ -48,8 +55,8 @@ def test_gazebo_refuses_a_model_whose_root_has_no_inertial(tmp_path):
 
 def test_gazebo_refuses_floating_and_planar_joints_and_negative_mass(tmp_path):
     for label in ("floating joint", "planar joint", "negative mass"):
-        assert [f for f in _lint(tmp_path, M[label][0], "gazebo") if f["code"] == "P012"], label
-        assert not [f for f in _lint(tmp_path, M[label][1], "gazebo") if f["code"] == "P012"], label
+        assert [f for f in _lint(tmp_path, M[label][0], "gazebo", "12.3") if f["code"] == "P012"], label
+        assert not [f for f in _lint(tmp_path, M[label][1], "gazebo", "12.3") if f["code"] == "P012"], label
     # from sdformat 12.7.2 on (pull request 1238) a negative mass drops the link instead (P011)
     newer = tmp_path / "newer"
     newer.mkdir()
@@ -127,14 +134,14 @@ def test_gazebo_extension_joint_naming_a_lumped_link_is_refused(tmp_path):
 
 def test_gazebo_reads_a_mass_within_1e_6_of_zero_as_none(tmp_path):
     bad, good = M["mass 1e-6 (sdformat's zero)"]
-    hits = [f for f in _lint(tmp_path, bad, "gazebo") if f["code"] == "P011"]
+    hits = [f for f in _lint(tmp_path, bad, "gazebo", "12.3") if f["code"] == "P011"]
     assert hits and "'upper'" in hits[0]["message"] and "'fore'" in hits[0]["message"]
-    assert not [f for f in _lint(tmp_path, good, "gazebo") if f["code"] == "P011"]
+    assert not [f for f in _lint(tmp_path, good, "gazebo", "12.3") if f["code"] == "P011"]
     # a massless force-torque link fixed between two moving links takes everything below it
     bad, good = M["massless link fixed between moving links"]
-    hits = [f for f in _lint(tmp_path, bad, "gazebo") if f["code"] == "P011"]
+    hits = [f for f in _lint(tmp_path, bad, "gazebo", "12.3") if f["code"] == "P011"]
     assert hits and "'ft_sensor'" in hits[0]["message"] and "'fore'" in hits[0]["message"]
-    assert not [f for f in _lint(tmp_path, good, "gazebo") if f["code"] == "P011"]
+    assert not [f for f in _lint(tmp_path, good, "gazebo", "12.3") if f["code"] == "P011"]
 
 
 def test_newer_sdformat_keeps_a_massless_link_on_a_reduced_fixed_joint(tmp_path):
@@ -149,3 +156,12 @@ def test_newer_sdformat_keeps_a_massless_link_on_a_reduced_fixed_joint(tmp_path)
                              "--config", str(cfg)], cwd=tmp_path)
         hits = [f for f in json.loads(out)["findings"] if f["code"] == "P011"]
         assert bool(hits) == dropped, version
+
+
+def test_sdformat_auto_follows_the_target_distribution(tmp_path):
+    # Humble's Fortress reads with sdformat 12.8 (<mimic> ignored), Jazzy's Harmonic with 14.5 (<mimic> kept)
+    p = tmp_path / "robot.urdf"
+    p.write_text(M["mimic"][0])
+    for target, named in (("humble", True), ("jazzy", False)):
+        _, report = lint_json([str(p), "--profile", "gazebo", "--target", target], cwd=tmp_path)
+        assert bool([f for f in report["findings"] if f["code"] == "P052"]) == named, target

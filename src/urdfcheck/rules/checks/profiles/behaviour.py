@@ -70,9 +70,25 @@ SDFORMAT_ZERO = 1e-6  # ignition::math::equal's default tolerance: parser_urdf.c
 
 
 def gazebo_new(version: str) -> bool:
-    """Is this an sdformat with pull request 1238 (12.7.2 and later 12.x, 13.5 and later)?"""
+    """Is this an sdformat with pull request 1238 (9.10.1 and later 9.x, 12.7.2 and later 12.x, 13.5 and later)?"""
     v = version_tuple(version)
-    return v >= (13, 5) or SDFORMAT_DROPS_NEGATIVE_MASS <= v < (13,)
+    return v >= (13, 5) or SDFORMAT_DROPS_NEGATIVE_MASS <= v < (13,) or (9, 10, 1) <= v < (10,)
+
+
+# the sdformat a distribution's Gazebo reads URDF with, when the `sdformat` option is "auto": Noetic's Gazebo 11
+# (sdformat 9), Humble's Fortress (sdformat 12), Jazzy's and later Harmonic/Ionic (sdformat 14/15); the newest
+# release of each, as the Gazebo packages ship it (read from sdformat's Changelog, not measured)
+SDFORMAT_FOR = {"noetic": "9.10.1", "humble": "12.8.0", "jazzy": "14.5.0", "kilted": "15.0.0", "rolling": "15.0.0"}
+
+
+def sdformat_of(model, ctx) -> str:
+    """The sdformat version the Gazebo rules predict for: the option, or with "auto" the target distribution's."""
+    given = str(ctx.options["sdformat"])
+    if given != "auto":
+        return given
+    from urdfcheck.rules.checks.values import target_of
+
+    return SDFORMAT_FOR.get(target_of(model, ctx)[0].name, SDFORMAT_DEFAULT)
 
 
 def gazebo_massless(total, has_inertial: bool, version: str = SDFORMAT_DEFAULT) -> bool:

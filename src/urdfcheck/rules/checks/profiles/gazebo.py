@@ -48,11 +48,11 @@ def fixed_joint_lumping(model, ctx):
 
 @check("P011")
 def massless_link_dropped(model, ctx):
-    from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies
+    from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies, sdformat_of
 
     if not is_tree(model):
         return
-    version = str(ctx.options["sdformat"])
+    version = sdformat_of(model, ctx)
     group, kept, dropped = gazebo_bodies(model, version)
     root = model.roots[0]
     if not kept:
@@ -86,11 +86,11 @@ def massless_link_dropped(model, ctx):
 def gazebo_refuses(model, ctx):
     """What sdformat's converter leaves that its own validation (`ign sdf -k`, and Gazebo's loader) refuses, or a
     model with no link left at all. Measured with sdformat 12.3."""
-    from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies
+    from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies, sdformat_of
 
     if not is_tree(model):
         return  # S rules; urdfdom refuses those models before sdformat converts anything
-    version = str(ctx.options["sdformat"])
+    version = sdformat_of(model, ctx)
     group, kept, dropped = gazebo_bodies(model, version)
     root = model.roots[0]
     if not kept:

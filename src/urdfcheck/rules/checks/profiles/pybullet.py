@@ -80,14 +80,14 @@ def mimic_ignored(model, ctx):
     motor); sdformat's URDF converter only converts it from 14.1 on (parser_urdf.cc; measured with 12.3: no <mimic>
     in the SDFormat joint); Pinocchio's buildModelFromUrdf builds it only when asked (mimic=True gives a
     JointModelMimic, measured with pin 4.1); kdl_parser has no mimic (robot_state_publisher applies it itself)."""
-    from urdfcheck.rules.checks.profiles.behaviour import version_tuple
+    from urdfcheck.rules.checks.profiles.behaviour import sdformat_of, version_tuple
 
     mimics = [j for j in model.joint_list if j.mimic is not None and j.type in ("revolute", "continuous",
                                                                                 "prismatic")]
     if not mimics:
         return
     who = ["pybullet", "pinocchio", "kdl"]
-    if version_tuple(str(ctx.options["sdformat"])) < (14, 1):
+    if version_tuple(sdformat_of(model, ctx)) < (14, 1):
         who.insert(1, "gazebo")
     shown = {"pybullet": "PyBullet", "gazebo": "Gazebo (sdformat before 14.1)", "pinocchio": "Pinocchio (unless "
              "buildModelFromUrdf(..., mimic=True))", "kdl": "KDL"}
