@@ -14,6 +14,7 @@ import glob
 import hashlib
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -97,7 +98,15 @@ def main(argv=None) -> int:
     ap.add_argument("--limit", type=int, default=None)
     ns = ap.parse_args(argv)
     folder = tempfile.mkdtemp(prefix="urdfcheck-table-")
-    mutants = profile_mutants.write(tempfile.mkdtemp(prefix="urdfcheck-mutants-"))
+    seeds = tempfile.mkdtemp(prefix="urdfcheck-mutants-")
+    try:
+        return _table(ns, folder, profile_mutants.write(seeds))
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+        shutil.rmtree(seeds, ignore_errors=True)
+
+
+def _table(ns, folder, mutants) -> int:
     real = prepare(models(ns.limit), folder)
     seeded = prepare(mutants, folder)
     ready = real + seeded
