@@ -187,7 +187,10 @@ def kdl_probe() -> str | None:
     cxx = shutil.which("g++") or shutil.which("c++")
     if cxx is None or not os.path.exists("/usr/include/kdl_parser/kdl_parser.hpp"):
         return None
+    import atexit
+
     folder = tempfile.mkdtemp(prefix="urdfcheck-kdlprobe-")
+    atexit.register(shutil.rmtree, folder, True)
     src, exe = os.path.join(folder, "probe.cpp"), os.path.join(folder, "probe")
     with open(src, "w") as f:
         f.write(KDL_SOURCE)
