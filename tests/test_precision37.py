@@ -184,3 +184,16 @@ def test_ros1_joint_state_controller_extra_joints_are_state_sources():
             "      - name: rear_caster_wheel_joint\n")
     (jsc,) = list(read_controllers([parse_params(text, "diffbot_control.yaml")]))
     assert [u.joint for u in jsc.state_joints] == ["rear_caster_rotation_joint", "rear_caster_wheel_joint"]
+
+
+def test_a_xacro_argument_a_launch_file_passes_from_a_required_launch_argument_is_an_info(repo):
+    # denso_robot_ros2: `model:=<LaunchConfiguration('model')>`, a launch argument without default (X010 error)
+    root = repo("launch_required")
+    _, report = lint_json([], cwd=root)
+    (x010,) = [f for f in report["findings"] if f["code"] == "X010"]
+    assert x010["severity"] == "info" and "a launch argument without default" in x010["message"]
+    # a launch file that does not pass it at all keeps the error
+    f = root / "arm_bringup" / "launch" / "bringup.launch.py"
+    f.write_text(f.read_text().replace('" name:=", LaunchConfiguration("name")', '" "'))
+    code, report = lint_json([], cwd=root)
+    assert [x["severity"] for x in report["findings"] if x["code"] == "X010"] == ["error"] and code == 1

@@ -236,8 +236,12 @@ def _required_args(t: Target, found: list[Finding]) -> list[Finding]:
     it, or a model the runner named, keeps the error."""
     global _NO_DEFAULT
     d = getattr(t, "deployment", None)
-    if d is not None and getattr(d, "variant", "") and not d.variant.startswith("model="):
-        return _choice(t, found)
+    if d is not None:
+        if getattr(d, "dropped_args", None):
+            found = _given_at_launch(t, found)
+        if getattr(d, "variant", "") and not d.variant.startswith("model="):
+            found = _choice(t, found)
+        return found
     if any(s.how in ("named", "config", "launched") for s in t.evidence) or d is not None:
         return found
     import re
@@ -256,6 +260,28 @@ def _required_args(t: Target, found: list[Finding]) -> list[Finding]:
         if m is not None or empty:
             step = Step("deployment", f"a launch file running {shown(str(t.path))}", "undeployed",
                         "lint the launch file that runs it")
+            f = engine.on_evidence([f], (step,))[0]
+        out.append(f)
+    return out
+
+
+def _given_at_launch(t: Target, found: list[Finding]) -> list[Finding]:
+    """A launch file that passes a xacro argument from a launch argument decided at launch time (denso's
+    `model:=<model>`, a launch argument without default): that the model then lacks it is no defect of the
+    launch file, whose users give it; an info (issue 37). An argument the launch file does not pass at all keeps
+    the error."""
+    import re
+
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    given = set(t.deployment.dropped_args or ())
+    out = []
+    for f in found:
+        m = re.match(r"^xacro argument '([^']+)' has no default", f.message) if f.code == "X010" else None
+        if m is not None and m.group(1) in given:
+            step = Step("deployment", shown(t.deployment.launch.file), "required",
+                        f"lint with --arg {m.group(1)}:=... or name the deployment's arguments in urdfcheck.yaml")
             f = engine.on_evidence([f], (step,))[0]
         out.append(f)
     return out

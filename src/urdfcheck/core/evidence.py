@@ -38,6 +38,7 @@ HOW = {
     "combination": (False, "options set together in a way no launch file or config was seen to use"),
     "idle": (False, "configured but not spawned by this deployment (another launch-argument choice may start it)"),
     "choice": (False, "a launch-argument value other than the default, which may need other arguments its users give"),
+    "required": (False, "a launch argument without default, which the launch file's users give"),
     "outside": (False, "a package outside the checkout, which the workspace that builds it provides"),
 }
 
