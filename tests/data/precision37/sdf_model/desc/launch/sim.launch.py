@@ -9,7 +9,7 @@ from launch_ros.actions import Node
 def generate_launch_description():
     pkg = get_package_share_directory("desc")
     sdf_file = os.path.join(pkg, "models", "bot", "model.sdf")
-    with open(sdf_file, "r") as infp:
+    with open(sdf_file) as infp:
         robot_desc = infp.read()
     return LaunchDescription([
         Node(package="robot_state_publisher", executable="robot_state_publisher",
