@@ -25,6 +25,8 @@ _RULES = (
     ("C016", "drive_geometry_mismatch"),
     ("C017", "unknown_hardware_component"),
     ("C020", "unknown_frame"),
+    ("C022", "interface_claimed_twice"),
+    ("C023", "chained_reference_missing"),
     ("T001", "duplicate_tf_owner"),
     ("T002", "static_and_dynamic_tf"),
     ("T003", "tf_multiple_parents"),

@@ -822,3 +822,7 @@ def frame_prefix_collision(model, ctx):
                 for li in group for s in li.state_publishers if not s.condition]
         for p in prefix_collisions(pubs):
             yield _as_problem(p, prefer_consumer=False)
+
+
+# --- C022, C023: ros2_control resources (rules.contracts.claims) -------------------------------------------
+from urdfcheck.rules.contracts.claims import chained_reference_missing, interface_claimed_twice  # noqa: E402,F401
