@@ -27,6 +27,7 @@ _RULES = (
     ("C020", "unknown_frame"),
     ("C022", "interface_claimed_twice"),
     ("C023", "chained_reference_missing"),
+    ("C024", "navigation_frame_unknown"),
     ("T001", "duplicate_tf_owner"),
     ("T002", "static_and_dynamic_tf"),
     ("T003", "tf_multiple_parents"),

@@ -826,3 +826,4 @@ def frame_prefix_collision(model, ctx):
 
 # --- C022, C023: ros2_control resources (rules.contracts.claims) -------------------------------------------
 from urdfcheck.rules.contracts.claims import chained_reference_missing, interface_claimed_twice  # noqa: E402,F401
+from urdfcheck.rules.contracts.navframes import navigation_frame_unknown  # noqa: E402,F401

@@ -1,0 +1,60 @@
+"""C024: a navigation or perception parameter file names a frame that nobody publishes (issue 41).
+
+The frames come from `consumers.navigation`; what is published is the TF graph C020 and the T rules use (the
+model's links under robot_state_publisher's prefix, launch files' static transforms, odometry and localization
+owners, Gazebo plugins, declared owners), plus the REP-105 frames localization provides (`map`, `odom`, `earth`,
+and the names the config gives them). A claim that nobody publishes a frame is a warning only where a launch file
+of the deployment starts a Nav2 node with the file; a file that only lies in the package gives an info.
+"""
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+
+from urdfcheck.core.findings import Problem, Severity
+
+_REP105 = ("map", "odom", "earth")
+
+
+def _files(c) -> tuple[list[str], set[str]]:
+    """Parameter files to read, and the real paths of those a launch file of the deployment gives a Nav2 node."""
+    launched = {os.path.realpath(f) for f in c.files.get("localization", ())}
+    seen: dict[str, str] = {}
+    for key in ("localization", "package", "params"):
+        for f in c.files.get(key, ()):
+            if f.endswith((".yaml", ".yml")):
+                seen.setdefault(os.path.realpath(f), f)
+    return list(seen.values()), launched
+
+
+def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
+    from urdfcheck.consumers.consumers import _Reader
+    from urdfcheck.consumers.navigation import nav_frames
+    from urdfcheck.rules.contracts.impl import _graph, _suggest_frame, _unresolved, consumers
+
+    c = consumers(model, ctx)
+    paths, launched = _files(c)
+    if not paths:
+        return
+    r = _Reader()
+    pfs = [pf for pf in (r.params(p, []) for p in paths) if pf is not None]
+    frames = nav_frames(pfs)
+    if not frames:
+        return
+    prefix = c.rsp_prefix
+    links = {prefix + n for n in model.links}
+    g = _graph(model, c)
+    published = {f for cl in g.claims for f in (cl.parent, cl.child)}
+    known = links | published | set(_REP105) | {v for v in c.frames.values() if v}
+    seen = set()
+    for nf in frames:
+        name = str(nf.value.value).strip().lstrip("/")
+        if not name or _unresolved(name) or "<" in name or name in known or (name, str(nf.value.loc)) in seen:
+            continue
+        seen.add((name, str(nf.value.loc)))
+        hint = _suggest_frame(name, sorted(links | published))
+        strong = os.path.realpath(nf.file) in launched
+        yield Problem(f"{nf.node.lstrip('/')} parameter {nf.key}: frame {name!r} is neither a link of the model nor "
+                      f"published by anything in the deployment{hint}; the node waits for a transform that never "
+                      f"comes", at=nf.value.loc, data={"frame": name, "node": nf.node, "key": nf.key},
+                      severity=None if strong else Severity.INFO, absent=None if hint else "publish it")
