@@ -823,7 +823,3 @@ def frame_prefix_collision(model, ctx):
         for p in prefix_collisions(pubs):
             yield _as_problem(p, prefer_consumer=False)
 
-
-# --- C022, C023: ros2_control resources (rules.contracts.claims) -------------------------------------------
-from urdfcheck.rules.contracts.claims import chained_reference_missing, interface_claimed_twice  # noqa: E402,F401
-from urdfcheck.rules.contracts.navframes import navigation_frame_unknown  # noqa: E402,F401

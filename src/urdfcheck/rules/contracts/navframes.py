@@ -14,6 +14,7 @@ from collections.abc import Iterator
 from urdfcheck.core.findings import Problem, Severity
 
 _REP105 = ("map", "odom", "earth")
+_SCAN_PACKAGES = ("depthimage_to_laserscan", "pointcloud_to_laserscan")
 
 
 def _files(c) -> tuple[list[str], set[str]]:
@@ -24,7 +25,17 @@ def _files(c) -> tuple[list[str], set[str]]:
         for f in c.files.get(key, ()):
             if f.endswith((".yaml", ".yml")):
                 seen.setdefault(os.path.realpath(f), f)
+    # a launch file read with the model (zero config) that gives a navigation node the file, by its last two
+    # path components (the launch file names it in the install layout: $(find-pkg-share pkg)/config/x.yaml)
+    tails = {_tail(pf) for li in c.launch for n in li.nodes
+             if not n.condition and (n.package.startswith("nav2_") or n.package in _SCAN_PACKAGES)
+             for pf in n.param_files if isinstance(pf, str) and "\x00" not in pf}
+    launched |= {real for real, f in seen.items() if _tail(f) in tails}
     return list(seen.values()), launched
+
+
+def _tail(path: str) -> str:
+    return "/".join(path.replace(os.sep, "/").split("/")[-2:])
 
 
 def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
