@@ -6,7 +6,8 @@ only here and only when the model has two collision primitives that could touch:
 says nothing.
 
 What is compared: boxes, cylinders, spheres and capsules (meshes are not loaded), every link at the pose of
-`Robot.world_poses` (all joints at zero, mimic offsets ignored). Pairs MoveIt's setup assistant calls adjacent are
+`Robot.world_poses` (all joints at zero, mimic offsets ignored); a pair with a joint between them whose limits
+exclude zero is left out (that pose is never reached). Pairs MoveIt's setup assistant calls adjacent are
 left out, as `collision_detection::AllowedCollisionMatrix` defaults do: links joined by a joint, and links held
 together by fixed joints (they never move relative to each other; Gazebo lumps them into one body). So are pairs an
 SRDF of the same robot (its `<robot name>`, in the model's package or a sibling `*moveit*` package) already
@@ -79,6 +80,20 @@ def _shape(coal, g):
     except (TypeError, ValueError, OverflowError):
         return None
     return None
+
+
+def _unreachable(model, a: str, b: str, chains: dict) -> bool:
+    """A joint between the two links whose limits exclude zero: the zero pose of the pair is never reached (the
+    robot's home lies elsewhere, as Franka's joint 4 in [-3.07, -0.07])."""
+    for x in (a, b):
+        if x not in chains:
+            chains[x] = {j.name for j in model.chain_to_root(x)}
+    for name in chains[a] ^ chains[b]:
+        lim = model.joints[name].limit
+        if model.joints[name].type in ("revolute", "prismatic") and lim is not None:
+            if (lim.lower is not None and lim.lower > 0) or (lim.upper is not None and lim.upper < 0):
+                return True
+    return False
 
 
 def _finite(m) -> bool:
@@ -160,7 +175,7 @@ def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
         rot = np.array([row[:3] for row in m[:3]], dtype=float)
         t = np.array([m[0][3], m[1][3], m[2][3]], dtype=float)
         placed.append((link, s, got[0], coal.Transform3s(rot, t), t, got[1]))
-    disabled, srdf = None, None
+    chains: dict[str, set] = {}
     hits: dict[frozenset, tuple] = {}
     req = coal.CollisionRequest(coal.CollisionRequestFlag.CONTACT, 1)
     for i, (la, sa, ga, ta, ca, ra) in enumerate(placed):
@@ -170,6 +185,8 @@ def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
             if frozenset((groups[la.name], groups[lb.name])) in adjacent:
                 continue
             if float(np.linalg.norm(ca - cb)) > ra + rb:
+                continue
+            if _unreachable(model, la.name, lb.name, chains):
                 continue
             res = coal.CollisionResult()
             if not coal.collide(ga, ta, gb, tb, req, res):
