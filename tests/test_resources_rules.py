@@ -174,3 +174,15 @@ def _model(path):
     from urdfcheck.load.loader import load_model
 
     return load_model(str(path))
+
+
+def test_nav2_params_file_given_to_nav2_bringup(tmp_path):
+    """A launch file of the deployment that includes nav2_bringup with `params_file` runs Nav2 with that file."""
+    pkg = _copy(tmp_path, "nav2_frame_typo")
+    launch = pkg / "launch" / "nav.launch.xml"
+    text = launch.read_text(encoding="utf-8")
+    head = text[:text.index('  <node pkg="nav2_controller"')]
+    launch.write_text(head + '  <include file="$(find-pkg-share nav2_bringup)/launch/navigation_launch.py">\n'
+                      '    <arg name="params_file" value="$(find-pkg-share bot_description)/config/nav2_params.yaml"/>\n'
+                      '  </include>\n</launch>\n', encoding="utf-8")
+    assert _codes(pkg, "C024") == [("nav2_params.yaml", 10, "warning")]

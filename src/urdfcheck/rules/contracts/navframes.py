@@ -31,6 +31,15 @@ def _files(c) -> tuple[list[str], set[str]]:
              if not n.condition and (n.package.startswith("nav2_") or n.package in _SCAN_PACKAGES)
              for pf in n.param_files if isinstance(pf, str) and "\x00" not in pf}
     launched |= {real for real, f in seen.items() if _tail(f) in tails}
+    # nav2_bringup's launch files take the whole Nav2 parameter file as `params_file`; a launch file of the
+    # deployment that passes one (under no undecided condition) runs Nav2 with it
+    for li in c.launch:
+        for inc in li.includes:
+            v = inc.args.get("params_file") if not inc.condition else None
+            if isinstance(v, str) and v.endswith((".yaml", ".yml")) and "\x00" not in v and os.path.isfile(v):
+                real = os.path.realpath(v)
+                seen.setdefault(real, v)
+                launched.add(real)
     return list(seen.values()), launched
 
 
