@@ -152,9 +152,10 @@ def test_self_collision_adjacent_and_welded_links(tmp_path):
     assert _codes(pkg, "G006") == []
     # link2 hangs from base_link itself: adjacent; what remains is link2 against its sibling link1
     _edit(urdf, '<joint name="joint1" type="fixed">', '<joint name="joint1" type="revolute">')
-    _edit(urdf, '<parent link="link1"/>\n    <child link="link2"/>', '<parent link="base_link"/>\n    <child link="link2"/>')
+    _edit(urdf, '<parent link="link1"/>\n    <child link="link2"/>',
+          '<parent link="base_link"/>\n    <child link="link2"/>')
     _, report = lint_json([str(pkg)])
-    pairs = [set(f["data"]["links"]) if "data" in f else f["message"] for f in report["findings"] if f["code"] == "G006"]
+    pairs = [f["message"] for f in report["findings"] if f["code"] == "G006"]
     assert pairs and all("base_link" not in str(p) for p in pairs), pairs
 
 
@@ -183,6 +184,31 @@ def test_nav2_params_file_given_to_nav2_bringup(tmp_path):
     text = launch.read_text(encoding="utf-8")
     head = text[:text.index('  <node pkg="nav2_controller"')]
     launch.write_text(head + '  <include file="$(find-pkg-share nav2_bringup)/launch/navigation_launch.py">\n'
-                      '    <arg name="params_file" value="$(find-pkg-share bot_description)/config/nav2_params.yaml"/>\n'
+                      '    <arg name="params_file"'
+                      ' value="$(find-pkg-share bot_description)/config/nav2_params.yaml"/>\n'
                       '  </include>\n</launch>\n', encoding="utf-8")
     assert _codes(pkg, "C024") == [("nav2_params.yaml", 10, "warning")]
+
+
+def test_self_collision_loads_coal_only_for_candidates(tmp_path):
+    """The bounding-box test runs first: a model whose shapes cannot interpenetrate by `depth` never imports coal
+    (it takes over a second to import); one with a candidate pair does."""
+    import subprocess
+    import sys
+
+    pytest.importorskip("coal")
+    pkg = _copy(tmp_path, "self_collision_home")
+    code = ("import sys; from urdfcheck.load.loader import load_model; from urdfcheck.rules import selfcollision as s;"
+            "m = load_model(sys.argv[1]); n = len(list(s.self_collisions(m, '', 0.005)));"
+            "print(n, 'coal' in sys.modules)")
+    env = {"PYTHONPATH": str(REPO / "src"), "PATH": "/usr/bin:/bin"}
+
+    def run():
+        out = subprocess.run([sys.executable, "-c", code, str(pkg / "urdf" / "arm.urdf")], capture_output=True,
+                             text=True, env=env, check=True)
+        return out.stdout.split()
+
+    assert run() == ["1", "True"]
+    _edit(pkg / "urdf" / "arm.urdf", '<origin xyz="0 0 -0.25"/>\n      <geometry><box size="0.05 0.05 0.3"/>',
+          '<origin xyz="0 0 -0.1"/>\n      <geometry><box size="0.05 0.05 0.1"/>')
+    assert run() == ["0", "False"]

@@ -2,8 +2,8 @@
 
 MoveIt refuses to plan from a start state in collision and Gazebo (with self_collide) pushes the links apart on
 spawn. The shapes are tested with coal (hpp-fcl, the library Pinocchio and MoveIt's FCL successor use), imported
-only here and only when the model has two collision primitives that could touch: without coal installed the rule
-says nothing.
+only here and only for pairs whose bounding boxes (a pure-Python separating-axis test) interpenetrate by more than
+`depth`, so a model without such a pair never loads it: without coal installed the rule says nothing.
 
 What is compared: boxes, cylinders, spheres and capsules (meshes are not loaded), every link at the pose of
 `Robot.world_poses` (all joints at zero, mimic offsets ignored); a pair with a joint between them whose limits
@@ -22,7 +22,6 @@ from collections.abc import Iterator
 
 from urdfcheck.core.findings import Problem, Severity
 
-_PRIMITIVES = ("box", "cylinder", "sphere", "capsule")
 _SRDF_NAME = re.compile(r"<robot\b[^>]*\bname\s*=\s*[\"']([^\"']+)[\"']")
 _DISABLE = re.compile(r"<disable_collisions\b([^>]*)/?>")
 _ATTR = re.compile(r"\b(link1|link2)\s*=\s*[\"']([^\"']*)[\"']")
@@ -70,13 +69,13 @@ def _adjacent(model, groups) -> set[frozenset]:
 def _shape(coal, g):
     try:
         if g.kind == "box" and g.size and min(g.size) > 0:
-            return coal.Box(*map(float, g.size)), max(g.size) * 0.87
+            return coal.Box(*map(float, g.size))
         if g.kind == "cylinder" and g.radius and g.length and g.radius > 0 and g.length > 0:
-            return coal.Cylinder(float(g.radius), float(g.length)), (g.radius ** 2 + (g.length / 2) ** 2) ** 0.5
+            return coal.Cylinder(float(g.radius), float(g.length))
         if g.kind == "sphere" and g.radius and g.radius > 0:
-            return coal.Sphere(float(g.radius)), g.radius
+            return coal.Sphere(float(g.radius))
         if g.kind == "capsule" and g.radius and g.length and g.radius > 0 and g.length > 0:
-            return coal.Capsule(float(g.radius), float(g.length)), g.radius + g.length / 2
+            return coal.Capsule(float(g.radius), float(g.length))
     except (TypeError, ValueError, OverflowError):
         return None
     return None
@@ -146,57 +145,106 @@ def srdf_disabled(model, entry: str) -> tuple[set[frozenset], str | None]:
     return pairs, used
 
 
+def _half_extents(g) -> tuple[float, float, float] | None:
+    """Half sizes of the box that holds the primitive, in its own frame (cylinder and capsule along z)."""
+    try:
+        if g.kind == "box" and g.size and min(g.size) > 0:
+            return tuple(float(x) / 2 for x in g.size)
+        if g.kind == "cylinder" and g.radius and g.length and g.radius > 0 and g.length > 0:
+            return (float(g.radius), float(g.radius), float(g.length) / 2)
+        if g.kind == "sphere" and g.radius and g.radius > 0:
+            return (float(g.radius),) * 3
+        if g.kind == "capsule" and g.radius and g.length and g.radius > 0 and g.length > 0:
+            return (float(g.radius), float(g.radius), float(g.length) / 2 + float(g.radius))
+    except (TypeError, ValueError, OverflowError):
+        return None
+    return None
+
+
+def _obb_overlap(a, b) -> float:
+    """How far two oriented boxes (centre, 3 unit axes, half extents) interpenetrate along the separating axes
+    (the 15 of the separating axis theorem): 0 when apart. Each box holds its shape, so the shapes
+    interpenetrate by no more than this: below `depth`, coal is not needed (nor imported)."""
+    (ca, ua, ea), (cb, ub, eb) = a, b
+    d = [cb[i] - ca[i] for i in range(3)]
+    axes = list(ua) + list(ub)
+    for x in ua:
+        for y in ub:
+            c = (x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0])
+            n = (c[0] ** 2 + c[1] ** 2 + c[2] ** 2) ** 0.5
+            if n > 1e-9:
+                axes.append((c[0] / n, c[1] / n, c[2] / n))
+    least = float("inf")
+    for ax in axes:
+        ra = sum(ea[k] * abs(sum(ua[k][i] * ax[i] for i in range(3))) for k in range(3))
+        rb = sum(eb[k] * abs(sum(ub[k][i] * ax[i] for i in range(3))) for k in range(3))
+        gap = ra + rb - abs(sum(d[i] * ax[i] for i in range(3)))
+        if gap <= 0:
+            return 0.0
+        least = min(least, gap)
+    return least
+
+
 def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
     from urdfcheck.core.geometry import compose, origin_matrix
 
-    bodies = []  # (link, Shape)
-    for link in model.link_list:
-        for s in link.collisions:
-            if s.geometry is not None and s.geometry.kind in _PRIMITIVES:
-                bodies.append((link, s))
-    if len({link.name for link, _ in bodies}) < 2:
-        return
     poses = model.world_poses()
-    groups = _rigid_groups(model)
-    adjacent = _adjacent(model, groups)
-    coal, np = _coal()
-    if coal is None:
-        return
-    placed = []  # (link name, shape loc, coal geometry, transform, centre, radius)
-    for link, s in bodies:
+    boxes = []  # (link, Shape, 4x4 pose, oriented box)
+    for link in model.link_list:
         if link.name not in poses:
             continue
-        got = _shape(coal, s.geometry)
-        if got is None:
-            continue
-        m = compose(poses[link.name], origin_matrix(s.origin))
-        if not _finite(m):
-            continue
-        rot = np.array([row[:3] for row in m[:3]], dtype=float)
-        t = np.array([m[0][3], m[1][3], m[2][3]], dtype=float)
-        placed.append((link, s, got[0], coal.Transform3s(rot, t), t, got[1]))
+        for s in link.collisions:
+            half = _half_extents(s.geometry) if s.geometry is not None else None
+            if half is None:
+                continue
+            m = compose(poses[link.name], origin_matrix(s.origin))
+            if not _finite(m):
+                continue
+            centre = (m[0][3], m[1][3], m[2][3])
+            axes = tuple((m[0][k], m[1][k], m[2][k]) for k in range(3))
+            boxes.append((link, s, m, (centre, axes, half)))
+    if len({link.name for link, *_ in boxes}) < 2:
+        return
+    groups = _rigid_groups(model)
+    adjacent = _adjacent(model, groups)
     chains: dict[str, set] = {}
-    hits: dict[frozenset, tuple] = {}
-    req = coal.CollisionRequest(coal.CollisionRequestFlag.CONTACT, 1)
-    for i, (la, sa, ga, ta, ca, ra) in enumerate(placed):
-        for lb, sb, gb, tb, cb, rb in placed[i + 1:]:
+    candidates = []
+    for i, (la, sa, ma, oa) in enumerate(boxes):
+        for lb, sb, mb, ob in boxes[i + 1:]:
             if la.name == lb.name or groups[la.name] == groups[lb.name]:
                 continue
             if frozenset((groups[la.name], groups[lb.name])) in adjacent:
                 continue
-            if float(np.linalg.norm(ca - cb)) > ra + rb:
+            if _obb_overlap(oa, ob) <= depth or _unreachable(model, la.name, lb.name, chains):
                 continue
-            if _unreachable(model, la.name, lb.name, chains):
-                continue
-            res = coal.CollisionResult()
-            if not coal.collide(ga, ta, gb, tb, req, res):
-                continue
-            pen = max((abs(c.penetration_depth) for c in res.getContacts()), default=0.0)
-            if pen <= depth:
-                continue
-            key = frozenset((la.name, lb.name))
-            if key not in hits or pen > hits[key][0]:
-                hits[key] = (pen, la, sa, lb, sb)
+            candidates.append((la, sa, ma, lb, sb, mb))
+    if not candidates:
+        return
+    coal, np = _coal()
+    if coal is None:
+        return
+    req = coal.CollisionRequest(coal.CollisionRequestFlag.CONTACT, 1)
+
+    def placed(s, m):
+        got = _shape(coal, s.geometry)
+        rot = np.array([row[:3] for row in m[:3]], dtype=float)
+        return got, coal.Transform3s(rot, np.array([m[0][3], m[1][3], m[2][3]], dtype=float))
+
+    hits: dict[frozenset, tuple] = {}
+    for la, sa, ma, lb, sb, mb in candidates:
+        ga, ta = placed(sa, ma)
+        gb, tb = placed(sb, mb)
+        if ga is None or gb is None:
+            continue
+        res = coal.CollisionResult()
+        if not coal.collide(ga, ta, gb, tb, req, res):
+            continue
+        pen = max((abs(c.penetration_depth) for c in res.getContacts()), default=0.0)
+        if pen <= depth:
+            continue
+        key = frozenset((la.name, lb.name))
+        if key not in hits or pen > hits[key][0]:
+            hits[key] = (pen, la, sa, lb, sb)
     if not hits:
         return
     disabled, srdf = srdf_disabled(model, entry)
