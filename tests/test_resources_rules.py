@@ -212,3 +212,19 @@ def test_self_collision_loads_coal_only_for_candidates(tmp_path):
     _edit(pkg / "urdf" / "arm.urdf", '<origin xyz="0 0 -0.25"/>\n      <geometry><box size="0.05 0.05 0.3"/>',
           '<origin xyz="0 0 -0.1"/>\n      <geometry><box size="0.05 0.05 0.1"/>')
     assert run() == ["0", "False"]
+
+
+def test_amcl_odom_frame_nobody_publishes(tmp_path):
+    """AMCL publishes map -> odom_frame_id itself; the odom frame must come from odometry: a frame only AMCL's own
+    edge names is reported, REP-105 `odom` never."""
+    pkg = _copy(tmp_path, "nav2_frame_typo")
+    params = pkg / "config" / "nav2_params.yaml"
+    _edit(params, "base_footprnt", "base_footprint")
+    params.write_text(params.read_text(encoding="utf-8") + "\namcl:\n  ros__parameters:\n    base_frame_id: "
+                      "base_footprint\n    global_frame_id: map\n    odom_frame_id: odom_frame\n", encoding="utf-8")
+    _edit(pkg / "launch" / "nav.launch.xml", "</launch>",
+          '  <node pkg="nav2_amcl" exec="amcl" name="amcl">\n'
+          '    <param from="$(find-pkg-share bot_description)/config/nav2_params.yaml"/>\n  </node>\n</launch>')
+    assert _codes(pkg, "C024") == [("nav2_params.yaml", 25, "warning")]
+    _edit(params, "odom_frame_id: odom_frame", "odom_frame_id: odom")
+    assert _codes(pkg, "C024") == []

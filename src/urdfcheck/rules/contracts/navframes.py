@@ -14,6 +14,8 @@ from collections.abc import Iterator
 from urdfcheck.core.findings import Problem, Severity
 
 _REP105 = ("map", "odom", "earth")
+_OWN_EDGE_OF = {"amcl": "odom_frame_id", "slam_toolbox": "odom_frame"}
+_OWN_EDGE = frozenset(_OWN_EDGE_OF.values())
 _SCAN_PACKAGES = ("depthimage_to_laserscan", "pointcloud_to_laserscan")
 
 
@@ -54,27 +56,50 @@ def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
 
     c = consumers(model, ctx)
     paths, launched = _files(c)
-    if not paths:
-        return
     r = _Reader()
-    pfs = [pf for pf in (r.params(p, []) for p in paths) if pf is not None]
-    frames = nav_frames(pfs)
+    pfs = [pf for pf in (r.params(p, []) for p in paths) if pf is not None] if paths else []
+    frames = [(nf.value, nf.node, nf.key, nf.file, os.path.realpath(nf.file) in launched) for nf in nav_frames(pfs)]
+    frames += _odom_frames(c)
     if not frames:
         return
     prefix = c.rsp_prefix
     links = {prefix + n for n in model.links}
     g = _graph(model, c)
     published = {f for cl in g.claims for f in (cl.parent, cl.child)}
+    owners: dict[str, set] = {}  # frame -> owners of the claims naming it
+    for cl in g.claims:
+        for f in (cl.parent, cl.child):
+            owners.setdefault(f, set()).add(cl.owner)
     known = links | published | set(_REP105) | {v for v in c.frames.values() if v}
     seen = set()
-    for nf in frames:
-        name = str(nf.value.value).strip().lstrip("/")
-        if not name or _unresolved(name) or "<" in name or name in known or (name, str(nf.value.loc)) in seen:
+    for value, node, key, _file, strong in frames:
+        name = str(value.value).strip().lstrip("/")
+        if not name or _unresolved(name) or "<" in name or name in links or name in _REP105:
             continue
-        seen.add((name, str(nf.value.loc)))
-        hint = _suggest_frame(name, sorted(links | published))
-        strong = os.path.realpath(nf.file) in launched
-        yield Problem(f"{nf.node.lstrip('/')} parameter {nf.key}: frame {name!r} is neither a link of the model nor "
+        if key in _OWN_EDGE:  # a localization node's odom frame: its own map -> odom claim does not publish it
+            mine = f" {node}"
+            if any(not o.endswith(mine) for o in owners.get(name, ())):
+                continue
+        elif name in known:
+            continue
+        if (name, str(value.loc)) in seen:
+            continue
+        seen.add((name, str(value.loc)))
+        hint = _suggest_frame(name, sorted((links | published) - {name}))
+        yield Problem(f"{node.lstrip('/')} parameter {key}: frame {name!r} is neither a link of the model nor "
                       f"published by anything in the deployment{hint}; the node waits for a transform that never "
-                      f"comes", at=nf.value.loc, data={"frame": name, "node": nf.node, "key": nf.key},
+                      f"comes", at=value.loc, data={"frame": name, "node": node, "key": key},
                       severity=None if strong else Severity.INFO, absent=None if hint else "publish it")
+
+
+def _odom_frames(c) -> list[tuple]:
+    """AMCL's and slam_toolbox's odom frame: they publish map -> odom and look odom -> base up from odometry."""
+    out = []
+    deployed = {id(n) for n in c.localization} if c.origin == "deployment" else set()
+    for n in [*c.localization, *c.elsewhere_localization]:
+        key = _OWN_EDGE_OF.get(n.kind)
+        v = n.values.get(key) if key else None
+        if v is None or getattr(v, "default", False) or not isinstance(v.value, str):
+            continue
+        out.append((v, n.node, key, n.file, id(n) in deployed))
+    return out
