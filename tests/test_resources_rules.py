@@ -228,3 +228,12 @@ def test_amcl_odom_frame_nobody_publishes(tmp_path):
     assert _codes(pkg, "C024") == [("nav2_params.yaml", 25, "warning")]
     _edit(params, "odom_frame_id: odom_frame", "odom_frame_id: odom")
     assert _codes(pkg, "C024") == []
+
+
+@pytest.mark.parametrize("size", ["1e300 1e300 1e300", "inf 1 1", "nan 1 1", "0 0 0"])
+def test_self_collision_absurd_sizes_are_skipped(tmp_path, size):
+    """A box of no size or of an absurd one is left out: no crash, no finding about it."""
+    pkg = _copy(tmp_path, "self_collision_home")
+    _edit(pkg / "urdf" / "arm.urdf", '<box size="0.2 0.2 0.1"/>', f'<box size="{size}"/>')
+    _, report = lint_json([str(pkg)])
+    assert [f for f in report["findings"] if f["code"] in ("G006", "R001")] == []

@@ -26,6 +26,7 @@ _SRDF_NAME = re.compile(r"<robot\b[^>]*\bname\s*=\s*[\"']([^\"']+)[\"']")
 _DISABLE = re.compile(r"<disable_collisions\b([^>]*)/?>")
 _ATTR = re.compile(r"\b(link1|link2)\s*=\s*[\"']([^\"']*)[\"']")
 _SUBST = re.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
+_HUGE = 1000.0
 _SRDF_FILES = 40  # at most this many SRDF files are read per model
 _SRDF_BYTES = 2_000_000
 
@@ -146,7 +147,15 @@ def srdf_disabled(model, entry: str) -> tuple[set[frozenset], str | None]:
 
 
 def _half_extents(g) -> tuple[float, float, float] | None:
-    """Half sizes of the box that holds the primitive, in its own frame (cylinder and capsule along z)."""
+    """Half sizes of the box that holds the primitive, in its own frame (cylinder and capsule along z); None for
+    a shape of no size or of an absurd one (1 km: not a robot part, and no number coal should see)."""
+    half = _raw_half_extents(g)
+    if half is None or not all(0 < h < _HUGE for h in half):
+        return None
+    return half
+
+
+def _raw_half_extents(g) -> tuple[float, float, float] | None:
     try:
         if g.kind == "box" and g.size and min(g.size) > 0:
             return tuple(float(x) / 2 for x in g.size)
@@ -209,8 +218,22 @@ def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
     adjacent = _adjacent(model, groups)
     chains: dict[str, set] = {}
     candidates = []
-    for i, (la, sa, ma, oa) in enumerate(boxes):
-        for lb, sb, mb, ob in boxes[i + 1:]:
+    # sweep along x over bounding spheres: a model of thousands of shapes spread out compares only neighbours
+    reach = [sum(h * h for h in ob[2]) ** 0.5 for *_, ob in boxes]
+    order = sorted(range(len(boxes)), key=lambda k: boxes[k][3][0][0] - reach[k])
+    active: list[int] = []
+    for k in order:
+        lo = boxes[k][3][0][0] - reach[k]
+        active = [i for i in active if boxes[i][3][0][0] + reach[i] >= lo]
+        near = list(active)
+        active.append(k)
+        for i in near:
+            a, b = min(i, k), max(i, k)  # document order: the finding is at the later shape
+            la, sa, ma, oa = boxes[a]
+            lb, sb, mb, ob = boxes[b]
+            ca, cb = oa[0], ob[0]
+            if sum((ca[n] - cb[n]) ** 2 for n in range(3)) > (reach[a] + reach[b]) ** 2:
+                continue
             if la.name == lb.name or groups[la.name] == groups[lb.name]:
                 continue
             if frozenset((groups[la.name], groups[lb.name])) in adjacent:
@@ -250,7 +273,11 @@ def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
     disabled, srdf = srdf_disabled(model, entry)
     from urdfcheck.core.paths import shown
 
-    for key, (pen, la, sa, lb, sb) in sorted(hits.items(), key=lambda kv: (kv[1][4].loc.line, kv[1][2].loc.line)):
+    def order(kv):
+        _, la, sa, lb, sb = kv[1]
+        return (sb.loc.line, sa.loc.line, la.name, lb.name)
+
+    for key, (pen, la, sa, lb, sb) in sorted(hits.items(), key=order):
         if key in disabled:
             continue
         entry_text = f'<disable_collisions link1="{la.name}" link2="{lb.name}" reason="Default"/>'
