@@ -109,7 +109,7 @@ def test_nav2_sensor_frame_and_rep105(tmp_path):
 def test_self_collision_twin(tmp_path):
     pytest.importorskip("coal")
     pkg = _copy(tmp_path, "self_collision_home")
-    assert _codes(pkg, "G006") == [("arm.urdf", 26, "info")]
+    assert _codes(pkg, "G006") == [("arm.urdf", 34, "info")]
     urdf = pkg / "urdf" / "arm.urdf"
     _edit(urdf, '<origin xyz="0 0 -0.25"/>\n      <geometry><box size="0.05 0.05 0.3"/>',
           '<origin xyz="0 0 -0.1"/>\n      <geometry><box size="0.05 0.05 0.1"/>')
@@ -128,7 +128,7 @@ def test_self_collision_srdf_of_the_robot(tmp_path):
     pytest.importorskip("coal")
     pkg = _copy(tmp_path, "self_collision_home")
     _srdf(pkg, '  <disable_collisions link1="base_link" link2="link1" reason="Adjacent"/>\n')
-    assert _codes(pkg, "G006") == [("arm.urdf", 26, "warning")]
+    assert _codes(pkg, "G006") == [("arm.urdf", 34, "warning")]
     _srdf(pkg, '  <disable_collisions link1="link2" link2="${prefix}base_link" reason="Default"/>\n')
     assert _codes(pkg, "G006") == []
 
