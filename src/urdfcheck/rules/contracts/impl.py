@@ -822,4 +822,3 @@ def frame_prefix_collision(model, ctx):
                 for li in group for s in li.state_publishers if not s.condition]
         for p in prefix_collisions(pubs):
             yield _as_problem(p, prefer_consumer=False)
-
