@@ -259,3 +259,15 @@ def missing_geometry(model, ctx):
         elif g.kind not in _KNOWN_SHAPES:
             yield Problem(f"the <geometry> of the {what} holds <{g.kind}>, which is not a URDF shape (box, cylinder, "
                           f"sphere, mesh): {consequence}", at=g)
+
+
+# --- G006 ------------------------------------------------------------------------------------------
+@check("G006")
+def self_collision_at_zero(model, ctx):
+    """Collision primitives of two non-adjacent links interpenetrate at the zero configuration (coal, lazily)."""
+    if sum(1 for link in model.link_list if link.collisions) < 2:
+        return
+    from urdfcheck.rules.selfcollision import self_collisions
+
+    entry = getattr(ctx.expanded, "entry", None) or model.source
+    yield from self_collisions(model, str(entry) if entry else "", float(ctx.options["depth"]))
