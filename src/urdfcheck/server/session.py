@@ -95,11 +95,12 @@ class Session:
         by_file: dict[str, list[Finding]] = {f: [] for f in unit.files}
         if result is not None:
             for f in result.findings:
-                by_file.setdefault(self.absolute(f.location.file), []).append(f)
+                by_file.setdefault(os.path.realpath(self.absolute(f.location.file)), []).append(f)
             unit.read = {os.path.realpath(p) for p in getattr(result, "read", ()) or ()}
             unit.models = dict(result.models)
             unit.findings = list(result.findings)
         unit.files = {f for f, fs in by_file.items() if fs}
+        by_file.setdefault(os.path.realpath(path), [])  # the edited document always hears back (cleared if clean)
         unit.stamp, unit.last = stamp, dict(by_file)
         return by_file
 
