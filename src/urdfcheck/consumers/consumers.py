@@ -43,6 +43,7 @@ class Consumers(Record):
     package_single = True
     elsewhere_localization: list = ()
     workspace: str | None = None  # the folder whose joint state broadcasters may run beside this deployment
+    moveit: list = ()  # consumers.moveit.MoveItConfig: the MoveIt configs paired with the model (issue 41)
 
     def settle(self, model) -> Consumers:
         """Add the package's unread parameter files, once, now that the model is known."""
@@ -265,7 +266,18 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     # robot_state_publisher, nothing in the package needs joint states (C003)
     out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found_launch)}
     out.unknown = package_unknowns(out)
+    out.moveit = _moveit(entry, model, root, pk, out.notes)
     return out
+
+
+def _moveit(entry: str, model, package: Path, packages: dict, notes: list) -> list:
+    """The MoveIt configs in the model's package and beside it (issue 41); best effort, like discovery."""
+    from urdfcheck.consumers.moveit import moveit_configs
+
+    try:
+        return moveit_configs(entry, model, package, packages=packages, notes=notes)
+    except Exception:  # noqa: BLE001 - a MoveIt config that cannot be read leaves the model's other checks alone
+        return []
 
 
 def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None = None, config=None) -> Consumers:

@@ -1,0 +1,365 @@
+"""MoveIt configuration as a consumer of the model (issue 41): the SRDF and the YAML files of a MoveIt config package.
+
+A MoveIt config (one SRDF, plain or `.srdf.xacro`, with the `joint_limits.yaml`, `kinematics.yaml`,
+`moveit_controllers.yaml` and `initial_positions.yaml` beside it) names the model's links and joints. It is found
+zero-config in the model's own package and in the packages beside it (the folder that holds the model's package),
+and paired with the model by evidence when it has some: the package's `.setup_assistant` names the model's file
+(package and path), or one of its launch or xacro files names the model's file and package. Otherwise a config whose
+SRDF gives the model's robot name is paired as a guess (`core.evidence`: findings resting on it are infos).
+
+Every file is read through the door (`consumers.common.read_capped`, `consumers.yamlsrc.load_yaml`); an SRDF
+written as xacro is expanded by the project's sandboxed xacro (`load.loader.expand`). Reading never raises.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from urdfcheck.core.evidence import Step
+from urdfcheck.core.findings import Location
+from urdfcheck.core.records import Record
+
+SRDF_SUFFIXES = (".srdf", ".srdf.xacro")
+YAML_KINDS = {
+    "joint_limits": ("joint_limits.yaml",),
+    "kinematics": ("kinematics.yaml",),
+    "controllers": ("moveit_controllers.yaml", "simple_moveit_controllers.yaml", "ros_controllers.yaml",
+                    "controllers.yaml"),
+    "initial_positions": ("initial_positions.yaml",),
+}
+MAX_BYTES = 2 * 1024 * 1024
+MAX_DIRS = 400  # folders looked at for config packages beside the model's package
+SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
+
+
+class Named(Record):
+    """A name an SRDF or YAML file gives, with where."""
+
+    _fields = ('name', 'loc')
+
+    def __init__(self, name: str, loc: Location):
+        self.name = name
+        self.loc = loc
+
+
+class Group(Record):
+    _fields = ('name', 'loc', 'links', 'joints', 'chains', 'subgroups')
+
+    def __init__(self, name: str, loc: Location):
+        self.name = name
+        self.loc = loc
+        self.links: list[Named] = []
+        self.joints: list[Named] = []
+        self.chains: list[tuple[Named, Named]] = []  # (base_link, tip_link)
+        self.subgroups: list[Named] = []
+
+
+class Srdf(Record):
+    # states: (name, group, loc, [(joint Named, value text)]); virtual: (name, parent_frame, child Named, loc)
+    # disabled: (link Named, ...) per <disable_collisions>/<disable_default_collisions>/<enable_collisions>
+    # end_effectors: (name, parent_link Named, loc)
+    _fields = ('file', 'robot', 'groups', 'states', 'virtual', 'passive', 'disabled', 'end_effectors')
+
+    def __init__(self, file: str, robot: str = ""):
+        self.file = file
+        self.robot = robot
+        self.groups: dict[str, Group] = {}
+        self.states: list = []
+        self.virtual: list = []
+        self.passive: list[Named] = []
+        self.disabled: list = []
+        self.end_effectors: list = []
+
+    def group_joints(self, model) -> set[str]:
+        """Every joint some group holds: named, on a chain, or between two of its links (a link group's
+        parent joints), through subgroups."""
+        out: set[str] = set()
+        for g in self.groups.values():
+            out |= {j.name for j in g.joints}
+            for base, tip in g.chains:
+                p = model.path(base.name, tip.name) if base.name in model.links and tip.name in model.links else None
+                if p is not None:
+                    out |= {j.name for j in p[0] + p[1]}
+            for ln in g.links:
+                j = model.parent_joint.get(ln.name)
+                if j is not None:
+                    out.add(j.name)
+        return out
+
+
+class MoveItConfig(Record):
+    """One SRDF with the MoveIt YAML files beside it, paired with a model by `step`."""
+
+    # controllers: (controller name, [joint Named], Location of the controller)
+    _fields = ('package', 'srdf', 'joint_limits', 'kinematics', 'controllers', 'initial_positions', 'step', 'files',
+               'notes')
+
+    def __init__(self, package: str, srdf: Srdf, step: Step):
+        self.package = package
+        self.srdf = srdf
+        self.step = step
+        self.joint_limits = None  # YamlDoc
+        self.kinematics = None  # YamlDoc
+        self.controllers: list = []
+        self.initial_positions = None  # YamlDoc
+        self.files: list[str] = [srdf.file]
+        self.notes: list = []
+
+
+# --- SRDF ------------------------------------------------------------------------------------------------
+def read_srdf(path: str, packages=None) -> Srdf:
+    """The SRDF at `path`; a `.srdf.xacro` is expanded in the sandbox with its default arguments. Raises
+    ConsumerError when it cannot be read, parsed or expanded."""
+    from urdfcheck.consumers.common import ConsumerError, read_capped
+
+    if path.endswith(".xacro"):
+        from urdfcheck.load.loader import expand
+
+        try:
+            exp = expand(path, packages=dict(packages or {}))
+        except Exception as e:  # noqa: BLE001 - never a traceback: an unexpandable SRDF is not read
+            raise ConsumerError(f"SRDF could not be expanded: {type(e).__name__}", Location(path)) from None
+        if exp.root is None:
+            why = exp.findings[0].message if exp.findings else "not expanded"
+            raise ConsumerError(f"SRDF could not be expanded: {why}", Location(path))
+        return _srdf_from(exp.root, exp.locate, path)
+    from urdfcheck.core import xmlfront
+
+    data = read_capped(path, MAX_BYTES, "SRDF")
+    try:
+        root, _ = xmlfront.parse(data)
+    except Exception as e:  # noqa: BLE001 - syntax errors, refused constructs
+        raise ConsumerError(f"SRDF is not well-formed XML: {e}", Location(path)) from None
+    return _srdf_from(root, lambda el: Location(path, el.sourceline), path)
+
+
+def _srdf_from(root, locate, path: str) -> Srdf:
+    out = Srdf(path, root.get("name") or "")
+
+    def named(el, attr: str) -> Named | None:
+        v = (el.get(attr) or "").strip()
+        return Named(v, locate(el)) if v else None
+
+    for el in root:
+        if not isinstance(el.tag, str):
+            continue
+        tag = el.tag
+        if tag == "group":
+            g = Group(el.get("name") or "", locate(el))
+            for c in el:
+                if not isinstance(c.tag, str):
+                    continue
+                if c.tag == "link" and named(c, "name"):
+                    g.links.append(named(c, "name"))
+                elif c.tag == "joint" and named(c, "name"):
+                    g.joints.append(named(c, "name"))
+                elif c.tag == "chain":
+                    base, tip = named(c, "base_link"), named(c, "tip_link")
+                    if base and tip:
+                        g.chains.append((base, tip))
+                elif c.tag == "group" and named(c, "name"):
+                    g.subgroups.append(named(c, "name"))
+            out.groups.setdefault(g.name, g)
+        elif tag == "group_state":
+            joints = [(named(c, "name"), c.get("value") or "") for c in el
+                      if isinstance(c.tag, str) and c.tag == "joint" and named(c, "name")]
+            out.states.append((el.get("name") or "", el.get("group") or "", locate(el), joints))
+        elif tag == "virtual_joint":
+            out.virtual.append((el.get("name") or "", el.get("parent_frame") or "", named(el, "child_link"),
+                                locate(el)))
+        elif tag == "passive_joint" and named(el, "name"):
+            out.passive.append(named(el, "name"))
+        elif tag in ("disable_collisions", "enable_collisions"):
+            out.disabled.append(tuple(n for n in (named(el, "link1"), named(el, "link2")) if n))
+        elif tag == "disable_default_collisions" and named(el, "link"):
+            out.disabled.append((named(el, "link"),))
+        elif tag == "end_effector":
+            out.end_effectors.append((el.get("name") or "", named(el, "parent_link"), locate(el)))
+    return out
+
+
+# --- YAML ------------------------------------------------------------------------------------------------
+def _controllers(doc) -> list:
+    """MoveIt's controller list: `moveit_simple_controller_manager: {controller_names, NAME: {joints}}` (ROS 2)
+    or `controller_list: [{name, joints}]` (ROS 1). A ros2_control parameter file has neither."""
+    out = []
+    data = doc.data if isinstance(doc.data, dict) else {}
+    msc = data.get("moveit_simple_controller_manager")
+    if isinstance(msc, dict):
+        names = msc.get("controller_names")
+        for name, body in msc.items():
+            if isinstance(body, dict) and isinstance(body.get("joints"), list) and \
+                    (not isinstance(names, list) or name in names):
+                joints = [Named(j, doc.loc("moveit_simple_controller_manager", name, "joints", i))
+                          for i, j in enumerate(body["joints"]) if isinstance(j, str)]
+                out.append((name, joints, doc.key_loc("moveit_simple_controller_manager", name)))
+    lst = data.get("controller_list")
+    if isinstance(lst, list):
+        for i, body in enumerate(lst):
+            if isinstance(body, dict) and isinstance(body.get("joints"), list):
+                joints = [Named(j, doc.loc("controller_list", i, "joints", k))
+                          for k, j in enumerate(body["joints"]) if isinstance(j, str)]
+                out.append((str(body.get("name") or ""), joints, doc.loc("controller_list", i)))
+    return out
+
+
+# --- finding the configs of a model ------------------------------------------------------------------------
+def _files_in(pkg: Path, max_depth: int = 4, max_files: int = 2000) -> list[str]:
+    out: list[str] = []
+    for top, dirs, files in os.walk(pkg):
+        depth = len(Path(top).relative_to(pkg).parts)
+        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIP_DIRS
+                         and (depth == 0 or not (Path(top) / d / "package.xml").exists()))
+        if depth >= max_depth:
+            dirs[:] = []
+        out.extend(os.path.join(top, f) for f in sorted(files))
+        if len(out) > max_files:
+            break
+    return out[:max_files]
+
+
+def _config_packages(model_pkg: Path) -> list[Path]:
+    """The model's package and the ROS packages beside it that hold an SRDF, below the working directory."""
+    cwd = os.getcwd()
+    found = [model_pkg]
+    parent = model_pkg.parent
+    if not str(parent).startswith(cwd.rstrip(os.sep) + os.sep) and str(parent) != cwd:
+        return found
+    seen = 0
+    for top, dirs, files in os.walk(parent):
+        seen += 1
+        if seen > MAX_DIRS:
+            break
+        depth = len(Path(top).relative_to(parent).parts)
+        if "package.xml" in files and Path(top) != model_pkg and depth > 0:
+            found.append(Path(top))
+            dirs[:] = []
+            continue
+        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in SKIP_DIRS)
+        if depth >= 3:
+            dirs[:] = []
+    return found
+
+
+def _mentions(path: str, *words: str) -> bool:
+    from urdfcheck.consumers.common import read_capped
+    from urdfcheck.load.packages import leaves_cwd
+
+    if leaves_cwd(path):
+        return False
+    try:
+        data = read_capped(path, MAX_BYTES)
+    except Exception:  # noqa: BLE001 - an unreadable file names nothing
+        return False
+    return all(w.encode() in data for w in words)
+
+
+def _setup_assistant_names(pkg: Path, entry: str, model_pkg_name: str | None) -> bool:
+    """The package's `.setup_assistant` names the model's file: URDF package and relative_path."""
+    sa = pkg / ".setup_assistant"
+    if not sa.is_file():
+        return False
+    from urdfcheck.consumers.yamlsrc import load_yaml
+
+    try:
+        doc = load_yaml(str(sa), max_bytes=MAX_BYTES)
+    except Exception:  # noqa: BLE001
+        return False
+    urdf = doc.get("moveit_setup_assistant_config", "URDF") or doc.get("moveit_setup_assistant_config", "urdf")
+    if not isinstance(urdf, dict):
+        return False
+    rel = str(urdf.get("relative_path") or "").strip("/")
+    package = str(urdf.get("package") or "")
+    if not rel:
+        return False
+    same_pkg = not package or package == model_pkg_name
+    return same_pkg and os.path.abspath(entry).endswith(os.sep + rel.replace("/", os.sep))
+
+
+def _pairing(pkg: Path, files: list[str], entry: str, model, model_pkg: Path, model_pkg_name: str | None,
+             srdf: Srdf) -> Step | None:
+    base = os.path.basename(entry)
+    subject = f"{_shown(srdf.file)} for {_shown(entry)}"
+    if _setup_assistant_names(pkg, entry, model_pkg_name):
+        return Step("moveit", subject, "referenced")
+    words = (base,) if pkg == model_pkg or not model_pkg_name else (base, model_pkg_name)
+    for f in files:
+        if f.endswith((".py", ".launch", ".xml", ".xacro")) and not f.endswith(SRDF_SUFFIXES) \
+                and os.path.abspath(f) != os.path.abspath(entry) and _mentions(f, *words):
+            return Step("moveit", subject, "referenced")
+    stem = base.split(".", 1)[0]
+    if pkg == model_pkg and stem and os.path.basename(srdf.file).split(".", 1)[0] == stem:
+        # MoveItConfigsBuilder("NAME") reads config/NAME.urdf.xacro and config/NAME.srdf of its package
+        for f in files:
+            if f.endswith(".py") and (_mentions(f, "MoveItConfigsBuilder", f'"{stem}"')
+                                      or _mentions(f, "MoveItConfigsBuilder", f"'{stem}'")):
+                return Step("moveit", subject, "referenced")
+    if model is not None and srdf.robot and srdf.robot == getattr(model, "name", None):
+        return Step("moveit", subject, "package" if pkg == model_pkg else "shape",
+                    "name the model in the config package's .setup_assistant or a launch file")
+    return None
+
+
+def _shown(path: str) -> str:
+    try:
+        return os.path.relpath(path)
+    except ValueError:
+        return path
+
+
+def _pick(files: list[str], names: tuple, near: str) -> str | None:
+    """The file of one kind for an SRDF: the one in its folder, else the package's only one."""
+    hits = [f for f in files if os.path.basename(f) in names]
+    here = [f for f in hits if os.path.dirname(f) == near]
+    if here:
+        return here[0]
+    return hits[0] if len(hits) == 1 else None
+
+
+def moveit_configs(entry: str, model, model_pkg: Path, *, packages=None, notes=None) -> list:
+    """The MoveIt configs that consume the model at `entry` (in package `model_pkg`), each with its pairing."""
+    from urdfcheck.consumers.common import ConsumerError
+    from urdfcheck.load.packages import package_name
+
+    out = []
+    model_pkg_name = package_name(model_pkg / "package.xml")
+    for pkg in _config_packages(model_pkg):
+        files = _files_in(pkg)
+        srdfs = [f for f in files if f.endswith(SRDF_SUFFIXES)]
+        if not srdfs:
+            continue
+        for path in srdfs:
+            try:
+                srdf = read_srdf(path, packages)
+            except ConsumerError as e:
+                if notes is not None:
+                    notes.append((f"MoveIt SRDF not read: {e.message}", e.location))
+                continue
+            if not srdf.groups and not srdf.virtual and not srdf.disabled:
+                continue  # a macro file (its content comes in through the SRDF that includes it)
+            step = _pairing(pkg, files, entry, model, model_pkg, model_pkg_name, srdf)
+            if step is None:
+                continue
+            cfg = MoveItConfig(str(pkg), srdf, step)
+            near = os.path.dirname(path)
+            for kind, names in YAML_KINDS.items():
+                f = _pick(files, names, near)
+                if f is None:
+                    continue
+                from urdfcheck.consumers.yamlsrc import load_yaml
+
+                try:
+                    doc = load_yaml(f, max_bytes=MAX_BYTES)
+                except ConsumerError as e:
+                    if notes is not None:
+                        notes.append((f"MoveIt file not read: {e.message}", e.location))
+                    continue
+                if kind == "controllers":
+                    cfg.controllers = _controllers(doc)
+                    if not cfg.controllers:
+                        continue
+                else:
+                    setattr(cfg, kind, doc)
+                cfg.files.append(f)
+            out.append(cfg)
+    return out
