@@ -27,6 +27,7 @@ YAML_KINDS = {
                     "controllers.yaml"),
     "initial_positions": ("initial_positions.yaml",),
 }
+ROS2_CONTROLLERS = ("ros2_controllers.yaml",)
 MAX_BYTES = 2 * 1024 * 1024
 MAX_DIRS = 400  # folders looked at for config packages beside the model's package
 SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
@@ -102,6 +103,7 @@ class MoveItConfig(Record):
         self.kinematics = None  # YamlDoc
         self.controllers: list = []
         self.initial_positions = None  # YamlDoc
+        self.ros2_controllers = ()  # the config package's ros2_control controllers (consumers.controllers.Controller)
         self.files: list[str] = [srdf.file]
         self.notes: list = []
 
@@ -361,5 +363,15 @@ def moveit_configs(entry: str, model, model_pkg: Path, *, packages=None, notes=N
                 else:
                     setattr(cfg, kind, doc)
                 cfg.files.append(f)
+            f = _pick(files, ROS2_CONTROLLERS, near)
+            if f is not None:
+                from urdfcheck.consumers.controllers import read_controllers
+                from urdfcheck.consumers.params import read_params
+
+                try:
+                    cfg.ros2_controllers = tuple(read_controllers([read_params(f)]))
+                except ConsumerError as e:
+                    if notes is not None:
+                        notes.append((f"MoveIt file not read: {e.message}", e.location))
             out.append(cfg)
     return out
