@@ -222,8 +222,13 @@ def _files_in(pkg: Path, max_depth: int = 4, max_files: int = 2000) -> list[str]
 
 def _config_packages(model_pkg: Path) -> list[Path]:
     """The model's package and the ROS packages beside it that hold an SRDF, below the working directory."""
+    from urdfcheck.load.packages import enclosing_package
+
     cwd = os.getcwd()
     found = [model_pkg]
+    here = enclosing_package(Path(cwd))  # run inside a config package whose model lies elsewhere
+    if here is not None and here != model_pkg:
+        found.append(here)
     parent = model_pkg.parent
     if not str(parent).startswith(cwd.rstrip(os.sep) + os.sep) and str(parent) != cwd:
         return found
@@ -233,7 +238,7 @@ def _config_packages(model_pkg: Path) -> list[Path]:
         if seen > MAX_DIRS:
             break
         depth = len(Path(top).relative_to(parent).parts)
-        if "package.xml" in files and Path(top) != model_pkg and depth > 0:
+        if "package.xml" in files and Path(top) not in found and depth > 0:
             found.append(Path(top))
             dirs[:] = []
             continue
@@ -276,6 +281,32 @@ def _setup_assistant_names(pkg: Path, entry: str, model_pkg_name: str | None) ->
         return False
     same_pkg = not package or package == model_pkg_name
     return same_pkg and os.path.abspath(entry).endswith(os.sep + rel.replace("/", os.sep))
+
+
+def named_model(pkg: str, packages=None) -> str | None:
+    """The model a MoveIt config package names in its `.setup_assistant` (URDF package and relative_path), as a
+    path, when that file exists; None otherwise. `urdfcheck lint <moveit_config_pkg>` lints it."""
+    sa = Path(pkg) / ".setup_assistant"
+    if not sa.is_file():
+        return None
+    from urdfcheck.consumers.yamlsrc import load_yaml
+    from urdfcheck.load.packages import Resolver
+
+    try:
+        doc = load_yaml(str(sa), max_bytes=MAX_BYTES)
+    except Exception:  # noqa: BLE001 - an unreadable .setup_assistant names nothing
+        return None
+    urdf = doc.get("moveit_setup_assistant_config", "URDF") or doc.get("moveit_setup_assistant_config", "urdf")
+    if not isinstance(urdf, dict) or not urdf.get("package") or not urdf.get("relative_path"):
+        return None
+    rel = str(urdf["relative_path"]).strip("/")
+    if rel.startswith("..") or "/../" in rel or os.path.isabs(rel):
+        return None
+    root = Resolver(dict(packages or {}), near=Path(os.path.abspath(pkg))).find(str(urdf["package"]))
+    if root is None:
+        return None
+    path = Path(root) / rel
+    return str(path) if path.is_file() else None
 
 
 def _pairing(pkg: Path, files: list[str], entry: str, model, model_pkg: Path, model_pkg_name: str | None,

@@ -361,12 +361,36 @@ class Planner:
             for entry in found.models:
                 if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
                     out.extend(self.variants(Path(entry), settings, named.root))
+        if not out:
+            out.extend(self.moveit_model(folder, settings))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
             for entry in self.discover(folder, settings).models:
                 if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
                     out.extend(self.variants(Path(entry), settings, named.root))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
+
+    def moveit_model(self, folder: str, settings: Settings) -> list[Target]:
+        """A MoveIt config package with no model of its own: the model its `.setup_assistant` names, whose
+        checks then read this config (consumers.moveit) as one beside the model's package (issue 41)."""
+        from urdfcheck.load.packages import enclosing_package
+
+        pkg = enclosing_package(Path(os.path.abspath(folder)))
+        if pkg is None:
+            return []
+        from urdfcheck.consumers.moveit import named_model
+
+        model = named_model(str(pkg), dict(settings.packages))
+        if model is None:
+            return []
+        from urdfcheck.core.evidence import Step
+
+        out = self.variants(Path(os.path.relpath(model)) if _below(os.path.abspath(model), os.getcwd())
+                            else Path(model), settings)
+        for t in out:
+            t.evidence = (Step("model", shown(model), "referenced",
+                               f"named by {shown(str(pkg / '.setup_assistant'))}"),)
+        return out
 
     def named(self, root: str, settings: Settings, skip=()) -> _Named:
         """The deployments of a named folder, found once (`skip`: folders whose config declares the models)."""
