@@ -283,6 +283,23 @@ def _setup_assistant_names(pkg: Path, entry: str, model_pkg_name: str | None) ->
     return same_pkg and os.path.abspath(entry).endswith(os.sep + rel.replace("/", os.sep))
 
 
+def _fits(srdf: Srdf, model) -> bool:
+    """Most links and joints the SRDF's groups and states name are the model's: the SRDF is about this model.
+    A config of another robot or another variant (a dual-arm config beside the single arm) names mostly others."""
+    links, joints = set(model.links), set(model.joints) | {v[0] for v in srdf.virtual}
+    hits = total = 0
+    for g in srdf.groups.values():
+        for base, tip in g.chains:
+            hits += (base.name in links) + (tip.name in links)
+            total += 2
+        hits += sum(n.name in links for n in g.links) + sum(n.name in joints for n in g.joints)
+        total += len(g.links) + len(g.joints)
+    for _, _, _, values in srdf.states:
+        hits += sum(n.name in joints for n, _ in values)
+        total += len(values)
+    return total > 0 and hits * 2 > total
+
+
 def named_model(pkg: str, packages=None) -> str | None:
     """The model a MoveIt config package names in its `.setup_assistant` (URDF package and relative_path), as a
     path, when that file exists; None otherwise. `urdfcheck lint <moveit_config_pkg>` lints it."""
@@ -370,6 +387,8 @@ def moveit_configs(entry: str, model, model_pkg: Path, *, packages=None, notes=N
                 continue
             if not srdf.groups and not srdf.virtual and not srdf.disabled:
                 continue  # a macro file (its content comes in through the SRDF that includes it)
+            if model is not None and not _fits(srdf, model):
+                continue  # most of what it names is not in this model: the config of another robot (or variant)
             step = _pairing(pkg, files, entry, model, model_pkg, model_pkg_name, srdf)
             if step is None:
                 continue
