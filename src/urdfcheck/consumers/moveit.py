@@ -297,7 +297,10 @@ def _fits(srdf: Srdf, model) -> bool:
     for _, _, _, values in srdf.states:
         hits += sum(n.name in joints for n, _ in values)
         total += len(values)
-    return total > 0 and hits * 2 > total
+    for pair in srdf.disabled:
+        hits += sum(n.name in links for n in pair)
+        total += len(pair)
+    return total > 0 and hits * 2 >= total
 
 
 def named_model(pkg: str, packages=None) -> str | None:
