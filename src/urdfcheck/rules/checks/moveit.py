@@ -52,7 +52,7 @@ def srdf_names(model, ctx):
                     yield Problem(f"SRDF group {g.name!r} names joint {n.name!r}, which the model does not have"
                                   f"{_hint(n.name, joints)}; MoveIt leaves it out of the group", at=n.loc, code="M002",
                                   rests_on=why)
-        for name, _, parent, loc in s.end_effectors:
+        for name, parent, _ in s.end_effectors:
             if parent is not None and parent.name not in links:
                 yield Problem(f"SRDF end effector {name!r}: parent link {parent.name!r} is not a link of the model"
                               f"{_hint(parent.name, links)}", at=parent.loc, code="M001", rests_on=why)
