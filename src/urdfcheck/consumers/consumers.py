@@ -46,7 +46,14 @@ class Consumers(Record):
     moveit: list = ()  # consumers.moveit.MoveItConfig: the MoveIt configs paired with the model (issue 41)
 
     def settle(self, model) -> Consumers:
-        """Add the package's unread parameter files, once, now that the model is known."""
+        """Add the package's unread parameter files, once, now that the model is known; and, for a deployment or
+        a config's model, the MoveIt configs beside the model (discovery looks for them itself)."""
+        if self.origin != "discovered" and not self.__dict__.get("_moveit_looked"):
+            self._moveit_looked = True
+            entry = getattr(model, "source", None)
+            root = _package_root(entry) if entry else None
+            if root is not None and not self.moveit:
+                self.moveit = _moveit(entry, model, root, {}, self.notes)
         files, self.package_files = self.package_files, ()
         if files:
             from urdfcheck.consumers.openworld import add_package_files
