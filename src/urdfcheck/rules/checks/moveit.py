@@ -69,7 +69,7 @@ def srdf_names(model, ctx):
                                   f"{_hint(n.name, links)}; MoveIt skips it, so the pair meant here is still checked "
                                   "for collisions", at=n.loc, code="M003", rests_on=why)
         roots = model.roots
-        for name, parent_frame, child, loc in s.virtual:
+        for name, parent_frame, child, _ in s.virtual:
             if child is None or len(roots) != 1:
                 continue
             if child.name != roots[0]:
@@ -134,8 +134,8 @@ def joint_limits(model, ctx):
             j = model.joints.get(name)
             if j is None:
                 yield Problem(f"joint_limits.yaml names joint {name!r}, which the model does not have"
-                              f"{_hint(str(name), joints)}; MoveIt ignores its limits", at=doc.key_loc("joint_limits", name),
-                              code="M010", rests_on=why)
+                              f"{_hint(str(name), joints)}; MoveIt ignores its limits",
+                              at=doc.key_loc("joint_limits", name), code="M010", rests_on=why)
                 continue
             yield from _limit_values(doc, name, lim, j, why)
 

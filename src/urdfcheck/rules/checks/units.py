@@ -39,5 +39,5 @@ def angle_in_degrees(model, ctx):
             continue
         vals = [f"{k}={v:g} ({math.radians(v):.6g} rad)" for k, v in (("lower", lim.lower), ("upper", lim.upper))
                 if _degrees(v)]
-        yield Problem(f"revolute joint {j.name!r}: the <limit> {' and '.join(vals)} looks like degrees; URDF limits are "
-                      "in radians", at=lim.loc, related=(j,))
+        yield Problem(f"revolute joint {j.name!r}: the <limit> {' and '.join(vals)} looks like degrees; URDF "
+                      "limits are in radians", at=lim.loc, related=(j,))
