@@ -7,8 +7,9 @@ and paired with the model by evidence when it has some: the package's `.setup_as
 (package and path), or one of its launch or xacro files names the model's file and package. Otherwise a config whose
 SRDF gives the model's robot name is paired as a guess (`core.evidence`: findings resting on it are infos).
 
-Every file is read through the door (`consumers.common.read_capped`, `consumers.yamlsrc.load_yaml`); an SRDF
-written as xacro is expanded by the project's sandboxed xacro (`load.loader.expand`). Reading never raises.
+Every file is read through the door (`core.door.read_bytes`: confined to the run's roots, regular files only,
+capped); an SRDF written as xacro is expanded by the project's sandboxed xacro (`load.loader.expand`). Reading never
+raises.
 """
 from __future__ import annotations
 
@@ -108,11 +109,36 @@ class MoveItConfig(Record):
         self.notes: list = []
 
 
+def _read(path: str, what: str = "file") -> bytes:
+    """The bytes of `path` through the door; ConsumerError (reported located, never raised to the user) otherwise."""
+    from urdfcheck.consumers.common import ConsumerError
+    from urdfcheck.core import door
+    from urdfcheck.load.packages import leaves_cwd
+
+    if leaves_cwd(path):
+        raise ConsumerError(f"{what} is, or lies in, a symbolic link that leads out of the working directory; "
+                            "not read", Location(path))
+    try:
+        data = door.read_bytes(path, limit=MAX_BYTES)
+    except OSError as e:
+        raise ConsumerError(f"cannot read {what}: {getattr(e, 'strerror', None) or e}", Location(path)) from None
+    if len(data) > MAX_BYTES:
+        raise ConsumerError(f"{what} is larger than {MAX_BYTES} bytes; refused", Location(path))
+    return data
+
+
+def _yaml(path: str):
+    """The YamlDoc of `path`. Raises ConsumerError."""
+    from urdfcheck.consumers.yamlsrc import parse_yaml
+
+    return parse_yaml(_read(path, "YAML file"), path, max_bytes=MAX_BYTES)
+
+
 # --- SRDF ------------------------------------------------------------------------------------------------
 def read_srdf(path: str, packages=None) -> Srdf:
     """The SRDF at `path`; a `.srdf.xacro` is expanded in the sandbox with its default arguments. Raises
     ConsumerError when it cannot be read, parsed or expanded."""
-    from urdfcheck.consumers.common import ConsumerError, read_capped
+    from urdfcheck.consumers.common import ConsumerError
 
     if path.endswith(".xacro"):
         from urdfcheck.load.loader import expand
@@ -127,7 +153,7 @@ def read_srdf(path: str, packages=None) -> Srdf:
         return _srdf_from(exp.root, exp.locate, path)
     from urdfcheck.core import xmlfront
 
-    data = read_capped(path, MAX_BYTES, "SRDF")
+    data = _read(path, "SRDF")
     try:
         root, _ = xmlfront.parse(data)
     except Exception as e:  # noqa: BLE001 - syntax errors, refused constructs
@@ -249,13 +275,8 @@ def _config_packages(model_pkg: Path) -> list[Path]:
 
 
 def _mentions(path: str, *words: str) -> bool:
-    from urdfcheck.consumers.common import read_capped
-    from urdfcheck.load.packages import leaves_cwd
-
-    if leaves_cwd(path):
-        return False
     try:
-        data = read_capped(path, MAX_BYTES)
+        data = _read(path)
     except Exception:  # noqa: BLE001 - an unreadable file names nothing
         return False
     return all(w.encode() in data for w in words)
@@ -266,10 +287,8 @@ def _setup_assistant_names(pkg: Path, entry: str, model_pkg_name: str | None) ->
     sa = pkg / ".setup_assistant"
     if not sa.is_file():
         return False
-    from urdfcheck.consumers.yamlsrc import load_yaml
-
     try:
-        doc = load_yaml(str(sa), max_bytes=MAX_BYTES)
+        doc = _yaml(str(sa))
     except Exception:  # noqa: BLE001
         return False
     urdf = doc.get("moveit_setup_assistant_config", "URDF") or doc.get("moveit_setup_assistant_config", "urdf")
@@ -309,11 +328,10 @@ def named_model(pkg: str, packages=None) -> str | None:
     sa = Path(pkg) / ".setup_assistant"
     if not sa.is_file():
         return None
-    from urdfcheck.consumers.yamlsrc import load_yaml
     from urdfcheck.load.packages import Resolver
 
     try:
-        doc = load_yaml(str(sa), max_bytes=MAX_BYTES)
+        doc = _yaml(str(sa))
     except Exception:  # noqa: BLE001 - an unreadable .setup_assistant names nothing
         return None
     urdf = doc.get("moveit_setup_assistant_config", "URDF") or doc.get("moveit_setup_assistant_config", "urdf")
@@ -401,10 +419,8 @@ def moveit_configs(entry: str, model, model_pkg: Path, *, packages=None, notes=N
                 f = _pick(files, names, near)
                 if f is None:
                     continue
-                from urdfcheck.consumers.yamlsrc import load_yaml
-
                 try:
-                    doc = load_yaml(f, max_bytes=MAX_BYTES)
+                    doc = _yaml(f)
                 except ConsumerError as e:
                     if notes is not None:
                         notes.append((f"MoveIt file not read: {e.message}", e.location))
@@ -419,10 +435,10 @@ def moveit_configs(entry: str, model, model_pkg: Path, *, packages=None, notes=N
             f = _pick(files, ROS2_CONTROLLERS, near)
             if f is not None:
                 from urdfcheck.consumers.controllers import read_controllers
-                from urdfcheck.consumers.params import read_params
+                from urdfcheck.consumers.params import parse_params
 
                 try:
-                    cfg.ros2_controllers = tuple(read_controllers([read_params(f)]))
+                    cfg.ros2_controllers = tuple(read_controllers([parse_params(_read(f, "YAML file"), f)]))
                 except ConsumerError as e:
                     if notes is not None:
                         notes.append((f"MoveIt file not read: {e.message}", e.location))
