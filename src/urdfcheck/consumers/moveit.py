@@ -29,6 +29,8 @@ YAML_KINDS = {
     "initial_positions": ("initial_positions.yaml",),
 }
 ROS2_CONTROLLERS = ("ros2_controllers.yaml",)
+LAUNCH_SUFFIXES = (".launch.py", ".launch", ".launch.xml", ".launch.yaml", ".launch.yml")
+MAX_LAUNCHERS = 300
 MAX_BYTES = 2 * 1024 * 1024
 MAX_DIRS = 400  # folders looked at for config packages beside the model's package
 SKIP_DIRS = {"build", "install", "log", "node_modules", "__pycache__"}
@@ -135,7 +137,7 @@ def _yaml(path: str):
 
 
 # --- SRDF ------------------------------------------------------------------------------------------------
-def read_srdf(path: str, packages=None) -> Srdf:
+def read_srdf(path: str, packages=None, args=None) -> Srdf:
     """The SRDF at `path`; a `.srdf.xacro` is expanded in the sandbox with its default arguments. Raises
     ConsumerError when it cannot be read, parsed or expanded."""
     from urdfcheck.consumers.common import ConsumerError
@@ -144,7 +146,7 @@ def read_srdf(path: str, packages=None) -> Srdf:
         from urdfcheck.load.loader import expand
 
         try:
-            exp = expand(path, packages=dict(packages or {}))
+            exp = expand(path, dict(args or {}), packages=dict(packages or {}))
         except Exception as e:  # noqa: BLE001 - never a traceback: an unexpandable SRDF is not read
             raise ConsumerError(f"SRDF could not be expanded: {type(e).__name__}", Location(path)) from None
         if exp.root is None:
@@ -347,12 +349,32 @@ def named_model(pkg: str, packages=None) -> str | None:
     return str(path) if path.is_file() else None
 
 
+def _srdf_for(path: str, packages, model) -> Srdf:
+    """The SRDF at `path`; a xacro one that needs the robot's name as an argument (`name`, `robot_name`, which
+    MoveIt config launch files pass) is expanded again with the model's. Its robot name is then not evidence of
+    anything, so it is dropped: only a reference pairs such an SRDF with the model."""
+    from urdfcheck.consumers.common import ConsumerError
+
+    try:
+        return read_srdf(path, packages)
+    except ConsumerError:
+        name = getattr(model, "name", "")
+        if not path.endswith(".xacro") or not name:
+            raise
+    srdf = read_srdf(path, packages, {"name": name, "robot_name": name})
+    srdf.robot = ""
+    return srdf
+
+
 def _pairing(pkg: Path, files: list[str], entry: str, model, model_pkg: Path, model_pkg_name: str | None,
-             srdf: Srdf) -> Step | None:
+             srdf: Srdf, launchers=()) -> Step | None:
     base = os.path.basename(entry)
     subject = f"{_shown(srdf.file)} for {_shown(entry)}"
     if _setup_assistant_names(pkg, entry, model_pkg_name):
         return Step("moveit", subject, "referenced")
+    for f in launchers:  # a launch file beside them that starts MoveIt with this SRDF and this model
+        if _mentions(f, base, os.path.basename(srdf.file)):
+            return Step("moveit", subject, "launched")
     words = (base,) if pkg == model_pkg or not model_pkg_name else (base, model_pkg_name)
     for f in files:
         if f.endswith((".py", ".launch", ".xml", ".xacro")) and not f.endswith(SRDF_SUFFIXES) \
@@ -394,14 +416,15 @@ def moveit_configs(entry: str, model, model_pkg: Path, *, packages=None, notes=N
 
     out = []
     model_pkg_name = package_name(model_pkg / "package.xml")
-    for pkg in _config_packages(model_pkg):
-        files = _files_in(pkg)
+    listed = [(pkg, _files_in(pkg)) for pkg in _config_packages(model_pkg)]
+    launchers = [f for _, files in listed for f in files if f.endswith(LAUNCH_SUFFIXES)][:MAX_LAUNCHERS]
+    for pkg, files in listed:
         srdfs = [f for f in files if f.endswith(SRDF_SUFFIXES)]
         if not srdfs:
             continue
         for path in srdfs:
             try:
-                srdf = read_srdf(path, packages)
+                srdf = _srdf_for(path, packages, model)
             except ConsumerError as e:
                 if notes is not None:
                     notes.append((f"MoveIt SRDF not read: {e.message}", e.location))
@@ -410,7 +433,7 @@ def moveit_configs(entry: str, model, model_pkg: Path, *, packages=None, notes=N
                 continue  # a macro file (its content comes in through the SRDF that includes it)
             if model is not None and not _fits(srdf, model):
                 continue  # most of what it names is not in this model: the config of another robot (or variant)
-            step = _pairing(pkg, files, entry, model, model_pkg, model_pkg_name, srdf)
+            step = _pairing(pkg, files, entry, model, model_pkg, model_pkg_name, srdf, launchers)
             if step is None:
                 continue
             cfg = MoveItConfig(str(pkg), srdf, step)
