@@ -72,7 +72,9 @@ def srdf_names(model, ctx):
         for name, parent_frame, child, _ in s.virtual:
             if child is None or len(roots) != 1:
                 continue
-            if child.name != roots[0]:
+            if child.name != roots[0] and parent_frame != roots[0]:
+                # (a virtual joint from the URDF's own root, world -> base as Gazebo setups write it, repeats a joint
+                # the URDF has: MoveIt skips it and plans from that root, as meant)
                 known = "a link of the model, but not its root" if child.name in links else "not a link of the model"
                 yield Problem(f"SRDF virtual joint {name!r} attaches {child.name!r} to {parent_frame!r}: {known} "
                               f"(the root is {roots[0]!r}); MoveIt skips the virtual joint", at=child.loc,
@@ -225,6 +227,7 @@ def moveit_controllers(model, ctx):
         by_name = {c.name: c for c in ros2}
         controlled = {u.joint for c in ros2 for u in getattr(c, "joints", ())
                       if getattr(c, "kind", "") not in ("joint_state_broadcaster", "joint_state_controller")}
+        passive = {n.name for n in cfg.srdf.passive}
         for name, names, _ in cfg.controllers:
             same = by_name.get(name)
             theirs = {u.joint for u in same.joints} if same is not None else None
@@ -232,7 +235,10 @@ def moveit_controllers(model, ctx):
                 if n.name not in joints:
                     yield Problem(f"MoveIt controller {name!r} names joint {n.name!r}, which the model does not have"
                                   f"{_hint(n.name, joints)}", at=n.loc, code="M014", rests_on=why)
-                elif theirs is not None and theirs and n.name not in theirs:
+                    continue
+                if model.joints[n.name].mimic is not None or n.name in passive:
+                    continue  # never in a trajectory MoveIt sends: the controller need not command it
+                if theirs is not None and theirs and n.name not in theirs and n.name in grouped:
                     yield Problem(f"MoveIt controller {name!r} names joint {n.name!r}, which the ros2_control "
                                   f"controller {name!r} does not command: it refuses MoveIt's trajectories",
                                   at=n.loc, related=(same.loc,) if getattr(same, "loc", None) else (),
