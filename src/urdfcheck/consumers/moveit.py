@@ -129,6 +129,25 @@ def _read(path: str, what: str = "file") -> bytes:
     return data
 
 
+_TEXTS: dict = {}  # small files read for the words they name, by file state (every model asks again)
+
+
+def _cached(path: str) -> bytes:
+    try:
+        st = os.stat(path)
+        key = (path, st.st_mtime_ns, st.st_size, st.st_ino)
+    except OSError:
+        key = None
+    got = _TEXTS.get(key) if key is not None else None
+    if got is None:
+        got = _read(path)
+        if key is not None and len(got) <= 256 * 1024:
+            if len(_TEXTS) >= 2 * MAX_CACHED:
+                _TEXTS.clear()
+            _TEXTS[key] = got
+    return got
+
+
 def _yaml(path: str):
     """The YamlDoc of `path`. Raises ConsumerError."""
     from urdfcheck.consumers.yamlsrc import parse_yaml
@@ -137,9 +156,39 @@ def _yaml(path: str):
 
 
 # --- SRDF ------------------------------------------------------------------------------------------------
+# SRDFs read in this process, by file state and arguments: every model of a package asks for the same configs,
+# and an SRDF written as xacro is one sandboxed expansion (a worker) each time
+_SRDFS: dict = {}
+MAX_CACHED = 256
+
+
 def read_srdf(path: str, packages=None, args=None) -> Srdf:
-    """The SRDF at `path`; a `.srdf.xacro` is expanded in the sandbox with its default arguments. Raises
-    ConsumerError when it cannot be read, parsed or expanded."""
+    """The SRDF at `path`; a `.srdf.xacro` is expanded in the sandbox with its default arguments (or `args`).
+    Raises ConsumerError when it cannot be read, parsed or expanded."""
+    from urdfcheck.consumers.common import ConsumerError
+
+    try:
+        st = os.stat(path)
+        key = (os.path.realpath(path), st.st_mtime_ns, st.st_size, tuple(sorted((args or {}).items())),
+               tuple(sorted((packages or {}).items())))
+    except OSError:
+        key = None
+    got = _SRDFS.get(key) if key is not None else None
+    if got is None:
+        try:
+            got = _read_srdf(path, packages, args)
+        except ConsumerError as e:
+            got = e
+        if key is not None:
+            if len(_SRDFS) >= MAX_CACHED:
+                _SRDFS.clear()
+            _SRDFS[key] = got
+    if isinstance(got, ConsumerError):
+        raise got
+    return got
+
+
+def _read_srdf(path: str, packages=None, args=None) -> Srdf:
     from urdfcheck.consumers.common import ConsumerError
 
     if path.endswith(".xacro"):
@@ -278,7 +327,7 @@ def _config_packages(model_pkg: Path) -> list[Path]:
 
 def _mentions(path: str, *words: str) -> bool:
     try:
-        data = _read(path)
+        data = _cached(path)
     except Exception:  # noqa: BLE001 - an unreadable file names nothing
         return False
     return all(w.encode() in data for w in words)
@@ -349,19 +398,20 @@ def named_model(pkg: str, packages=None) -> str | None:
     return str(path) if path.is_file() else None
 
 
-def _srdf_for(path: str, packages, model) -> Srdf:
-    """The SRDF at `path`; a xacro one that needs the robot's name as an argument (`name`, `robot_name`, which
-    MoveIt config launch files pass) is expanded again with the model's. Its robot name is then not evidence of
-    anything, so it is dropped: only a reference pairs such an SRDF with the model."""
+def _named_srdf(path: str, packages, model) -> Srdf | None:
+    """A xacro SRDF expanded with the model's name as `name` and `robot_name`; None when that fails too. Its robot
+    name then says nothing, so it is dropped."""
+    import copy
+
     from urdfcheck.consumers.common import ConsumerError
 
+    name = getattr(model, "name", "")
+    if not path.endswith(".xacro") or not name:
+        return None
     try:
-        return read_srdf(path, packages)
+        srdf = copy.copy(read_srdf(path, packages, {"name": name, "robot_name": name}))
     except ConsumerError:
-        name = getattr(model, "name", "")
-        if not path.endswith(".xacro") or not name:
-            raise
-    srdf = read_srdf(path, packages, {"name": name, "robot_name": name})
+        return None
     srdf.robot = ""
     return srdf
 
@@ -423,17 +473,23 @@ def moveit_configs(entry: str, model, model_pkg: Path, *, packages=None, notes=N
         if not srdfs:
             continue
         for path in srdfs:
+            step = None
             try:
-                srdf = _srdf_for(path, packages, model)
+                srdf = read_srdf(path, packages)
             except ConsumerError as e:
-                if notes is not None:
-                    notes.append((f"MoveIt SRDF not read: {e.message}", e.location))
-                continue
+                # a xacro SRDF that needs the robot's name (`name`, `robot_name`, which MoveIt launch files pass):
+                # when a reference pairs it with this model, expanded with the model's name
+                step = _pairing(pkg, files, entry, model, model_pkg, model_pkg_name, Srdf(path), launchers)
+                srdf = _named_srdf(path, packages, model) if step is not None else None
+                if srdf is None:
+                    if notes is not None:
+                        notes.append((f"MoveIt SRDF not read: {e.message}", e.location))
+                    continue
             if not srdf.groups and not srdf.virtual and not srdf.disabled:
                 continue  # a macro file (its content comes in through the SRDF that includes it)
             if model is not None and not _fits(srdf, model):
                 continue  # most of what it names is not in this model: the config of another robot (or variant)
-            step = _pairing(pkg, files, entry, model, model_pkg, model_pkg_name, srdf, launchers)
+            step = step or _pairing(pkg, files, entry, model, model_pkg, model_pkg_name, srdf, launchers)
             if step is None:
                 continue
             cfg = MoveItConfig(str(pkg), srdf, step)
