@@ -56,8 +56,12 @@ def test_a_moveit_config_package_is_linted_through_the_model_its_setup_assistant
     code, report = lint_json(["arm_moveit_config"], cwd=folder)
     assert code == 1
     assert sorted(c for c, _ in _codes(report, "M")) == ["M001", "M002", "M010"]
-    # and from inside the config package, the model lying outside the working directory
-    code, report = lint_json(["."], cwd=folder / "arm_moveit_config")
+    # from inside the config package, a model outside the working directory is linted only when the runner names
+    # its package: a file of the checkout does not lead the run out of it
+    code, _, err = run_cli(["lint", "--no-config", "."], cwd=folder / "arm_moveit_config")
+    assert code == 2 and "no URDF or xacro model found" in err
+    code, report = lint_json([".", "--package", f"arm_description={folder / 'arm_description'}"],
+                             cwd=folder / "arm_moveit_config")
     assert sorted(c for c, _ in _codes(report, "M")) == ["M001", "M002", "M010"]
 
 

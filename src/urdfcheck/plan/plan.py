@@ -383,10 +383,14 @@ class Planner:
         model = named_model(str(pkg), dict(settings.packages))
         if model is None:
             return []
+        real = os.path.realpath(model)
+        inside = _below(real, os.path.realpath(os.getcwd()))
+        if not inside and not any(_below(real, os.path.realpath(p)) for p in settings.packages.values()):
+            # a file of the checkout names it: only the checkout's models and the packages the runner named
+            return []
         from urdfcheck.core.evidence import Step
 
-        out = self.variants(Path(os.path.relpath(model)) if _below(os.path.abspath(model), os.getcwd())
-                            else Path(model), settings)
+        out = self.variants(Path(os.path.relpath(model)) if inside else Path(model), settings)
         for t in out:
             t.evidence = (Step("model", shown(model), "referenced",
                                f"named by {shown(str(pkg / '.setup_assistant'))}"),)
