@@ -210,3 +210,18 @@ def test_no_model_and_no_setup_assistant_is_still_a_usage_error(tmp_path):
     (tmp_path / "cfg" / "package.xml").write_text("<package><name>cfg</name></package>", encoding="utf-8")
     code, _, err = run_cli(["lint", "--no-config", "cfg"], cwd=tmp_path)
     assert code == 2 and "no URDF or xacro model found" in err
+
+
+def test_a_launch_file_pairs_by_whole_file_names(tmp_path):
+    pkg = _copy("moveit_config", tmp_path)
+    cfg = pkg / "arm_moveit_config"
+    (cfg / ".setup_assistant").unlink()
+    _edit(cfg / "config" / "arm.srdf", '<robot name="arm">', '<robot name="arm_cell">')  # no pairing by name
+    (cfg / "launch").mkdir()
+    launch = cfg / "launch" / "demo.launch.py"
+    launch.write_text('DESC = ("arm_description", "urdf/arm.urdf.xacro")\n', encoding="utf-8")
+    _, report = lint_json(["moveit_config"], cwd=tmp_path)
+    assert _codes(report, "M") == [], report["findings"]  # arm.urdf.xacro is another file than arm.urdf
+    launch.write_text('DESC = ("arm_description", "urdf/arm.urdf")\n', encoding="utf-8")
+    _, report = lint_json(["moveit_config"], cwd=tmp_path)
+    assert sorted(_codes(report, "M")) == [("M001", "error"), ("M002", "error"), ("M010", "warning")]

@@ -330,7 +330,18 @@ def _mentions(path: str, *words: str) -> bool:
         data = _cached(path)
     except Exception:  # noqa: BLE001 - an unreadable file names nothing
         return False
-    return all(w.encode() in data for w in words)
+    return all(_names(data, w) for w in words)
+
+
+def _names(data: bytes, word: str) -> bool:
+    """`word` stands in `data` as a whole name: `panda.urdf` is not named by `panda.urdf.xacro`, nor
+    `arm_description` by `arm_description_extra`."""
+    import re
+
+    w = word.encode()
+    if w not in data:
+        return False
+    return re.search(rb"(?<![\w.-])" + re.escape(w) + rb"(?![\w.-])", data) is not None
 
 
 def _setup_assistant_names(pkg: Path, entry: str, model_pkg_name: str | None) -> bool:
