@@ -225,3 +225,11 @@ def test_a_launch_file_pairs_by_whole_file_names(tmp_path):
     launch.write_text('DESC = ("arm_description", "urdf/arm.urdf")\n', encoding="utf-8")
     _, report = lint_json(["moveit_config"], cwd=tmp_path)
     assert sorted(_codes(report, "M")) == [("M001", "error"), ("M002", "error"), ("M010", "warning")]
+
+
+def test_the_setup_assistant_vouches_only_for_the_srdf_it_names(tmp_path):
+    pkg = _copy("moveit_config", tmp_path)
+    _edit(pkg / "arm_moveit_config" / ".setup_assistant", "config/arm.srdf", "config/other.srdf")
+    _, report = lint_json(["moveit_config"], cwd=tmp_path)
+    found = _codes(report, "M")
+    assert sorted(c for c, _ in found) == ["M001", "M002", "M010"] and {s for _, s in found} == {"info"}

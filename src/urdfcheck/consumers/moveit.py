@@ -23,7 +23,7 @@ from urdfcheck.core.records import Record
 SRDF_SUFFIXES = (".srdf", ".srdf.xacro")
 YAML_KINDS = {
     "joint_limits": ("joint_limits.yaml",),
-    "kinematics": ("kinematics.yaml",),
+    "kinematics": ("kinematics.yaml", "moveit_kinematics.yaml"),
     "controllers": ("moveit_controllers.yaml", "simple_moveit_controllers.yaml", "ros_controllers.yaml",
                     "controllers.yaml"),
     "initial_positions": ("initial_positions.yaml",),
@@ -344,8 +344,9 @@ def _names(data: bytes, word: str) -> bool:
     return re.search(rb"(?<![\w.-])" + re.escape(w) + rb"(?![\w.-])", data) is not None
 
 
-def _setup_assistant_names(pkg: Path, entry: str, model_pkg_name: str | None) -> bool:
-    """The package's `.setup_assistant` names the model's file: URDF package and relative_path."""
+def _setup_assistant_names(pkg: Path, entry: str, model_pkg_name: str | None, srdf_file: str = "") -> bool:
+    """The package's `.setup_assistant` names the model's file (URDF package and relative_path) and, when it names
+    one, this SRDF (SRDF relative_path)."""
     sa = pkg / ".setup_assistant"
     if not sa.is_file():
         return False
@@ -361,7 +362,12 @@ def _setup_assistant_names(pkg: Path, entry: str, model_pkg_name: str | None) ->
     if not rel:
         return False
     same_pkg = not package or package == model_pkg_name
-    return same_pkg and os.path.abspath(entry).endswith(os.sep + rel.replace("/", os.sep))
+    if not (same_pkg and os.path.abspath(entry).endswith(os.sep + rel.replace("/", os.sep))):
+        return False
+    srdf = doc.get("moveit_setup_assistant_config", "SRDF") or doc.get("moveit_setup_assistant_config", "srdf")
+    named = str(srdf.get("relative_path") or "").strip("/") if isinstance(srdf, dict) else ""
+    return not named or not srdf_file or \
+        os.path.abspath(srdf_file) == os.path.abspath(os.path.join(pkg, named.replace("/", os.sep)))
 
 
 def _fits(srdf: Srdf, model) -> bool:
@@ -431,7 +437,7 @@ def _pairing(pkg: Path, files: list[str], entry: str, model, model_pkg: Path, mo
              srdf: Srdf, launchers=()) -> Step | None:
     base = os.path.basename(entry)
     subject = f"{_shown(srdf.file)} for {_shown(entry)}"
-    if _setup_assistant_names(pkg, entry, model_pkg_name):
+    if _setup_assistant_names(pkg, entry, model_pkg_name, srdf.file):
         return Step("moveit", subject, "referenced")
     for f in launchers:  # a launch file beside them that starts MoveIt with this SRDF and this model
         if _mentions(f, base, os.path.basename(srdf.file)):
