@@ -233,3 +233,11 @@ def test_the_setup_assistant_vouches_only_for_the_srdf_it_names(tmp_path):
     _, report = lint_json(["moveit_config"], cwd=tmp_path)
     found = _codes(report, "M")
     assert sorted(c for c, _ in found) == ["M001", "M002", "M010"] and {s for _, s in found} == {"info"}
+
+
+def test_an_srdf_comment_suppresses_a_finding_in_the_srdf(tmp_path):
+    pkg = _copy("moveit_config", tmp_path)
+    _edit(pkg / "arm_moveit_config" / "config" / "arm.srdf", "    <chain ",
+          "    <!-- urdfcheck: ignore[M001] the tool link comes with the gripper -->\n    <chain ")
+    _, report = lint_json(["moveit_config"], cwd=tmp_path)
+    assert sorted(c for c, _ in _codes(report, "M")) == ["M002", "M010"]
