@@ -241,3 +241,29 @@ def test_an_srdf_comment_suppresses_a_finding_in_the_srdf(tmp_path):
           "    <!-- urdfcheck: ignore[M001] the tool link comes with the gripper -->\n    <chain ")
     _, report = lint_json(["moveit_config"], cwd=tmp_path)
     assert sorted(c for c, _ in _codes(report, "M")) == ["M002", "M010"]
+
+
+def test_a_moveit_controller_joint_its_ros2_control_controller_does_not_command(tmp_path):
+    pkg = _copy("moveit_config", tmp_path)
+    cfg = pkg / "arm_moveit_config" / "config"
+    _edit(cfg / "arm.srdf", 'tip_link="tool"', 'tip_link="tool0"')
+    _edit(cfg / "arm.srdf", '"jointZ"', '"joint2"')
+    _edit(cfg / "joint_limits.yaml", "joint_5:", "joint2:")
+    (cfg / "moveit_controllers.yaml").write_text(
+        "moveit_simple_controller_manager:\n  controller_names: [arm_controller]\n  arm_controller:\n"
+        "    type: FollowJointTrajectory\n    action_ns: follow_joint_trajectory\n    joints: [joint1, joint2]\n",
+        encoding="utf-8")
+    (cfg / "ros2_controllers.yaml").write_text(
+        "controller_manager:\n  ros__parameters:\n    update_rate: 100\n    arm_controller:\n"
+        "      type: joint_trajectory_controller/JointTrajectoryController\n"
+        "arm_controller:\n  ros__parameters:\n    joints: [joint1]\n    command_interfaces: [position]\n"
+        "    state_interfaces: [position]\n", encoding="utf-8")
+    _, report = lint_json(["moveit_config"], cwd=tmp_path)
+    got = [(f["code"], f["severity"], f["location"]["line"]) for f in report["findings"]]
+    assert got == [("M014", "error", 6)], report["findings"]
+    # the same joint as a mimic of joint1 is never in a trajectory MoveIt sends: nothing to say
+    urdf = pkg / "arm_description" / "urdf" / "arm.urdf"
+    _edit(urdf, '<limit lower="-1.57" upper="1.57" effort="10" velocity="2.0"/>',
+          '<limit lower="-1.57" upper="1.57" effort="10" velocity="2.0"/>\n    <mimic joint="joint1"/>')
+    _, report = lint_json(["moveit_config"], cwd=tmp_path)
+    assert [f for f in report["findings"] if f["code"] == "M014"] == []

@@ -74,16 +74,18 @@ class Srdf(Record):
         self.disabled: list = []
         self.end_effectors: list = []
 
-    def group_joints(self, model) -> set[str]:
+    def group_joints(self, model) -> set[str] | None:
         """Every joint some group holds: named, on a chain, or between two of its links (a link group's
-        parent joints), through subgroups."""
+        parent joints), through subgroups. None when a chain does not resolve in the model (M001 says so; what the
+        group was meant to hold is then unknown)."""
         out: set[str] = set()
         for g in self.groups.values():
             out |= {j.name for j in g.joints}
             for base, tip in g.chains:
                 p = model.path(base.name, tip.name) if base.name in model.links and tip.name in model.links else None
-                if p is not None:
-                    out |= {j.name for j in p[0] + p[1]}
+                if p is None:
+                    return None
+                out |= {j.name for j in p[0] + p[1]}
             for ln in g.links:
                 j = model.parent_joint.get(ln.name)
                 if j is not None:

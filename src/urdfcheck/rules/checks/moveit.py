@@ -238,6 +238,8 @@ def moveit_controllers(model, ctx):
                     continue
                 if model.joints[n.name].mimic is not None or n.name in passive:
                     continue  # never in a trajectory MoveIt sends: the controller need not command it
+                if grouped is None:
+                    continue  # a chain of the SRDF does not resolve (M001): what its groups plan is unknown
                 if theirs is not None and theirs and n.name not in theirs and n.name in grouped:
                     yield Problem(f"MoveIt controller {name!r} names joint {n.name!r}, which the ros2_control "
                                   f"controller {name!r} does not command: it refuses MoveIt's trajectories",
