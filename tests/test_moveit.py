@@ -3,6 +3,7 @@ angles in degrees (U011), through the real CLI: each broken example's clean twin
 xacro too, a config package is linted by the model it names, and the pairing's evidence sets the severity."""
 from __future__ import annotations
 
+import os
 import shutil
 
 import pytest
@@ -56,13 +57,31 @@ def test_a_moveit_config_package_is_linted_through_the_model_its_setup_assistant
     code, report = lint_json(["arm_moveit_config"], cwd=folder)
     assert code == 1
     assert sorted(c for c, _ in _codes(report, "M")) == ["M001", "M002", "M010"]
-    # from inside the config package, a model outside the working directory is linted only when the runner names
-    # its package: a file of the checkout does not lead the run out of it
-    code, _, err = run_cli(["lint", "--no-config", "."], cwd=folder / "arm_moveit_config")
-    assert code == 2 and "no URDF or xacro model found" in err
-    code, report = lint_json([".", "--package", f"arm_description={folder / 'arm_description'}"],
-                             cwd=folder / "arm_moveit_config")
+    # from inside the config package: the model is a package of its workspace, as a launch file's $(find) finds it
+    code, report = lint_json(["."], cwd=folder / "arm_moveit_config")
     assert sorted(c for c, _ in _codes(report, "M")) == ["M001", "M002", "M010"]
+
+
+def test_a_setup_assistant_naming_a_package_outside_the_workspace_leads_nowhere(tmp_path):
+    """A file of the checkout does not make the run lint an installed package elsewhere on the machine; the
+    runner can name it (--package)."""
+    _copy("moveit_config", tmp_path)
+    ws = tmp_path / "ws"
+    ws.mkdir()
+    shutil.move(str(tmp_path / "moveit_config" / "arm_moveit_config"), ws / "arm_moveit_config")
+    elsewhere = tmp_path / "moveit_config" / "arm_description"
+    env = os.environ.get("ROS_PACKAGE_PATH")
+    os.environ["ROS_PACKAGE_PATH"] = str(elsewhere)  # resolvable, but outside the workspace
+    try:
+        code, _, err = run_cli(["lint", "--no-config", "."], cwd=ws / "arm_moveit_config")
+        assert code == 2 and "no URDF or xacro model found" in err
+        code, report = lint_json([".", "--package", f"arm_description={elsewhere}"], cwd=ws / "arm_moveit_config")
+        assert sorted(c for c, _ in _codes(report, "M")) == ["M001", "M002", "M010"]
+    finally:
+        if env is None:
+            os.environ.pop("ROS_PACKAGE_PATH", None)
+        else:
+            os.environ["ROS_PACKAGE_PATH"] = env
 
 
 def test_an_srdf_written_as_xacro_is_expanded(tmp_path):

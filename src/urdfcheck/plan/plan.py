@@ -383,10 +383,14 @@ class Planner:
         model = named_model(str(pkg), dict(settings.packages))
         if model is None:
             return []
+        from urdfcheck.load.packages import workspace_root
+
         real = os.path.realpath(model)
         inside = _below(real, os.path.realpath(os.getcwd()))
-        if not inside and not any(_below(real, os.path.realpath(p)) for p in settings.packages.values()):
-            # a file of the checkout names it: only the checkout's models and the packages the runner named
+        if not inside and not _below(real, str(workspace_root(pkg))) \
+                and not any(_below(real, os.path.realpath(p)) for p in settings.packages.values()):
+            # a file of the checkout names it: a package of its workspace (as a launch file's $(find) resolves
+            # one) or one the runner named, never an installed package elsewhere on the machine
             return []
         from urdfcheck.core.evidence import Step
 

@@ -7,7 +7,8 @@ import re
 from urdfcheck.core.findings import Problem, Severity, closest
 from urdfcheck.rules.catalogue import check
 
-_SDF_PART = re.compile(r"<(?:link|joint)\s[^>]*?\bname=\"([^\"]+)\"")
+# (and the old Gazebo 0.x bodies and joints: <body:box name=...>, <joint:hinge name=...>)
+_SDF_PART = re.compile(r"<(?:link|joint|body)(?::\w+)?\s[^>]*?\bname=\"([^\"]+)\"")
 
 # frames a sensor may stamp its data with that are not links of a robot
 WORLD_FRAMES = ("world", "map", "odom", "earth")
@@ -26,7 +27,7 @@ def _sdf_parts(model) -> set[str]:
     """Links and joints written as SDF inside <gazebo> blocks: Gazebo adds them to the model it simulates."""
     out: set[str] = set()
     for b in model.blocks:
-        if b.tag == "gazebo" and ("<link" in b.xml or "<joint" in b.xml):
+        if b.tag == "gazebo" and ("<link" in b.xml or "<joint" in b.xml or "<body" in b.xml):
             out.update(_SDF_PART.findall(b.xml))
     return out
 
