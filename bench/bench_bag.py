@@ -1,9 +1,9 @@
 """`urdfcheck bag` on a long recording: time and peak memory against rosbags reading the same bag alone.
 
-    python bench/bench_bag.py [--messages 1000000] [--model PATH]
+    python bench/bench_bag.py [--messages 1000000] [--model PATH] [--formats mcap,ros1]
 
-Writes a ROS 2 MCAP bag of N JointState messages (every movable joint of the model, 100 Hz, with the matching
-/tf every 10th message) to a temporary folder, then runs, as separate processes, each three times:
+Writes a ROS 2 MCAP bag (and a ROS 1 .bag) of N JointState messages (every movable joint of the model, 100 Hz,
+with the matching /tf every 10th message) to a temporary folder, then runs, as separate processes, each three times:
   peer:  a plain rosbags loop that reads and deserialises every message (the floor any bag checker pays)
   ours:  urdfcheck bag MODEL BAG --format json
 and prints the median wall time, the ratio, and both peak resident sizes (ru_maxrss of the child). Run it with
@@ -14,7 +14,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -49,10 +48,10 @@ def default_model() -> str:
     return str(hits[0])
 
 
-def write_bag(model_path: str, n: int, out: Path) -> Path:
+def write_bag(model_path: str, n: int, out: Path, fmt: str = "mcap") -> Path:
     import numpy as np
     from rosbags.rosbag2 import StoragePlugin, Writer
-    from rosbags.typesys import Stores, get_typestore
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
     from urdfcheck.load import loader
     from urdfcheck.publisher import StatePublisher
@@ -65,14 +64,25 @@ def write_bag(model_path: str, n: int, out: Path) -> Path:
         lim = model.joints[name].limit
         lo, hi = (lim.lower, lim.upper) if lim is not None and lim.lower is not None else (-1.0, 1.0)
         limits[name] = (lo, hi) if hi > lo else (-1.0, 1.0)
-    ts = get_typestore(Stores.ROS2_HUMBLE)
+    ros1 = fmt == "ros1"
+    ts = get_typestore(Stores.ROS1_NOETIC if ros1 else Stores.ROS2_HUMBLE)
+    if "tf2_msgs/msg/TFMessage" not in ts.types:
+        ts.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf2_msgs/msg/TFMessage"))
     T = ts.types
     JS, H, Tm = T["sensor_msgs/msg/JointState"], T["std_msgs/msg/Header"], T["builtin_interfaces/msg/Time"]
+    ser = ts.serialize_ros1 if ros1 else ts.serialize_cdr
+    hdr = (lambda **kw: H(seq=0, **kw)) if ros1 else H
     TFM, TS = T["tf2_msgs/msg/TFMessage"], T["geometry_msgs/msg/TransformStamped"]
     Tr, V3, Q = T["geometry_msgs/msg/Transform"], T["geometry_msgs/msg/Vector3"], T["geometry_msgs/msg/Quaternion"]
-    path = out / f"pr2_{n}"
+    path = out / (f"pr2_{n}.bag" if ros1 else f"pr2_{n}")
     empty = np.array([], dtype=float)
-    with Writer(path, version=8, storage_plugin=StoragePlugin.MCAP) as w:
+    if ros1:
+        from rosbags.rosbag1 import Writer as Writer1
+
+        writer = Writer1(path)
+    else:
+        writer = Writer(path, version=8, storage_plugin=StoragePlugin.MCAP)
+    with writer as w:
         cj = w.add_connection("/joint_states", JS.__msgtype__, typestore=ts)
         ct = w.add_connection("/tf", TFM.__msgtype__, typestore=ts)
         for i in range(n):
@@ -80,28 +90,17 @@ def write_bag(model_path: str, n: int, out: Path) -> Path:
             stamp = Tm(sec=t_ns // 1_000_000_000, nanosec=t_ns % 1_000_000_000)
             pos = [lo + (hi - lo) * (0.5 + 0.4 * math.sin(i * 1e-3 + k)) for k, (lo, hi) in
                    enumerate(limits[j] for j in joints)]
-            msg = JS(header=H(stamp=stamp, frame_id=""), name=joints, position=np.array(pos), velocity=empty,
+            msg = JS(header=hdr(stamp=stamp, frame_id=""), name=joints, position=np.array(pos), velocity=empty,
                      effort=empty)
-            w.write(cj, t_ns, ts.serialize_cdr(msg, JS.__msgtype__))
+            w.write(cj, t_ns, ser(msg, JS.__msgtype__))
             if i % 10 == 0:
-                tfs = [TS(header=H(stamp=stamp, frame_id=t.parent), child_frame_id=t.child,
+                tfs = [TS(header=hdr(stamp=stamp, frame_id=t.parent), child_frame_id=t.child,
                           transform=Tr(translation=V3(x=t.translation[0], y=t.translation[1], z=t.translation[2]),
                                        rotation=Q(x=t.rotation[0], y=t.rotation[1], z=t.rotation[2],
                                                   w=t.rotation[3])))
                        for t in pub.transforms_for(dict(zip(joints, pos)), (stamp.sec, stamp.nanosec))]
-                w.write(ct, t_ns, ts.serialize_cdr(TFM(transforms=tfs), TFM.__msgtype__))
+                w.write(ct, t_ns, ser(TFM(transforms=tfs), TFM.__msgtype__))
     return path
-
-
-def measure(cmd: list[str], runs: int, env) -> tuple[float, str]:
-    """Median wall time of `runs` runs, and the end of the last run's output."""
-    walls, out = [], ""
-    for _ in range(runs):
-        t0 = time.perf_counter()
-        p = subprocess.run(cmd, capture_output=True, text=True, env=env)
-        walls.append(time.perf_counter() - t0)
-        out = p.stdout[-400:] + p.stderr[-400:]
-    return statistics.median(walls), out
 
 
 def peak_of(cmd: list[str], env) -> int:
@@ -116,32 +115,41 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--messages", type=int, default=1_000_000)
     ap.add_argument("--model", default=None)
-    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--runs", type=int, default=3, help="pairs (ours, peer) after one warm-up each")
     ap.add_argument("--keep", metavar="DIR", help="write (or reuse) the bags here")
+    ap.add_argument("--formats", default="mcap,ros1", help="mcap, ros1 or both (comma-separated)")
     ns = ap.parse_args()
     model = ns.model or default_model()
     folder = Path(ns.keep) if ns.keep else Path(tempfile.mkdtemp(prefix="urdfcheck-bench-bag-"))
     folder.mkdir(parents=True, exist_ok=True)
-    for n in (ns.messages // 10, ns.messages):
-        bag = folder / f"pr2_{n}"
-        if not bag.exists():
-            t0 = time.perf_counter()
-            write_bag(model, n, folder)
-            print(f"wrote {n:,} JointState messages (+{n // 10:,} /tf) in {time.perf_counter() - t0:.1f} s",
-                  flush=True)
-        env = dict(os.environ, PYTHONPATH=str(HERE.parent / "src"))
-        peer_t, _ = measure([sys.executable, "-c", PEER, str(bag)], ns.runs, env)
-        ours_t, tail = measure([sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json",
-                                "--no-config"], ns.runs, env)
-        # ru_maxrss of RUSAGE_CHILDREN is the largest child so far: each command's peak from a fresh parent
-        mem = peak_of([sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json", "--no-config"],
-                      env)
-        peer_mem = peak_of([sys.executable, "-c", PEER, str(bag)], env)
-        print(f"{n:>9,} messages: urdfcheck bag {ours_t:7.1f} s ({n / ours_t:,.0f} msg/s), rosbags read alone "
-              f"{peer_t:7.1f} s: {ours_t / peer_t:.2f}x; peak memory {mem / 1024:.0f} MiB vs "
-              f"{peer_mem / 1024:.0f} MiB", flush=True)
-        if '"findings": []' not in tail and "findings" in tail:
-            print("  (the recording is clean by construction; the run reported:", tail.strip()[-300:], ")")
+    for fmt in ns.formats.split(","):
+        for n in (ns.messages // 10, ns.messages):
+            run_one(model, folder, fmt, n, ns.runs)
+
+
+def run_one(model: str, folder: Path, fmt: str, n: int, runs: int) -> None:
+    bag = folder / (f"pr2_{n}.bag" if fmt == "ros1" else f"pr2_{n}")
+    if not bag.exists():
+        t0 = time.perf_counter()
+        write_bag(model, n, folder, fmt)
+        print(f"wrote {n:,} JointState messages (+{n // 10:,} /tf) as {fmt} in {time.perf_counter() - t0:.1f} s",
+              flush=True)
+    env = dict(os.environ, PYTHONPATH=str(HERE.parent / "src"))
+    ours = [sys.executable, "-m", "urdfcheck", "bag", model, str(bag), "--format", "json", "--no-config"]
+    peer = [sys.executable, "-c", PEER, str(bag)]
+    sys.path.insert(0, str(HERE))
+    from timing import paired, paired_line
+
+    r = paired(ours, peer, runs, env=env)  # A B A B: a shared machine's drift hits both sides of a pair
+    tail = subprocess.run(ours, capture_output=True, text=True, env=env).stdout[-400:]
+    # ru_maxrss of RUSAGE_CHILDREN is the largest child so far: each command's peak from a fresh parent
+    mem = peak_of(ours, env)
+    peer_mem = peak_of(peer, env)
+    paired_line(f"{fmt} {n:,} messages vs rosbags read+deserialise", r, 0.2)  # issue 39: >= 5x as fast
+    print(f"  {n / r['wall_a']:,.0f} msg/s against {n / r['wall_b']:,.0f} msg/s; peak memory {mem / 1024:.0f} MiB "
+          f"vs {peer_mem / 1024:.0f} MiB", flush=True)
+    if '"findings": []' not in tail and "findings" in tail:
+        print("  (the recording is clean by construction; the run reported:", tail.strip()[-300:], ")")
 
 
 if __name__ == "__main__":

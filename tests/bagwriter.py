@@ -1,7 +1,8 @@
 """Small recordings for the tests, written with rosbags' writers: ROS 1 .bag, ROS 2 sqlite3 and MCAP.
 
-A recording is a list of events: ("js", t, names, positions[, velocities]) for /joint_states (stamped t unless
-`stamp` is given), ("tf", t, [(parent, child, xyz, xyzw)], topic[, callerid]) for /tf or /tf_static.
+A recording is a list of events: ("js", t, names, positions[, velocities[, stamp[, topic]]]) for /joint_states
+(stamped t unless `stamp` is given), ("tf", t, [(parent, child, xyz, xyzw)], topic[, callerid[, msgtype[,
+stamp]]]) for /tf or /tf_static (msgtype: tf2_msgs/msg/TFMessage unless given, e.g. ROS 1's tf/msg/tfMessage).
 """
 from __future__ import annotations
 
@@ -21,6 +22,10 @@ def write(path: Path, fmt: str, events) -> Path:
         from rosbags.typesys import get_types_from_msg
 
         ts.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf2_msgs/msg/TFMessage"))
+    if "tf/msg/tfMessage" not in ts.types:  # ROS 1's pre-tf2 type, the same fields
+        from rosbags.typesys import get_types_from_msg
+
+        ts.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", "tf/msg/tfMessage"))
     T = ts.types
     JS, TFM = T["sensor_msgs/msg/JointState"], T["tf2_msgs/msg/TFMessage"]
     H, Time, TS = T["std_msgs/msg/Header"], T["builtin_interfaces/msg/Time"], T["geometry_msgs/msg/TransformStamped"]
@@ -62,16 +67,19 @@ def write(path: Path, fmt: str, events) -> Path:
                 _, t, names, pos, *rest = ev
                 vel = rest[0] if rest else []
                 stamp = rest[1] if len(rest) > 1 else t
+                topic = rest[2] if len(rest) > 2 else "/joint_states"
                 msg = JS(header=header(stamp), name=list(names), position=np.array(pos, dtype=float),
                          velocity=np.array(vel, dtype=float), effort=np.array([], dtype=float))
-                w.write(conn("/joint_states", JS.__msgtype__), int(round(t * NS)), ser(msg, JS.__msgtype__))
+                w.write(conn(topic, JS.__msgtype__), int(round(t * NS)), ser(msg, JS.__msgtype__))
             else:
                 _, t, edges, topic, *rest = ev
                 caller = rest[0] if rest else None
-                tfs = [TS(header=header(t, p), child_frame_id=c,
+                typ = T[rest[1]] if len(rest) > 1 and rest[1] else TFM
+                stamp = rest[2] if len(rest) > 2 else t
+                tfs = [TS(header=header(stamp, p), child_frame_id=c,
                           transform=Tr(translation=V3(x=xyz[0], y=xyz[1], z=xyz[2]),
                                        rotation=Q(x=q[0], y=q[1], z=q[2], w=q[3])))
                        for p, c, xyz, q in edges]
-                w.write(conn(topic, TFM.__msgtype__, caller), int(round(t * NS)), ser(TFM(transforms=tfs),
-                                                                                     TFM.__msgtype__))
+                w.write(conn(topic, typ.__msgtype__, caller), int(round(t * NS)), ser(typ(transforms=tfs),
+                                                                                     typ.__msgtype__))
     return path

@@ -67,7 +67,9 @@ def test_agv_zero_config_is_clean():
     models = {(Path(m["path"]).name, m["variant"]) for m in report["models"]}
     # the xacro is the model launch/agv.launch.xml starts robot_state_publisher with: linted as that deployment
     # (the launch file's arguments and consumers), not alone with its boolean variants (plan/plan.py)
-    assert models == {("agv.urdf", ""), ("agv.urdf.xacro", "examples/agv/launch/agv.launch.xml")}
+    # (plan/plan.py); the launch argument use_camera reaches the xacro argument: its other value is a deployment too
+    assert models == {("agv.urdf", ""), ("agv.urdf.xacro", "examples/agv/launch/agv.launch.xml"),
+                      ("agv.urdf.xacro", "examples/agv/launch/agv.launch.xml [use_camera=false]")}
 
 
 def test_agv_config_reaches_every_consumer():
@@ -112,9 +114,16 @@ def test_agv_config_catches_a_driver_mismatch(agv_copy):
     assert code == 1
     got = {(c, name, line) for c, name, line, _ in summary(report)}
     assert got == {("C010", "agv_driver_ros1.yaml", 7)}
-    # zero-config reads the custom driver by the shape of its keys (issue 20): the same line, as a warning
+    # zero-config reads the custom driver by the shape of its keys (issue 20): the same line; no launch file loads
+    # it and the package holds two models, so it is paired by the joint names it shares with the model, a guess:
+    # an info that says how to confirm the pairing (issue 37)
     _, plain = lint_json([agv_copy], cwd=agv_copy)
-    assert {(f["code"], f["severity"], f["location"]["line"]) for f in plain["findings"]} == {("C010", "warning", 7)}
+    assert {(f["code"], f["severity"], f["location"]["line"]) for f in plain["findings"]} == {("C010", "info", 7)}
+    for c010 in plain["findings"]:
+        assert "to confirm: name it under models:" in c010["message"]
+        (guess,) = [s for s in c010["evidence"] if not s["evidence"]]
+        assert guess["what"] == "parameters" and guess["how"] == "overlap"
+        assert "agv_driver_ros1.yaml for " in guess["subject"]
 
 
 def test_agv_camera_frame_in_the_driver_breaks_the_no_camera_variant(agv_copy):

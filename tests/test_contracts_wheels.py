@@ -217,3 +217,108 @@ def test_world_poses_are_computed_once_per_model(monkeypatch):
     second = m.world_poses()
     assert len(calls) == 1
     assert second["b"][0][3] == 1.0 and second["b"][2][3] == 3.0 and set(second) == {"a", "b"}
+
+
+# --- the rolling feature (issue 37): hub and tyre, tyre off its joint frame, camber from rpy="3.14 0 0" ----------
+
+def tyre_wheel(name, y, rpy, axis, tyre_y, radius=0.1, rim=None):
+    """A wheel link whose first collision cylinder is the hub (r 0.03) and whose tyre sits `tyre_y` along the link's
+    y from the joint frame (the joint axis is the link's y)."""
+    rim_xml = (f'<collision><origin xyz="0 {tyre_y} 0" rpy="1.5708 0 0"/><geometry><cylinder radius="{rim}" '
+               f'length="0.04"/></geometry></collision>') if rim else ""
+    return f"""
+  <link name="{name}_link">
+    <collision><origin rpy="1.5708 0 0"/><geometry><cylinder radius="0.03" length="0.02"/></geometry></collision>
+    {rim_xml}
+    <collision><origin xyz="0 {tyre_y} 0" rpy="1.5708 0 0"/>
+      <geometry><cylinder radius="{radius}" length="0.05"/></geometry></collision>
+  </link>
+  <joint name="{name}_joint" type="continuous">
+    <parent link="base_link"/><child link="{name}_link"/>
+    <origin xyz="0 {y} 0" rpy="{rpy}"/><axis xyz="{axis}"/>
+  </joint>"""
+
+
+# hub joints at y = +/-0.22, tyres 0.03 further out; the right wheel mirrored by rpy="3.14 0 0" (0.09 degrees of
+# camber left by 3.14 != pi), its axis flipped so that both roll forward alike
+HUB_LEFT = tyre_wheel("left", 0.22, "0 0 0", "0 1 0", 0.03)
+HUB_RIGHT = tyre_wheel("right", -0.22, "3.14 0 0", "0 -1 0", 0.03)
+
+
+def test_tyre_not_hub_gives_radius_and_separation_and_camber_is_not_non_parallel():
+    rep = check_drive(robot(HUB_LEFT, HUB_RIGHT), drive(sep=0.5, radius=0.1))
+    assert codes(rep) == [], [p.message for p in rep.problems()]
+    assert {w.use.joint: w.radius for w in rep.wheels} == {"left_joint": 0.1, "right_joint": 0.1}
+    assert rep.measured_separation == pytest.approx(0.5, abs=1e-4)
+
+
+def test_the_hub_radius_in_the_controller_is_reported_at_the_tyre():
+    (p,) = [p for p in check_drive(robot(HUB_LEFT, HUB_RIGHT), drive(sep=0.5, radius=0.03)).problems()][:1]
+    assert p.code == "C011" and "radius 0.1 m (the largest of its coaxial shapes)" in p.message
+    assert p.rests_on == ()  # the hub is not the controller's value: nothing ambiguous to demote
+
+
+def test_a_radius_matching_another_coaxial_shape_rests_on_the_shape_choice():
+    rimmed = robot(tyre_wheel("left", 0.22, "0 0 0", "0 1 0", 0.03, rim=0.08),
+                   tyre_wheel("right", -0.22, "3.14 0 0", "0 -1 0", 0.03, rim=0.08))
+    probs = [p for p in check_drive(rimmed, drive(sep=0.5, radius=0.08)).problems() if p.code == "C011"]
+    assert len(probs) == 2
+    assert all(len(p.rests_on) == 1 and p.rests_on[0].how == "shape" and not p.rests_on[0].strong for p in probs)
+
+
+def test_real_camber_in_heading_is_still_reported():
+    yawed = tyre_wheel("right", -0.22, "0 0 0.1", "0 1 0", -0.03)
+    rep = check_drive(robot(HUB_LEFT, yawed), drive(sep=0.5, radius=0.1))
+    (p,) = [p for p in rep.problems() if p.code == "C012"]
+    assert "5.73 degrees" in p.message
+
+
+def _package(tmp_path, left, right, radius):
+    import shutil
+
+    from conftest import REPO
+    pkg = tmp_path / "pkg"
+    shutil.copytree(REPO / "examples" / "broken" / "contract_wheel_radius", pkg)
+    (pkg / "EXPECTED").unlink()
+    urdf = pkg / "urdf" / "agv.urdf"
+    text = urdf.read_text(encoding="utf-8")
+    start, end = text.index('  <link name="left_wheel_link">'), text.index('  <joint name="laser_link_joint"')
+    wheels = (left + right).replace('"left_', '"left_wheel_').replace('"right_', '"right_wheel_')
+    urdf.write_text(text[:start] + wheels + "\n" + text[end:], encoding="utf-8")
+    cfg = pkg / "config" / "agv_controllers.yaml"
+    cfg.write_text(cfg.read_text(encoding="utf-8").replace("wheel_radius: 0.12", f"wheel_radius: {radius}"),
+                   encoding="utf-8")
+    return pkg
+
+
+def test_hub_and_tyre_robot_is_not_red_through_the_cli(tmp_path):
+    from conftest import lint_json
+    pkg = _package(tmp_path, HUB_LEFT, HUB_RIGHT, 0.10)
+    _, report = lint_json([str(pkg)], cwd=tmp_path)
+    assert [f["code"] for f in report["findings"] if f["code"] in ("C010", "C011", "C012", "C015")] == []
+
+
+def test_an_ambiguous_wheel_feature_is_said_as_info_naming_the_step(tmp_path):
+    from conftest import lint_json
+    pkg = _package(tmp_path, tyre_wheel("left", 0.22, "0 0 0", "0 1 0", 0.03, rim=0.08),
+                   tyre_wheel("right", -0.22, "3.14 0 0", "0 -1 0", 0.03, rim=0.08), 0.08)
+    _, report = lint_json([str(pkg)], cwd=tmp_path)
+    c011 = [f for f in report["findings"] if f["code"] == "C011"]
+    assert c011 and all(f["severity"] == "info" and "picked by its shape" in f["message"] for f in c011), c011
+
+
+def test_mecanum_projection_is_measured_at_the_tyres():
+    """lx + ly from the rollers' centres, not the hub joint frames 0.03 m further in."""
+    from urdfcheck.consumers.catalog import WheelSet
+    from urdfcheck.rules.contracts.drives import geometry_problems
+
+    def w(name, x, y, tyre_y):
+        return tyre_wheel(name, y, "0 0 0", "0 1 0", tyre_y).replace('xyz="0 ' + str(y), f'xyz="{x} {y}')
+
+    model = robot(w("fl", 0.2, 0.22, 0.03), w("fr", 0.2, -0.22, -0.03), w("rl", -0.2, 0.22, 0.03),
+                  w("rr", -0.2, -0.22, -0.03))
+    uses = tuple(JointUse(f"{n}_joint", Location(YAML, 20 + i), "mecanum", role="wheel")
+                 for i, n in enumerate(("fl", "fr", "rl", "rr")))
+    ws = WheelSet("mecanum", "mecanum", Location(YAML, 1), uses, (), projection=Value(0.45, Location(YAML, 9)),
+                  projection_key="sum_of_robot_center_projection")
+    assert geometry_problems(model, ws, "base_link", 0.001) == []

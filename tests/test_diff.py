@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -193,3 +194,133 @@ def test_plain_urdf_against_the_variants_of_a_xacro(two):
     assert by["no_camera"]["links"]["removed"] == ["camera_link"]
     shapes = {c["field"] for c in by["no_camera"]["changes"] if c["name"] == "base_link"}
     assert shapes == {"visual[camera_mast]", "collision[camera_mast]"}
+
+
+def _repo(tmp_path, drop_config=True) -> Path:
+    repo = tmp_path / "repo"
+    shutil.copytree(AGV, repo / "agv_description")
+    if drop_config:  # zero config: the launch file's deployment is what is planned
+        (repo / "agv_description/urdfcheck.yaml").unlink()
+    _git("init", "-q", cwd=repo)
+    _git("add", "-A", cwd=repo)
+    _git("commit", "-qm", "init", cwd=repo)
+    return repo
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_two_launch_files_match_their_own_deployment(tmp_path):
+    """`cp bringup.launch sim.launch`, commit, `diff --git HEAD`: nothing changed, nothing removed and added,
+    and the compared tree's temporary folder is named nowhere."""
+    repo = _repo(tmp_path)
+    launch = repo / "agv_description/launch"
+    shutil.copy(launch / "agv.launch.xml", launch / "sim.launch.xml")
+    _git("add", "-A", cwd=repo)
+    _git("commit", "-qm", "sim", cwd=repo)
+    res = cli("--git", "HEAD", "--format", "json", "--fail-on-change", cwd=repo)
+    data = as_json(res)
+    assert res.returncode == 0, res.stdout
+    assert {m["status"] for m in data["models"]} == {"unchanged"}
+    variants = {m["variant"] for m in data["models"]}
+    assert {"agv_description/launch/agv.launch.xml", "agv_description/launch/sim.launch.xml"} <= variants
+    assert "urdfcheck-" not in res.stdout and str(tmp_path) not in res.stdout and "/tmp" not in res.stdout
+    assert data["old"] == "HEAD" and not os.path.isabs(data["new"])
+    # the launch file added since HEAD~1 is the one thing added (with each of its launch-argument variants)
+    data = as_json(cli("--git", "HEAD~1", "--format", "json", cwd=repo))
+    added = {(m["variant"], m["status"]) for m in data["models"] if m["status"] != "unchanged"}
+    assert ("agv_description/launch/sim.launch.xml", "added") in added
+    assert {v.split(" [")[0] for v, _ in added} == {"agv_description/launch/sim.launch.xml"}
+    assert {s for _, s in added} == {"added"}
+
+
+def test_two_folders_json_names_no_absolute_path(two):
+    old, new = two
+    res = cli(old, new, "--format", "json", cwd=old.parent)
+    data = as_json(res)
+    assert data["old"] == "old" and data["new"] == "new"
+    assert str(old.parent) not in res.stdout
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_absolute_mesh_paths_are_compared_package_relative(tmp_path):
+    """A model whose meshes are `file://$(find pkg)/...` (absolute once expanded): the revision's copy lies
+    elsewhere, yet a comment-only edit is no change."""
+    repo = tmp_path / "repo"
+    shutil.copytree(AGV, repo / "agv_description")
+    f = repo / "agv_description/urdf/agv.urdf.xacro"
+    edit(f, '<robot name="agv" xmlns:xacro="http://www.ros.org/wiki/xacro">',
+         '<robot name="agv" xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <link name="shell"><visual><geometry>'
+         '<mesh filename="file://$(find agv_description)/meshes/shell.stl"/></geometry></visual></link>\n'
+         '  <joint name="shell_joint" type="fixed"><parent link="base_link"/><child link="shell"/></joint>')
+    (repo / "agv_description/meshes").mkdir()
+    (repo / "agv_description/meshes/shell.stl").write_bytes(b"solid s\nendsolid s\n")
+    _git("init", "-q", cwd=repo)
+    _git("add", "-A", cwd=repo)
+    _git("commit", "-qm", "init", cwd=repo)
+    edit(f, "agv: a small differential-drive AGV.", "agv: a small differential-drive AGV (comment edit).")
+    res = cli("--git", "HEAD", "--format", "json", cwd=repo)
+    data = as_json(res)
+    assert {m["status"] for m in data["models"]} == {"unchanged"}, res.stdout
+    # and a real move of the mesh file is a change, named package-relative
+    edit(f, "/meshes/shell.stl", "/meshes/shell2.stl")
+    data = as_json(cli("--git", "HEAD", "--format", "json", cwd=repo))
+    meshes = {(c["old"][0], c["new"][0]) for m in data["models"] for c in m["changes"] if c["field"].endswith("mesh")}
+    assert meshes == {("package://agv_description/meshes/shell.stl", "package://agv_description/meshes/shell2.stl")}
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_controller_parameters_a_contract_reads_are_shown(tmp_path):
+    repo = _repo(tmp_path)
+    f = repo / "agv_description/config/agv_controllers.yaml"
+    edit(f, "wheel_separation: 0.50", "wheel_separation: 0.45")
+    edit(f, "enable_odom_tf: true", "enable_odom_tf: false")
+    res = cli("--git", "HEAD", "--format", "json", cwd=repo)
+    data = as_json(res)
+    # the deployments whose launch file loads the controller file; the package's other model (agv.urdf) is not
+    # paired with it (pairing by reference first, issue 37)
+    deployed = [m for m in data["models"] if m["variant"].startswith("agv_description/launch/")]
+    assert deployed
+    for m in deployed:
+        got = {c["name"]: (c["old"], c["new"]) for c in m["changes"]}
+        assert got["controller diff_drive_controller wheel_separation"] == (0.5, 0.45)
+        assert got["controller diff_drive_controller odom tf odom -> base_link"] == ("on", "off")
+    text = cli("--git", "HEAD", cwd=repo).stdout
+    assert "wheel_separation: 0.5 -> 0.45" in text
+
+
+def test_per_variant_repeats_are_collapsed(two):
+    old, new = two
+    edit(new / "urdf/agv.urdf.xacro", 'name="laser_link" parent="base_link" xyz="0.25 0 0.15"',
+         'name="laser_link" parent="base_link" xyz="0.26 0 0.15"')
+    text = cli(old, new).stdout
+    assert text.count("laser_link moved 10 mm") == 1, text  # once for both variants of the xacro
+    assert "urdf/agv.urdf.xacro: changed in 2 of 2 variants" in text
+    md = cli(old, new, "--format", "markdown").stdout
+    assert md.count("origin.xyz") == 1, md
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_a_renamed_model_is_compared_with_its_old_self(tmp_path):
+    repo = _repo(tmp_path)
+    _git("mv", "agv_description/urdf/agv.urdf", "agv_description/urdf/agv_v2.urdf", cwd=repo)
+    edit(repo / "agv_description/urdf/agv_v2.urdf", 'rpy="0 0 0" xyz="0.25 0 0.15"', 'rpy="0 0 0" xyz="0.26 0 0.15"')
+    data = as_json(cli("--git", "HEAD", "--format", "json", cwd=repo))
+    mine = [m for m in data["models"] if "agv_v2" in m["model"] or m["model"].endswith("agv.urdf")]
+    assert [m["status"] for m in mine] == ["changed"], mine
+    fields = [(c["kind"], c["field"]) for c in mine[0]["changes"]]
+    assert ("model", "file") in fields and [x["frame"] for x in mine[0]["moved"]] == ["laser_link"]
+
+
+def test_markdown_and_text_are_inert_for_hostile_names(tmp_path):
+    """Link and joint names are the pull request's: no HTML, links, @mentions or bidi controls."""
+    evil = "x&lt;img src=y onerror=alert(1)&gt;@octocat[z](https://e.example)\u202eevil"
+    a, b = tmp_path / "a.urdf", tmp_path / "b.urdf"
+    a.write_text('<robot name="r"><link name="base"/></robot>')
+    b.write_text(f'<robot name="r"><link name="base"/><link name="{evil}"/>'
+                 f'<joint name="j{evil}" type="fixed"><parent link="base"/><child link="{evil}"/></joint></robot>')
+    md = cli(a, b, "--format", "markdown").stdout
+    text = cli(a, b).stdout
+    assert "added" in text and "added" in md
+    for out in (md, text):
+        assert "\u202e" not in out
+    assert "<img" not in md and "@octocat" not in md
+    assert not re.search(r"(?<!\\)\]\(https", md)  # a link only where the bracket is not escaped

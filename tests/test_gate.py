@@ -273,7 +273,8 @@ def test_declared_consumers_add_to_those_found_beside_the_model(tmp_path):
     ws = tmp_path / "ws"
     shutil.copytree(REPO / "examples" / "broken" / "contract_wheel_separation", ws)
     (ws / ".git").mkdir()
-    (ws / "urdfcheck.yaml").write_text("models:\n  - path: urdf/agv.urdf\n    controllers: [config/agv_controllers.yaml]\n")
+    (ws / "urdfcheck.yaml").write_text(
+        "models:\n  - path: urdf/agv.urdf\n    controllers: [config/agv_controllers.yaml]\n")
     code, found = _lint(ws)
     assert code == 1 and ("C010", "config/agv_driver_ros1.yaml", 7, "warning") in found, found
     code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")

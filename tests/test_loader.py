@@ -317,3 +317,16 @@ def test_a_package_url_in_an_include_says_xacro_does_not_resolve_it(tmp_path):
         """)
     (f,) = [f for f in loader.expand(entry).findings if f.code == "X010"]
     assert "xacro does not resolve package:// URLs" in f.message and f.location.line == 2
+
+
+def test_a_urdf_declaring_xacro_with_substitutions_is_expanded(tmp_path):
+    """Issue 37: a .urdf whose launch file runs it through xacro (it declares the namespace and writes ${...}) is
+    expanded, not read raw (every such number was U005); without the declaration it stays a plain URDF."""
+    body = ('  <link name="base_link"/>\n  <link name="b"/>\n  <joint name="j" type="fixed"><parent link="base_link"/>'
+            '<child link="b"/><origin xyz="${0.1*2} 0 0"/></joint>\n</robot>\n')
+    (tmp_path / "x.urdf").write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">\n' + body)
+    (tmp_path / "plain.urdf").write_text('<robot name="r">\n' + body)
+    _, report = lint_json([str(tmp_path / "x.urdf")], cwd=tmp_path)
+    assert [f["code"] for f in report["findings"] if f["severity"] != "info"] == [], report["findings"]
+    _, report = lint_json([str(tmp_path / "plain.urdf")], cwd=tmp_path)
+    assert "U005" in [f["code"] for f in report["findings"]]

@@ -447,3 +447,46 @@ def test_seed_tf_ownership_odom_from_its_own_broadcaster(tmp_path, odom, severit
     assert t005 and {x["severity"] for x in t005} == {severity}, report["findings"]
     if severity == "info":
         assert "`odom_tf_broadcaster`" in t005[0]["message"]
+
+
+EKF = """ekf_filter_node:
+  ros__parameters:
+    frequency: 30.0
+    world_frame: odom
+    base_link_frame: base_link
+    odom0: /diff_drive_controller/odom
+"""
+
+
+def test_seed_odom_owned_twice_in_unlaunched_parameter_files_is_found(tmp_path):
+    """Issue 37's seed miss: the package's controller file keeps enable_odom_tf and its EKF file (publish_tf by
+    default) fuses that controller's odometry; no launch file names either. Both publish odom -> base_link."""
+    ws = seed(tmp_path)
+    write(ws / "config" / "ekf.yaml", EKF)
+    rc, report = lint_json([], cwd=ws)
+    got = [(f["code"], f["severity"], f["location"]["file"]) for f in report["findings"]]
+    assert ("T001", "error", CTRL) in got, got
+    assert rc == 1
+
+
+def test_seed_odom_owners_not_known_to_run_together_are_said_as_info(tmp_path):
+    """Without the filter fusing the controller's odometry, that the two files run together is a guess from the
+    package: said at info, naming the step and how to confirm it."""
+    ws = seed(tmp_path)
+    write(ws / "config" / "ekf.yaml", EKF.replace("odom0: /diff_drive_controller/odom", "odom0: /wheel/odometry"))
+    rc, report = lint_json([], cwd=ws)
+    t001 = [f for f in report["findings"] if f["code"] == "T001"]
+    assert t001 and all(f["severity"] == "info" and "same package" in f["message"] for f in t001), t001
+    assert _failing(report) == [], report["findings"]
+
+
+@pytest.mark.parametrize("frame", ["os_imu", "velodyne", "imu_optical_frame"])
+def test_a_driver_frame_that_only_resembles_a_link_is_no_typo(tmp_path, frame):
+    """A lidar driver's own IMU frame (ouster's os_imu) resembles imu_link but is no misspelling of it: no
+    "did you mean", so no warning (the driver may publish the frame itself)."""
+    ws = seed(tmp_path)
+    edit(ws / DRV, "imu_frame_id: imu_link", f"imu_frame_id: {frame}")
+    rc, report = lint_json([], cwd=ws)
+    c020 = [f for f in report["findings"] if f["code"] == "C020"]
+    assert all("did you mean" not in f["message"] and f["severity"] == "info" for f in c020), c020
+    assert _failing(report) == [], report["findings"]

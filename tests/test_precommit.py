@@ -27,13 +27,19 @@ def test_hooks_file_is_well_formed():
     assert set(hooks) == {"urdfcheck", "urdfcheck-package"}
     one = hooks["urdfcheck"]
     assert one["entry"] == "urdfcheck lint" and one["language"] == "python"
-    assert one["files"] == r"\.(urdf|xacro|ya?ml)$" and one.get("pass_filenames", True) is True
+    assert one.get("pass_filenames", True) is True
     pkg = hooks["urdfcheck-package"]
     assert pkg["pass_filenames"] is False and pkg["entry"] == "urdfcheck lint"
     import re
 
-    for name in ("a.urdf", "urdf/b.urdf.xacro", "config/controllers.yaml"):
-        assert re.search(one["files"], name) and not re.search(one["exclude"], name)
+    # every file kind that changes a contract: models, parameters, cartographer's .lua, MoveIt's SRDF, launch files
+    for name in ("a.urdf", "urdf/b.urdf.xacro", "config/controllers.yaml", "config/carto.lua", "config/r.srdf",
+                 "launch/bringup.launch.py", "launch/bringup_launch.py", "launch/b.launch.xml",
+                 "launch/b.launch.yaml", "launch/b.launch", "config/moveit.srdf.xacro"):
+        assert re.search(one["files"], name) and not re.search(one["exclude"], name), name
+        assert re.search(pkg["files"], name), name
+    for name in ("setup.py", "README.md", "scripts/node.py", "meshes/m.stl"):
+        assert not re.search(one["files"], name), name
     for name in (".pre-commit-config.yaml", ".github/workflows/ci.yml", "sub/.gitlab-ci.yml"):
         assert re.search(one["exclude"], name)
     assert not re.search(one["files"], "a.urdf.bak")
@@ -150,3 +156,29 @@ def test_package_hook_lints_what_the_config_declares_and_what_it_does_not(env, c
     r = pre_commit(*run, cwd=configured, env=env)
     assert r.returncode == 1, r.stdout + r.stderr
     assert "urdf/arm.urdf:5  U002" in r.stdout and "bad.urdf:5  U002" in r.stdout
+
+
+CONTROLLERS_LAUNCH = """<launch>
+  <node pkg="controller_manager" exec="ros2_control_node" name="controller_manager">
+    <param from="$(find-pkg-share agv_description)/config/agv_controllers.yaml"/>
+  </node>
+  <node pkg="controller_manager" exec="spawner" name="s" args="diff_drive_controller"/>
+</launch>
+"""
+
+
+def test_a_commit_of_only_a_launch_file_is_checked(env, configured):
+    """Not "(no files to check) Skipped": the launch file's robots are linted (issue 38)."""
+    e = env["environ"]
+    pkg = configured / "agv_description"
+    shutil.copytree(REPO / "examples" / "agv", pkg, ignore=shutil.ignore_patterns("urdfcheck.yaml"))
+    git("add", "-A", cwd=configured, env=e)
+    subprocess.run(["git", "commit", "-qm", "agv", "--no-verify"], cwd=configured, env=e, check=True)
+    (pkg / "launch" / "controllers.launch.xml").write_text(CONTROLLERS_LAUNCH)  # starts no robot itself
+    launch = pkg / "launch" / "agv.launch.xml"
+    launch.write_text(launch.read_text().replace("</launch>", "  <!-- a comment -->\n</launch>"))
+    git("add", "agv_description/launch", cwd=configured, env=e)
+    r = pre_commit("run", "urdfcheck", cwd=configured, env=env)  # the staged files, as on a commit
+    assert "no files to check" not in r.stdout, r.stdout
+    assert r.returncode == 0 and "Passed" in r.stdout, r.stdout + r.stderr
+    git("reset", "-q", "--hard", "HEAD", cwd=configured, env=e)

@@ -88,7 +88,7 @@ def test_unloadable_model_and_variants():
 
 def test_escaping_helpers():
     assert md("a|b <img src=x> @team `x` [l](http://e) $x$") == (
-        "a\\|b &lt;img src=x&gt; @\u200bteam \\`x\\` \\[l\\](http://e) \\$x\\$")
+        "a\\|b &lt;img src=x&gt; @\u200bteam \\`x\\` \\[l\\](`http://e)` \\$x\\$")
     assert mermaid('a"b]-->c') == "a#34;b#93;#45;#45;#62;c"
     assert mermaid("base_link 1") == "base_link 1"
 

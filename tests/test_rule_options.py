@@ -26,7 +26,7 @@ def test_every_check_gets_the_catalogue_defaults():
     cat = catalogue()
     for code, info in cat.items():
         assert options_for((code,)) == info.options, code
-    assert options_for(("J007",)) == {"tolerance": 1e-6}
+    assert options_for(("J007",)) == {"tolerance": 1e-5}
     assert options_for(("C010",)) == {"tolerance": 0.001, "angle_tolerance": 0.001}
     assert options_for(("J007",), {"J007": {"tolerance": 0.5}}) == {"tolerance": 0.5}
 

@@ -183,9 +183,26 @@ def test_non_unit_axis_gives_the_unit_one(tmp_path):
     assert "length 2" in msg and "Write 0 0 1" in msg and "yourdfpy" in msg
 
 
-def test_four_digit_diagonal_axis_is_reported_by_default(tmp_path):
-    f = lint(tmp_path, robot(joint(body='<axis xyz="0 0.7071 0.7071"/>\n' + LIMIT)))
+def test_three_digit_diagonal_axis_is_reported_by_default(tmp_path):
+    f = lint(tmp_path, robot(joint(body='<axis xyz="0 0.707 0.707"/>\n' + LIMIT)))
     assert mine(f) == [("J007", "warning")], f
+    assert "length 0.999849, not 1" in first(f, "J007")["message"]
+
+
+@pytest.mark.parametrize("axis", ["0 0.7071 0.7071", "-0.0021817 0 0.99999762", "0 0 1.000003",
+                                  "0.57735 0.57735 0.57735", "0 -0.999997 0"])
+def test_exporter_rounding_is_not_a_defect(tmp_path, axis):
+    """Axes off unit length by 1e-6..1e-5, as CAD exporters and vendors write them: every consumer normalises."""
+    assert mine(lint(tmp_path, robot(joint(body=f'<axis xyz="{axis}"/>\n' + LIMIT)))) == []
+
+
+def test_the_message_shows_the_digits_that_differ(tmp_path):
+    xml = robot(joint(body='<axis xyz="0 0 1.000003"/>\n' + LIMIT))
+    msg = first(lint_with_config(tmp_path, xml, "rules:\n  J007: {tolerance: 1.0e-7}\n"), "J007")["message"]
+    assert "has length 1.000003, not 1" in msg and "axis 0 0 1.000003 " in msg, msg
+    xml = robot(joint(body='<axis xyz="-0.0021817 0 0.99999762"/>\n' + LIMIT))
+    msg = first(lint_with_config(tmp_path, xml, "rules:\n  J007: {tolerance: 1.0e-12}\n"), "J007")["message"]
+    assert "length 1, not 1" not in msg and "0.99999762" in msg, msg
 
 
 def test_default_axis_is_unit(tmp_path):

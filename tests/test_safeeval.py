@@ -204,7 +204,8 @@ ATTACKS = [
     ("python.top()", "call of"),
     ("(x := 1)", "assignment expression"),
     ("__builtins__", "name '__builtins__'"),
-    ("_hidden", "name '_hidden'"),
+    ("python._setitem('x', 1, False)", "attribute '_setitem'"),  # a private method, not a key
+    ("xacro._eval_literal", "attribute '_eval_literal'"),
     ("10**10**8", "exponent too large"),
     ("(-7)**10**9", "exponent too large"),
     ("'a'*10**9", "repetition"),

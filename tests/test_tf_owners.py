@@ -494,3 +494,86 @@ def test_ros1_controllers_loaded_with_subst_value(tmp_path, sep, want):
     assert [g[0] for g in got] == want, got
     if want:
         assert got[0][1:] == ("agv_controllers.yaml", 11)  # where the value is written, substituted
+
+
+# --- drivers that publish their own frames (issue 37) -------------------------------------------------------------
+OUSTER = """        Node(package="ouster_ros", executable="os_driver", name="os_driver",
+             parameters=[os.path.join(share, "config", "ouster.yaml")]),
+"""
+OUSTER_YAML = """os_driver:
+  ros__parameters:
+    sensor_hostname: os-122201000999.local
+    lidar_mode: 1024x10
+    sensor_frame: os_sensor
+    lidar_frame: os_lidar
+    imu_frame: os_imu
+"""
+F1TENTH = """        Node(package="f1tenth_simulator", executable="simulator", name="simulator",
+             parameters=[os.path.join(share, "config", "sim.yaml")]),
+"""
+F1TENTH_YAML = """simulator:
+  ros__parameters:
+    map_frame: map
+    base_frame: base_link
+    scan_frame: laser_frame
+    scan_distance_to_base_link: 0.275
+    broadcast_transform: true
+"""
+OS_JOINT = ('  <link name="os_sensor"/>\n  <joint name="os_joint" type="fixed"><parent link="base_link"/>'
+            '<child link="os_sensor"/></joint>\n')
+
+
+def test_a_lidar_driver_publishing_its_own_imu_frame_is_no_c020(tmp_path):
+    """ouster_ros broadcasts os_sensor -> os_lidar and os_sensor -> os_imu itself: os_imu is in the tree (not a
+    misspelt imu_link)."""
+    root = package(tmp_path, OUSTER, {"config/ouster.yaml": OUSTER_YAML}, extra=OS_JOINT)
+    assert [f for f in tf(root) if f[0] == "C020"] == []
+
+
+def test_a_simulator_publishing_its_scan_frame_is_no_c020(tmp_path):
+    """f1tenth_simulator broadcasts base_frame -> scan_frame on every scan (and map -> base_frame)."""
+    root = package(tmp_path, F1TENTH, {"config/sim.yaml": F1TENTH_YAML})
+    assert [f for f in tf(root) if f[0] == "C020"] == []
+
+
+ZED = """        Node(package="zed_wrapper", executable="zed_wrapper", name="zed_node",
+             parameters=[os.path.join(share, "config", "zed.yaml")]),
+"""
+ZED_YAML = """/**:
+  ros__parameters:
+    general:
+      camera_name: zed
+    pos_tracking:
+      map_frame: 'map'
+      odometry_frame: 'odom'
+"""
+ZED_LINK = ('  <link name="zed_camera_link"/>\n')
+
+
+def test_a_camera_driver_publishing_tf_by_default_is_no_c020(tmp_path):
+    """zed_wrapper publishes odom -> zed_camera_link and map -> odom (pos_tracking.publish_tf and publish_map_tf
+    default true): its map and odom frames are its own, not frames missing from the tree."""
+    root = package(tmp_path, ZED, {"config/zed.yaml": ZED_YAML}, extra=ZED_LINK)
+    found = tf(root)
+    assert [f for f in found if f[0] == "C020"] == [], found
+
+
+MICROSTRAIN = """        Node(package="microstrain_inertial_driver", executable="microstrain_inertial_driver_node",
+             name="microstrain_inertial_driver", parameters=[os.path.join(share, "config", "gq7.yml")]),
+"""
+MICROSTRAIN_YAML = """microstrain_inertial_driver:
+  ros__parameters:
+    use_enu_frame: True
+    frame_id: 'camera_link'
+    gnss1_frame_id: "gq7_gnss_1_antenna_link"
+    gnss2_frame_id: "gq7_gnss_2_antenna_link"
+    odometer_frame_id: "gq7_odometer_link"
+    publish_mount_to_frame_id_transform: False
+"""
+
+
+def test_an_ins_driver_publishing_its_antenna_frames_is_no_c020(tmp_path):
+    """microstrain_inertial_driver broadcasts frame_id -> each GNSS antenna frame and the odometer frame itself."""
+    root = package(tmp_path, MICROSTRAIN, {"config/gq7.yml": MICROSTRAIN_YAML})
+    found = tf(root)
+    assert [f for f in found if f[0] == "C020"] == [], found

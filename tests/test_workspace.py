@@ -271,8 +271,6 @@ def test_each_missing_package_is_one_finding_with_every_place(tmp_path, monkeypa
 
 
 def test_srdf_files_are_never_models(tmp_path):
-    from urdfcheck.request.request import UsageError
-
     d = pkg(tmp_path / "moveit_config", "moveit_config")
     write(d / "config" / "arm.srdf", '<robot name="a"><group name="arm"><chain base_link="a" tip_link="b"/></group>'
                                      '</robot>')
@@ -285,12 +283,13 @@ def test_srdf_files_are_never_models(tmp_path):
           '<group name="arm"><joint name="j"/></group></robot>')
     write(d / "urdf" / "robot.urdf", '<robot name="r"><link name="base_link"/></robot>')
     assert [os.path.basename(m) for m in discover(d).models] == ["robot.urdf"]
-    import pytest
-
-    got = _plan([d / "config" / "arm.srdf.xacro"])  # named (the per-file hook passes every *.xacro): skipped
-    assert list(got) == [] and "SRDF" in got.infos[0]
-    with pytest.raises(UsageError):
-        _plan([d / "config" / "arm.srdf"])
+    # named (the per-file hook passes SRDF files): never a model; it stands for its package's robots (those that
+    # may be robots are expanded to tell: probes)
+    whole = sorted(os.path.basename(str(t.path)) for t in _plan([d]))
+    assert "robot.urdf" in whole and "arm.srdf" not in whole and "arm.srdf.xacro" not in whole
+    for name in ("arm.srdf.xacro", "arm.srdf"):
+        got = _plan([d / "config" / name])
+        assert sorted(os.path.basename(str(t.path)) for t in got) == whole, name
 
 
 def test_several_models_agrees_with_discover_on_every_corpus_package(corpus):

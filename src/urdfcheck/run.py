@@ -10,6 +10,7 @@ and paths shown relative to the request's root.
 """
 from __future__ import annotations
 
+import contextlib
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -63,9 +64,11 @@ class Result(Record):
         return [f for fs in self.by_target for f in fs]
 
     def unchecked(self) -> list[Target]:
-        """The targets whose model did not load: not checked, whatever the selection hid (issue 19)."""
+        """The targets whose model did not load: not checked, whatever the selection hid (issue 19). A probe
+        that may be a fragment of another file (its evidence is a guess, core.evidence) is no robot left
+        unchecked: its load findings say why at info, and a package lint never fails on a fragment alone."""
         return [t for t in self.targets if (str(t.path), t.variant) in self.models
-                and self.models[(str(t.path), t.variant)] is None and not t.library]
+                and self.models[(str(t.path), t.variant)] is None and not t.library and not _fragment(t)]
 
     def not_passed(self) -> str | None:
         """Why a run without findings still is no pass (a report says it instead of "All checks passed"):
@@ -103,13 +106,18 @@ def run(request: LintRequest, *, retain: list | None = None, targets: list[Targe
     Paths are shown relative to the request's root from the start (`core.paths.showing`): nothing is
     rewritten afterwards. The run's budget (load.budget) covers the planning too: launch files are read there.
     Raises UsageError when there is nothing to lint or an input is unusable."""
+    from urdfcheck.core import door
     from urdfcheck.core.findings import reset_hints
     from urdfcheck.core.paths import showing
     from urdfcheck.load.budget import run_budget
     from urdfcheck.load.discover import remembering
 
     reset_hints()
-    with showing(request.root), run_budget(request.budget), remembering():
+    typed = (*request.paths, request.config, request.baseline, *request.bags)
+    # the runner lowered the guard (`--trusted`, or `--config FILE --trust-config`: its paths are the runner's)
+    trusted = bool(request.trusted) or bool(request.config and request.trust_config)
+    with door.guarding(typed), (door.unconfined() if trusted else contextlib.nullcontext()), \
+            showing(request.root), run_budget(request.budget), remembering():
         try:
             return _run(request, retain, targets)
         except MemoryError:
@@ -169,7 +177,39 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
             chosen[str(t.path)] = t
     for t in chosen.values():
         t.bags = tuple(t.bags) + tuple(b for b in bags if b not in t.bags)
+        t.runner_bags = tuple(bags)  # typed on the command line (core.door: runner=True)
         t.joint_states = topic
+
+
+def _fragment(t: Target) -> bool:
+    """A probe whose load failed only on symbols the files that include it provide (`_load_findings`)."""
+    return bool(t.probe) and getattr(t, "fragment", False)
+
+
+def _load_findings(t: Target, exp) -> list[Finding]:
+    """The loader's findings of `t`, through the evidence rule (rules.engine.on_evidence): a probe that another
+    file may include and that fails only on a symbol (macro, property, argument) that file provides is a
+    fragment of it: those findings are infos, and the probe is no model left unchecked. Any other finding of it
+    keeps its severity (a decoy include never hides a broken robot)."""
+    from urdfcheck.rules import engine
+
+    found = engine.on_evidence(exp.findings, t.evidence)
+    if not (t.probe and t.includers and exp.findings):
+        return found
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.plan.robots import includer_texts, includers_of, provided
+
+    failing = [f for f in exp.findings if f.code == "X010"]
+    if not failing:
+        return found
+    includers = [i for i in t.includers if i != "?"] or includers_of(str(t.path))
+    texts = includer_texts(includers, lambda n: t.packages.get(n))
+    if not texts or not all(provided(f.message, texts) for f in failing):
+        return found
+    t.fragment = True
+    step = Step("model", shown(str(t.path)), "probe", f"lint {shown(includers[0])}, which includes it, or name this "
+                "file under models: in urdfcheck.yaml if it is a whole robot")
+    return [engine.on_evidence([f], (step,) if f.code == "X010" else t.evidence)[0] for f in exp.findings]
 
 
 def _not_understood(result: Result, deployments, request: LintRequest) -> None:
@@ -197,6 +237,7 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
         t = Target(Path(path), {}, "", None, dict(like.packages) if like is not None else {},
                    like.settings if like is not None else None)
         t.probe = True
+        t.includers = ("?",)  # found when it fails (plan.robots.includers_of)
         extra.append(t)
     with progress.after(len(result.targets)):
         more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
@@ -242,7 +283,7 @@ def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_
     return _check(t, pending.result(), selection, config)
 
 
-def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding]:
+def _bag_findings(model, t: Target, selection: engine.Selection, contracts=None) -> list[Finding]:
     """The recordings of this target against its model (urdfcheck.bag), with the B rules' options."""
     from urdfcheck.bag import CODES, BagOptions, check_recording
 
@@ -255,10 +296,12 @@ def _bag_findings(model, t: Target, selection: engine.Selection) -> list[Finding
         return options_for((code,), selection.options)["tolerance"]
 
     options = BagOptions(joint_topic=t.joint_states, tolerance=tolerance("B005"),
-                         replay_tolerance=tolerance("B013"), static_tolerance=tolerance("B011"))
+                         replay_tolerance=tolerance("B013"), static_tolerance=tolerance("B011"),
+                         frame_prefix=getattr(contracts, "rsp_prefix", "") or "")  # the config's or deployment's
     out = []
+    runner = getattr(t, "runner_bags", ())
     for bag in t.bags:
-        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag)))
+        out.extend(check_recording(model, bag, options, progress=_bag_progress(bag), runner=bag in runner))
     return out
 
 
@@ -288,7 +331,7 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
     from urdfcheck.rules import engine
 
     model = loader.build_model(exp)  # first: a document read as it is built may add its load findings
-    findings = list(exp.findings)
+    findings = _load_findings(t, exp)
     if model is not None:
         contracts = t.consumers(model, exp, config)  # planned, or found beside the model: once per target
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
@@ -297,7 +340,7 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
                              evidence=t.evidence)
         findings.extend(engine.run_checks(model, ctx))
         if t.bags:
-            findings.extend(_bag_findings(model, t, selection))
+            findings.extend(_bag_findings(model, t, selection, contracts))
         if yaml is not None:
             yaml.read(contracts, selection)
     return engine.finish(findings, selection, exp.suppressions, model=exp.entry, variant=t.variant,
@@ -389,7 +432,8 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                     t.library = True
                     sel = t.settings.selection if t.settings is not None else selection
                     models[(str(t.path), t.variant)] = None
-                    by_target[i].extend(engine.finish(list(exp.findings), sel, exp.suppressions, model=exp.entry))
+                    by_target[i].extend(engine.finish(_load_findings(t, exp), sel, exp.suppressions,
+                                                      model=exp.entry))
                     continue
                 try:
                     if t.settings is not None:

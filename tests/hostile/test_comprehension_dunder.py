@@ -20,7 +20,7 @@ def test_dunder_names_anywhere_are_refused(arena):
         "[[y.__dict__ for y in [x]] for x in [0]]",        # nested comprehension
         "(x.__class__ for x in [0])",                      # generator expression
         "__builtins__",                                    # bare name
-        "_private",                                        # any leading underscore
+        "python._setitem",                                 # a private method (one '_'), not a key
     ]
     body = "\n".join(f'  <link name="l{i}_${{{e}}}"/>' for i, e in enumerate(exprs))
     entry = arena.write("urdf/many.urdf.xacro", f'<robot name="v" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'

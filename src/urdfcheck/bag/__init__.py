@@ -5,7 +5,8 @@
 
 A stage of its own above the publisher (it replays the recording's joint states through the built-in
 robot_state_publisher): `urdfcheck bag` and a model's `bags:` in urdfcheck.yaml both call `check_recording`.
-rosbags is imported only when a binary recording is opened.
+Recordings are read by urdfcheck's own readers (bag.containers, bag.decode) through core.door; lz4 and zstd
+are imported only when a chunk needs them.
 """
 from __future__ import annotations
 

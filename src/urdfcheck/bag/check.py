@@ -38,25 +38,39 @@ class BagOptions(FrozenRecord):
                  "profile": "ros2", "frame_prefix": ""}
 
 
-def check_recording(model, path: str, options: BagOptions | None = None, progress=None, text: bool | None = None
-                    ) -> list[Finding]:
+def check_recording(model, path: str, options: BagOptions | None = None, progress=None, text: bool | None = None,
+                    runner: bool = False) -> list[Finding]:
     """Findings about the recording at `path` (bag, bag folder, .db3, .mcap, or a YAML/JSON message list),
     located in the recording; `related` points at the model's source lines. Never raises for a bad recording:
     that is a B014 finding. `progress(n)` is called every 10,000 messages. `text`: read it as a YAML/JSON list
-    whatever its name (None: by its suffix)."""
+    whatever its name (None: by its suffix). `runner`: the person running the tool named this path (core.door);
+every file inside a recording folder is read as the checkout's, whoever named the folder."""
     opts = options or BagOptions()
     from urdfcheck.core import observe
 
-    observe.taint("a recording was read (rosbags and sqlite reads are not observed)")
+    observe.taint("a recording was read (its sqlite reads are not observed)")
     states = JointStateChecks(model, tolerance=opts.tolerance)
-    tf = TfChecks(model, profile=opts.profile, frame_prefix=opts.frame_prefix, tolerance=opts.replay_tolerance,
-                  static_tolerance=opts.static_tolerance)
+    tf = None  # made at the first message: by then the recording has said whether it is ROS 1 or 2
     issues: list[Issue] = []
     others: list[str] = []
+    facts: dict = {}
     n = 0
+    budget = _budget()
+    cut = None
+
+    def tf_checks() -> TfChecks:
+        return TfChecks(model, profile=opts.profile, frame_prefix=opts.frame_prefix,
+                        tolerance=opts.replay_tolerance, static_tolerance=opts.static_tolerance,
+                        ros=facts.get("ros"))
+
     try:
-        for m in source.messages(path, opts.joint_topic, others=others, text=text):
+        for m in source.messages(path, opts.joint_topic, others=others, text=text, facts=facts, runner=runner):
             n += 1
+            if budget is not None and not n % 2048 and budget.remaining() <= 0:
+                cut = f"the run's time budget ({budget.seconds:g} s) ran out after {n:,} messages"
+                break
+            if tf is None:
+                tf = tf_checks()
             if m.kind == "joint_state":
                 states.add(m)
                 tf.joint_state(m)
@@ -68,21 +82,56 @@ def check_recording(model, path: str, options: BagOptions | None = None, progres
         issues.append(Issue("B014", f"the recording cannot be read: {e}"))
     except RecursionError:
         issues.append(Issue("B014", "the recording cannot be read: nested too deeply"))
-    issues.extend(states.issues())
-    issues.extend(tf.issues())
+    except MemoryError:
+        issues.append(Issue("B014", "the recording cannot be read: the run's memory budget was used up"))
+    except ArithmeticError as e:  # a value no arithmetic survives (the readers pass floats through as they are)
+        issues.append(Issue("B014", f"the recording cannot be checked after {n:,} messages: a value out of "
+                            f"range ({type(e).__name__})"))
+    if cut is not None:
+        issues.append(Issue("B014", f"the recording was read only in part: {cut}; what follows rests on "
+                            "the part read"))
+    if tf is None:
+        tf = tf_checks()
+    states.ros = facts.get("ros")
+    tf.finish()
+
+    def on_tf(joint: str):
+        for key, seg in tf.movable.items():
+            if seg.name == joint and tf.on_tf.get(key):
+                return key[0], key[1], tf.on_tf[key]
+        return None
+
+    issues.extend(states.issues(on_tf=on_tf))
+    named = {j for j in states.seen if j in states.movable}
+    issues.extend(tf.issues(named=named, js_count=states.count))
+    topic = opts.joint_topic or "/joint_states"
+    hint = (f" (JointState topics in it: {', '.join(others)}; pass --joint-states TOPIC)" if others else "")
     if not n and not issues:
-        topic = opts.joint_topic or "/joint_states"
         issues.append(Issue("B015", f"the recording has no JointState messages on {topic} and no /tf or "
-                            "/tf_static messages: nothing was checked"
-                            + (f" (JointState topics in it: {', '.join(others)}; pass --joint-states TOPIC)"
-                               if others else "")))
+                            "/tf_static messages: nothing was checked" + hint, severity="warning"))
+    elif n and not states.count and states.movable and not any(i.code == "B014" for i in issues):
+        # /tf or /tf_static alone: no movable joint of the model was checked (a wrong topic passes silently)
+        issues.append(Issue("B015", f"the recording has no JointState messages on {topic}: none of the model's "
+                            f"{len(states.movable)} movable joints was checked (only "
+                            f"{tf.compared()} transform{'s' if tf.compared() != 1 else ''} of its fixed joints "
+                            "were compared)" + hint, severity="warning"))
     if others and states.count:
         for i in issues:
             if i.code == "B002":  # an absence claim about a topic we did not read all of: say what we did not see
                 i.severity = "info"
                 i.message += (f" (the recording also has {', '.join(others)}, not read: a joint_state_publisher "
                               "may merge them; pass --joint-states TOPIC to check one of them)")
+    if cut is not None:
+        for i in issues:
+            if i.code in ("B002", "B015"):  # absence claims about a recording read in part
+                i.severity = "info"
     return [_finding(i, path) for i in issues]
+
+
+def _budget():
+    from urdfcheck.load.budget import current
+
+    return current()
 
 
 def _finding(i: Issue, path: str) -> Finding:

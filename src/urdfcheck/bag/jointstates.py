@@ -17,6 +17,7 @@ from urdfcheck.bag.source import NS, Message
 DEG = 180.0 / math.pi
 LIMITED = ("revolute", "prismatic")
 MOVABLE = ("revolute", "continuous", "prismatic")
+MAX_NAMES = 10_000  # distinct names remembered (seen, unknown): memory does not grow with a hostile recording
 
 
 class Issue:
@@ -60,11 +61,18 @@ class JointStateChecks:
         self.prev_pos: dict[str, tuple[int, float]] = {}
         self.stamps = {"zero": [0, None], "repeated": [0, None], "backwards": [0, None]}
         self.worst_back = 0
-        self.last_stamp: int | None = None
+        # per publisher and joint, as robot_state_publisher throttles per joint: several drivers on one topic,
+        # each with its own joints and clock, are not a stamp going backwards
+        self.last_stamp: dict[tuple, int] = {}
+        self.ros: int | None = None  # 1 or 2 when the recording says
         self.last_time: int | None = None
         self.periods: list[int] = []  # bounded sample of receive periods for the median
         self.median_period = 0.0  # of `periods`, recomputed as the sample grows (sorting per message is slow)
         self.gaps: list = [0, None, 0, None]  # count, first message, largest gap ns, its message
+        self._plan_names = None  # the names of the last message read name by name, and its known joints
+        self._plan: list = []
+        self._ratios_full = False
+        self._group: dict[str, tuple] = {}  # publisher -> (names, stamp) of its last message
 
     # --- one message ----------------------------------------------------------------------------------------
     def add(self, m: Message) -> None:
@@ -78,19 +86,43 @@ class JointStateChecks:
             if extra and len(extra) != len(names):
                 self._first(self.length, 2, m)
                 break
-        joints = self.model.joints
-        seen, ranges = self.seen, self.ranges
         vel = js.velocity if len(js.velocity) == len(names) else None
         stamp = js.stamp_ns
+        if names is self._plan_names and (vel is None or self._ratios_full):
+            self._known(m, pos, self._plan)  # the same names as before (the decoder hands the same tuple)
+        else:
+            self._each(m, names, pos, vel, stamp)
+        self._stamp(m, stamp, names)
+        self._timing(m)
+
+    def _known(self, m: Message, pos, plan) -> None:
+        """Ranges and non-finite values of the known joints, by their index in the message."""
+        for k, name, r in plan:
+            q = pos[k]
+            if q - q != 0.0:  # NaN or infinite (faster than math.isfinite on the hot path)
+                rec = self.nonfinite.setdefault(name, [0, m])
+                rec[0] += 1
+                continue
+            if q < r.lo:
+                r.lo, r.lo_msg = q, m
+            if q > r.hi:
+                r.hi, r.hi_msg = q, m
+
+    def _each(self, m: Message, names, pos, vel, stamp) -> None:
+        joints = self.model.joints
+        seen, ranges = self.seen, self.ranges
+        plan = []
         for k, name in enumerate(names):
-            if name not in seen:
+            if name not in seen and len(seen) < MAX_NAMES:  # (a hostile recording names millions)
                 seen.add(name)
             r = ranges.get(name)
             if r is None:
                 if name not in joints:
-                    self.unknown.setdefault(name, m)
+                    if len(self.unknown) < MAX_NAMES:
+                        self.unknown.setdefault(name, m)
                     continue
                 r = ranges[name] = _Range()
+            plan.append((k, name, r))
             q = pos[k]
             if q - q != 0.0:  # NaN or infinite (faster than math.isfinite on the hot path)
                 rec = self.nonfinite.setdefault(name, [0, m])
@@ -103,8 +135,8 @@ class JointStateChecks:
             if vel is not None:
                 self._unit_sample(name, q, vel[k], stamp, r)
                 self.prev_pos[name] = (stamp, q)
-        self._stamp(m, js.stamp_ns)
-        self._timing(m)
+        self._plan_names, self._plan = names, plan
+        self._ratios_full = all(len(r.ratios) >= self.MAX_RATIOS for _k, _n, r in plan)
 
     def _first(self, rec: list, i: int, m: Message) -> None:
         rec[i] += 1
@@ -122,17 +154,45 @@ class JointStateChecks:
         if rate > 0:
             r.ratios.append(rate / abs(v))
 
-    def _stamp(self, m: Message, st: int) -> None:
+    def _stamp(self, m: Message, st: int, names) -> None:
         if st == 0:
             self._first(self.stamps["zero"], 0, m)
-        elif self.last_stamp is not None:
-            if st == self.last_stamp:
-                self._first(self.stamps["repeated"], 0, m)
-            elif st < self.last_stamp:
+            return
+        caller = m.callerid
+        group = self._group.get(caller)
+        if group is not None and group[0] is names:  # the same joints as this publisher's last message
+            prev = group[1]
+            self._group[caller] = (names, st)
+            if st < prev:
                 self._first(self.stamps["backwards"], 0, m)
-                self.worst_back = max(self.worst_back, self.last_stamp - st)
-        if st:
-            self.last_stamp = st
+                self.worst_back = max(self.worst_back, prev - st)
+            elif st == prev:
+                self._first(self.stamps["repeated"], 0, m)
+            return
+        last = self.last_stamp
+        if group is not None:  # its last message's stamp, joint by joint, before these names are compared
+            for name in group[0]:
+                if name in self.model.joints:
+                    last[(caller, name)] = group[1]
+        back = repeated = 0
+        joints = self.model.joints
+        for name in names:
+            if name not in joints:
+                continue
+            key = (caller, name)
+            prev = last.get(key)
+            if prev is not None:
+                if st == prev:
+                    repeated = 1
+                elif st < prev:
+                    back = max(back, prev - st)
+            last[key] = st
+        self._group[caller] = (names, st)
+        if back:
+            self._first(self.stamps["backwards"], 0, m)
+            self.worst_back = max(self.worst_back, back)
+        elif repeated:
+            self._first(self.stamps["repeated"], 0, m)
 
     def _timing(self, m: Message) -> None:
         t = m.time_ns
@@ -151,20 +211,33 @@ class JointStateChecks:
         self.last_time = t
 
     # --- the verdict ---------------------------------------------------------------------------------------
-    def issues(self) -> list[Issue]:
+    def issues(self, on_tf=None) -> list[Issue]:
+        """`on_tf(joint)`: (parent, child, times) when the recorded /tf carries that joint's edge, else None."""
         out: list[Issue] = []
         if not self.count:
             return out
         joints = self.model.joints
         if self.unknown:
             names = sorted(self.unknown)
+            unseen = [n for n in sorted(self.movable) if n not in self.seen]  # never a fixed joint: not a state
             first = min(self.unknown.values(), key=lambda m: (m.time_ns, m.index))
             one = len(names) == 1
             out.append(Issue("B001", f"{_names(names)} in the joint states {'is' if one else 'are'} not "
                              f"{'a joint' if one else 'joints'} of the model, first in {first.where()} "
                              f"(robot_state_publisher ignores {'it' if one else 'them'}; renamed in firmware or a "
-                             "driver's config?)" + _close(names, joints), first))
+                             "driver's config?)" + _close(names, unseen), first))
         never = sorted(n for n in self.movable - self.seen if n not in self.mimic)
+        carried = [(n, on_tf(n)) for n in never] if on_tf is not None else []
+        carried = [(n, c) for n, c in carried if c]
+        if carried:
+            never = [n for n in never if n not in dict(carried)]
+            unknown = sorted(self.unknown)
+            for n, (parent, child, times) in carried:
+                out.append(Issue("B002", f"movable joint {n!r} is never named in {self.count} JointState messages, "
+                                 f"yet the recorded /tf carries its edge {parent} -> {child} {times} time"
+                                 f"{'s' if times != 1 else ''}: the robot runs a URDF where this joint has another "
+                                 "name" + (f" (the joint states name {_names(unknown)}, which this model does not "
+                                           "have)" if unknown else ""), None, (joints[n].loc,)))
         if never:
             out.append(Issue("B002", f"movable joint{'s' if len(never) > 1 else ''} {_names(never)} "
                              f"{'is' if len(never) == 1 else 'are'} never named in {self.count} JointState "
@@ -241,15 +314,19 @@ class JointStateChecks:
         out = []
         n, m = self.stamps["zero"]
         if n:
+            what = ("robot_state_publisher (ROS 1) throttles by stamp: a stamp of 0 is never a publish interval "
+                    "after the last, so their transforms are never published" if self.ros == 1 else
+                    "robot_state_publisher stamps their transforms 0 and throttles them by that stamp, "
+                    "so they are published once and then never again")
             out.append(Issue("B008", f"{n} JointState message{'s' if n > 1 else ''} stamped 0, first {m.where()}: "
-                             "robot_state_publisher stamps their transforms 0 and throttles them by that stamp, "
-                             "so they are published once and then never again", m))
+                             + what, m))
         n, m = self.stamps["backwards"]
         if n:
-            out.append(Issue("B008", f"the JointState stamp goes backwards {n} time{'s' if n > 1 else ''} (by up to "
-                             f"{self.worst_back / NS:.3f} s), first {m.where()}: robot_state_publisher throttles by "
-                             "stamp and publishes nothing for those joints until the stamps catch up (a clock "
-                             "jump, or two publishers on one topic)", m))
+            out.append(Issue("B008", f"the JointState stamp of the same joints from the same publisher goes "
+                             f"backwards {n} time{'s' if n > 1 else ''} (by up to {self.worst_back / NS:.3f} s), "
+                             f"first {m.where()}: robot_state_publisher throttles by stamp and publishes nothing "
+                             "for those joints until the stamps catch up (a clock jump, or two publishers of the "
+                             "same joints)", m))
         n, m = self.stamps["repeated"]
         if n:
             out.append(Issue("B008", f"{n} JointState message{'s' if n > 1 else ''} repeat the previous stamp, first "

@@ -1,6 +1,7 @@
 """Recordings, streamed one message at a time (memory does not grow with the recording's length).
 
-Binary recordings go through rosbags (ROS 1 `.bag`, a ROS 2 bag folder, a single `.db3` or `.mcap` file);
+Binary recordings are read by bag.containers through core.door (ROS 1 `.bag`, a ROS 2 bag folder or its
+metadata.yaml, a single `.db3` or `.mcap` file), only JointState and TF messages decoded (bag.decode);
 a text recording is a YAML or JSON list of messages, the form `urdfcheck publish --joint-states` reads, each
 with an optional `topic` (default /joint_states): JointState fields (`name`, `position`, `velocity`,
 `effort`, `stamp`), or `transforms: [{parent, child, translation, rotation, stamp}]` for /tf and /tf_static.
@@ -11,7 +12,6 @@ import math
 import os
 from collections.abc import Iterator
 
-from urdfcheck.core import safeio
 from urdfcheck.core.records import TupleRecord
 
 NS = 1_000_000_000
@@ -48,9 +48,10 @@ class Message(TupleRecord):
     kind: str  # "joint_state", "tf" or "tf_static"
     data: object  # JointStateMsg, or a tuple of Edge
     callerid: str = ""  # ROS 1 only: the publishing node
+    start: int = 0  # when the recording's first message read was recorded: locations are offsets from it
 
     def where(self) -> str:
-        return f"{self.topic} message {self.index + 1} (t = {self.time_ns / NS:.3f} s)"
+        return f"{self.topic} message {self.index + 1} (at {(self.time_ns - self.start) / NS:+.3f} s)"
 
 
 def is_text(path: str) -> bool:
@@ -58,91 +59,258 @@ def is_text(path: str) -> bool:
 
 
 def messages(path: str, joint_topic: str | None = None, tf_topics=("/tf", "/tf_static"), others=None,
-             text: bool | None = None) -> Iterator[Message]:
+             text: bool | None = None, facts: dict | None = None, runner: bool = False) -> Iterator[Message]:
     """Every JointState message of `joint_topic` (default: /joint_states, else the only JointState topic) and
     every TF message of `tf_topics`, in recording order. Raises RecordingError. `others` (a list) receives
     the JointState topics that were not read."""
     others = [] if others is None else others
-    if not os.path.exists(path):
+    facts = {} if facts is None else facts
+    if not os.path.lexists(path):
         raise RecordingError(f"no such file or folder: {path}")
-    if is_text(path) if text is None else text:
-        yield from _text_messages(path, joint_topic or "/joint_states", tf_topics, others)
+    if os.path.basename(path) != "metadata.yaml" and (is_text(path) if text is None else text):
+        yield from _text_messages(path, joint_topic or "/joint_states", tf_topics, others, runner)
     else:
-        yield from _bag_messages(path, joint_topic, tf_topics, others)
+        yield from _bag_messages(path, joint_topic, tf_topics, others, facts, runner)
 
 
-# --- binary recordings (rosbags) ----------------------------------------------------------------------------
-def _bag_messages(path, joint_topic, tf_topics, others) -> Iterator[Message]:
-    try:
-        from rosbags.highlevel import AnyReader
-        from rosbags.typesys import Stores, get_typestore
-    except ImportError:
-        raise RecordingError("reading bags needs rosbags: pip install 'urdfcheck[bag]'") from None
-    from pathlib import Path
+# --- binary recordings -------------------------------------------------------------------------------------
+def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterator[Message]:
+    from urdfcheck.bag import containers, decode
+    from urdfcheck.bag.inflate import InflateError, Inflater
 
-    if not os.path.isdir(path):
-        try:
-            safeio.check_regular(path)  # a FIFO or device would block the reader
-        except OSError as e:
-            raise RecordingError(f"cannot read the recording: {e}") from None
     try:
-        reader = AnyReader([Path(path)], default_typestore=get_typestore(Stores.ROS2_HUMBLE))
-        reader.open()
-    except Exception as e:  # noqa: BLE001 - rosbags raises many types for a broken file; all mean the same
-        raise RecordingError(f"not a readable ROS bag: {_reason(e)}") from None
-    try:
-        conns = list(reader.connections)
-        every = [c for c in conns if c.msgtype == JOINT_STATE]
-        states = every
-        if joint_topic is not None:
-            states = [c for c in every if c.topic == joint_topic]
-        elif len({c.topic for c in every}) > 1:
-            states = [c for c in every if c.topic == "/joint_states"]
-        others.extend(sorted({c.topic for c in every} - {c.topic for c in states}))
-        tfs = [c for c in conns if c.msgtype == TF_MESSAGE and c.topic in tf_topics]
-        wanted = states + tfs
-        counters: dict[str, int] = {}
-        if not wanted:
-            return
-        it = reader.messages(connections=wanted)
-        while True:
-            try:
-                conn, t, raw = next(it)
-                msg = reader.deserialize(raw, conn.msgtype)
-            except StopIteration:
+        parts = _parts(path, runner, facts)
+        topics: dict[str, str] = {}
+        for part in parts:
+            got = part.topics()
+            if got is None:  # not indexed: every JointState topic is read, the choice made as they come
+                topics = None
                 break
-            except Exception as e:  # noqa: BLE001 - a truncated chunk or undecodable message
-                raise RecordingError(f"the bag is truncated or corrupt after {sum(counters.values())} messages: "
-                                     f"{_reason(e)}") from None
-            i = counters.get(conn.topic, 0)
-            counters[conn.topic] = i + 1
-            caller = getattr(conn.ext, "callerid", None) or ""
-            if conn.msgtype == JOINT_STATE:
-                st = msg.header.stamp
-                data = JointStateMsg(tuple(msg.name), _list(msg.position), _list(msg.velocity),
-                                     _list(msg.effort), int(st.sec) * NS + int(st.nanosec))
-                yield Message(conn.topic, i, int(t), "joint_state", data, caller)
-            else:
-                edges = tuple(_edge_from_msg(ts) for ts in msg.transforms)
-                kind = "tf_static" if conn.topic.endswith("tf_static") else "tf"
-                yield Message(conn.topic, i, int(t), kind, edges, caller)
-    finally:
-        try:
-            reader.close()
-        except Exception:  # noqa: BLE001,S110 - closing a broken bag must not hide the finding
+            topics.update(got)
+    except (containers.ContainerError, OSError, ValueError) as e:
+        raise RecordingError(_why(e)) from None
+    chosen = _choose(topics, joint_topic, others) if topics is not None else None
+
+    def want(topic: str, msgtype: str) -> bool:
+        kind = decode.kind_of(msgtype)
+        if kind == "tf":
+            return topic in tf_topics
+        if kind != "joint_state":
+            return False
+        if joint_topic is not None:
+            return topic == joint_topic
+        return chosen is None or topic in chosen
+
+    inflater = Inflater()
+    counters: dict[str, int] = {}
+    late: set = set()
+    n = start = 0
+    try:
+        for part in parts:
+            for topic, msgtype, t, payload, caller, cdr in part.messages(want, inflater):
+                kind = decode.kind_of(msgtype)
+                if kind == "joint_state" and chosen is None and joint_topic is None:
+                    late.add(topic)  # not indexed: the first JointState topic, or /joint_states once seen
+                    if topic != "/joint_states" and ("/joint_states" in late or len(late) > 1):
+                        continue
+                if payload[:4] == containers.ZSTD_MAGIC:  # rosbag2 "message" compression
+                    payload = inflater.inflate("zstd", bytes(payload), None, "a compressed message")
+                i = counters.get(topic, 0)
+                counters[topic] = i + 1
+                if not n:
+                    start = facts.get("start", t)
+                n += 1
+                if kind == "joint_state":
+                    st, names, pos, vel, eff = decode.joint_state(payload, cdr)
+                    yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
+                else:
+                    edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
+                    yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
+                                  start)
+    except (containers.ContainerError, decode.DecodeError, InflateError, OSError) as e:
+        raise RecordingError(f"the recording is truncated or corrupt after {n} messages: {_why(e)}") from None
+    if chosen is None and joint_topic is None and len(late) > 1:
+        keep = "/joint_states" if "/joint_states" in late else min(late)
+        others.extend(sorted(late - {keep}))
+
+
+def _why(e: Exception) -> str:
+    from urdfcheck.core import door
+
+    if isinstance(e, door.Refused):
+        return e.why
+    return _reason(e)
+
+
+def _choose(topics: dict, joint_topic, others) -> set:
+    """The JointState topics read: the one asked for; else /joint_states, or the recording's only one."""
+    from urdfcheck.bag import decode
+
+    every = {t for t, ty in topics.items() if decode.kind_of(ty) == "joint_state"}
+    if joint_topic is not None:
+        states = {joint_topic} & every
+    elif len(every) > 1:
+        states = {"/joint_states"} & every
+    else:
+        states = every
+    others.extend(sorted(every - states))
+    return states
+
+
+class _Part:
+    """One storage file of a recording: its container and how its bytes come (plain, or file-compressed)."""
+
+    def __init__(self, path: str, fmt: str, runner: bool, compressed: str = ""):
+        self.path, self.fmt, self.runner, self.compressed = path, fmt, runner, compressed
+
+    def topics(self):
+        from urdfcheck.bag import containers
+
+        if self.compressed:
+            return None if self.fmt == "mcap" else self._sqlite_topics()
+        if self.fmt == "ros1":
+            return containers.ros1_topics(self.path, self.runner)
+        if self.fmt == "mcap":
+            return containers.mcap_topics(self.path, self.runner)
+        return self._sqlite_topics()
+
+    def _sqlite_topics(self):
+        facts: dict = {}
+        for _ in self.messages(lambda topic, typ: False, None, facts):
             pass
+        return facts.get("topics", {})
+
+    def messages(self, want, inflater, facts=None):
+        from urdfcheck.bag import containers
+        from urdfcheck.bag.inflate import Inflater
+        from urdfcheck.core import door
+
+        facts = self.facts if facts is None else facts
+        inflater = inflater or Inflater()
+        if self.fmt == "ros1":
+            return containers.ros1_messages(self.path, want, facts, self.runner, inflater)
+        if self.fmt == "mcap":
+            stream = None
+            if self.compressed:
+                raw = door.open_stream(self.path, limit=containers.RECORDING_BYTES, runner=self.runner)
+                stream = containers.InflatingStream(raw, inflater, "a compressed MCAP file")
+            return containers.mcap_messages(self.path, want, facts, self.runner, inflater, stream)
+        image = None
+        if self.compressed:
+            raw = door.read_bytes(self.path, limit=MAX_SQLITE_IMAGE, runner=self.runner)
+            if len(raw) > MAX_SQLITE_IMAGE:
+                raise containers.ContainerError("a compressed database larger than "
+                                                f"{MAX_SQLITE_IMAGE >> 20} MiB")
+            image = inflater.inflate("zstd", raw, _zstd_size(raw), "a compressed database")
+        return containers.sqlite_messages(self.path, want, facts, self.runner, inflater, _deadline(), image)
+
+
+MAX_SQLITE_IMAGE = 512 * 1024**2  # a file-compressed .db3 is opened in memory (never written to /tmp)
+
+
+def _zstd_size(raw: bytes) -> int | None:
+    try:
+        try:
+            from compression import zstd
+        except ImportError:
+            from backports import zstd
+        size = zstd.get_frame_info(raw).decompressed_size
+    except Exception:  # noqa: BLE001 - no size in the frame: the per-message cap applies
+        return MAX_SQLITE_IMAGE
+    return size if size is not None and size <= MAX_SQLITE_IMAGE else MAX_SQLITE_IMAGE
+
+
+def _deadline():
+    import time
+
+    from urdfcheck.load.budget import current
+
+    b = current()
+    return time.monotonic() + (b.remaining() if b is not None else 300.0)
+
+
+def _parts(path: str, runner: bool, facts: dict) -> list[_Part]:
+    """The storage files of a recording: a file alone, or a rosbag2 folder (or its metadata.yaml)."""
+    from urdfcheck.bag import containers
+    from urdfcheck.core import door
+
+    folder = None
+    if os.path.isdir(path):
+        folder = path
+    elif os.path.basename(path) == "metadata.yaml":
+        folder = os.path.dirname(path) or "."
+        door.confine(path, runner=runner)
+    if folder is not None:
+        if runner:  # typed by the runner outside the checkout: its files are the runner's too
+            door.runner_folder(folder)
+        else:
+            door.confine(folder)
+    if folder is None:
+        fmt = containers.sniff(path, runner)
+        if fmt not in ("ros1", "mcap", "sqlite3"):
+            raise containers.ContainerError("not a ROS 1 bag, MCAP or rosbag2 sqlite3 file")
+        part = _Part(path, fmt, runner)
+        part.facts = facts
+        return [part]
+    meta = os.path.join(folder, "metadata.yaml")
+    names, comp = None, ""
+    if os.path.lexists(meta):
+        info = _metadata(meta, runner and path == meta)
+        names = [str(p) for p in info.get("relative_file_paths") or []]
+        comp = str(info.get("compression_mode") or "").upper()
+        if comp and comp != "NONE" and str(info.get("compression_format") or "zstd").lower() != "zstd":
+            raise containers.ContainerError(f"compression {info.get('compression_format')!r} is not read")
+        facts["ros"] = 2
+    if not names:
+        names = sorted(e.name for e in os.scandir(folder)
+                       if e.name.endswith((".db3", ".mcap", ".db3.zstd", ".mcap.zstd")))
+    if not names:
+        raise containers.ContainerError("a folder without metadata.yaml, .db3 or .mcap files")
+    parts = []
+    for name in names:
+        if os.path.isabs(name) or ".." in name.replace("\\", "/").split("/"):
+            raise containers.ContainerError(f"metadata.yaml names a file outside its folder: {name[:100]!r}")
+        full = os.path.join(folder, name)
+        if not os.path.lexists(full):
+            raise containers.ContainerError(f"{name[:100]!r}, named in metadata.yaml, is missing")
+        compressed = "zstd" if name.endswith(".zstd") else ""
+        if compressed:
+            fmt = "mcap" if name.endswith(".mcap.zstd") else "sqlite3"
+        else:
+            fmt = containers.sniff(full, False)  # inside the folder: never the runner's own path
+            if fmt not in ("ros1", "mcap", "sqlite3"):
+                raise containers.ContainerError(f"{name[:100]!r} is not an MCAP or sqlite3 file")
+        part = _Part(full, fmt, False, compressed)
+        part.facts = facts
+        parts.append(part)
+    return parts
+
+
+def _metadata(meta: str, runner: bool) -> dict:
+    """rosbag2's metadata.yaml, through the door and the YAML guard (alias bombs, depth, size)."""
+    from urdfcheck.bag import containers
+    from urdfcheck.core import door
+    from urdfcheck.core.yamlimport import yaml
+    from urdfcheck.load.xacro import yamlguard
+
+    text = door.read_text(meta, limit=yamlguard.MAX_BYTES, runner=runner)
+    try:
+        yamlguard.check_yaml_text(text, "metadata.yaml")
+        doc = yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+    except yamlguard.YamlRefused as e:
+        raise containers.ContainerError(e.message) from None
+    except (yaml.YAMLError, RecursionError, ValueError):
+        raise containers.ContainerError("metadata.yaml is not valid YAML") from None
+    info = doc.get("rosbag2_bagfile_information") if isinstance(doc, dict) else None
+    if not isinstance(info, dict):
+        raise containers.ContainerError("metadata.yaml has no rosbag2_bagfile_information")
+    return info
 
 
 def _list(values) -> tuple:
-    """A numpy float64 array (what rosbags gives) as a tuple of Python floats, fast."""
+    """A numpy float64 array as a tuple of Python floats, fast."""
     tolist = getattr(values, "tolist", None)
     return tuple(tolist()) if tolist is not None else tuple(float(x) for x in values)
-
-
-def _edge_from_msg(ts) -> Edge:
-    tr, rot, st = ts.transform.translation, ts.transform.rotation, ts.header.stamp
-    return Edge(ts.header.frame_id, ts.child_frame_id, (tr.x, tr.y, tr.z), (rot.x, rot.y, rot.z, rot.w),
-                int(st.sec) * NS + int(st.nanosec))
 
 
 def _reason(e: Exception) -> str:
@@ -151,31 +319,29 @@ def _reason(e: Exception) -> str:
 
 
 # --- text recordings ----------------------------------------------------------------------------------------
-def _text_messages(path, joint_topic, tf_topics, others) -> Iterator[Message]:
+def text_items(path: str, runner: bool = False):
+    """The items of a YAML/JSON message list, read through the door and bounded (JSON one item at a time,
+    YAML through the alias-bomb guard). Raises RecordingError."""
+    from urdfcheck.core import door
+
     try:
-        data = safeio.read_file(path, TEXT_LIMIT)
+        data = door.read_bytes(path, limit=TEXT_LIMIT, runner=runner)
+    except door.Refused as e:
+        raise RecordingError(f"cannot read the recording: {e.why}") from None
     except (OSError, ValueError) as e:
-        raise RecordingError(f"cannot read the recording: {e}") from None
+        raise RecordingError(f"cannot read the recording: {_reason(e)}") from None
     if len(data) > TEXT_LIMIT:
         raise RecordingError(f"a text recording is limited to {TEXT_LIMIT >> 20} MiB; record a bag instead")
     text = data.decode("utf-8", "replace")
-    import json
+    del data
+    items = _json_items(text)
+    return _yaml_items(text) if items is None else items
 
-    try:
-        docs = [json.loads(text)]
-    except ValueError:
-        from urdfcheck.core.yamlimport import yaml
 
-        try:
-            docs = [d for d in yaml.safe_load_all(text) if d is not None]
-        except (yaml.YAMLError, RecursionError) as e:
-            raise RecordingError(f"neither JSON nor YAML: {_reason(e)}") from None
-    items = []
-    for d in docs:
-        if isinstance(d, dict) and isinstance(d.get("messages"), list):
-            d = d["messages"]
-        items.extend(d if isinstance(d, list) else [d])
+def _text_messages(path, joint_topic, tf_topics, others, runner=False) -> Iterator[Message]:
+    items = text_items(path, runner)
     counters: dict[str, int] = {}
+    start = None
     for n, item in enumerate(items):
         if not isinstance(item, dict):
             raise RecordingError(f"message {n + 1} is not a mapping")
@@ -192,17 +358,92 @@ def _text_messages(path, joint_topic, tf_topics, others) -> Iterator[Message]:
                 stamp = _ns(item.get("stamp")) if item.get("stamp") is not None else \
                     (edges[0].stamp_ns if edges else 0)
                 kind = "tf_static" if topic.endswith("tf_static") else "tf"
-                yield Message(topic, i, stamp, kind, edges, str(item.get("callerid") or ""))
+                start = stamp if start is None else start
+                yield Message(topic, i, stamp, kind, edges, str(item.get("callerid") or ""), start)
             else:
                 header = item.get("header")
                 st = _ns(item.get("stamp") if "stamp" in item or not isinstance(header, dict)
                          else header.get("stamp"))
+                start = st if start is None else start
                 yield Message(topic, i, st, "joint_state", JointStateMsg(
                     tuple(str(x) for x in item.get("name") or ()), _floats(item.get("position")),
                     _floats(item.get("velocity")), _floats(item.get("effort")), st),
-                    str(item.get("callerid") or ""))
-        except (TypeError, ValueError, KeyError, OverflowError) as e:
+                    str(item.get("callerid") or ""), start)
+        except (TypeError, ValueError, KeyError, OverflowError, AttributeError) as e:
             raise RecordingError(f"{topic} message {i + 1} cannot be read: {_reason(e)}") from None
+
+
+_MESSAGES_KEY = None
+
+
+def _json_items(text: str):
+    """The messages of a JSON recording one at a time (a list, or {"messages": [...]}), never the whole
+    document as objects at once (a 60 MB file parsed whole takes 1.75 GB); None: not JSON (read as YAML)."""
+    import json
+    import re
+
+    global _MESSAGES_KEY
+    if _MESSAGES_KEY is None:
+        _MESSAGES_KEY = re.compile(r'\s*\{\s*"messages"\s*:\s*\[')
+    dec = json.JSONDecoder()
+    ws = re.compile(r"\s*")
+    m = _MESSAGES_KEY.match(text)
+    if m is not None:
+        pos = m.end()
+    else:
+        pos = ws.match(text).end()
+        if text.startswith("{", pos):  # one message
+            try:
+                obj, end = dec.raw_decode(text, pos)
+            except (ValueError, RecursionError):
+                return None
+            return iter([obj]) if not text[end:].strip() else None
+        if not text.startswith("[", pos):
+            return None
+        pos += 1
+    try:  # the first item decides JSON or YAML (a YAML flow list starts with '[' too)
+        pos = ws.match(text, pos).end()
+        if text.startswith("]", pos):
+            return iter(())
+        first, pos = dec.raw_decode(text, pos)
+    except (ValueError, RecursionError):
+        return None
+
+    def rest(pos):
+        yield first
+        while True:
+            pos = ws.match(text, pos).end()
+            if text.startswith("]", pos):
+                return
+            if not text.startswith(",", pos):
+                raise RecordingError(f"JSON: expected ',' or ']' at character {pos}")
+            pos = ws.match(text, pos + 1).end()
+            try:
+                obj, pos = dec.raw_decode(text, pos)
+            except (ValueError, RecursionError) as e:
+                raise RecordingError(f"JSON: {_reason(e)}") from None
+            yield obj
+    return rest(pos)
+
+
+def _yaml_items(text: str) -> list:
+    from urdfcheck.core.yamlimport import yaml
+    from urdfcheck.load.xacro import yamlguard
+
+    try:
+        yamlguard.check_yaml_text(text, "the recording")  # alias bombs, depth, 8 MiB
+        loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+        docs = [d for d in yaml.load_all(text, Loader=loader) if d is not None]
+    except yamlguard.YamlRefused as e:
+        raise RecordingError(f"refused: {e.message}") from None
+    except (yaml.YAMLError, RecursionError) as e:
+        raise RecordingError(f"neither JSON nor YAML: {_reason(e)}") from None
+    items = []
+    for d in docs:
+        if isinstance(d, dict) and isinstance(d.get("messages"), list):
+            d = d["messages"]
+        items.extend(d if isinstance(d, list) else [d])
+    return items
 
 
 def _floats(v) -> tuple:

@@ -1,18 +1,31 @@
 """Checks over the /tf and /tf_static messages of a recording, against the model's robot_state_publisher.
 
 robot_state_publisher publishes one transform per movable joint on /tf, stamped with the JointState's stamp,
-and one per fixed joint on /tf_static. So every recorded /tf transform of a movable joint's edge must equal
-what the built-in publisher computes from the JointState with the same stamp (the replay); a difference means
-the URDF running on the robot is not the URDF in the repository, or another node publishes that edge too.
+and one per fixed joint on /tf_static (ROS 1 with `use_tf_static: false`: on /tf, stamped ahead). So every
+recorded /tf transform of a movable joint's edge must equal what the built-in publisher computes from the
+JointState with the same stamp (the replay); a difference means the URDF running on the robot is not the URDF in
+the repository, or another node publishes that edge too.
+
+What real recordings add (issue 39): `rosbag record` often writes a /tf message before the JointState it was
+computed from, so a transform waits for its JointState a short while (by receive time) instead of being dropped;
+the robot may run under a frame prefix (`tf_prefix`, `frame_prefix`): given by the config or deployment, or
+recognised from the recorded names (`robot1/base_link -> robot1/upper_arm` is the model's edge under
+`robot1/`); a second publisher of an edge shows by its callerid (ROS 1), or, without callerids, by the edge being
+in two different /tf_static messages, or by a movable edge whose stamps match no JointState while the other
+edges' do.
 """
 from __future__ import annotations
 
 import math
-from collections import OrderedDict
+from collections import OrderedDict, deque
 
 from urdfcheck.bag.jointstates import Issue
 from urdfcheck.bag.source import NS, Edge, Message
 from urdfcheck.publisher.state import StatePublisher
+
+WAIT_NS = NS // 2  # how long (receive time) a /tf transform waits for the JointState it was computed from
+MAX_PENDING = 4096
+MAX_KEYS = 4096  # distinct edges followed for callerids and /tf_static messages
 
 
 class _Worst:
@@ -33,57 +46,158 @@ class _Worst:
 
 
 class TfChecks:
-    """Feed the joint states with `joint_state` and the TF messages with `add`; `issues()` at the end."""
+    """Feed the joint states with `joint_state` and the TF messages with `add`; `issues()` at the end.
+    `ros`: 1 or 2, what the recording says it is (a ROS 1 `.bag`); None: `profile` decides."""
 
     KEEP_STATES = 2048  # joint states kept for the replay, by stamp (TF follows its JointState closely)
 
     def __init__(self, model, profile: str = "ros2", frame_prefix: str = "", tolerance: float = 1e-6,
-                 static_tolerance: float = 1e-4):
+                 static_tolerance: float = 1e-4, ros: int | None = None):
         self.model = model
-        self.pub = StatePublisher(model, profile=profile, frame_prefix=frame_prefix, ignore_timestamp=True)
-        tree = self.pub.tree
-        f = self.pub.frame
-        self.movable = {(f(s.parent), f(s.child)): s for s in tree.movable.values()}
-        self.fixed = {(f(s.parent), f(s.child)): s for s in tree.fixed.values()}
-        self.fixed_tq = {k: s.tq(0.0) for k, s in self.fixed.items()}
+        if ros is not None:
+            profile = "ros1" if ros == 1 else "ros2"
         self.profile = profile
+        self.pub = StatePublisher(model, profile=profile, frame_prefix="", ignore_timestamp=True)
+        tree = self.pub.tree
+        self.movable = {(s.parent, s.child): s for s in tree.movable.values()}
+        self.fixed = {(s.parent, s.child): s for s in tree.fixed.values()}
+        self.fixed_tq = {k: s.tq(0.0) for k, s in self.fixed.items()}
+        self.child_parent = {c: p for p, c in list(self.movable) + list(self.fixed)}
+        self.given_prefix = frame_prefix or ""
+        self.prefix: str | None = None  # the prefix the recording shows, once one is seen
+        self.names: dict[tuple, tuple | None] = {}
         self.tolerance = tolerance
+        self._tol2 = tolerance * tolerance
+        self._cos2 = math.cos(tolerance / 2) ** 2
         self.static_tolerance = static_tolerance
         self.count = 0
-        self.states: OrderedDict[int, dict] = OrderedDict()
+        self.tf_messages = 0
+        self.states: OrderedDict[int, dict | tuple] = OrderedDict()  # stamp -> positions, or (names, positions)
         self.predicted: OrderedDict[int, dict] = OrderedDict()
+        self.pending: deque = deque()
+        self.pending_stamps: dict[int, int] = {}
         self.parents: dict[str, dict[str, Message]] = {}
         self.callers: dict[tuple, dict[str, Message]] = {}
+        self.static_sets: dict[tuple, dict[frozenset, Message]] = {}
         self.last_value: dict[tuple, tuple] = {}
         self.second: dict[tuple, tuple[Message, str]] = {}
         self.replay = _Worst()
         self.replayed = 0
+        self.static_compared = 0
+        self.matched: dict[tuple, list] = {}  # model key -> [matched, unmatched, first unmatched message]
+        self.on_tf: dict[tuple, int] = {}  # model key -> times seen in the recording
         self.static_off: dict[tuple, tuple[Message, Edge, tuple]] = {}
+        self.fixed_on: dict[tuple, dict[str, Message]] = {}  # fixed edge -> {"tf" / "tf_static": first message}
+        self.alternating: dict[tuple, list] = {}  # an edge not of the model -> its back-and-forth record
 
+    # --- names ---------------------------------------------------------------------------------------------
+    def model_key(self, parent: str, child: str):
+        """The model's (parent, child) for a recorded edge, under the frame prefix; None: not the model's."""
+        key = (parent, child)
+        got = self.names.get(key, False)
+        if got is not False:
+            return got
+        got = None
+        if key in self.movable or key in self.fixed:
+            got = key  # (a prefix the config gives but the recording does not show: the names decide)
+        else:
+            for i in range(1, len(child)):
+                mc = child[i:]
+                mp = self.child_parent.get(mc)
+                if mp is not None and parent == child[:i] + mp:
+                    pre = child[:i]
+                    if self._prefix_ok(pre):
+                        got = (mp, mc)
+                    break
+        if len(self.names) < 65536:
+            self.names[key] = got
+        return got
+
+    def _prefix_ok(self, pre: str) -> bool:
+        if self.given_prefix:
+            norm = {self.given_prefix, self.given_prefix.strip("/") + "/", "/" + self.given_prefix.strip("/") + "/"}
+            return pre in norm
+        if self.prefix is None:
+            self.prefix = pre  # the first robot under a prefix is the one checked
+        return pre == self.prefix
+
+    # --- messages ------------------------------------------------------------------------------------------
     def joint_state(self, m: Message) -> None:
         js = m.data
         if len(js.names) != len(js.position):
             return
-        self.states[js.stamp_ns] = dict(zip(js.names, js.position))
-        while len(self.states) > self.KEEP_STATES:
-            self.states.popitem(last=False)
+        st = js.stamp_ns
+        states = self.states
+        have = states.get(st)
+        if have is None:  # kept as they came: made a mapping only when a /tf of that stamp asks (_positions)
+            states[st] = (js.names, js.position)
+        else:  # several drivers, one stamp: robot_state_publisher handles each message; the union replays them
+            have = self._positions(st)
+            have.update(zip(js.names, js.position))
+            self.predicted.pop(st, None)
+        if len(states) > self.KEEP_STATES:
+            states.popitem(last=False)
+        if st in self.pending_stamps:
+            self._settle(m.time_ns, st)
 
     def add(self, m: Message) -> None:
         self.count += 1
+        if m.kind == "tf":
+            self.tf_messages += 1
+        keys = []
         for e in m.data:
-            key = (e.parent, e.child)
-            ps = self.parents.setdefault(e.child, {})
-            if e.parent not in ps and len(ps) < 8:
+            raw = (e.parent, e.child)
+            ps = self.parents.get(e.child)
+            if ps is None and len(self.parents) < 100_000:  # (distinct frames of a hostile recording: bounded)
+                ps = self.parents[e.child] = {}
+            if ps is not None and e.parent not in ps and len(ps) < 8:
                 ps[e.parent] = m
-            if m.callerid:
-                cs = self.callers.setdefault(key, {})
+            if m.callerid and (raw in self.callers or len(self.callers) < MAX_KEYS):
+                cs = self.callers.setdefault(raw, {})
                 if m.callerid not in cs and len(cs) < 8:
                     cs[m.callerid] = m
+            key = self.model_key(e.parent, e.child)
+            if key is None:
+                if m.kind == "tf":
+                    self._jumps(m, raw, e.translation)
+                continue
+            keys.append((key, e))
+            self.on_tf[key] = self.on_tf.get(key, 0) + 1
             seg = self.movable.get(key)
             if seg is not None:
                 self._movable(m, e, key, seg)
-            elif key in self.fixed:
+            else:
                 self._fixed(m, e, key)
+        if m.kind == "tf_static" and keys:
+            # a latched /tf_static is recorded once per publisher: the same edge in two messages that differ
+            # (in the edges they carry, or in its value) comes from two publishers; a message recorded twice
+            # (the same edges, the same values) does not
+            shape = frozenset(k for k, _e in keys)
+            for key, e in keys:
+                if key in self.static_sets or len(self.static_sets) < MAX_KEYS:
+                    sets = self.static_sets.setdefault(key, {})
+                    sig = (shape, tuple(round(x, 6) for x in e.translation + e.rotation))
+                    if sig not in sets and len(sets) < 8:
+                        sets[sig] = m
+        self._expire(m.time_ns)
+
+    def _jumps(self, m: Message, raw, xyz) -> None:
+        """An edge that jumps back and forth (A B A B) comes from two publishers whose values differ, as an EKF and
+        a drive controller both publishing odom -> base_link: one node's values move smoothly."""
+        rec = self.alternating.get(raw)
+        if rec is None:
+            if len(self.alternating) >= MAX_KEYS:
+                return
+            rec = self.alternating[raw] = [None, None, 0, 0, None]  # before last, last, count, back-and-forth, first
+        older, last = rec[0], rec[1]
+        rec[2] += 1
+        if older is not None:
+            step = _dist(xyz, last)
+            if step > 0.005 and _dist(xyz, older) * 4 < step:
+                rec[3] += 1
+                if rec[4] is None:
+                    rec[4] = m
+        rec[0], rec[1] = last, xyz
 
     def _movable(self, m: Message, e: Edge, key, seg) -> None:
         if m.kind == "tf_static" and key not in self.second:
@@ -94,62 +208,172 @@ class TfChecks:
                 sum(_diff(prev[1], prev[2], e)) > 10 * self.tolerance:
             self.second[key] = (m, "two different transforms carry the same stamp")
         self.last_value[key] = (e.stamp_ns, e.translation, e.rotation)
+        if e.stamp_ns in self.states:
+            self._compare(m, e, key, seg)
+        elif len(self.pending) < MAX_PENDING:  # its JointState may be written just after it
+            self.pending.append((m.time_ns, m, e, key, seg))
+            self.pending_stamps[e.stamp_ns] = self.pending_stamps.get(e.stamp_ns, 0) + 1
+        else:
+            self._unmatched(m, key)
+
+    def _compare(self, m: Message, e: Edge, key, seg) -> None:
         expected = self._expected(e.stamp_ns, seg)
-        if expected is None:
+        rec = self.matched.get(key)
+        if rec is None:
+            rec = self.matched[key] = [0, 0, None]
+        if expected is None:  # the JointState of that stamp does not name this joint
+            self._unmatched(m, key)
             return
+        rec[0] += 1
         self.replayed += 1
-        d = _diff(expected[0], expected[1], e)
-        if d[0] > self.tolerance or d[1] > self.tolerance:
-            self.replay.add(m, e, d, 0.1)
+        # within tolerance, told without sqrt or acos (almost every transform of a clean recording):
+        # |t - t'|^2 <= tol^2, and the angle 2 acos(|q.q'|) <= tol, i.e. (q.q')^2 >= |q|^2 |q'|^2 cos^2(tol / 2)
+        (tx, ty, tz), (a, b, c, d) = expected
+        x, y, z = e.translation
+        qx, qy, qz, qw = e.rotation
+        dx, dy, dz = tx - x, ty - y, tz - z
+        if dx * dx + dy * dy + dz * dz <= self._tol2:
+            dot = a * qx + b * qy + c * qz + d * qw
+            if dot * dot >= (a * a + b * b + c * c + d * d) * (qx * qx + qy * qy + qz * qz + qw * qw) * self._cos2:
+                return
+        diff = _diff(expected[0], expected[1], e)
+        if diff[0] > self.tolerance or diff[1] > self.tolerance:
+            self.replay.add(m, e, diff, 0.1)
+
+    def _unmatched(self, m: Message, key) -> None:
+        rec = self.matched.setdefault(key, [0, 0, None])
+        rec[1] += 1
+        if rec[2] is None:
+            rec[2] = m
+
+    def _settle(self, now: int, stamp: int) -> None:
+        keep = deque()
+        for item in self.pending:
+            t, m, e, key, seg = item
+            if e.stamp_ns == stamp:
+                self._compare(m, e, key, seg)
+                self._forget(stamp)
+            else:
+                keep.append(item)
+        self.pending = keep
+
+    def _forget(self, stamp: int) -> None:
+        n = self.pending_stamps.get(stamp, 0) - 1
+        if n > 0:
+            self.pending_stamps[stamp] = n
+        else:
+            self.pending_stamps.pop(stamp, None)
+
+    def _expire(self, now: int | None) -> None:
+        while self.pending and (now is None or now - self.pending[0][0] > WAIT_NS):
+            _t, m, e, key, _seg = self.pending.popleft()
+            self._forget(e.stamp_ns)
+            self._unmatched(m, key)
+
+    def _positions(self, stamp: int) -> dict | None:
+        pos = self.states.get(stamp)
+        if isinstance(pos, tuple):
+            pos = self.states[stamp] = dict(zip(*pos))
+        return pos
 
     def _expected(self, stamp: int, seg):
-        pos = self.states.get(stamp)
-        if pos is None:
+        pos = self._positions(stamp)
+        if pos is None or seg.name not in pos and not _mimic_of(self.model, seg.name, pos):
             return None
         cache = self.predicted.get(stamp)
         if cache is None:
             cache = {t.child: (t.translation, t.rotation) for t in self.pub.transforms_for(
-                {k: v for k, v in pos.items() if math.isfinite(v)}, (stamp // NS, stamp % NS))}
+                {k: v for k, v in pos.items() if k in self.model.joints and math.isfinite(v)},
+                (stamp // NS, stamp % NS))}
             self.predicted[stamp] = cache
             while len(self.predicted) > 64:
                 self.predicted.popitem(last=False)
-        return cache.get(self.pub.frame(seg.child))
+        return cache.get(seg.child)
 
     def _fixed(self, m: Message, e: Edge, key) -> None:
-        if m.kind == "tf" and self.profile == "ros2" and key not in self.second:
+        seen = self.fixed_on.setdefault(key, {})
+        seen.setdefault(m.kind, m)
+        if self.profile == "ros1" and len(seen) > 1 and key not in self.second:
+            seg = self.fixed[key]
+            self.second[key] = (seen["tf"], f"it is on /tf_static and on /tf, while robot_state_publisher (ROS 1) "
+                                            f"publishes fixed joint {seg.name!r} on one of them (use_tf_static)")
+        if m.kind == "tf" and self.profile == "ros2" and key not in self.second and \
+                not 0.3 * NS < e.stamp_ns - m.time_ns < 0.7 * NS:
+            # (stamped half a second ahead of when it was recorded: ROS 1's robot_state_publisher with
+            # use_tf_static false, in a recording converted to rosbag2)
             seg = self.fixed[key]
             self.second[key] = (m, f"it is published on /tf, while robot_state_publisher publishes fixed joint "
                                    f"{seg.name!r} on /tf_static")
+        self.static_compared += 1
         t, q = self.fixed_tq[key]
         d = _diff(t, q, e)
         if (d[0] > self.static_tolerance or d[1] > self.static_tolerance) and key not in self.static_off:
             self.static_off[key] = (m, e, d)
 
     # --- the verdict -----------------------------------------------------------------------------------------
-    def issues(self) -> list[Issue]:
+    def finish(self) -> None:
+        self._expire(None)
+
+    def compared(self) -> int:
+        return self.replayed + self.static_compared
+
+    def issues(self, named=frozenset(), js_count: int = 0) -> list[Issue]:
+        """`named`: the joints the JointStates named (robot_state_publisher should have published them)."""
+        self.finish()
         out: list[Issue] = []
         joints = self.model.joints
-        for key, callers in sorted(self.callers.items()):
-            if len(callers) > 1 and (key in self.movable or key in self.fixed):
-                seg = self.movable.get(key) or self.fixed[key]
-                names = sorted(callers)
-                first = min(callers.values(), key=lambda m: m.time_ns)
-                out.append(Issue("B010", f"the edge {key[0]} -> {key[1]} (joint {seg.name!r}) has "
+
+        def loc(seg):
+            return (joints[seg.name].loc,) if seg.name in joints else ()
+
+        for raw, callers in sorted(self.callers.items()):
+            if len(callers) < 2:
+                continue
+            key = self.model_key(*raw)
+            seg = self.movable.get(key) or self.fixed.get(key) if key is not None else None
+            names = sorted(callers)
+            first = min(callers.values(), key=lambda m: m.time_ns)
+            if seg is not None:
+                out.append(Issue("B010", f"the edge {raw[0]} -> {raw[1]} (joint {seg.name!r}) has "
                                  f"{len(names)} publishers: {', '.join(names)}; robot_state_publisher publishes it "
-                                 "from the model, so TF alternates between their values", first,
-                                 (joints[seg.name].loc,) if seg.name in joints else ()))
+                                 "from the model, so TF alternates between their values", first, loc(seg)))
+            else:
+                out.append(Issue("B010", f"the edge {raw[0]} -> {raw[1]} has {len(names)} publishers: "
+                                 f"{', '.join(names)}; tf2 keeps whichever came last, so the frame jumps between "
+                                 "their values (two nodes, e.g. a drive controller and an EKF, both publish it: "
+                                 "let one of them)", first))
+                self.second.pop(raw, None)
+        for raw, (_o, _l, count, back, first) in sorted(self.alternating.items()):
+            if back >= 10 and back * 10 >= count and len(self.callers.get(raw, ())) < 2:  # (callerids said it)
+                out.append(Issue("B010", f"the edge {raw[0]} -> {raw[1]} jumps back and forth between two values "
+                                 f"{back} times in {count} /tf messages (first {first.where()}): two nodes publish "
+                                 "it (a drive controller and an EKF both publishing odom -> base_link?); tf2 keeps "
+                                 "whichever came last", first))
+        have = {k for k in self.second}
+        for key, sets in sorted(self.static_sets.items()):
+            if len(sets) > 1 and key not in have and not self._by_callers(key):
+                seg = self.movable.get(key) or self.fixed[key]
+                first = sorted(sets.values(), key=lambda m: (m.time_ns, m.index))[1]
+                self.second[key] = (first, f"it is in {len(sets)} different /tf_static messages (a latched topic "
+                                           "is recorded once per publisher; robot_state_publisher sends one "
+                                           "with every fixed joint)")
+        for key, (matched, unmatched, first) in sorted(self.matched.items()):
+            if key in self.second or self._by_callers(key) or unmatched < 5 or unmatched * 10 <= matched + unmatched:
+                continue
+            if any(k != key and v[0] >= 5 and v[1] * 10 <= v[0] for k, v in self.matched.items()):
+                self.second[key] = (first, f"{unmatched} of its {matched + unmatched} /tf stamps match no "
+                                           "JointState, while robot_state_publisher's other edges match theirs "
+                                           "(another node publishes it with stamps of its own)")
         for key, (m, why) in sorted(self.second.items()):
             seg = self.movable.get(key) or self.fixed.get(key)
             out.append(Issue("B010", f"the edge {key[0]} -> {key[1]} (joint {seg.name!r}) comes from another "
-                             f"publisher as well: {why} (first {m.where()})", m,
-                             (joints[seg.name].loc,) if seg.name in joints else ()))
-        for key, (m, _edge, d) in sorted(self.static_off.items()):
+                             f"publisher as well: {why} (first {m.where()})", m, loc(seg)))
+        for key, (m, edge, d) in sorted(self.static_off.items()):
             seg = self.fixed[key]
-            out.append(Issue("B011", f"/tf_static has {key[0]} -> {key[1]} {d[0] * 1000:.1f} mm and "
+            out.append(Issue("B011", f"{m.topic} has {edge.parent} -> {edge.child} {d[0] * 1000:.1f} mm and "
                              f"{math.degrees(d[1]):.2f} deg away from fixed joint {seg.name!r} in the model "
                              f"({m.where()}): a calibration that was never written back to the URDF, or the "
-                             "URDF changed after the recording", m,
-                             (joints[seg.name].loc,) if seg.name in joints else ()))
+                             "URDF changed after the recording", m, loc(seg)))
         for child, parents in sorted(self.parents.items()):
             if len(parents) > 1:
                 names = sorted(parents)
@@ -167,15 +391,53 @@ class TfChecks:
                              f"{w.worst_diff[0] * 1000:.3f} mm, {math.degrees(w.worst_diff[1]):.3f} deg at "
                              f"{w.worst.where()}{sep if w.first is not w.worst else ''}: the URDF on the robot is not "
                              "the URDF in the repository", w.first))
+        out.extend(self._unpublished(named, js_count))
         return out
+
+    def _by_callers(self, key) -> bool:
+        return any(len(c) > 1 and self.names.get(raw) == key for raw, c in self.callers.items())
+
+    def _unpublished(self, named, js_count: int) -> list[Issue]:
+        """Joints the JointStates name that /tf never carries, while /tf was recorded: robot_state_publisher
+        did not hear those joint states (another namespace, a remap)."""
+        if self.tf_messages < 10 or js_count < 10:  # a few hand-written messages are no evidence of a node
+            return []
+        missing = sorted(s.name for k, s in self.movable.items() if s.name in named and k not in self.on_tf)
+        if not missing:
+            return []
+        joints = self.model.joints
+        carried = sum(1 for k in self.movable if k in self.on_tf)
+        return [Issue("B002", f"robot_state_publisher did not publish joint{'s' if len(missing) > 1 else ''} "
+                      f"{', '.join(repr(n) for n in missing[:6])}{' and more' if len(missing) > 6 else ''}: "
+                      f"{'it is' if len(missing) == 1 else 'they are'} named in the joint states ({js_count} "
+                      f"messages) but /tf ({self.tf_messages} messages"
+                      + (f", {carried} other joint{'s' if carried != 1 else ''} of the model" if carried else "")
+                      + ") never carries their transforms: the robot_state_publisher that ran does not hear this "
+                      "JointState topic (another namespace, a remap) or runs another model", None,
+                      tuple(joints[n].loc for n in missing if n in joints))]
+
+
+def _dist(a, b) -> float:
+    dx, dy, dz = a[0] - b[0], a[1] - b[1], a[2] - b[2]
+    d = math.sqrt(dx * dx + dy * dy + dz * dz)
+    return d if math.isfinite(d) else 0.0
+
+
+def _mimic_of(model, name: str, pos: dict) -> bool:
+    j = model.joints.get(name)
+    return j is not None and j.mimic is not None and getattr(j.mimic, "joint", None) in pos
 
 
 def _diff(t, q, e: Edge) -> tuple[float, float]:
     """(translation distance in m, rotation angle in rad) between (t, q) and the recorded edge."""
-    dt = math.sqrt(sum((a - b) ** 2 for a, b in zip(t, e.translation)))
-    n1 = math.sqrt(sum(x * x for x in q)) or 1.0
-    n2 = math.sqrt(sum(x * x for x in e.rotation)) or 1.0
-    dot = abs(sum(a * b for a, b in zip(q, e.rotation))) / (n1 * n2)
+    x, y, z = e.translation
+    dx, dy, dz = t[0] - x, t[1] - y, t[2] - z
+    dt = math.sqrt(dx * dx + dy * dy + dz * dz)  # (products: 1e200 ** 2 raises, 1e200 * 1e200 is inf)
+    a, b, c, d = q
+    qx, qy, qz, qw = e.rotation
+    n1 = math.sqrt(a * a + b * b + c * c + d * d) or 1.0
+    n2 = math.sqrt(qx * qx + qy * qy + qz * qz + qw * qw) or 1.0
+    dot = abs(a * qx + b * qy + c * qz + d * qw) / (n1 * n2)
     ang = 2.0 * math.acos(min(1.0, dot))
     if not (math.isfinite(dt) and math.isfinite(ang)):
         return (math.inf, math.inf)

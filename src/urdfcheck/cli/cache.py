@@ -37,7 +37,9 @@ _FIELDS = frozenset(("schema", "key", "code", "stdout", "stderr", "observed", "e
 _VOLATILE = frozenset(("PWD", "OLDPWD", "SHLVL", "_", "URDFCHECK_CACHE_TRACE"))
 # lint options that write files or print something else than the report: such a run is not stored
 # --bag: recordings are read by rosbags and sqlite, whose reads the observer does not see (bag/check.py taints too)
-_NOT_STORED = ("--list", "--write-baseline", "--output", "--report", "--help", "--version", "--bag")
+# --diff-base, --config-from: what a revision names (a branch moving) is no file the observer sees
+_NOT_STORED = ("--list", "--write-baseline", "--output", "--report", "--help", "--version", "--bag", "--diff-base",
+               "--config-from")
 
 
 MAX_VERSIONS = 4  # entries kept per key: the states a pre-commit user goes back and forth between
@@ -104,6 +106,11 @@ def plan(argv: list[str]) -> Spec | None:
             return None
     folder = os.path.abspath(folder or env.get("URDFCHECK_CACHE_DIR") or user_cache_dir())
     folder = os.path.join(folder, f"v{SCHEMA}")
+    if cachefile.linked_in_checkout(folder, os.getcwd()):
+        if env.get("URDFCHECK_CACHE_TRACE", "") not in ("", "0"):
+            print("urdfcheck: cache off (its folder lies in the checkout and is reached through a symbolic link "
+                  "there: a link the checked files made would redirect the cache's writes)", file=sys.stderr)
+        return None
 
     import urdfcheck
 

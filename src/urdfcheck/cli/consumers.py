@@ -18,11 +18,12 @@ def _run(fn):
 
 
 def add_parser(subparsers) -> None:
-    p = subparsers.add_parser("consumers", help="load the model into MuJoCo, Pinocchio, PyBullet, yourdfpy, urdfdom",
+    p = subparsers.add_parser("consumers",
+                              help="load the model into MuJoCo, Pinocchio, PyBullet, yourdfpy, urdfdom, sdformat",
                               description=__doc__.split("\n\n")[0])
     p.add_argument("model", metavar="MODEL")
     p.add_argument("--consumer", default=None, metavar="NAMES",
-                   help="comma-separated: mujoco, pinocchio, pybullet, yourdfpy, urdfdom (default: all)")
+                   help="comma-separated: mujoco, pinocchio, pybullet, yourdfpy, urdfdom, sdformat (default: all)")
     p.add_argument("--format", choices=["text", "json", "markdown"], default="text")
     p.add_argument("--consumer-timeout", type=float, default=None, metavar="SECONDS",
                    help="wall-clock and CPU limit for each consumer (default 30)")
@@ -67,7 +68,14 @@ def cmd_consumers(ns) -> int:
 
 
 def render(fmt: str, model_path: str, outcomes, found) -> str:
+    from urdfcheck.report import finish_text
+
+    return finish_text(_render(fmt, model_path, outcomes, found), fmt)
+
+
+def _render(fmt: str, model_path: str, outcomes, found) -> str:
     from urdfcheck.core.findings import clean_text
+    from urdfcheck.report.markdown import code, md
 
     if fmt == "json":
         return json.dumps({"model": clean_text(model_path, 4096), "consumers": [o.to_dict() for o in outcomes],
@@ -77,14 +85,14 @@ def render(fmt: str, model_path: str, outcomes, found) -> str:
                                         for f in found]}, indent=2) + "\n"
     where = {id(o): o.location for o in outcomes}
     if fmt == "markdown":
-        lines = [f"## Consumers of `{clean_text(model_path)}`", "", "| consumer | result | message / changes |",
+        lines = [f"## Consumers of `{code(model_path)}`", "", "| consumer | result | message / changes |",
                  "| --- | --- | --- |"]
         for o in outcomes:
             detail = o.message if not o.loaded else "; ".join(o.changes) or "no change"
             loc = f" ({where[id(o)]})" if where[id(o)] is not None else ""
-            lines.append(f"| {o.consumer} | {o.status} | {clean_text(detail, 800).replace('|', '/')}{loc} |")
+            lines.append(f"| {md(o.consumer)} | {md(o.status)} | {md(detail, 800)}{md(loc)} |")
         notes = sorted({n for o in outcomes for n in o.notes})
-        return "\n".join(lines + ([""] + [f"- {n}" for n in notes] if notes else [])) + "\n"
+        return "\n".join(lines + ([""] + [f"- {md(n)}" for n in notes] if notes else [])) + "\n"
     lines = []
     for o in outcomes:
         head = f"{o.consumer:10s} {o.status}"

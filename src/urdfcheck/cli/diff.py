@@ -23,6 +23,9 @@ def add_parser(sub) -> None:
     p.add_argument("--format", choices=["text", "json", "markdown"], default="text")
     p.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
     p.add_argument("--fail-on-change", action="store_true", help="exit 1 when anything changed (frozen descriptions)")
+    p.add_argument("--findings", action="store_true",
+                   help="with --git: also lint both sides and tell the findings the change adds and fixes (as "
+                   "`lint --diff-base REV`; informational: the exit code stays diff's)")
     p.add_argument("--seeds", type=int, default=5, metavar="N",
                    help="random joint configurations besides zero at which frame poses are compared (default 5)")
     p.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
@@ -49,20 +52,26 @@ def cmd_diff(ns) -> int:
         if len(ns.paths) != 2:
             raise UsageError("give OLD and NEW (two files or folders), or --git REV")
         old, new = ns.paths
-        result = stage.diff([old], [new], _root(old), _root(new), seeds=ns.seeds, **_options(ns))
+        result = stage.diff([old], [new], _root(old), _root(new), seeds=ns.seeds, old_label=_label(old),
+                            new_label=_label(new), **_options(ns))
     else:
-        from urdfcheck.diff import gitside
+        from urdfcheck.core import git
 
         paths = ns.paths or ["."]
-        repo = gitside.repo_root(os.path.abspath(paths[0]) if os.path.isdir(paths[0])
-                                 else os.path.dirname(os.path.abspath(paths[0])))
-        with gitside.export(ns.git, repo) as tmp:
-            rel = [os.path.relpath(os.path.abspath(p), repo) for p in paths]
+        with revision(ns.git, paths[0], "--git") as (repo, tree):
+            rel = [os.path.relpath(os.path.realpath(p), repo.work_tree) for p in paths]
             if any(r == ".." or r.startswith(".." + os.sep) for r in rel):
-                raise UsageError(f"--git: every path must be inside the repository {repo}")
-            old = [o for o in (os.path.join(tmp, r) for r in rel) if os.path.exists(o)]  # else: all added
-            result = stage.diff(old, [os.path.abspath(p) for p in paths], tmp, repo, seeds=ns.seeds,
-                                **_options(ns))
+                raise UsageError("--git: every path must be inside the repository")
+            old = [o for o in (os.path.join(tree.root, r) for r in rel) if os.path.exists(o)]  # else: all added
+            try:
+                result = stage.diff(old, [os.path.realpath(p) for p in paths], tree.root, repo.work_tree,
+                                    seeds=ns.seeds, old_label=git.shown_name(ns.git.encode()),
+                                    new_label="working tree", **_options(ns))
+            except git.GitError as e:
+                raise UsageError(f"--git: {e}") from None
+            result.notes[:0] = tree.notes
+        if ns.findings:
+            result.findings = _findings(ns, paths)
     from urdfcheck.report.diff import render
 
     text = render(ns.format, result)
@@ -77,6 +86,68 @@ def cmd_diff(ns) -> int:
     if any(p.status == "unloadable" for p in result.pairs):
         return EXIT_FINDINGS
     return EXIT_FINDINGS if ns.fail_on_change and result.changed else EXIT_CLEAN
+
+
+def _findings(ns, paths):
+    """What the change does to lint's findings: the revision and the working tree linted with diff's options."""
+    from urdfcheck import run as pipeline
+    from urdfcheck.core.git import GitError
+    from urdfcheck.diff import findings as changes
+    from urdfcheck.request.request import make_request
+
+    def options(in_tree=None):
+        opts = _options(ns)
+        if opts.get("config"):
+            opts["config"] = (in_tree and in_tree(opts["config"])) or os.path.abspath(opts["config"])
+        return opts
+
+    def make(base_paths, map_root, in_tree):
+        return make_request(base_paths, **options(in_tree))
+
+    try:
+        root, base, _ = changes.base_findings(ns.git, paths, make)
+    except GitError as e:
+        raise UsageError(f"--git: {e}") from None
+    result = pipeline.run(make_request(paths, **options()))
+    return changes.classify(ns.git, base, result.findings, root)  # its notes: already the diff's
+
+
+def _label(path: str) -> str:
+    """A side as the report names it: the path as typed, relative when it lies below the working directory."""
+    from urdfcheck.core import git
+
+    p = os.path.abspath(path)
+    rel = os.path.relpath(p)
+    return git.shown_name(os.fsencode(rel if not rel.startswith("..") else os.path.basename(p) or p))
+
+
+class revision:
+    """`with revision(REV, PATH, flag) as (repo, tree)`: the repository around PATH (found by urdfcheck, never
+    by git) and REV's files in a private temporary folder, removed on leaving. UsageError when either fails."""
+
+    def __init__(self, rev: str, path: str, flag: str):
+        self.rev, self.path, self.flag = rev, path, flag
+        self.tree = None
+
+    def __enter__(self):
+        from urdfcheck.core import git
+
+        start = os.path.abspath(self.path)
+        repo = git.find(start)
+        if repo is None:
+            raise UsageError(f"{self.flag}: no git repository (a .git folder) around {_label(self.path)}")
+        try:
+            self.tree = git.export(repo, self.rev)
+        except git.GitError as e:
+            raise UsageError(f"{self.flag}: {e}") from None
+        from urdfcheck.core import door
+
+        door.add_root(self.tree.root)  # in a guarded run, the revision's files are readable like the checkout's
+        return repo, self.tree
+
+    def __exit__(self, *exc) -> None:
+        if self.tree is not None:
+            self.tree.cleanup()
 
 
 def _root(path: str) -> str:

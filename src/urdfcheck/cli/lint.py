@@ -31,6 +31,45 @@ def request_from_flags(ns) -> LintRequest:
 
 def run(ns, usage_error=UsageError) -> int:
     """`usage_error`: raised (with the message) for an unusable invocation; UsageError by default."""
+    from urdfcheck.core import door
+
+    # every read of the run goes through the door, confined to the checkout, the packages and what is typed
+    with door.guarding((*ns.paths, ns.config, ns.baseline, *(getattr(ns, "bags", None) or ()))):
+        return _with_config_from(ns, usage_error)
+
+
+def _with_config_from(ns, usage_error) -> int:
+    rev = getattr(ns, "config_from", None)
+    if not rev:
+        return _run(ns, usage_error)
+    from urdfcheck.core.findings import clean_text
+
+    if ns.config or ns.no_config:  # both typed by the runner (an Action's default and a workflow's own flag)
+        what = "--config FILE" if ns.config else "--no-config"
+        print(f"urdfcheck: info: --config-from {clean_text(rev)} is not used: {what} is given", file=sys.stderr)
+        return _run(ns, usage_error)
+    from urdfcheck.core.git import GitError
+    from urdfcheck.diff import basecfg
+
+    try:
+        base = basecfg.load(rev, ns.paths[0] if ns.paths else ".")
+    except GitError as e:
+        raise usage_error(f"--config-from: {e}") from None
+    with base:
+        print(f"urdfcheck: info: {clean_text(base.info, 4096)}", file=sys.stderr)
+        if base.path is None:
+            ns.no_config = True
+        else:
+            ns.config, ns.trust_config = base.path, True
+            ns.config_from_tree = base.for_tree
+        ns.scrub = lambda text: base.scrub(text, getattr(ns, "root", None))
+        try:
+            return _run(ns, usage_error)
+        except UsageError as e:
+            raise usage_error(base.scrub(str(e))) from None
+
+
+def _run(ns, usage_error) -> int:
     from urdfcheck import run as pipeline
 
     try:
@@ -41,10 +80,17 @@ def run(ns, usage_error=UsageError) -> int:
 
         progress.to_terminal(None if getattr(ns, "quiet", False) else sys.stderr)
         try:
+            against = _diff_base(ns, usage_error) if getattr(ns, "diff_base", None) and not ns.write_baseline \
+                else None
             retain = _UNTIL_EXIT if getattr(ns, "one_shot", False) else None
             result = pipeline.run(request, retain=retain)
             if retain is not None:  # its models too: freeing 10,000 links' objects one by one costs ~45 ms
                 retain.append(result)
+            if against is not None:
+                from urdfcheck.diff import findings as changes
+
+                root, base, notes = against
+                result.changes = changes.classify(ns.diff_base, base, result.findings, root, notes)
         finally:
             progress.close()
     except UsageError as e:
@@ -59,26 +105,83 @@ def run(ns, usage_error=UsageError) -> int:
         print(f"wrote {len(result.raw())} findings to {ns.write_baseline}", file=sys.stderr)
         return 0
 
-    from urdfcheck.core.findings import clean_text
+    from urdfcheck.core.findings import clean_text, escape_bidi
     from urdfcheck.report import render
 
     for line in getattr(result, "infos", ()):  # on stderr: the report formats stay as they are
-        print(f"urdfcheck: info: {clean_text(line, 4096)}", file=sys.stderr)
+        print(f"urdfcheck: info: {escape_bidi(clean_text(line, 4096))}", file=sys.stderr)
 
     colour = ns.color == "always" or (ns.color == "auto" and ns.output is None and sys.stdout.isatty()
                                       and not os.environ.get("NO_COLOR"))
-    text = render(ns.format, result, colour=colour, fail_on=result.fail_on)
+    scrub = getattr(ns, "scrub", None) or (lambda t: t)  # --config-from: its temporary file is REV:path
+    text = scrub(_with_changes(ns.format, render(ns.format, result, colour=colour, fail_on=result.fail_on), result))
     if ns.output:
         _write(ns.output, text, usage_error)
     else:
         sys.stdout.write(text)
     for fmt, path in ns.report:
         try:
-            extra = render(fmt, result, colour=False, fail_on=result.fail_on)
+            extra = scrub(_with_changes(fmt, render(fmt, result, colour=False, fail_on=result.fail_on), result))
         except ValueError as e:
             raise usage_error(str(e)) from None
         _write(path, extra, usage_error)
-    return 1 if result.failed() else 0
+    return 1 if _failed(result) else 0
+
+
+def _failed(result) -> bool:
+    """With --diff-base, --fail-on looks at the new findings only (a model that does not load still fails)."""
+    changes = getattr(result, "changes", None)
+    if changes is None:
+        return result.failed()
+    kept = result.findings
+    result.findings = changes.new
+    try:
+        return result.failed()
+    finally:
+        result.findings = kept
+
+
+def _diff_base(ns, usage_error):
+    """(repository root, the base revision's findings, notes): `--diff-base REV` linted with the same flags."""
+    import argparse
+
+    from urdfcheck.core.git import GitError
+    from urdfcheck.diff import findings as changes
+
+    def make(paths, map_root, in_tree):
+        base = argparse.Namespace(**vars(ns))
+        base.paths, base.root = paths, map_root(getattr(ns, "root", None))
+        if getattr(ns, "config_from_tree", None) is not None:  # --config-from: its paths in the base tree
+            base.config = ns.config_from_tree(in_tree)
+        elif ns.config:  # a config of the repository: the base's own copy of it; else the runner's file
+            base.config = in_tree(ns.config) or os.path.abspath(ns.config)
+        base.baseline = base.write_baseline = None
+        base.bags = [os.path.abspath(b) for b in getattr(ns, "bags", None) or ()]
+        return request_from_flags(base)
+
+    try:
+        return changes.base_findings(ns.diff_base, ns.paths, make)
+    except GitError as e:
+        raise usage_error(f"--diff-base: {e}") from None
+
+
+def _with_changes(fmt: str, text: str, result) -> str:
+    """The report with what the change does to the findings (--diff-base): a section in text and Markdown, a
+    `diff_base` member in JSON; the other formats are left as they are."""
+    changes = getattr(result, "changes", None)
+    if changes is None:
+        return text
+    if fmt == "text":
+        return text + "\n".join(changes.text_lines()) + "\n"
+    if fmt == "markdown":
+        return text.rstrip("\n") + "\n\n" + "\n".join(changes.markdown_lines()) + "\n"
+    if fmt == "json":
+        import json
+
+        data = json.loads(text)
+        data["diff_base"] = changes.as_dict()
+        return json.dumps(data, indent=2, sort_keys=True) + "\n"
+    return text
 
 
 def _list(request: LintRequest) -> int:
@@ -93,7 +196,7 @@ def _list(request: LintRequest) -> int:
 
 
 def _list_plan(request: LintRequest) -> int:
-    from urdfcheck.core.findings import clean_text
+    from urdfcheck.core.findings import clean_text, escape_bidi
     from urdfcheck.core.paths import shown
     from urdfcheck.plan.deployments import describe, show_args
     from urdfcheck.plan.plan import plan
@@ -103,7 +206,7 @@ def _list_plan(request: LintRequest) -> int:
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
 
     def out(text: str) -> None:
-        print(clean_text(text, 4096))
+        print(escape_bidi(clean_text(text, 4096)))
 
     for line in targets.infos:
         out(f"info: {line}")

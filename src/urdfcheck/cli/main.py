@@ -98,6 +98,12 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
                       help="show paths relative to DIR (default: the working directory)")
     lint.add_argument("--baseline", metavar="FILE", help="only fail on findings not in this baseline")
     lint.add_argument("--write-baseline", metavar="FILE", help="write current findings as a baseline and exit 0")
+    lint.add_argument("--diff-base", metavar="REV",
+                      help="also lint git revision REV (read with git into a temporary folder, nothing checked "
+                      "out) and tell new, fixed and unchanged findings; --fail-on then applies to new ones only")
+    lint.add_argument("--config-from", metavar="REV",
+                      help="use the config file of git revision REV (e.g. the pull request's base), trusted, "
+                      "instead of the checkout's; say whether the checkout's config differs from it")
     lint.add_argument("--bag", dest="bags", action="append", default=[], metavar="RECORDING",
                       help="also check a recording against the model: a ROS 1 .bag, a ROS 2 bag folder, a .db3 "
                            "or .mcap file, or a YAML/JSON list of messages (repeatable; `urdfcheck bag` is the short "
@@ -165,6 +171,13 @@ def cmd_server(ns) -> int:
 
 
 def cmd_expand(ns) -> int:
+    from urdfcheck.core import door
+
+    with door.guarding((ns.path, getattr(ns, "config", None))):
+        return _expand(ns)
+
+
+def _expand(ns) -> int:
     if not os.path.isfile(ns.path):
         raise UsageError(f"no such file: {ns.path}")
     exp = load_one(ns, ns.path, build=False).expanded

@@ -90,8 +90,13 @@ def _model_path(ns) -> str:
 
 def _run(fn):
     def wrapped(ns) -> int:
+        from urdfcheck.core import door
+
+        # every read of the command through the door: the checkout, the packages resolved, what is typed
+        typed = (getattr(ns, "model", None), getattr(ns, "joint_states", None), getattr(ns, "config", None))
         try:
-            return fn(ns)
+            with door.guarding(typed):
+                return fn(ns)
         except UsageError as e:
             print(usage_message(ns.command, e), file=sys.stderr)
             return EXIT_USAGE
@@ -214,33 +219,13 @@ def cmd_tf(ns) -> int:
 
 # --- publish ----------------------------------------------------------------------------------------------------
 def _read_joint_states(path: str) -> list:
-    try:
-        with open(path, "rb") as f:
-            data = f.read(64 * 1024 * 1024 + 1)
-    except OSError as e:
-        raise UsageError(f"cannot read {path}: {e.strerror}") from None
-    if len(data) > 64 * 1024 * 1024:
-        raise UsageError(f"{path} is larger than 64 MiB")
-    text = data.decode("utf-8", "replace")
-    try:
-        doc = json.loads(text)
-        docs = [doc]
-    except ValueError:
-        from urdfcheck.core.yamlimport import yaml
+    """The runner's joint-state file (urdfcheck.bag.source: through core.door, bounded, YAML guarded)."""
+    from urdfcheck.bag.source import RecordingError, text_items
 
-        try:
-            docs = [d for d in yaml.safe_load_all(text) if d is not None]
-        except yaml.YAMLError as e:
-            raise UsageError(f"{path} is neither JSON nor YAML: {e}") from None
-    msgs = []
-    for d in docs:
-        if isinstance(d, dict) and isinstance(d.get("messages"), list):
-            d = d["messages"]
-        if isinstance(d, list):
-            msgs.extend(d)
-        else:
-            msgs.append(d)
-    return msgs
+    try:
+        return list(text_items(path, runner=True))
+    except RecordingError as e:
+        raise UsageError(f"{path}: {e}") from None
 
 
 def _tf_dict(t) -> dict:
@@ -322,7 +307,7 @@ def _check_states(model, path: str) -> bool:
     from urdfcheck.bag import BagOptions, check_recording
     from urdfcheck.core.findings import Severity
 
-    found = check_recording(model, path, BagOptions(), text=True)
+    found = check_recording(model, path, BagOptions(), text=True, runner=True)
     found = [f for f in found if f.code != "B015"]  # a list without JointState fields is said above already
     print_findings(found)
     return any(f.severity >= Severity.WARNING for f in found)

@@ -45,6 +45,8 @@ class Consumers(Record):
     workspace: str | None = None  # the folder whose joint state broadcasters may run beside this deployment
     moveit: list = ()  # consumers.moveit.MoveItConfig: the MoveIt configs paired with the model (issue 41)
 
+    plugin_files: tuple = ()
+
     def settle(self, model) -> Consumers:
         """Add the package's unread parameter files, once, now that the model is known; and, for a deployment or
         a config's model, the MoveIt configs beside the model (discovery looks for them itself)."""
@@ -54,6 +56,11 @@ class Consumers(Record):
             root = _package_root(entry) if entry else None
             if root is not None and not self.moveit:
                 self.moveit = _moveit(entry, model, root, {}, self.notes)
+        plugin, self.plugin_files = self.plugin_files, ()
+        if plugin:
+            from urdfcheck.consumers.pairing import drop_unloaded
+
+            drop_unloaded(self, plugin, model)
         files, self.package_files = self.package_files, ()
         if files:
             from urdfcheck.consumers.openworld import add_package_files
@@ -84,6 +91,19 @@ class Consumers(Record):
         self.notes = [] if notes is None else notes
         self.origin = origin
         self.files = {} if files is None else files
+        # realpath of a consumer file -> the core.evidence.Step saying how it was paired with the model (issue
+        # 37); the engine adds the steps of the files a finding points at
+        self.pairing: dict = {}
+
+    def pair(self, paths, how: str, model: str = "") -> None:
+        """Record how `paths` were paired with the model (a file keeps its first, strongest pairing)."""
+        from urdfcheck.consumers.pairing import step
+
+        for p in paths:
+            real = os.path.realpath(p)
+            old = self.pairing.get(real)
+            if old is None or (not old.strong and step(p, how).strong):
+                self.pairing[real] = step(p, how, model)
 
     @property
     def empty(self) -> bool:
@@ -212,6 +232,8 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     _launch_typed(out, pfs)
     out.files = {"controllers": list(mc.controllers), "drivers": [d.file for d in mc.drivers],
                  "launch": list(mc.launch), "localization": list(mc.localization)}
+    out.pair([f for fs in out.files.values() for f in fs], "config")
+    out.pair([li.path for li in out.launch], "config")  # what the named launch files include runs with them
     from urdfcheck.consumers.openworld import launch_unknowns
 
     # the config declares the world, but for what its launch files run that was not understood (issue 20)
@@ -243,17 +265,24 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     pfs = []
     from urdfcheck.consumers.prefilter import worth_parsing
 
+    mine, others = _references(entry, root, several, found_params, found_launch, packages)
+    skipped = []
     for p in found_params:
-        if not single and not worth_parsing(p, joints):  # names none of the joints: dropped below anyway
+        real = os.path.realpath(p)
+        if real in others:  # another model of the package names it: its file, not this model's
+            skipped.append(p)
+            continue
+        if not single and real not in mine and not worth_parsing(p, joints):  # names none of the joints
             continue
         errs: list = []
         pf = r.params(p, errs)
         if pf is None:
-            if single:
+            if single or real in mine:
                 out.errors.extend(errs)
             continue
-        if single or _names_a_joint(pf, joints):
+        if single or real in mine or _names_a_joint(pf, joints):
             pfs.append(pf)
+            out.pair([p], "referenced" if real in mine else "only" if single else "overlap", entry)
     out.controllers = read_controllers(pfs)
     for c in out.controllers:
         out.notes.extend(c.notes)
@@ -261,9 +290,14 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
 
     base = os.path.basename(entry)
     launches = []
+    # a file name that several models of the package share (robots/*/model.urdf) names none of them
+    shared = not single and _shared_name(root, base)
+    tail = "/".join(Path(entry).parts[-2:])
     for p in found_launch:
         if single or _mentions(p, base):
             launches.append(p)
+            how = "only" if single else "guess" if shared and not _mentions(p, tail) else "referenced"
+            out.pair([p], how, entry)
     pk = dict(packages or {})
     _read_launch(launches, out, None, pk, r)
     tf_owners(out, pfs, r)
@@ -272,7 +306,9 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     # every launch file of the package, associated with this model or not: when none starts a
     # robot_state_publisher, nothing in the package needs joint states (C003)
     out.files = {"params": [pf.path for pf in pfs], "launch": launches, "package_launch": list(found_launch)}
-    out.unknown = package_unknowns(out)
+    from urdfcheck.consumers.pairing import others_files
+
+    out.unknown = package_unknowns(out) + others_files(skipped)
     out.moveit = _moveit(entry, model, root, pk, out.notes)
     return out
 
@@ -285,6 +321,21 @@ def _moveit(entry: str, model, package: Path, packages: dict, notes: list) -> li
         return moveit_configs(entry, model, package, packages=packages, notes=notes)
     except Exception:  # noqa: BLE001 - a MoveIt config that cannot be read leaves the model's other checks alone
         return []
+
+
+def _references(entry: str, root, several: bool, params, launches, packages) -> tuple[set, set]:
+    """In a package of several models: (the parameter files named for this model, those named for another
+    model only), `consumers.pairing`. One model: nothing to tell apart."""
+    if not several:
+        return set(), set()
+    from urdfcheck.consumers.pairing import finder, references
+    from urdfcheck.load.discover import discover
+
+    try:
+        models = discover(str(root)).models
+        return references(entry, str(root), models, params, launches, finder(str(root), packages))
+    except OSError:
+        return set(), set()
 
 
 def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None = None, config=None) -> Consumers:
@@ -361,14 +412,24 @@ def _launch_typed(out: Consumers, pfs: list) -> None:
             out.notes.extend(c.notes)
 
 
+def _shared_name(root, base: str) -> bool:
+    from urdfcheck.load.discover import discover
+
+    try:
+        return sum(os.path.basename(m) == base for m in discover(str(root)).models) > 1
+    except OSError:
+        return False
+
+
 def _mentions(path: str, name: str) -> bool:
     from urdfcheck.load.packages import leaves_cwd
 
     if leaves_cwd(path):
         return False
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.consumers.pairing import named_in
+        from urdfcheck.core import door
 
-        return name.encode() in read_file(path, 2 * 1024 * 1024)
+        return named_in(door.read_bytes(path, limit=2 * 1024 * 1024), name)  # agv.urdf is not named by agv.urdf.xacro
     except OSError:
         return False

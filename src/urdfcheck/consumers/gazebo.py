@@ -30,6 +30,8 @@ class PluginOwner(TupleRecord):
     odom: OdomTF | None = None
     drive: DriveSpec | None = None
     state_joints: tuple[str, ...] | None = None  # None: publishes none; (): all joints
+    wheel_tf: bool = False  # broadcasts each wheel joint's parent -> child link itself
+    wheel_states: bool = False  # publishes the wheel joints' states itself (ROS 1 publishWheelJointState)
 
 
 def _key(p) -> str | None:
@@ -75,7 +77,8 @@ def read_plugins(model) -> list[PluginOwner]:
         odom = _odom(p, spec.get("odom_tf"), label)
         drive = _drive(p, spec.get("drive"), label)
         states = _states(p, spec.get("joint_states"), drive)
-        out.append(PluginOwner(p, key, label, odom, drive, states))
+        wheel_tf, wheel_states = _wheel_tf(p, spec.get("wheel_tf"))
+        out.append(PluginOwner(p, key, label, odom, drive, states, wheel_tf and drive is not None, wheel_states))
     return out
 
 
@@ -94,6 +97,18 @@ def _odom(p, spec, label: str) -> OdomTF | None:
     loc = en.loc if en is not None else p.loc
     return OdomTF((parent.text if parent is not None and parent.text else pdefault).strip("/"),
                   (child.text if child is not None and child.text else cdefault).strip("/"), label, loc, on)
+
+
+def _flag(p, names, default: bool) -> bool:
+    el = _param(p, names)
+    on = as_bool(el.text) if el is not None else None
+    return default if on is None else on
+
+
+def _wheel_tf(p, spec) -> tuple[bool, bool]:
+    if not spec:
+        return False, False
+    return _flag(p, spec.get("enable"), bool(spec.get("default"))), _flag(p, spec.get("states"), False)
 
 
 def _drive(p, spec, label: str) -> DriveSpec | None:
@@ -147,8 +162,25 @@ def plugin_drives(model):
 def plugin_claims(model) -> list:
     from urdfcheck.consumers.graph import DYNAMIC, TFClaim
 
-    return [TFClaim(o.odom.parent, o.odom.child, o.label, DYNAMIC, o.odom.loc, SOURCE)
-            for o in read_plugins(model) if o.odom is not None and o.odom.enabled]
+    plugins = read_plugins(model)
+    out = [TFClaim(o.odom.parent, o.odom.child, o.label, DYNAMIC, o.odom.loc, SOURCE)
+           for o in plugins if o.odom is not None and o.odom.enabled]
+    for o in plugins:
+        if not o.wheel_tf:
+            continue
+        # the wheel edges are robot_state_publisher's too once the wheel joints' states reach it: from another
+        # plugin of the model (gazebo_ros_joint_state_publisher) or this one's own joint states. Without a state
+        # supplier, the plugin's wheel transforms are the only ones and nothing is duplicated.
+        stated = set()
+        for other in plugins:
+            if other is not o and other.state_joints is not None:
+                stated.update(other.state_joints or (j.name for j in model.joint_list))
+        for u in o.drive.left + o.drive.right:
+            j = model.joints.get(u.joint)
+            if j is None or j.parent is None or j.child is None or not (o.wheel_states or u.joint in stated):
+                continue
+            out.append(TFClaim(j.parent, j.child, o.label, DYNAMIC, u.loc, SOURCE))
+    return out
 
 
 def state_joints(model) -> tuple[bool, set[str]]:

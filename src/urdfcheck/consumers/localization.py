@@ -108,7 +108,7 @@ class LocalizationNode(TupleRecord):
         if "{" in ref:
             def sub(m):
                 return str(self.get(m.group(1)).value or "")
-            text = re.sub(r"\{(\w+)\}", sub, ref)
+            text = re.sub(r"\{([\w.]+)\}", sub, ref)  # nested parameters by their dotted name
         else:
             text = str(self.get(ref).value if self.get(ref).value is not None else "")
         return "" if "$(" in text else text.strip().lstrip("/")  # decided at launch time: not a known frame
@@ -125,7 +125,7 @@ class LocalizationNode(TupleRecord):
     def _edge_loc(self, e: dict) -> Location:
         """Where the decision was written: the parameters of its condition, the enable parameter, the node."""
         spec = self._spec()
-        names = re.findall(r"\w+", str(e.get("when") or "").replace("not ", " ")) + [spec.get("enable", "")]
+        names = re.findall(r"[\w.]+", str(e.get("when") or "").replace("not ", " ")) + [spec.get("enable", "")]
         for n in names:
             v = self.values.get(n)
             if v is not None and not v.default:

@@ -96,7 +96,7 @@ def _read_and_silent(node, workspace: str | None) -> bool:
 
 
 def _silent_script(workspace: str, package: str, exe: str) -> bool:
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
     from urdfcheck.load.discover import _walk
     from urdfcheck.load.packages import leaves_cwd, workspace_packages
 
@@ -106,7 +106,7 @@ def _silent_script(workspace: str, package: str, exe: str) -> bool:
     if len(hits) != 1 or leaves_cwd(hits[0]):
         return False
     try:
-        text = read_file(hits[0], 1024 * 1024)
+        text = door.read_bytes(hits[0], limit=1024 * 1024)
     except OSError:
         return False
     if not (hits[0].endswith(".py") or text.startswith(b"#!") and b"python" in text.split(b"\n", 1)[0]):
@@ -127,6 +127,20 @@ def _description_only(root, nodes) -> bool:
     return True
 
 
+def _gives_a_model(li) -> bool:
+    """A robot_state_publisher of the launch file is given a model (understood or not): a description launch file,
+    not a bare node that waits for one."""
+    if any(s.description is not None or getattr(s, "unread", "") for s in li.state_publishers) \
+            or getattr(li, "descriptions", None):
+        return True
+    from urdfcheck.core import door
+
+    try:
+        return b"robot_description" in door.read_bytes(li.path, limit=2 * 1024 * 1024)
+    except OSError:
+        return False
+
+
 def package_unknowns(c) -> list[tuple[str, Location]]:
     """Zero config: parameter files beside the model, and either no launch file of the package that starts
     robot_state_publisher (what runs beside the model is not known) or nodes of no known kind in them."""
@@ -136,7 +150,20 @@ def package_unknowns(c) -> list[tuple[str, Location]]:
     if not any(li.state_publishers for li in c.launch):
         return [("no launch file found that runs this model with its parameter files (what runs beside it is "
                  "not known)", first or Location(c.launch[0].path))]
-    return launch_unknowns(c)
+    return launch_unknowns(c) + description_files(c.launch)
+
+
+def description_files(launches) -> list[tuple[str, Location]]:
+    """Zero config: when every launch file beside the model that starts robot_state_publisher starts it alone
+    (with tools), they are description launch files, meant to be included by a bringup or simulation launch
+    file that starts the rest (a vendor driver, joint_state_publisher): that world is not known."""
+    from urdfcheck.core.paths import shown as display
+
+    starters = [li for li in launches if li.state_publishers]
+    if not starters or not all(_description_only(li, li.nodes) and _gives_a_model(li) for li in starters):
+        return []
+    return [(f"the launch files that include {display(li.path)} (it starts robot_state_publisher and nothing "
+             "that moves or supplies the robot: a description launch file)", Location(li.path)) for li in starters]
 
 
 def launch_unknowns(c, read=()) -> list[tuple[str, Location]]:
@@ -215,16 +242,28 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
     from urdfcheck.consumers.localization import localization_from_params
 
     joints = set(model.joints) if model is not None else set()
-    pfs = []
+    entry = getattr(model, "source", None) or ""
+    mine, others = _references(entry, files) if not single and entry else (set(), set())
+    pfs, skipped = [], []
     for f in files:
+        real = os.path.realpath(f)
+        if real in others:  # another model of the package names it (consumers.pairing)
+            skipped.append(f)
+            continue
         errs: list = []
         pf = reader.params(f, errs)
         if pf is None:
-            if single:
+            if single or real in mine:
                 c.errors.extend(e for e in errs if e not in c.errors)
             continue
-        if single or names_a_joint(pf, joints):
+        if single or real in mine or names_a_joint(pf, joints):
             pfs.append(pf)
+            if hasattr(c, "pair"):
+                c.pair([f], "referenced" if real in mine else "only" if single else "overlap", entry)
+    if skipped:
+        from urdfcheck.consumers.pairing import others_files
+
+        c.unknown = list(c.unknown or ()) + others_files(skipped)
     if not pfs:
         return
     ctrls = read_controllers(pfs)
@@ -242,6 +281,24 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
         c.drivers.append(drv)
     files_read = c.files.setdefault("package", [])
     files_read.extend(pf.path for pf in pfs if pf.path not in files_read)
+
+
+def _references(entry: str, files) -> tuple[set, set]:
+    """The package's files named for this model and for its other models only (consumers.pairing)."""
+    from pathlib import Path
+
+    from urdfcheck.consumers.pairing import finder, references
+    from urdfcheck.load.discover import discover
+    from urdfcheck.load.packages import enclosing_package
+
+    root = enclosing_package(Path(os.path.abspath(entry)).parent)
+    if root is None:
+        return set(), set()
+    try:
+        found = discover(str(root))
+        return references(entry, str(root), found.models, files, found.launch, finder(str(root)))
+    except OSError:
+        return set(), set()
 
 
 def package_drivers(pfs, controllers, localization) -> list:
@@ -295,13 +352,13 @@ def _broadcasters(root: str) -> list:
     from urdfcheck.consumers.common import ConsumerError
     from urdfcheck.consumers.controllers import JSB, JSC, read_controllers
     from urdfcheck.consumers.params import read_params
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
     from urdfcheck.load.discover import discover
 
     out = []
     for f in discover(root).params:
         try:
-            if not _BROADCASTER.search(read_file(f, 2 * 1024 * 1024)):
+            if not _BROADCASTER.search(door.read_bytes(f, limit=2 * 1024 * 1024)):
                 continue
         except OSError:
             continue

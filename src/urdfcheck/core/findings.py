@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import enum
 import os
+import re
 
 from urdfcheck.core import lazyre
 from urdfcheck.core.records import TupleRecord
@@ -85,6 +86,9 @@ class Finding(TupleRecord):
     # the planning steps the finding rests on (core.evidence.Step): how its model, deployment, parameter files
     # and features were chosen; a finding with a step that is a guess is said at info (rules.engine)
     evidence: tuple = ()
+    # every active profile whose consumer the finding concerns (`profile` is the first): two roots are refused by
+    # Pinocchio, Gazebo, KDL and PyBullet alike, and `--profile gazebo,kdl` says so for both
+    profiles: tuple = ()
 
     def places(self) -> tuple[Place, ...]:
         return self.where or (Place(self.model, self.variant),)
@@ -94,22 +98,63 @@ class Finding(TupleRecord):
         return (loc.file, loc.line or 0, loc.column or 0, self.code, self.message, self.variant)
 
 
-_CONTROL = lazyre.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|[\x00-\x08\x0b-\x1f\x7f-\x9f]")
-_WORKFLOW = lazyre.compile(r"::|##vso\[|##\[")
+# CSI sequences and OSC strings (OSC 52 writes the clipboard, OSC 8 makes links) go whole, payload included; then
+# every C0/C1 control character
+_CONTROL = lazyre.compile(r"\x1b\[[0-9;?]*[ -/]*[@-~]|\x1b\][^\x07\x1b\x9c]*(?:\x07|\x1b\\|\x9c)?"
+                          r"|[\x00-\x08\x0b-\x1f\x7f-\x9f]")
+# Azure Pipelines reads `##vso[` anywhere in a line and `##[` formatting commands; GitHub reads `::` only where a line
+# starts (after blanks): that one is defused at the start of the text here and in report/github.py, so
+# `gz::sim::systems::DiffDrive` stays copyable everywhere else
+_WORKFLOW = lazyre.compile(r"##vso\[|##\[")
+_LINE_COMMAND = lazyre.compile(r"^(\s*):(?=:)", re.M)  # blanks as .NET's TrimStart sees them
 MAX_TEXT = 500
 
 
 def clean_text(text: object, limit: int = MAX_TEXT) -> str:
     """Make text from an untrusted model safe to print in any report format.
 
-    Strips ANSI escapes and control characters, defuses CI workflow commands
-    (`::error`, `##vso[`), and truncates absurdly long values.
+    Strips ANSI escapes and control characters, defuses CI workflow commands (`##vso[`, and `::` where it would
+    start a line: `::error`), and truncates absurdly long values.
     """
     s = _CONTROL.sub("", str(text).replace("\n", " ").replace("\t", " "))
     s = _WORKFLOW.sub(lambda m: m.group(0)[0] + "\u200b" + m.group(0)[1:], s)
+    s = guard_lines(s)
+    if _SURROGATE.search(s):  # a file name that is not UTF-8 (surrogateescape): its bytes as `\xff`
+        s = _SURROGATE.sub(lambda m: show_byte(m.group(0)), s)
     if len(s) > limit:
         s = s[: limit - 1] + "\u2026"
     return s
+
+
+_SURROGATE = lazyre.compile("[\ud800-\udfff]")
+
+
+def show_byte(ch: str) -> str:
+    """A lone surrogate as text: `\\xff` for a byte that surrogateescape kept, else `\\udXXX`."""
+    n = ord(ch)
+    return f"\\x{n - 0xdc00:02x}" if 0xdc80 <= n <= 0xdcff else f"\\u{n:04x}"
+
+
+def guard_lines(text: str) -> str:
+    """No line of `text` starts (after blanks) with `::`, the start of a GitHub workflow command: a zero-width space
+    goes between the colons there, nowhere else."""
+    return _LINE_COMMAND.sub("\\1:\u200b", text) if "::" in text else text
+
+
+# Unicode bidirectional controls (embeddings, overrides, isolates, marks): a link or file name holding U+202E shows
+# reversed text in a terminal, a PR annotation or a code-scanning page ("Trojan Source"). Every report shows them
+# as the visible escape `\u202e`; in JSON formats the escape is itself escaped, so a parsed string holds the six
+# visible characters, not the control.
+_BIDI = "\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069"
+_BIDI_RE = lazyre.compile(f"[{_BIDI}]")
+_BIDI_JSON_ESCAPE = lazyre.compile(r"(?<!\\)((?:\\\\)*)\\u(061[cC]|200[eEfF]|202[a-eA-E]|206[6-9])")
+
+
+def escape_bidi(text: str, json: bool = False) -> str:
+    if json:
+        text = _BIDI_JSON_ESCAPE.sub(lambda m: m.group(1) + "\\\\u" + m.group(2).lower(), text)
+        return _BIDI_RE.sub(lambda m: f"\\\\u{ord(m.group(0)):04x}", text)
+    return _BIDI_RE.sub(lambda m: f"\\u{ord(m.group(0)):04x}", text)
 
 
 class Problem:

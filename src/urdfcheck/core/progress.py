@@ -32,7 +32,11 @@ class _Line:
             width = 0
         if width <= 0:  # not a terminal after all, or one whose size nobody set (`script`, some CI ptys)
             width = 80
-        text = f"urdfcheck: {done}/{total} checked; {label}"
+        # the label is a file name from the checkout: no escape sequence of it reaches the terminal (OSC 52 would
+        # write the clipboard, OSC 8 make a link), no bidi control reorders the line
+        from urdfcheck.core.findings import clean_text, escape_bidi
+
+        text = f"urdfcheck: {done}/{total} checked; {escape_bidi(clean_text(label, 4096))}"
         if len(text) > width - 1:
             text = text[:max(0, width - 2)] + "…"
         self.stream.write("\r" + text + "\x1b[K")

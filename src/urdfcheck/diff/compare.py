@@ -50,18 +50,26 @@ class Pair(Record):
 
 
 class DiffResult(Record):
-    _fields = ('old', 'new', 'pairs')
+    """old, new: how the two sides are named (a revision, "working tree", a path as typed; never a temporary
+    folder). notes: what could not be compared and why (a file of the revision with a name no file system holds).
+    findings: what the change does to lint's findings (`diff.findings.FindingsDiff`), when asked for."""
+    _fields = ('old', 'new', 'pairs', 'notes')
+    findings = None
 
-    def __init__(self, old: str, new: str, pairs: list[Pair]):
+    def __init__(self, old: str, new: str, pairs: list[Pair], notes=None):
         self.old, self.new, self.pairs = old, new, pairs
+        self.notes = list(notes or [])
 
     @property
     def changed(self) -> bool:
         return any(p.changed for p in self.pairs)
 
     def as_dict(self) -> dict:
-        return {"old": self.old, "new": self.new, "changed": self.changed,
-                "models": [p.as_dict() for p in self.pairs]}
+        out = {"old": self.old, "new": self.new, "changed": self.changed,
+               "models": [p.as_dict() for p in self.pairs], "notes": list(self.notes)}
+        if self.findings is not None:
+            out["findings"] = self.findings.as_dict()
+        return out
 
 
 # --- loading: the one place to re-point at the pipeline's load(request, path) ---------------------------------
@@ -74,26 +82,66 @@ def load_target(t):
     return loader.build_model(exp), exp, list(exp.findings)
 
 
-def plan_side(paths, root: str, options: dict):
-    """The targets `urdfcheck lint PATHS` plans, with labels relative to `root`."""
+def plan_side(paths, root: str, options: dict, cwd: str | None = None):
+    """The targets `urdfcheck lint PATHS` plans, with labels relative to `root`. `cwd`: the folder to plan from
+    (a launch file's relative paths and what the planner lists read from the working directory: the old side
+    of `diff --git` is planned from its own copy of it, so both sides see the same)."""
     from urdfcheck.plan.plan import plan
     from urdfcheck.request.request import make_request
 
-    request = make_request(list(paths), root=root, **options)
-    return plan(request, here=root)
+    paths = [os.path.abspath(p) for p in paths]
+    request = make_request(paths, root=root, **options)
+    here = os.getcwd()
+    if cwd is not None:
+        os.chdir(cwd)
+    try:
+        targets = plan(request, here=root)
+        for t in targets:  # what the planner made relative to the folder it planned from: absolute, read later
+            if not os.path.isabs(str(t.path)):
+                t.path = type(t.path)(os.path.abspath(str(t.path))) if hasattr(t.path, "__fspath__") \
+                    else os.path.abspath(t.path)
+        return [(_key(t, root), t) for t in targets]
+    finally:
+        os.chdir(here)
+
+
+def _same_place(old_root: str, new_root: str) -> str | None:
+    """The old tree's copy of the working directory, when the working directory lies in the new tree."""
+    here = os.path.realpath(os.getcwd())
+    rel = os.path.relpath(here, os.path.realpath(new_root))
+    if rel == ".." or rel.startswith(".." + os.sep):
+        return None
+    place = os.path.normpath(os.path.join(old_root, rel))
+    return place if os.path.isdir(place) else old_root
 
 
 def _key(t, root: str) -> tuple[str, str]:
-    return os.path.relpath(os.path.abspath(t.path), root), t.variant or ""
+    """What a target is in its tree, the same on both sides: the model's path relative to the tree, and the
+    variant; a deployment's variant is its launch file relative to the tree (never the path the planner shows,
+    which for a tree outside the working directory holds that tree's location)."""
+    variant = t.variant or ""
+    d = getattr(t, "deployment", None)
+    launch = getattr(getattr(d, "launch", None), "file", None)
+    if launch:
+        variant = _rel(str(launch), root) + (f" [{d.variant}]" if getattr(d, "variant", "") else "")
+    return _rel(str(t.path), root), variant
 
 
-def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEEDS, **options) -> DiffResult:
-    """Compare what `old_paths` (under `old_root`) and `new_paths` (under `new_root`) describe."""
+def _rel(path: str, root: str) -> str:
+    return os.path.relpath(os.path.abspath(path), root).replace(os.sep, "/")
+
+
+def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEEDS, old_label: str | None = None,
+         new_label: str | None = None, **options) -> DiffResult:
+    """Compare what `old_paths` (under `old_root`) and `new_paths` (under `new_root`) describe. `old_label`,
+    `new_label`: how the report names the sides (and what replaces each root in a message)."""
     from urdfcheck.load.budget import run_budget
 
     old_root, new_root = os.path.abspath(old_root), os.path.abspath(new_root)
-    old_t = {_key(t, old_root): t for t in plan_side(old_paths, old_root, options)} if old_paths else {}
-    new_t = {_key(t, new_root): t for t in plan_side(new_paths, new_root, options)} if new_paths else {}
+    old_label = old_label or "old"
+    new_label = new_label or "new"
+    old_t = dict(plan_side(old_paths, old_root, options, _same_place(old_root, new_root))) if old_paths else {}
+    new_t = dict(plan_side(new_paths, new_root, options)) if new_paths else {}
     if not old_t and not new_t:
         from urdfcheck.request.request import UsageError
 
@@ -109,32 +157,92 @@ def diff(old_paths, new_paths, old_root: str, new_root: str, *, seeds: int = SEE
         elif len(new_t) == 1 and set(old_t) != set(new_t):
             only = next(iter(new_t.values()))
             new_t = {k: only for k in old_t}
+    renamed = _renamed(old_t, new_t)
+    for (old_model, _), key in renamed.items():
+        old_t[key + (old_model,)] = old_t.pop((old_model, _))
     pairs = []
     with run_budget(options.get("budget")):
         for key in list(dict.fromkeys([*old_t, *new_t])):
+            if len(key) == 3:
+                continue
             o, n = old_t.get(key), new_t.get(key)
+            moved_from = None
+            if o is None:
+                moved_from = next((k for k in old_t if len(k) == 3 and k[:2] == key), None)
+                o = old_t.get(moved_from) if moved_from else None
             if o is None or n is None:
                 pairs.append(Pair(key[0], key[1], "added" if o is None else "removed"))
                 continue
-            pairs.append(compare_targets(key, o, n, seeds=seeds))
-    return DiffResult(old_root, new_root, pairs)
+            pair = compare_targets(key, o, n, seeds=seeds, roots=(old_root, new_root))
+            if moved_from is not None:  # the model's file was renamed (git mv): compared with its old self
+                pair.changes.insert(0, {"kind": "model", "name": key[0], "field": "file", "old": moved_from[2],
+                                        "new": key[0]})
+                pair.status = "changed"
+            pairs.append(pair)
+    for p in pairs:  # load errors name files by path: the side's label, never its folder
+        p.errors = {side: [_scrub(e, ((old_root, old_label), (new_root, new_label))) for e in errs]
+                    for side, errs in p.errors.items()}
+    return DiffResult(old_label, new_label, pairs)
 
 
-def compare_targets(key, old_t, new_t, *, seeds: int = SEEDS) -> Pair:
+def _where(loc, root: str | None) -> str:
+    """A location with its file relative to the compared tree (the report adds which side it is)."""
+    if loc is None:
+        return "?"
+    file = str(loc.file)
+    if root is not None:  # loaders show a file relative to the working directory, or absolute
+        full = os.path.abspath(file)
+        if (full + os.sep).startswith(root.rstrip(os.sep) + os.sep):
+            file = _rel(full, root)
+    return str(type(loc)(file, loc.line, loc.column))
+
+
+def _renamed(old_t: dict, new_t: dict) -> dict:
+    """old key -> new key for a model whose file was renamed: exactly one model only on the old side and one only
+    on the new side, in the same folder, whose variants match once the old file name is read as the new one."""
+    gone = {m for m, _ in old_t} - {m for m, _ in new_t}
+    came = {m for m, _ in new_t} - {m for m, _ in old_t}
+    if len(gone) != 1 or len(came) != 1:
+        return {}
+    a, b = next(iter(gone)), next(iter(came))
+    if os.path.dirname(a) != os.path.dirname(b):
+        return {}
+    base_a, base_b = os.path.basename(a), os.path.basename(b)
+    out = {}
+    for m, v in old_t:
+        if m != a:
+            continue
+        key = (b, v.replace(base_a, base_b))
+        if key not in new_t:
+            return {}
+        out[(m, v)] = key
+    return out
+
+
+def _scrub(text: str, roots) -> str:
+    """`text` with each root's absolute path (and its real path) replaced by the side's label."""
+    for root, label in roots:
+        for r in dict.fromkeys((root, os.path.realpath(root))):
+            text = text.replace(r.rstrip(os.sep) + os.sep, f"{label}:").replace(r, label)
+    return text
+
+
+def compare_targets(key, old_t, new_t, *, seeds: int = SEEDS, roots=(None, None)) -> Pair:
     from urdfcheck.core.findings import Severity
 
     sides = []
     errors = {}
-    for label, t in (("old", old_t), ("new", new_t)):
+    for (label, t), root in zip((("old", old_t), ("new", new_t)), roots):
         model, exp, findings = load_target(t)
         bad = [f for f in findings if f.severity >= Severity.ERROR]
         if model is None or bad:
-            errors[label] = [f"{f.location}: {f.code} {f.message}" for f in (bad or findings)] or ["not loaded"]
+            errors[label] = [f"{_where(f.location, root)}: {f.code} {f.message}"
+                             for f in (bad or findings)] or ["not loaded"]
         sides.append((model, exp, t))
     if errors:
         return Pair(key[0], key[1], "unloadable", errors=errors)
     (om, oexp, ot), (nm, nexp, nt) = sides
-    pair = compare_models(om, nm, seeds=seeds)
+    pair = compare_models(om, nm, seeds=seeds, roots=roots)
     pair.model, pair.variant = key
     pair.changes.extend(compare_contracts(_consumers(ot, om, oexp), _consumers(nt, nm, nexp), pair))
     pair.status = "changed" if (pair.changes or pair.moved or any(pair.links.values())
@@ -193,7 +301,7 @@ def _distance(a, b) -> float:
 
 
 # --- comparison of two models ----------------------------------------------------------------------------------
-def compare_models(old, new, *, seeds: int = SEEDS) -> Pair:
+def compare_models(old, new, *, seeds: int = SEEDS, roots=(None, None)) -> Pair:
     links, joints = match(old, new)
     pair = Pair("", "")
     new_links, new_joints = set(links.values()), set(joints.values())
@@ -210,7 +318,7 @@ def compare_models(old, new, *, seeds: int = SEEDS) -> Pair:
     for o, n in joints.items():
         pair.changes.extend(_joint_changes(old.joints[o], new.joints[n], links, joints))
     for o, n in links.items():
-        pair.changes.extend(_link_changes(old, new, old.links[o], new.links[n]))
+        pair.changes.extend(_link_changes(old, new, old.links[o], new.links[n], roots))
     pair.changes.extend(_material_changes(old, new))
     pair.moved = moved_frames(old, new, links, joints, pair, seeds=seeds)
     pair.tree = ([(j.parent, j.name, j.child) for j in new.joint_list], list(new.roots),
@@ -271,7 +379,7 @@ def _rotation(pose) -> list:
     return [-v for v in q] if q[3] < 0 else list(q)
 
 
-def _link_changes(old, new, a, b) -> list[dict]:
+def _link_changes(old, new, a, b, roots=(None, None)) -> list[dict]:
     out = []
     ia, ib = a.inertial, b.inertial
     out += _change("link", b.name, "mass", getattr(ia, "mass", None), getattr(ib, "mass", None))
@@ -280,7 +388,7 @@ def _link_changes(old, new, a, b) -> list[dict]:
                    _rotation(ib.origin) if ib else None)
     out += _change("link", b.name, "inertia", ia.inertia if ia else None, ib.inertia if ib else None)
     for kind in ("visuals", "collisions"):
-        sa, sb = _shapes(old, getattr(a, kind)), _shapes(new, getattr(b, kind))
+        sa, sb = _shapes(old, getattr(a, kind), roots[0]), _shapes(new, getattr(b, kind), roots[1])
         for label in dict.fromkeys([*sa, *sb]):
             x, y = sa.get(label), sb.get(label)
             if x is None or y is None:  # a shape added or removed: one line
@@ -291,10 +399,10 @@ def _link_changes(old, new, a, b) -> list[dict]:
     return out
 
 
-def _shapes(model, shapes) -> dict:
+def _shapes(model, shapes, root: str | None = None) -> dict:
     """Shapes by name (their index when unnamed or the name repeats): an inserted shape changes only itself."""
     names = [s.name for s in shapes]
-    return {(s.name if s.name and names.count(s.name) == 1 else f"#{i}"): _shape(model, s)
+    return {(s.name if s.name and names.count(s.name) == 1 else f"#{i}"): _shape(model, s, root)
             for i, s in enumerate(shapes)}
 
 
@@ -302,13 +410,13 @@ def _brief(shape: dict) -> list:
     return [shape["mesh"][0] if shape["mesh"] else shape["geometry"], shape["material"] and shape["material"][0]]
 
 
-def _shape(model, s) -> dict:
+def _shape(model, s, root: str | None = None) -> dict:
     g = s.geometry
     geo = None
     mesh = None
     if g is not None:
         if g.kind == "mesh":
-            mesh = [g.filename, list(g.scale) if g.scale else None]
+            mesh = [mesh_name(g.filename, root), list(g.scale) if g.scale else None]
             geo = "mesh"
         else:
             geo = [g.kind] + [_num(v) for v in (g.size, g.radius, g.length) if v is not None]
@@ -321,6 +429,26 @@ def _shape(model, s) -> dict:
         material = [m.name, list(rgba) if rgba else None, texture]
     return {"name": s.name, "geometry": geo, "mesh": mesh, "origin": list(s.origin.xyz) + _rotation(s.origin),
             "material": material}
+
+
+def mesh_name(uri, root: str | None) -> str | None:
+    """A mesh's file as the repository knows it, whatever way the model writes it: `package://pkg/rel` for a file
+    inside a package (from `package://`, `file:///abs/...`, an absolute path, `$(find pkg)` already expanded to
+    one), else relative to the compared tree. Two checkouts at different places name one mesh alike."""
+    if not isinstance(uri, str):
+        return uri
+    path = uri[len("file://"):] if uri.startswith("file://") else uri
+    if not os.path.isabs(path):
+        return uri
+    from urdfcheck.load.packages import own_package
+
+    path = os.path.normpath(path)
+    name, folder = own_package(path)
+    if name and folder is not None:
+        return f"package://{name}/{os.path.relpath(path, folder).replace(os.sep, '/')}"
+    if root is not None and (path + os.sep).startswith(root.rstrip(os.sep) + os.sep):
+        return os.path.relpath(path, root).replace(os.sep, "/")
+    return uri
 
 
 def _material_changes(old, new) -> list[dict]:
@@ -431,8 +559,10 @@ def contract_facts(c) -> dict:
         return out
     for ctrl in c.controllers:
         out[f"controller {ctrl.name} joints"] = sorted({u.joint for u in ctrl.joints + ctrl.state_joints})
+        _reader_facts(out, f"controller {ctrl.name}", ctrl)
     for d in c.drivers:
         out[f"driver {d.name} joints"] = sorted({u.joint for u in d.joints})
+        _reader_facts(out, f"driver {d.name}", d)
     from urdfcheck.consumers.graph import claims_from_localization, claims_from_odom, claims_from_static_tfs
 
     claims = []
@@ -452,12 +582,35 @@ def contract_facts(c) -> dict:
     return out
 
 
+def _reader_facts(out: dict, who: str, r) -> None:
+    """The parameters of a controller or driver (as consumers.controllers read them) that a contract with the
+    model reads: wheel geometry and wheel joints, the odom transform and its switch, the frame ids."""
+    from urdfcheck.consumers.controllers import number
+
+    drive = getattr(r, "drive", None)
+    if drive is not None:
+        out[f"{who} {drive.separation_key}"] = _num(drive.separation)
+        out[f"{who} {drive.radius_key}"] = _num(number(drive.wheel_radius))
+        for side in ("left", "right"):
+            if drive.radius(side) != number(drive.wheel_radius):
+                out[f"{who} {side} wheel radius"] = _num(drive.radius(side))
+            out[f"{who} {side} wheels"] = [u.joint for u in getattr(drive, side)]
+    odom = getattr(r, "odom_tf", None)
+    if odom is not None:
+        out[f"{who} odom tf {odom.parent} -> {odom.child}"] = "on" if odom.enabled else "off"
+    frames = sorted({str(v.value) for v in getattr(r, "frames", ()) or () if v is not None})
+    if frames:
+        out[f"{who} frames"] = frames
+
+
 def compare_contracts(old_c, new_c, pair: Pair) -> list[dict]:
     a, b = contract_facts(old_c), contract_facts(new_c)
     out = []
     for key in dict.fromkeys([*a, *b]):
         x, y = a.get(key), b.get(key)
         if isinstance(x, list) and isinstance(y, list) and sorted(x) == sorted(y):
+            continue
+        if not isinstance(x, list) and _same(x, y):
             continue
         out.append({"kind": "contract", "name": key, "field": "", "old": x, "new": y})
     return out

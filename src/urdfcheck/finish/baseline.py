@@ -60,9 +60,10 @@ def _source_line(file: str, line: int | None) -> str:
     lines = _LINES_CACHE.get(file)
     if lines is None:
         try:
-            from urdfcheck.core.safeio import read_file
+            from urdfcheck.core import door
 
-            lines = read_file(file, 64 * 1024 * 1024)[:64 * 1024 * 1024].decode("utf-8", "replace").splitlines()
+            data = door.read_bytes(file, limit=64 * 1024 * 1024)[:64 * 1024 * 1024]
+            lines = data.decode("utf-8", "replace").splitlines()
         except OSError:
             lines = []
         _LINES_CACHE[file] = lines
@@ -75,7 +76,7 @@ def context(f: Finding) -> str:
     """Hash of the source text the finding points at (its line and its macro call-site lines)."""
     parts = [_source_line(f.location.file, f.location.line)]
     parts += [_source_line(v.file, v.line) for v in f.location.via]
-    return hashlib.sha256("\n".join(parts).encode("utf-8")).hexdigest()[:16]
+    return hashlib.sha256("\n".join(parts).encode("utf-8", "surrogateescape")).hexdigest()[:16]
 
 
 def key(f: Finding, base: str | None = None) -> tuple[str, str, str, str]:
@@ -98,6 +99,10 @@ def write(path: str, findings: list[Finding]) -> None:
     """Write `findings` as a baseline to `path` (deterministic, sorted: diffs stay small)."""
     data = as_dict(findings, _base_of(path))
     text = json.dumps(data, indent=2, sort_keys=True, ensure_ascii=False) + "\n"
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:  # a file name that is not UTF-8: as `\udcff` escapes, read back as the same key
+        text = json.dumps(data, indent=2, sort_keys=True) + "\n"
     with open(path, "w", encoding="utf-8") as f:
         f.write(text)
 
@@ -109,12 +114,12 @@ def load(path: str) -> Counter:
     """Counter of keys in a baseline file. Raises OSError or ValueError, whose messages never quote the file:
     it may be a link a pull request pointed at a secret (refused when it leaves the working directory), a FIFO
     (refused, never waited on), too large, or nested to exhaust the parser."""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
     from urdfcheck.load.packages import leaves_cwd
 
     if leaves_cwd(path):
         raise ValueError("it is a link that leads out of the working directory; refused")
-    raw = read_file(path, MAX_BYTES)
+    raw = door.read_bytes(path, limit=MAX_BYTES)
     if len(raw) > MAX_BYTES:
         raise ValueError(f"larger than {MAX_BYTES // 2**20} MiB; refused")
     try:

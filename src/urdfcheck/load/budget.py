@@ -58,6 +58,11 @@ def _from_env() -> tuple[float | None, int | None]:
 
 
 def _peak_rss() -> int | None:
+    # VmHWM is this program's own peak: getrusage's ru_maxrss keeps the peak of the process that forked and
+    # exec'ed it (a test runner, a CI step that used a lot before starting us), which is not ours to count
+    hwm = _status_kb("VmHWM:")
+    if hwm is not None:
+        return hwm * 1024
     try:
         import resource
     except ImportError:  # pragma: no cover - not POSIX
@@ -119,11 +124,17 @@ def _limit_memory(memory: int):
 
 def _data_now() -> int:
     """This process's data segment size now (VmData), 0 when unknown."""
+    kb = _status_kb("VmData:")
+    return 0 if kb is None else kb * 1024
+
+
+def _status_kb(key: str) -> int | None:
+    """A `kB` line of /proc/self/status (Linux), None elsewhere."""
     try:
         with open("/proc/self/status", encoding="ascii") as f:
             for line in f:
-                if line.startswith("VmData:"):
-                    return int(line.split()[1]) * 1024
+                if line.startswith(key):
+                    return int(line.split()[1])
     except (OSError, ValueError, IndexError):
         pass
-    return 0
+    return None

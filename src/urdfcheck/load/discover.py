@@ -50,6 +50,9 @@ class Discovered(TupleRecord):
     probes: tuple[str, ...] = ()
     # libraries because another file includes them, that may hold links: the run checks that a model read them
     included: tuple[str, ...] = ()
+    # (fragment, includer): files another file may include where discovery cannot follow (a legacy or commented
+    # include, a computed name): probes, and linted through their includers when named (plan.plan)
+    hints: tuple = ()
 
 
 def _walk(root: str, max_files: int, cut: list | None = None):
@@ -73,10 +76,11 @@ def _read_head(path: str, trusted: bool = False, cache: dict | None = None) -> s
     if not trusted and leaves_cwd(path, cache=cache):
         return ""
     try:
-        from urdfcheck.core.safeio import decode_model_text, read_file
+        from urdfcheck.core import door
+        from urdfcheck.core.safeio import decode_model_text
 
         # a regular file only (a FIFO must not block); a UTF-16 model is found, then reported by the loader
-        return decode_model_text(read_file(path, HEAD_BYTES)[:HEAD_BYTES])
+        return decode_model_text(door.read_bytes(path, limit=HEAD_BYTES)[:HEAD_BYTES])
     except OSError:
         return ""
 
@@ -178,6 +182,45 @@ def _included_files(ref: str, includer: str, xacros: _Xacros) -> set[str]:
     if not hits:
         hits = {x for x in named if os.path.basename(x) == tail_parts[-1]}
     return hits
+
+
+# an include that may bring a file in although discovery cannot follow it literally: the legacy unprefixed
+# <include filename=...> (xacro before ROS Jade), and an include written in a comment (a drop-in alternative)
+_LEGACY = lazyre.compile(r"""<\s*include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
+_COMMENTED = lazyre.compile(r"<!--(.*?)(?:-->|\Z)", re.S)
+_SUBST = lazyre.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
+
+
+def _fragment_hints(text: str, includer: str, xacros: _Xacros) -> set[str]:
+    """Package xacro files that another file may include where discovery does not follow it: a legacy
+    `<include filename>`, an include inside a comment (a drop-in alternative), a name computed from arguments
+    or properties (`sensors/${sensor}.urdf.xacro`, matched as a pattern). They are fragments until their
+    expansion says otherwise (plan.robots: probes)."""
+    import fnmatch
+
+    out: set[str] = set()
+    refs = [m.group(2) for m in _LEGACY.finditer(_COMMENT.sub("", text))]
+    for c in _COMMENTED.finditer(text):
+        refs.extend(m.group(2) for m in _INCLUDE.finditer(c.group(1)))
+    for ref in refs:
+        out |= _included_files(ref, includer, xacros)
+    for m in _INCLUDE.finditer(_COMMENT.sub("", text)):
+        ref = m.group(2).strip().replace("\\", "/")
+        tail = re.sub(r"^\$\(\s*find[^)]*\)", "", ref).lstrip("/")
+        if "${" not in tail and "$(" not in tail:
+            continue
+        pattern = _SUBST.sub("*", tail)
+        literal = pattern.replace("*", "").replace("/", "").replace(".", "")
+        if len(literal) < 3 or pattern.strip("*/") == "":
+            continue  # `${name}.xacro` says too little to pick files by
+        parts = pattern.split("/")
+        base = os.path.dirname(includer) if not ref.startswith("$(") else None
+        for x in xacros.paths:
+            xs = x.replace("\\", "/").split("/")
+            if len(xs) >= len(parts) and fnmatch.fnmatchcase("/".join(xs[-len(parts):]), "/".join(parts)) and (
+                    base is None or os.path.normpath(x).startswith(os.path.normpath(base) + os.sep)):
+                out.add(x)
+    return out
 
 
 class _Xacros:
@@ -285,9 +328,14 @@ def _discover(package_dir, max_files: int, trusted: bool) -> Discovered:
     texts = {p: _read_head(p, trusted, real_dirs) for p in xacros}
     included: set[str] = set()
     index = _Xacros(xacros)
+    hinted: set[str] = set()  # fragments by another file's hint: expanded as probes, never robots by discovery
+    hints = []
     for p, t in texts.items():
         for m in _INCLUDE.finditer(_COMMENT.sub("", t)):  # a commented-out include includes nothing
             included |= _included_files(m.group(2), p, index) - {p}
+        got = _fragment_hints(t, p, index) - {p}
+        hinted |= got
+        hints.extend((f, p) for f in sorted(got))
     libs, probes, maybe = [], [], []
     for p in urdfs:  # a .urdf without any <link> is a fragment (materials, properties) for others to include
         (models if re.search(r"<\s*link\b", _read_head(p, trusted, real_dirs)) else libs).append(p)
@@ -302,10 +350,10 @@ def _discover(package_dir, max_files: int, trusted: bool) -> Discovered:
         if not robot or _is_library(texts[p]):
             libs.append(p)
             continue
-        if _is_srdf(texts[p]) or _no_links(texts[p]) or _is_library(texts[p], includes=True):
+        if _is_srdf(texts[p]) or _no_links(texts[p]) or _is_library(texts[p], includes=True) or p in hinted:
             libs.append(p)  # by its text; the expansion decides (plan.robots)
             probes.append(p)
             continue
         models.append(p)
     return Discovered(root, tuple(sorted(models)), tuple(sorted(params)), tuple(sorted(launches)), tuple(sorted(libs)),
-                      bool(cut), tuple(sorted(probes)), tuple(sorted(maybe)))
+                      bool(cut), tuple(sorted(probes)), tuple(sorted(maybe)), tuple(hints))

@@ -60,6 +60,9 @@ class Deployment(Record):
     # model too, `consumers.openworld`); package_single: the package holds one model
     package_files: tuple = ()
     package_single = True
+    # controller files taken from the model's Gazebo ros2_control plugin, read as text: kept only when the
+    # expanded model has that plugin (`Consumers.settle`; it may sit in a branch these arguments do not take)
+    plugin_files: tuple = ()
     workspace: str | None = None
     included_elsewhere = False
 
@@ -154,10 +157,13 @@ class Deployment(Record):
         out.files = {"controllers": list(self.controller_files), "localization": list(self.localization_files),
                      "launch": [li.path for li in self.infos],
                      "drivers": sorted({f for _, files in self.driver_nodes for f in files})}
+        # what this deployment's launch files name or load runs with the model (issue 37: evidence)
+        out.pair([f for fs in out.files.values() for f in fs], "launched", self.model or "")
         from urdfcheck.consumers.openworld import deployment_unknowns
 
         out.unknown = deployment_unknowns(self, out.drivers)
         out.package_files, out.package_single = list(self.package_files), self.package_single
+        out.plugin_files = tuple(self.plugin_files)
         out.workspace = self.workspace
         return out
 
@@ -373,6 +379,38 @@ def _choice_dims(tree: _Tree, overrides: Mapping[str, str | None]) -> dict[str, 
     return dims
 
 
+_FLIP = {"true": "false", "false": "true", "True": "False", "False": "True"}
+MAX_BOOL_DIMS = 8
+
+
+def _bool_dims(tree: _Tree, dims: Mapping[str, tuple]) -> dict[str, str]:
+    """Boolean launch arguments (default true/false, no choices) that no including file sets: name -> the value
+    other than the default. A launch argument is as free as a xacro argument (issue 37): where it reaches the
+    model's xacro arguments (`use_camera:=$(arg use_camera)`), its other value is another deployment; where it
+    does not, that deployment is the same and collapses (`Deployment.key`)."""
+    passed: set[str] = set()
+    for info in tree.infos:
+        for inc in info.includes:
+            passed.update(inc.args)
+    out: dict[str, str] = {}
+    for info in tree.infos:
+        is_root = not tree.chains.get(id(info))
+        for name, d in getattr(info, "declared", {}).items():
+            if d.choices or d.default not in _FLIP or name in dims or name in out:
+                continue
+            if is_root or name not in passed:
+                out[name] = _FLIP[d.default]
+            if len(out) >= MAX_BOOL_DIMS:
+                return out
+    return out
+
+
+def _reaches_model(base: list, flipped: list) -> bool:
+    """A flipped launch argument changed what robot_state_publisher is given (model or xacro arguments)."""
+    return {(d.model, tuple(sorted(d.args.items()))) for d in flipped} != \
+        {(d.model, tuple(sorted(d.args.items()))) for d in base}
+
+
 def _required(tree: _Tree) -> set[str]:
     return {n for info in tree.infos for n, d in getattr(info, "declared", {}).items() if d.default is None}
 
@@ -398,8 +436,10 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
             ref = next((i.descriptions[sp.description_key] for i in tree.infos
                         if sp.description_key in getattr(i, "descriptions", {})), None)
         if ref is None:
-            out.append(Deployment(None, notes=notes + [("the model robot_state_publisher gets is not understood",
-                                                         sp.loc)], **common))
+            why = getattr(sp, "unread", "")
+            out.append(Deployment(None, notes=notes + [("the model robot_state_publisher gets is not understood"
+                                                         + (f": {why}" if why else ""), sp.loc)],
+                                  **common))
             continue
         if UNKNOWN in (ref.path or ""):
             files = ws.match(ref.path)
@@ -426,6 +466,7 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
         if dropped:
             notes.append((f"xacro argument(s) {', '.join(dropped)} are decided at launch time; the model's "
                           "defaults are used", ref.loc))
+        ctrl_launched = bool(ctrl)
         if not ctrl and picked:
             # the controller manager is the simulator's plugin: its parameter file is named in the model
             files, unknown = plugin_parameter_files(ws, picked[0][0])
@@ -438,10 +479,12 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
                 notes.append(("the model's Gazebo ros2_control plugins load "
                               f"{', '.join([_show(f) for f in files] + unknown)}: which one runs is decided by "
                               "xacro arguments; not read", sp.loc))
+        from_plugin = tuple(common["controller_files"]) if not ctrl_launched else ()
         for f, label in picked:
             c = dict(common)
             c["variant"] = ",".join(x for x in (variant, label) if x)
             out.append(Deployment(f, ref.how, args, notes=list(notes), dropped_args=dropped, **c))
+            out[-1].plugin_files = from_plugin
     return out
 
 
@@ -581,10 +624,26 @@ def _root_deployments(ws: _Workspace, rootfile: str):
             label = ",".join(f"{k}={v}" for k, v in a.items())
             if label not in [x for x, _ in assignments]:
                 assignments.append((label, a))
+    done = 0
+    first = None
     for label, a in assignments[:MAX_VARIANTS]:
         tree = base if not a else _walk_tree(ws, rootfile, a)
-        for dep in _deployments(ws, rootfile, tree, label):
+        deps = _deployments(ws, rootfile, tree, label)
+        first = deps if first is None else first
+        done += 1
+        for dep in deps:
             yield dep, tree
+    if first is None or required:
+        return
+    for name, value in _bool_dims(base, dims).items():  # each boolean flipped alone, where it reaches the model
+        if done >= MAX_VARIANTS:
+            return
+        tree = _walk_tree(ws, rootfile, {name: value})
+        deps = _deployments(ws, rootfile, tree, f"{name}={value}")
+        done += 1
+        if _reaches_model(first, deps):
+            for dep in deps:
+                yield dep, tree
 
 
 def describe(deployments: list[Deployment], show=None) -> str:

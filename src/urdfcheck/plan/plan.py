@@ -24,6 +24,7 @@ from pathlib import Path
 
 from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
+from urdfcheck.plan.named import Named as _Named
 from urdfcheck.request.request import LintRequest, Settings, UsageError
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")  # config.CONFIG_NAMES (not imported: start-up)
@@ -63,6 +64,7 @@ class Target(Record):
     bags: tuple = ()  # recordings a config declares for this model (urdfcheck.bag)
     joint_states: str | None = None  # their JointState topic (None: /joint_states, else the only one)
     probe = False    # may be a library: the expansion decides (plan.robots); the run sets `library`
+    includers: tuple = ()  # files that may include this one (a probe): a symbol they define is no defect here
     # how the model and its deployment were chosen (core.evidence.Step), which every finding of it rests on
     evidence: tuple = ()
     library = False  # a probe whose expansion has no link: not a robot, not checked as one
@@ -126,17 +128,6 @@ class TargetList(list):
         self.findings = []  # about the plan itself: a config's ignored keys, a file walk cut short (issue 19)
         self.libraries = 0  # xacro libraries seen: "no robot found: N xacro libraries"
         self.included = []  # libraries by inclusion that may hold links (plan.robots.missed)
-
-
-class _Named(Record):
-    """The deployments of one folder the user named, found once for the whole tree.
-    deployments: those with a model, minus those defined in a folder whose config declares its models;
-    covered: the models (realpath) they load, which are then not linted alone."""
-
-    _fields = ('root', 'deployments', 'covered')
-
-    def __init__(self, root: str, deployments: list, covered: set):
-        self.root, self.deployments, self.covered = root, deployments, covered
 
 
 class Planner:
@@ -249,15 +240,15 @@ class Planner:
         if not os.path.isdir(raw):
             if cfg is not None and cfg.model_for(raw) is not None:
                 return self.declared(cfg, [raw])
-            if _is_launch(raw):
-                return self.launch_targets(raw, settings)
-            if raw.lower().endswith((".yaml", ".yml")):
-                from urdfcheck.plan.dependents import targets_reading
+            from urdfcheck.plan import dependents
 
-                return targets_reading(self, raw, settings)  # the per-file hook names a parameter file
-            if raw.lower().endswith(".srdf.xacro") and _srdf_text(raw):  # the per-file hook passes every *.xacro
-                self.infos.append(f"{shown(raw)}: a MoveIt SRDF, not a URDF model: not linted")
-                return []
+            if _is_launch(raw):  # the per-file hook names a launch file: its robots, else what reads it
+                return dependents.launch_or_readers(self, raw, settings)
+            srdf = raw.lower().endswith((".srdf", ".srdf.xacro"))
+            if dependents.is_dependent(raw) and (not srdf or _srdf_text(raw)):
+                # a parameter, .lua or SRDF file (by its text: a robot in robot.srdf.xacro is a model): the
+                # robots that read it
+                return dependents.targets_reading(self, raw, settings)
             if raw.lower().endswith(NOT_MODELS):
                 raise UsageError(f"{raw} is not a URDF or xacro model (name the model, its package, or a "
                                  "launch file that starts robot_state_publisher)")
@@ -321,11 +312,13 @@ class Planner:
             for vname, vargs in m.variant_args():
                 out.append(self.target(Path(m.path), vargs, vname, consumers, settings))
                 out[-1].bags = m.bags
+                out[-1].evidence = (_step("model", str(m.path), "config"),)
             if not _vouched(cfg) and _undeclared_consumers(m):
                 # declared consumers add to those found beside the model, never replace them (issue 36): the
                 # package's parameter and launch files the config leaves out are checked as zero config would
                 twin = self.target(Path(m.path), m.variant_args()[0][1], "consumers found beside it", None, settings)
                 twin.twin = True
+                twin.evidence = (_step("model", str(m.path), "config"),)
                 out.append(twin)
         for raw in rest:
             out.extend(self.file_targets(Path(raw), settings) if not os.path.isdir(raw)
@@ -351,23 +344,30 @@ class Planner:
             [p for p in walk.packages if not _under_any(p, exclude)]  # a package with its own config: its own
         for root in roots:
             found = self.discover(root, settings)
+            hinted: dict[str, list] = {}
+            for f, by in getattr(found, "hints", ()):
+                hinted.setdefault(os.path.realpath(f), []).append(by)
             for entry in found.probes:  # no link by its text: the expansion decides (plan.robots)
                 if os.path.realpath(entry) not in named.covered:
                     out.append(self.probe(Path(entry), settings, named.root))
+                    # whole, if it has links; one that another file may include is a fragment where it fails
+                    # only on what that file provides (run: plan.robots.provided)
+                    out[-1].evidence = (_step("model", entry, "complete"),)
+                    out[-1].includers = tuple(hinted.get(os.path.realpath(entry), ()))
             if not found.models and not found.probes and found.libraries \
                     and not any(_below(t.path, root) for t in out):
                 self.infos.append(f"{shown(root)}: xacro libraries only (macros, properties): "
                                   "linted through the robots that include them")
             for entry in found.models:
                 if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
-                    out.extend(self.variants(Path(entry), settings, named.root))
+                    out.extend(_mark(self.variants(Path(entry), settings, named.root), "complete"))
         if not out:
             out.extend(self.moveit_model(folder, settings))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
             for entry in self.discover(folder, settings).models:
                 if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
-                    out.extend(self.variants(Path(entry), settings, named.root))
+                    out.extend(_mark(self.variants(Path(entry), settings, named.root), "complete"))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
 
     def moveit_model(self, folder: str, settings: Settings) -> list[Target]:
@@ -428,6 +428,7 @@ class Planner:
         t = self.target(Path(d.model), dict(d.args), label, Later(d.consumers), settings,
                         _packages(root, d.model, settings))
         t.deployment = d
+        t.evidence = (_step("deployment", label, "launched"),)
         return t
 
     def deployments(self, root: str, settings: Settings, files=None) -> list[Target]:
@@ -459,22 +460,31 @@ class Planner:
             found = self.discover(pkg or folder, settings)
             if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
+                real = os.path.realpath(path)
+                for by in (b for f, b in getattr(found, "hints", ()) if os.path.realpath(f) == real):
+                    if not robots:  # a computed, legacy or commented include: the robots that include its includer
+                        robots = [t for t in self.robots_including(by, str(pkg or folder), settings)
+                                  if os.path.realpath(t.path) != real]
+                        robots = robots or [t for t in self.workspace_targets(_ws(self.here, by, pkg or folder))
+                                            if os.path.realpath(t.path) == os.path.realpath(by)]
                 maybe = {os.path.realpath(x) for x in (*found.probes, *found.included)}
                 if not robots and os.path.realpath(path) in maybe:  # named: never skipped when it may be a robot
-                    return [self.probe(path, settings)]
+                    return _mark([self.probe(path, settings)], "named", force=True)
                 if not robots:  # macros and properties only: certainly no link
                     self.infos.append(f"{shown(str(path))}: a xacro library that no robot of "
                                       "its workspace includes: not linted alone")
                 self.included.append(str(path))  # the run checks that one of them did read it
                 return robots
             if _robot_file(path):  # a robot named by itself (the per-file hook): its variants too
-                return self.variants(path, settings)
-        return [self.target(path, {}, "", None, settings)]
+                return _mark(self.variants(path, settings), "named")
+        return _mark([self.target(path, {}, "", None, settings)], "named")
 
     def probe(self, path: Path, settings: Settings, root: str | None = None) -> Target:
         """A file that may be a library: expanded with its defaults; a library when the expansion has no link."""
         t = self.target(path, {}, "", None, settings, _packages(root, str(path), settings) if root else None)
         t.probe = True
+        t.evidence = (_step("model", str(path), "probe", f"lint {shown(str(path))} by name, or name it under "
+                            "models: in urdfcheck.yaml, if it is a whole robot"),)
         return t
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
@@ -528,6 +538,25 @@ def _packages(root: str, model: str, settings: Settings) -> dict:
     from urdfcheck.load.packages import workspace_map
 
     return {**workspace_map(root, near=model), **dict(settings.packages)}
+
+
+def _ws(here: str, path: str, pkg) -> str:
+    here = os.path.abspath(here)
+    return here if _below(path, here) else os.path.abspath(str(pkg))
+
+
+def _step(what: str, subject: str, how: str, confirm: str = ""):
+    from urdfcheck.core.evidence import Step
+
+    return Step(what, shown(subject) if what == "model" else subject, how, confirm)
+
+
+def _mark(targets: list[Target], how: str, force: bool = False) -> list[Target]:
+    """Record how these targets' model was chosen (core.evidence), unless a step already says so."""
+    for t in targets:
+        if force or not t.evidence:
+            t.evidence = (_step("model", str(t.path), how),)
+    return targets
 
 
 def _robot_file(path) -> bool:

@@ -4,6 +4,8 @@ from __future__ import annotations
 import importlib
 
 from urdfcheck.core import lazyre
+from urdfcheck.core.findings import _SURROGATE, escape_bidi
+from urdfcheck.core.findings import show_byte as _byte
 
 FORMATS = {
     "text": "text",
@@ -19,20 +21,31 @@ def render(fmt: str, result, **opts) -> str:
     if fmt not in FORMATS:
         raise ValueError(f"unknown format {fmt!r} (choose from {', '.join(FORMATS)})")
     mod = importlib.import_module(f"{__name__}.{FORMATS[fmt]}")
-    return escape_bidi(mod.render(result, **opts), json=fmt in ("json", "sarif"))
+    return finish_text(mod.render(result, **opts), fmt)
 
 
-# Unicode bidirectional controls (embeddings, overrides, isolates, marks): a link or file name holding U+202E shows
-# reversed text in a terminal, a PR annotation or a code-scanning page ("Trojan Source"). Every report shows them
-# as the visible escape `\u202e`; in JSON formats the escape is itself escaped, so a parsed string holds the six
-# visible characters, not the control.
-_BIDI = "\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069"
-_BIDI_RE = lazyre.compile(f"[{_BIDI}]")
-_BIDI_JSON_ESCAPE = lazyre.compile(r"(?<!\\)((?:\\\\)*)\\u(061[cC]|200[eEfF]|202[a-eA-E]|206[6-9])")
+def finish_text(text: str, fmt: str) -> str:
+    """What every report (lint's, diff's, consumers') goes through last: bidi controls and the bytes of a
+    non-UTF-8 file name made visible, no line starting a GitHub workflow command (github's own lines aside)."""
+    from urdfcheck.core.findings import guard_lines
+
+    json = fmt in ("json", "sarif")
+    text = escape_bidi(visible_bytes(text, json=json), json=json)
+    return text if fmt == "github" else guard_lines(text)
 
 
-def escape_bidi(text: str, json: bool = False) -> str:
-    if json:
-        text = _BIDI_JSON_ESCAPE.sub(lambda m: m.group(1) + "\\\\u" + m.group(2).lower(), text)
-        return _BIDI_RE.sub(lambda m: f"\\\\u{ord(m.group(0)):04x}", text)
-    return _BIDI_RE.sub(lambda m: f"\\u{ord(m.group(0)):04x}", text)
+# A file name that is not UTF-8 reaches us with its bytes as lone surrogates (U+DC80-U+DCFF, Python's
+# surrogateescape): no report could be encoded with them. They are shown as `\xff` (in JSON formats escaped again,
+# so a parsed string holds the four visible characters).
+# (a `\udcXX` escape right after a high one is half of a pair, an ordinary character outside the BMP)
+_SURROGATE_JSON_ESCAPE = lazyre.compile(
+    r"(?<!\\u[dD][89abAB][0-9a-fA-F]{2})"
+    r"(?<!\\)((?:\\\\)*)\\u([dD][cC][89a-fA-F][0-9a-fA-F])")
+
+
+def visible_bytes(text: str, json: bool = False) -> str:
+    if json and "\\u" in text:
+        text = _SURROGATE_JSON_ESCAPE.sub(lambda m: m.group(1) + "\\" + _byte(chr(int(m.group(2), 16))), text)
+    if not _SURROGATE.search(text):
+        return text
+    return _SURROGATE.sub(lambda m: ("\\" if json else "") + _byte(m.group(0)), text)

@@ -5,7 +5,8 @@
 error -> `::error`, warning -> `::warning`, info -> `::notice`. Escaping follows the runner's rules
 (`%` -> `%25`, CR -> `%0D`, LF -> `%0A`; in properties also `:` -> `%3A` and `,` -> `%2C`), and all text
 from the model went through `clean_text` first, so nothing from a model can start a workflow command:
-every line this module prints starts with `::<level> ` or is a fixed summary.
+every line this module prints starts with `::<level> ` or is a fixed summary. Only here does every `::` of the
+message get a zero-width space between its colons (the other formats leave `gz::sim::systems` as it is).
 """
 from __future__ import annotations
 
@@ -16,6 +17,10 @@ COMMANDS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO:
 
 def escape_data(text: str) -> str:
     return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def defuse(text: str) -> str:
+    return text.replace("::", ":\u200b:")
 
 
 def escape_property(text: str) -> str:
@@ -41,7 +46,7 @@ def command(f, totals: dict | None = None) -> str:
     lines += [f"via macro call at {clean_text(str(v), 4096)}" for v in f.location.via]
     lines += [f"see also {clean_text(str(r), 4096)}" for r in f.related]
     lines += [f"also at {clean_text(str(a.location), 4096)}" for a in f.also]
-    return f"::{COMMANDS[f.severity]} {','.join(props)}::{escape_data(chr(10).join(lines))}"
+    return f"::{COMMANDS[f.severity]} {','.join(props)}::{escape_data(defuse(chr(10).join(lines)))}"
 
 
 def render(result, **_) -> str:

@@ -21,13 +21,32 @@ _ICON = {Severity.ERROR: "🔴 error", Severity.WARNING: "🟠 warning", Severit
 _MD_SPECIAL = lazyre.compile(r"([\\`*_\[\]|~#!$])")
 
 
+# what GitHub and GitLab turn into a link by itself (an "autolink"): a scheme, or www.
+_BARE_URL = lazyre.compile(r"(?i)\b(?:[a-z][a-z0-9+.-]{1,20}://|www\.)[^\s`|]*")
+
+
 def md(text: object, limit: int = 500) -> str:
-    """Untrusted text as inert Markdown inline text (also safe inside a table cell)."""
+    """Untrusted text as inert Markdown inline text (also safe inside a table cell): HTML as entities, Markdown
+    syntax (links, emphasis, code) backslash-escaped, no @mention (a zero-width space after the @), a bare URL in a
+    code span (shown, not a link)."""
     s = clean_text(text, limit)
+    out, at = [], 0
+    for m in _BARE_URL.finditer(s):
+        out += [_inline(s[at:m.start()]), f"`{m.group(0)}`"]
+        at = m.end()
+    return "".join(out) + _inline(s[at:])
+
+
+def _inline(s: str) -> str:
     s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")
     s = _MD_SPECIAL.sub(r"\\\1", s)
-    s = s.replace("@", "@\u200b")  # no @mentions from a model
-    return s
+    return s.replace("@", "@\u200b")  # no @mentions from a model
+
+
+def code(text: object, limit: int = 500) -> str:
+    """Untrusted text as the inside of a `code span` in a table cell: no backtick to end it, `|` escaped (a GFM
+    table splits cells before it parses code spans)."""
+    return clean_text(text, limit).replace("`", "'").replace("|", "\\|")
 
 
 _MERMAID_SAFE = lazyre.compile(r"[A-Za-z0-9_ ]")

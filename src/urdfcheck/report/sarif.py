@@ -40,18 +40,20 @@ def information_uri() -> str:
 
 
 def artifact(file: str) -> dict:
-    """artifactLocation for a display path: relative -> %SRCROOT%, absolute -> file:// URI."""
-    file = clean_text(file, 4096)
+    """artifactLocation for a display path: relative -> %SRCROOT%, absolute -> file:// URI. The name is not
+    cleaned: percent-encoding leaves nothing to interpret, and the URI must name the file's own bytes for code
+    scanning to find it (a name that is not UTF-8 included)."""
     if os.path.isabs(file):
         from pathlib import Path
 
         try:
             return {"uri": Path(file).as_uri()}
-        except ValueError:
+        except (ValueError, UnicodeError):
             pass
     posix = file.replace(os.sep, "/").replace("\\", "/")
     posix = str(PurePosixPath(posix)) if posix else "."
-    return {"uri": quote(posix, safe="/-._~"), "uriBaseId": "%SRCROOT%"}
+    # a file name that is not UTF-8 keeps its own bytes, percent-encoded (surrogateescape gives them back)
+    return {"uri": quote(posix.encode("utf-8", "surrogateescape"), safe="/-._~"), "uriBaseId": "%SRCROOT%"}
 
 
 def physical(loc: Location) -> dict:
@@ -88,7 +90,7 @@ def fingerprint(f) -> str:
     from urdfcheck.finish.baseline import normalise_message, portable_path
 
     text = "\x1f".join([f.code, portable_path(f.location.file), normalise_message(f.message)])
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:32]
+    return hashlib.sha256(text.encode("utf-8", "surrogateescape")).hexdigest()[:32]
 
 
 def _where(f, totals, describe) -> str:

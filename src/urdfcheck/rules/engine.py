@@ -129,7 +129,8 @@ def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
         default = Severity.INFO
         message += f"; not failed, since {_listing([w for w, _ in unknown])} may {p.absent}"
         related += tuple(loc for _, loc in unknown[:3] if loc is not None)
-    steps = ctx.evidence + p.rests_on
+    at = _loc(p.at, model.loc)
+    steps = ctx.evidence + p.rests_on + _paired(ctx.contracts, (at, *related), p.rests_on)
     if steps and default > Severity.INFO:  # the evidence rule (issue 37): a guess under it makes it an info
         from urdfcheck.core.evidence import demotion
 
@@ -141,12 +142,36 @@ def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
         code=code,
         severity=ctx.selection.severity_of(code, default),
         message=clean_text(message),
-        location=_loc(p.at, model.loc),
+        location=at,
         name=info.name if info else "",
         related=related,
         profile=p.data.get("profile") or _annotated(code, ctx),
         evidence=steps,
+        profiles=tuple(p.data.get("profiles", ())) or _annotating(code, ctx),
     )
+
+
+def _paired(contracts, locs, have) -> tuple:
+    """How the consumer files a finding points at were paired with the model (`Consumers.pairing`, issue 37):
+    a finding about a parameter file rests on that pairing."""
+    pairing = getattr(contracts, "pairing", None)
+    if not pairing:
+        return ()
+    out = []
+    for loc in locs:
+        f = getattr(loc, "file", None)
+        s = pairing.get(os.path.realpath(f)) if f and not str(f).startswith("<") else None
+        if s is not None and s not in out and s not in have:
+            out.append(s)
+    return tuple(out)
+
+
+def _annotating(code: str, ctx: Context) -> tuple:
+    if not ctx.profiles:
+        return ()
+    from urdfcheck.rules.checks.profiles.common import annotating
+
+    return annotating(code, ctx.profiles)
 
 
 def _annotated(code: str, ctx: Context) -> str:
@@ -165,6 +190,26 @@ def _listing(items, shown: int = 3) -> str:
     if more > 0:
         return ", ".join(head) + f" and {more} more"
     return head[0] if len(head) == 1 else ", ".join(head[:-1]) + " and " + head[-1]
+
+
+def on_evidence(findings: list[Finding], steps: tuple) -> list[Finding]:
+    """The evidence rule for the loader's findings (X0xx, said before any check runs): those of a target chosen
+    by a guess (a probe that may be a fragment of another file) are said at info, as `_finding` does."""
+    if not steps:
+        return list(findings)
+    from urdfcheck.core.evidence import demotion
+
+    why = demotion(steps)
+    cat = rulebook.catalogue()
+    out = []
+    for f in findings:
+        info = cat.get(f.code)
+        sev = f.severity if f.name or not info else info.severity
+        if why is not None and sev > Severity.INFO:
+            f = f._replace(severity=Severity.INFO, message=clean_text(f.message + why),
+                           name=f.name or (info.name if info else ""))
+        out.append(f._replace(evidence=tuple(steps) + tuple(f.evidence)))
+    return out
 
 
 def finish(findings: list[Finding], selection: Selection, suppressions=(), model: str = "",
@@ -196,7 +241,7 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
         kept.append(Finding(f.code, sev, f.message, _shown(f.location),
                             f.name or (info.name if info else ""),
                             tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant,
-                            profile=f.profile))
+                            profile=f.profile, evidence=f.evidence, profiles=f.profiles))
     if selection.enabled("R002"):
         for i, s in enumerate(suppressions):
             if i in used:

@@ -35,6 +35,17 @@ class ModelRef(TupleRecord):
 
 
 
+def _xacro_at(toks: list) -> int | None:
+    """The index of the xacro executable among a command's tokens (the last of a run of them), or None."""
+    names = ("xacro", "xacro.py")
+    first = next((i for i, t in enumerate(toks[:8]) if os.path.basename(t) in names), None)
+    if first is None:
+        return None
+    while first + 1 < len(toks) and os.path.basename(toks[first + 1]) in names:
+        first += 1
+    return first
+
+
 def command_model(text: str, loc: Location) -> ModelRef | None:
     """`xacro FILE a:=b ...` (or `cat FILE`) -> ModelRef. Tokens are split on whitespace (launch joins the
     pieces and the shell splits them; quoting in robot descriptions is rare)."""
@@ -42,9 +53,10 @@ def command_model(text: str, loc: Location) -> ModelRef | None:
     if not toks:
         return None
     exe = os.path.basename(toks[0])
-    if exe in ("xacro", "xacro.py"):
+    at = _xacro_at(toks)
+    if at is not None:  # xacro itself, or run by a wrapper (`env_run CONFIG xacro FILE`, `ros2 run xacro xacro FILE`)
         path, args = None, []
-        for t in toks[1:]:
+        for t in toks[at + 1:]:
             if ":=" in t:
                 k, _, v = t.partition(":=")
                 if k and not k.startswith("_"):
@@ -83,6 +95,7 @@ class StatePublisher(TupleRecord):
     condition: str | None = None
     description: Any = None  # pylaunch.ModelRef: the model it publishes, when the launch file says
     description_key: str | None = None  # ROS 1: the global parameter it reads the model from, when not found
+    unread: str = ""  # when `description` is None: the construct the model comes from, which is not read (C021)
 
 
 class JointStatePublisher(TupleRecord):
@@ -187,6 +200,7 @@ class LaunchInfo(Record):
 # --- the model robot_state_publisher is given ---------------------------------------------------
 _CMD_START, _CMD_END, _CMD_UNKNOWN = "\x02", "\x03", "\x01"
 _DESCRIPTION_KEY = "\x00description_key"  # LaunchNode.params entry: where a ROS 1 rsp reads its model
+_DESCRIPTION_WHY = "\x00description_unread"  # LaunchNode.params entry: what the model comes from, not read
 
 
 def description_of(value, loc: Location):
@@ -278,7 +292,21 @@ _STATIC_PKGS = ("tf", "tf2_ros")
 _JSP_PKGS = ("joint_state_publisher", "joint_state_publisher_gui")
 
 
+def _unrooted(s):
+    """A name or argument built from `__file__` (a node named after its launch file) holds the runner's absolute
+    path: shown relative to the run's root, like every path in a report."""
+    if not isinstance(s, str) or os.sep not in s:
+        return s
+    from urdfcheck.core import paths
+
+    root = paths.root().rstrip(os.sep) + os.sep
+    return s.replace(root, "") if root in s else s
+
+
 def record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
+    if any(isinstance(x, str) and os.sep in x for x in (node.name, node.namespace)):
+        node = LaunchNode(node.package, node.executable, _unrooted(node.name), _unrooted(node.namespace),
+                          node.args, node.loc, node.params, node.param_files, node.condition)
     info.nodes.append(node)
     pkg, exe = node.package, node.executable
     if pkg in _STATIC_PKGS and exe in ("static_transform_publisher", "static_transform_publisher_node"):
@@ -292,8 +320,8 @@ def record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
             return
         xyz = tuple(float(v) + 0.0 for v in xyz)  # no -0.0
         rpy = tuple(float(v) + 0.0 for v in rpy)
-        info.static_tfs.append(StaticTF(_frame(parent), _frame(child), xyz, rpy, node.loc, info.path,
-                                        node.condition, node.name))
+        info.static_tfs.append(StaticTF(_frame(_unrooted(parent)), _frame(_unrooted(child)), xyz, rpy, node.loc,
+                                        info.path, node.condition, node.name))
     elif pkg == "robot_state_publisher" and exe in ("robot_state_publisher", "state_publisher"):
         key = "frame_prefix" if ros == 2 else "tf_prefix"
         v = node.params.get(key)
@@ -308,9 +336,11 @@ def record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
         d = node.params.get("robot_description")
         desc = description_of(d.value, d.loc) if d is not None else None
         key = node.params.get(_DESCRIPTION_KEY)
+        why = node.params.get(_DESCRIPTION_WHY)
         info.state_publishers.append(StatePublisher(node.name or "robot_state_publisher", node.namespace, prefix,
                                                     node.loc, info.path, ploc, node.condition, desc,
-                                                    key.value if key is not None and desc is None else None))
+                                                    key.value if key is not None and desc is None else None,
+                                                    why.value if why is not None and desc is None else ""))
     elif pkg in _JSP_PKGS:
         info.joint_state_publishers.append(JointStatePublisher(node.name or pkg, pkg, node.loc, info.path,
                                                                node.condition))

@@ -20,6 +20,7 @@ from typing import Any
 
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.consumers.launch.info import (  # noqa: F401 - UNKNOWN, ModelRef, command_model: read here too
+    _DESCRIPTION_WHY,
     UNKNOWN,
     Declared,
     Include,
@@ -93,15 +94,23 @@ _INDEXED = (ast.Assign, ast.AnnAssign, ast.AugAssign, ast.With, ast.AsyncWith, a
             ast.arguments)
 
 
+def _edits(value: ast.AST | None, name: str) -> bool:
+    """`name.replace(...)` / `name.strip()`: an edit of the text bound to `name`."""
+    return isinstance(value, ast.Call) and isinstance(value.func, ast.Attribute) \
+        and value.func.attr in ("replace", "strip") and isinstance(value.func.value, ast.Name) \
+        and value.func.value.id == name
+
+
 def _index(tree: ast.AST) -> dict:
     """Calls by callee name, and under "*" the nodes that bind names."""
-    out: dict = {"*": [], "^": {}}
+    out: dict = {"*": [], "^": {}, "def": {}}
     for n in ast.walk(tree):
         if isinstance(n, ast.Call):
             out.setdefault(_callee(n), []).append(n)
         elif isinstance(n, _INDEXED):
             out["*"].append(n)
         if isinstance(n, ast.FunctionDef):  # BFS: an inner function is seen after its outer one and wins
+            out["def"].setdefault(n.name, []).append(n)
             for inner in ast.walk(n):
                 if inner is not n and isinstance(inner, ast.Call):
                     out["^"][id(inner)] = n
@@ -190,6 +199,8 @@ class PyLaunch:
 
     def _bind(self, target: ast.AST, value: ast.AST | None) -> None:
         if isinstance(target, ast.Name):
+            if target.id in self.assign and _edits(value, target.id):
+                return  # `desc = desc.replace(...)`: the same document, its text edited (package:// -> file://)
             self.assign[target.id] = None if target.id in self.assign else value
         elif isinstance(target, (ast.Tuple, ast.List)):
             for e in target.elts:
@@ -370,6 +381,9 @@ class PyLaunch:
         if attr_of is not None and name == "get" and _dotted(attr_of).endswith("launch_configurations"):
             key = self.ev(self._arg(node, 0), d)
             return self.config(key) if isinstance(key, str) else None
+        if attr_of is not None and name == "replace":  # a model's text edited: still that model
+            base = self.ev(attr_of, d)
+            return base if isinstance(base, (XacroDoc, FileText)) else None
         if attr_of is not None and name in ("read", "read_text"):
             base = self.ev(attr_of, d)
             if isinstance(base, FileOpen):
@@ -447,7 +461,43 @@ class PyLaunch:
             # like xacro's $(optenv VAR default) in the sandbox: the default, never the runner's environment
             default = self._arg(node, 1, "default_value", "default")
             return self.ev(default, d) if default is not None else None
+        if isinstance(node.func, ast.Name):  # a function of this launch file (`get_robot_description()`)
+            return self._local_call(node, name, d)
         return None  # os.getenv, EnvironmentVariable, PythonExpression, anything else: decided at launch time
+
+    def _local_call(self, node: ast.Call, name: str, d: int) -> Any:
+        """What a function defined in this launch file returns, when it has one `return` and its parameters are
+        given (or defaulted): read, never run."""
+        defs = self._calls.get("def", {}).get(name, ())
+        key = "\x00def " + name  # (beside the launch arguments being read)
+        if len(defs) != 1 or key in self._busy:
+            return None
+        fd = defs[0]
+        rets = [n for n in ast.walk(fd) if isinstance(n, ast.Return) and n.value is not None]
+        if len(rets) != 1:
+            return None
+        params = [a.arg for a in fd.args.posonlyargs + fd.args.args]
+        defaults = dict(zip(params[len(params) - len(fd.args.defaults):], fd.args.defaults))
+        b = {}
+        for p, arg in zip(params, node.args):
+            b[p] = self.ev(arg, d)
+        for k in node.keywords:
+            if k.arg in params:
+                b[k.arg] = self.ev(k.value, d)
+        for p in params:
+            if p not in b:
+                if p not in defaults:
+                    return None
+                b[p] = self.ev(defaults[p], d)
+        saved = self.bindings
+        self._busy.add(key)
+        try:
+            if b:
+                self.bindings = {**saved, **b}
+            return self.ev(rets[0].value, d)
+        finally:
+            self.bindings = saved
+            self._busy.discard(key)
 
     # --- conditions -------------------------------------------------------------------------------
     def condition(self, call: ast.Call) -> tuple[bool, str | None]:
@@ -551,6 +601,10 @@ def node_values(r: PyLaunch, call: ast.Call) -> dict:
                 if k == "robot_description":
                     ref = model_ref(val, loc)
                     params[k] = Value(ref, loc)
+                    if ref is None:
+                        why = unread(r, el, call)
+                        if why:
+                            params[_DESCRIPTION_WHY] = Value(why, loc)
                     continue
                 if isinstance(val, (str, int, float, bool)) and not (isinstance(val, str) and UNKNOWN in val):
                     params[k] = Value(val, loc)
@@ -566,6 +620,68 @@ def node_values(r: PyLaunch, call: ast.Call) -> dict:
     return {"package": text("package"), "executable": text("executable", "node_executable"),
             "name": text("name", "node_name"), "namespace": text("namespace", "node_namespace"),
             "args": args, "params": params, "files": tuple(files)}
+
+
+# modules whose functions the reader evaluates itself (launch, launch_ros, xacro's API, paths)
+_READ_MODULES = ("launch", "launch_ros", "xacro", "os", "pathlib", "ament_index_python", "typing")
+
+
+def unread(r: PyLaunch, el: ast.AST, node: ast.Call) -> str:
+    """The construct a robot_description value comes from that is not read (never run): a function of another
+    module, a class method, a function of this file with several returns, an OpaqueFunction's arguments; ""
+    when none of these."""
+    imported: dict[str, str] = {}
+    for n in ast.walk(r.tree):
+        if isinstance(n, ast.ImportFrom) and n.module:
+            for a in n.names:
+                imported[a.asname or a.name] = n.module
+        elif isinstance(n, ast.Import):
+            for a in n.names:
+                imported[(a.asname or a.name).split(".")[0]] = a.name
+    defined = {n.name for n in ast.walk(r.tree) if isinstance(n, ast.ClassDef)}
+    classes = {name: v.func.id for name, v in r.assign.items()  # instances of this file's classes
+               if isinstance(v, ast.Call) and isinstance(v.func, ast.Name) and v.func.id in defined}
+    seen: set[int] = set()
+    queue, steps = [el], 0
+    while queue and steps < 200:
+        cur = queue.pop(0)
+        steps += 1
+        if id(cur) in seen:
+            continue
+        seen.add(id(cur))
+        for sub in ast.walk(cur):
+            if isinstance(sub, ast.Name) and r.assign.get(sub.id) is not None:
+                queue.append(r.assign[sub.id])
+            if not isinstance(sub, ast.Call):
+                continue
+            f = sub.func
+            if isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name) and f.value.id in ("self", "cls"):
+                return f"it comes from `{f.value.id}.{f.attr}()`, a class method, which urdfcheck does not run"
+            if isinstance(f, ast.Attribute) and isinstance(f.value, ast.Name) and f.value.id in classes:
+                return f"it comes from `{f.value.id}.{f.attr}()`, a method of class {classes[f.value.id]} of this " \
+                       "launch file, which urdfcheck does not run"
+            head = _dotted(f).split(".")[0]
+            module = imported.get(head)
+            if module is not None and module.split(".")[0] not in _READ_MODULES:
+                return f"it comes from `{_dotted(f)}()` of module {module}, which urdfcheck does not run"
+            if isinstance(f, ast.Name):
+                defs = r._calls.get("def", {}).get(f.id, ())
+                if len(defs) == 1:
+                    rets = [x.value for x in ast.walk(defs[0]) if isinstance(x, ast.Return) and x.value is not None]
+                    if len(rets) > 1:
+                        return f"it comes from `{f.id}()`, a function of this launch file with {len(rets)} returns, " \
+                               "which urdfcheck does not run"
+                    queue.extend(rets)
+    fd = r._calls["^"].get(id(node))
+    if fd is not None and any(_refers(c, fd.name) for c in r.calls("OpaqueFunction")):
+        return f"it is computed inside OpaqueFunction({fd.name}) from what the launch passes it, which urdfcheck " \
+               "does not run"
+    return ""
+
+
+def _refers(call: ast.Call, name: str) -> bool:
+    return any(isinstance(n, ast.Name) and n.id == name for a in (*call.args, *(k.value for k in call.keywords))
+               for n in ast.walk(a))
 
 
 def _flatten(d: dict, prefix: str = ""):

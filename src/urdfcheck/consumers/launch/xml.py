@@ -191,7 +191,10 @@ class _Subst:
                 v = str(self.overrides[arg])
             return v
         if kind in ("find", "find-pkg-share", "find-pkg-prefix"):
-            return self.packages.get(arg) or self._own_package(arg)
+            got = self.packages.get(arg) or self._own_package(arg)
+            if got is None and arg == "xacro":  # `$(find-pkg-prefix xacro)/bin/xacro`, `$(find xacro)/xacro`: the
+                return "xacro-package"  # xacro executable, whose name is all a model reader needs
+            return got
         if kind == "dirname":
             return os.path.dirname(os.path.abspath(self.path))
         if kind == "filename":

@@ -5,13 +5,27 @@ Stock xacro runs ``eval()`` with ``__builtins__`` emptied, which is no sandbox: 
 ``${10**10**8}`` never returns. Here the expression is parsed with :mod:`ast` and walked by a small
 table-driven interpreter that
 
-* accepts only the node types in ``_OK_NODES`` (no lambda, walrus, await/yield, no ``_`` names/attributes);
+* accepts only the node types in ``_OK_NODES`` (no lambda, walrus, await/yield, no ``__`` names/attributes);
 * performs every operation with the same Python operation eval would use (``operator.*``, real calls,
   real ``getattr``), so values, types and benign exceptions are those of ``eval``;
 * calls only callables in the allow set (compared by identity) or allow-listed read-only methods of
   builtin data types, and never hands a non-allowed callable to an allowed one (``map(python.type, ..)``);
 * refuses, before doing the work, operations whose cost explodes: huge ``**``/``<<``/``*``, long
   repetitions, ``str`` padding/format widths, more than ``max_iter`` iterations per evaluation, ...
+
+Parity with stock xacro: every name and expression stock accepts is accepted, except these refusals for
+safety (each one reaches code or memory stock would hand out):
+
+* lambda, ``:=``, await/yield; ``python.type``/``python.vars`` (classes, ``__dict__``);
+* names and attributes starting with ``__`` (stock refuses the same names, but not inside comprehensions or
+  ``str.format`` fields); an attribute starting with one ``_`` only where it is a key of a mapping (a YAML
+  key, a namespace's property), never a private attribute or method (``python._setitem``);
+* ``str.format`` fields with ``.attr`` or ``[index]``; calls of anything outside the allow set; methods that grow a
+  value in place (``list.append``/``extend``/``insert``, ``dict.update``/``setdefault``: sizes are charged once,
+  when a value is made); shrinking ones (``pop``, ``remove``, ``clear``) and ``reverse`` are allowed;
+* work beyond :class:`Limits` (huge ``**``, repetitions, widths, iterations).
+
+A name with one leading underscore (``_origin_xyz``) is an ordinary name, as in stock xacro.
 
 Anything refused raises :class:`Refused` (``expr`` + human ``reason``), which the sandbox reports as X011.
 """
@@ -146,10 +160,10 @@ def _static_reason(tree: ast.AST, limits: Limits) -> str | None:
         if t not in _OK_NODES and not isinstance(node, (ast.operator, ast.unaryop, ast.cmpop, ast.boolop)):
             return _NAMED_REFUSALS.get(t) or f"{t.__name__} is not allowed"
         if t is ast.Name:
-            if node.id.startswith("_"):
-                return f"name '{node.id}' is not allowed (names starting with '_' are reserved)"
+            if node.id.startswith("__"):
+                return f"name '{node.id}' is not allowed (names starting with '__' are reserved)"
         elif t is ast.Attribute:
-            if node.attr.startswith("_"):
+            if node.attr.startswith("__"):
                 return f"attribute '{node.attr}' is not allowed"
         elif t is ast.comprehension:
             if node.is_async:
@@ -210,9 +224,11 @@ _METHODS: dict[type, frozenset[str]] = {
     int: frozenset(_NUMBER | {"bit_length", "bit_count", "numerator", "denominator", "as_integer_ratio"}),
     float: frozenset(_NUMBER | {"is_integer", "as_integer_ratio", "hex"}),
     complex: frozenset(_NUMBER),
-    list: frozenset({"index", "count", "copy"}),
+    # mutators that only shrink or reorder a value (`${meshes.pop(0)}` in a recursive macro, as ar4 does): a size
+    # charged before is still an upper bound. Growing ones (append, extend, insert, update, setdefault) are refused.
+    list: frozenset({"index", "count", "copy", "pop", "remove", "reverse", "clear"}),
     tuple: frozenset({"index", "count"}),
-    dict: frozenset({"get", "keys", "values", "items", "copy"}),
+    dict: frozenset({"get", "keys", "values", "items", "copy", "pop", "popitem", "clear"}),
     set: frozenset({"union", "intersection", "difference", "symmetric_difference", "issubset",
                     "issuperset", "isdisjoint", "copy"}),
     frozenset: frozenset({"union", "intersection", "difference", "symmetric_difference", "issubset",
@@ -879,7 +895,9 @@ class Evaluator:
     def __init__(self, allowed=(), *, mapping_types=(), limits: Limits | None = None):
         self.limits = limits or Limits()
         self.spent = 0  # items iterated by finished evaluations (Limits.max_total_iter)
-        self._sizes: dict[int, tuple[object, int]] = {}  # id -> (container, nested size); values are never mutated
+        # id -> (container, nested size); values never grow in place (only shrinking mutators are allowed), so a
+        # memoised size stays an upper bound
+        self._sizes: dict[int, tuple[object, int]] = {}
         self._allowed: dict[int, object] = {}
         self._guards: dict[int, tuple[object, object]] = {}
         self._mapping_types: tuple[type, ...] = ()
@@ -1002,7 +1020,11 @@ class Evaluator:
 
     def _getattr(self, run, obj, name):
         if name.startswith("_"):
-            run.refuse(f"attribute '{name}' is not allowed")
+            # a key of a mapping (a YAML key or property named '_x', as stock reads it); never a private
+            # attribute or method of an object (Table._setitem would rewrite properties)
+            if name.startswith("__") or not isinstance(obj, self._mapping_types) or name not in obj:
+                run.refuse(f"attribute '{name}' is not allowed (only a mapping's own key may start with '_')")
+            return obj[name]
         if isinstance(obj, self._mapping_types):
             return getattr(obj, name)  # NameSpace/YamlDictWrapper: their own __getattr__ semantics
         names = None if isinstance(obj, type) else _method_names(type(obj))
@@ -1177,7 +1199,8 @@ def evaluate_substitution(s: str, context: dict, *, functions: dict | None = Non
     funcs.update(default_substitution_functions() if functions is None else functions)
 
     # no textual '__' test (stock's): '_' '_class_' '_' spells one around it. The parsed tree is checked
-    # (names and attributes starting with '_' are refused) and str.format fields are guarded on every call.
+    # (names and attributes starting with '__', private attributes starting with '_', are refused) and str.format
+    # fields are guarded on every call.
 
     def builtin(name):
         try:

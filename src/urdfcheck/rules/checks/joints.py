@@ -37,8 +37,17 @@ def _norm(axis) -> float:
     return math.sqrt(x * x + y * y + z * z)
 
 
+def _length_text(norm: float) -> str:
+    """The length with the digits that differ from 1 shown (1.0000029, never "1" for a length that is not 1)."""
+    off = abs(norm - 1.0)
+    decimals = 6 if off == 0 or off >= 1e-5 else min(17, math.ceil(-math.log10(off)) + 1)
+    text = f"{norm:.{decimals}f}".rstrip("0").rstrip(".")
+    return text if off >= 1e-5 or text != "1" else f"{norm:.17g}"
+
+
 def _axis_text(axis) -> str:
-    return " ".join(_num(v) for v in axis)
+    # as written (shortest round-trip form): "0.99999762" must not read "0.999998"
+    return " ".join(repr(float(v)).removesuffix(".0") for v in axis)
 
 
 def _unreadable(model) -> set:
@@ -219,12 +228,13 @@ def non_unit_axis(model, ctx):
         unit = " ".join(f"{v / norm:.9g}" for v in j.axis)
         if j.type == "prismatic":
             effect = (f"KDL, MoveIt and Pinocchio normalise it, but yourdfpy moves the child along the axis as "
-                      f"written, {norm:.6g} times as far")
+                      f"written, {_length_text(norm)} times as far")
         else:
             effect = ("KDL, MoveIt, Pinocchio and yourdfpy normalise it, but code that uses the vector as written "
                       "(hand-written kinematics, exporters) gets scaled velocities")
         yield Problem(
-            f"axis {_axis_text(j.axis)} of joint {_q(j.name)} has length {norm:.6g}, not 1: {effect}. Write {unit}",
+            f"axis {_axis_text(j.axis)} of joint {_q(j.name)} has length {_length_text(norm)}, not 1: {effect}. "
+            f"Write {unit}",
             at=j.axis_loc)
 
 

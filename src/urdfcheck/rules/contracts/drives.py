@@ -7,24 +7,33 @@ directions are compared by `wheels.check_drive` (C010, C011, C012, C015). `geome
 only these drives have (C016): the wheelbase of the steering controllers and tricycle_controller (the distance
 along x between the traction wheels and the steering joints, measured at the zero configuration between joint
 origins), and mecanum_drive_controller's `sum_of_robot_center_projection_on_X_Y_axis` (lx + ly: the mean
-distance of the wheels from the base frame's origin along x plus along y).
+distance of the wheels' tyre centres (their rolling features, as `wheels.check_drive` picks them) from the base
+frame's origin along x plus along y).
 """
 from __future__ import annotations
 
 from urdfcheck.consumers.controllers import DriveSpec, number, number_text
 from urdfcheck.core import geometry as G
 from urdfcheck.core.findings import Severity
-from urdfcheck.rules.contracts.wheels import WheelProblem, _base_frame
+from urdfcheck.rules.contracts.wheels import WheelProblem, _base_frame, _unit, _wheel_shape
 
 
-def _positions(model, poses, uses, base: str) -> list:
+def _positions(model, poses, uses, base: str, feature: bool = True) -> list:
+    """(use, joint, position in the base frame) per wheel: the centre of its rolling feature (the tyre, see
+    wheels.check_drive), else the joint frame (a steering joint has no rolling feature)."""
     inv = G.inverse(poses[base])
     out = []
     for u in uses:
         j = model.joints.get(u.joint)
         if j is None or j.child not in poses:
             continue
-        out.append((u, j, G.translation(G.compose(inv, poses[j.child]))))
+        t = G.compose(inv, poses[j.child])
+        link = model.links.get(j.child)
+        shape = None
+        axis = _unit(j.axis) if j.movable and feature else None
+        if link is not None and axis is not None:
+            _kind, shape, _others = _wheel_shape(link, axis, 0.001, 0.001)
+        out.append((u, j, G.translation(G.compose(t, G.origin_matrix(shape.origin)) if shape is not None else t)))
     return out
 
 
@@ -61,7 +70,7 @@ def geometry_problems(model, ws, base: str | None, tolerance: float) -> list[Whe
     out = []
     if ws.kind in ("steering", "tricycle"):
         tr = _positions(model, poses, ws.traction, b)
-        st = _positions(model, poses, ws.steering, b)
+        st = _positions(model, poses, ws.steering, b, feature=False)
         if not tr or not st:
             return []
         measured = abs(_mean([p[0] for _, _, p in tr]) - _mean([p[0] for _, _, p in st]))

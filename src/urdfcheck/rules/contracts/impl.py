@@ -31,6 +31,7 @@ from urdfcheck.consumers.graph import (
     static_and_dynamic,
 )
 from urdfcheck.core import lazyre
+from urdfcheck.core.evidence import Step
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
 from urdfcheck.rules.contracts.wheels import check_drive
@@ -62,16 +63,44 @@ _FRAME_SUFFIX = lazyre.compile(r"(_link|_frame)$")
 
 
 def _suggest_frame(name: str, options) -> str:
-    """Like _suggest, comparing frame names without their _link/_frame suffix: 'imu' -> 'imu_link', while
-    'camera_link' is not 'laser_link' just because both end in _link."""
+    """A near miss of a frame that exists: the same name without its _link/_frame suffix ('imu' -> 'imu_link'),
+    or a typo (a letter or two wrong: 'lazer_link', 'base_lnk'). A frame that merely resembles one ('laser' and
+    'base_link', a driver's own 'os_imu' and 'imu_link', 'camera_color_optical_frame' and 'camera_color_frame')
+    is no evidence of a typo: the driver may publish it itself."""
     stem = _FRAME_SUFFIX.sub("", name)
     stems: dict[str, str] = {}
     for o in options:
         stems.setdefault(_FRAME_SUFFIX.sub("", o), o)
     if stem in stems and stems[stem] != name:
         return f" (did you mean '{stems[stem]}'?)"
-    close = closest(stem, stems, cutoff=0.6)
-    return f" (did you mean '{stems[close]}'?)" if close else ""
+    best = None
+    for o in options:
+        d = _edits(name, o, 2)
+        if d <= _typo_edits(name) and (best is None or d < best[0]):
+            best = (d, o)
+    return f" (did you mean '{best[1]}'?)" if best else ""
+
+
+def _typo_edits(name: str) -> int:
+    """Edits a typo of `name` may take: one, two for names of ten letters or more."""
+    return 1 if len(name) < 10 else 2
+
+
+def _edits(a: str, b: str, cap: int) -> int:
+    """Levenshtein distance with adjacent transpositions, or cap + 1 once it exceeds `cap`."""
+    if abs(len(a) - len(b)) > cap:
+        return cap + 1
+    prev2, prev = None, list(range(len(b) + 1))
+    for i, ca in enumerate(a, 1):
+        cur = [i] + [0] * len(b)
+        for k, cb in enumerate(b, 1):
+            cur[k] = min(prev[k] + 1, cur[k - 1] + 1, prev[k - 1] + (ca != cb))
+            if prev2 is not None and i > 1 and k > 1 and ca == b[k - 2] and a[i - 2] == cb:
+                cur[k] = min(cur[k], prev2[k - 2] + 1)
+        if min(cur) > cap:
+            return cap + 1
+        prev2, prev = prev, cur
+    return prev[-1]
 
 
 def _unresolved(name: str) -> bool:
@@ -212,6 +241,7 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
         return
     # suppliers not known to run in this deployment: the package's unread files, then the workspace's
     far, far_covered, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=False)
+    workspace = False
     if not far:  # a broadcaster in a workspace file that names these joints (a `*_control` package)
         from urdfcheck.consumers.openworld import workspace_broadcasters
 
@@ -219,6 +249,7 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
         far = [b for b, _ in found]
         far_covered = set().union(set(), *(named | hw_joints for _, named in found))
         everything = False
+        workspace = bool(far)
     if everything:
         far_covered = {j.name for j in missing}
     supplied = [j for j in missing if j.name in far_covered]
@@ -240,11 +271,29 @@ def joint_without_state_source(model, ctx) -> Iterator[Problem]:
                       f"robot_state_publisher cannot place their child links", at=where,
                       related=_dedupe_locs(missing[:6], where), absent="publish them")
         return
-    # evidence cuts both ways: the suppliers found cover other joints, not these
+    # evidence cuts both ways: the suppliers found cover other joints, not these; when none of them runs here,
+    # the claim rests on how their files were paired with the model (a workspace file: by joint names, a guess)
+    rests = () if sources else _far_pairing(c, far, model, workspace)
     for j in missing:
         yield Problem(f"nothing publishes the state of joint {j.name!r} (the joint state broadcaster does not "
                       f"cover it and no driver names it); robot_state_publisher will not publish "
-                      f"{j.child!r}", at=j, data={"joint": j.name})
+                      f"{j.child!r}", at=j, data={"joint": j.name}, rests_on=rests)
+
+
+def _far_pairing(c, far, model, workspace: bool) -> tuple:
+    """The pairing steps (core.evidence) of the suppliers not known to run here that a C003 claim rests on."""
+    from urdfcheck.consumers.pairing import step
+
+    pairing = getattr(c, "pairing", None) or {}
+    out = []
+    for s in far[:3]:
+        f = getattr(s, "file", "") or ""
+        got = pairing.get(os.path.realpath(f)) if f else None
+        if got is None and f:
+            got = step(f, "overlap" if workspace else "package", getattr(model, "source", "") or "")
+        if got is not None and got not in out:
+            out.append(got)
+    return tuple(out)
 
 
 def _elsewhere(item) -> str:
@@ -403,6 +452,34 @@ def unreadable_consumer(model, ctx) -> Iterator[Problem]:
     for d in c.drivers:
         for key, loc in d.missing:
             yield Problem(f"driver {d.name}: key {key!r} is not in {shown(d.file)}", at=loc)
+    yield from _home_parameter_files(model)
+
+
+# a home folder: /home/<user>/, /Users/<user>/ (macOS), /root/, ~/
+_HOME = lazyre.compile(r"^(?:/home/[^/]+/|/Users/[^/]+/|/root/|~/)")
+
+
+def _home_parameter_files(model) -> Iterator[Problem]:
+    """A Gazebo ros2_control plugin whose <parameters> names a file in someone's home folder: it exists on the
+    author's machine only, so everywhere else (CI, a colleague, the robot) the controller manager in the simulator
+    starts with no controllers. A `$(find pkg)` that xacro resolved to this checkout is not one."""
+    here = [os.path.realpath(os.getcwd())]
+    if model.source:
+        here.append(os.path.dirname(os.path.dirname(os.path.realpath(model.source))))
+    for p in model.plugins or ():
+        if "ros2_control" not in f"{p.filename} {p.name}":
+            continue
+        for par in p.all("parameters"):
+            path = par.text.strip()
+            if not _HOME.match(path):
+                continue
+            real = os.path.realpath(os.path.expanduser(path)) if path.startswith("/") else path
+            if any(real == h or real.startswith(h.rstrip("/") + "/") for h in here):
+                continue
+            yield Problem(f"{os.path.basename(p.filename) or p.name} <parameters> names {path}, a file in someone's "
+                          f"home folder: on every other machine (CI, a colleague's, the robot) the controller manager "
+                          f"in the simulator finds no such file and starts no controllers; write "
+                          f"$(find <package>)/config/<file>.yaml", at=par.loc)
 
 
 # --- C010..C014: wheels ------------------------------------------------------------------------------------
@@ -453,7 +530,7 @@ def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
             if p.code == code:
                 related = _dedupe_locs(p.related, p.at)
                 yield Problem(p.message, at=p.at, related=related, data=p.data,
-                              severity=_WARNING() if drive.owner in inferred else p.severity)
+                              severity=_WARNING() if drive.owner in inferred else p.severity, rests_on=p.rests_on)
 
 
 def wheel_separation_mismatch(model, ctx):
@@ -653,8 +730,52 @@ def _no_state_publisher(c: Consumers, model, ctx) -> bool:
 
 
 def duplicate_tf_owner(model, ctx):
+    said = set()
     for p in _tf_problems(model, ctx, duplicate_owners):
+        said.add(p.frames)
         yield _as_problem(p)
+    yield from _unlaunched_duplicates(model, consumers(model, ctx), said)
+
+
+_RL_ODOM_INPUT = lazyre.compile(r"^(odom|twist|pose)\d+$")
+
+
+def _unlaunched_duplicates(model, c: Consumers, said: set):
+    """T001 between parameter files of the model's package that no launch file of the deployment reads (a
+    drive controller with enable_odom_tf and robot_localization with publish_tf, both on odom -> base_link).
+    They claim nothing in the deployment's own graph; among themselves, two owners of one edge are a defect
+    wherever they run together. That they do is evidence when the filter fuses the controller's odometry (its
+    odomN input names the controller), else a guess from the package (said as info, naming how to confirm)."""
+    ctrls = [ctl for ctl in c.controllers if getattr(ctl, "elsewhere", None) and ctl.odom_tf is not None]
+    drivers = [d for d in c.drivers if getattr(d, "elsewhere", None) and getattr(d, "odom_tf", None) is not None]
+    loc_nodes = list(getattr(c, "elsewhere_localization", ()) or ())
+    if not loc_nodes and len(ctrls) + len(drivers) < 2:
+        return
+    base = c.frames.get("base", "base_link")
+    g = TFGraph()
+    g.extend(claims_from_odom((ctl.odom_tf for ctl in ctrls), base, "controller"))
+    g.extend(claims_from_odom((d.odom_tf for d in drivers), base, "driver"))
+    g.extend(claims_from_localization(loc_nodes))
+    inputs = set()  # the topics the localization nodes fuse
+    for n in loc_nodes:
+        for key, v in (getattr(n, "values", None) or {}).items():
+            if _RL_ODOM_INPUT.match(str(key)) and isinstance(getattr(v, "value", None), str):
+                inputs.add(v.value.strip("/").split("/")[0])
+    for p in duplicate_owners(g):
+        if p.frames in said or len({cl.loc.file for cl in p.claims}) < 2:
+            continue
+        owners = {cl.owner for cl in p.claims if cl.source in ("controller", "driver")}
+        fused = bool(owners) and owners <= inputs
+        files = " and ".join(sorted({shown(cl.loc.file) for cl in p.claims}))
+        steps = () if fused else (Step(
+            "deployment", f"{files} together", "package",
+            confirm="load both from the launch file that runs them (or name them in urdfcheck.yaml under the "
+                    "model's controllers: and launch:)"),)
+        got = _as_problem(p, hint=("; both in parameter files of the package that no launch file read here loads"
+                                   + (" (the filter fuses the controller's odometry, so they run together)"
+                                      if fused else "")))
+        got.rests_on = steps
+        yield got
 
 
 def static_and_dynamic_tf(model, ctx):

@@ -2,14 +2,23 @@
 
 `check_drive(model, drive)` measures, at the zero configuration (`model.world_poses()`, pure Python):
 
-* separation: the left and right wheel joint frames (averaged per side) projected on the first left wheel's
-  axis, in the base frame; compared with `wheel_separation x wheel_separation_multiplier`. A ROS 1
-  controller given no `wheel_separation` computes the plain distance between the wheel joint origins, which
-  is compared with the projected separation instead;
-* radius: each wheel link's collision (else visual) cylinder or sphere, compared with
-  `wheel_radius x left/right_wheel_radius_multiplier`; a cylinder whose axis is not the joint axis is not
-  a wheel rolling on its radius; a ROS 1 controller with no `wheel_radius` needs such a shape;
-* axes: every wheel axis parallel or anti-parallel to the first left one;
+* the rolling feature of each wheel: the largest collision (else visual) cylinder or sphere coaxial with the
+  joint axis (a cylinder along the axis, its centre on the axis line; a sphere centred on it). A wheel link
+  often holds a hub, a rim and a tyre: the first cylinder is the hub, the largest is what touches the ground.
+  With no coaxial shape, the first cylinder or sphere (a cylinder lying the wrong way is then reported);
+* separation: the rolling features' centres (else the wheel joint frames), averaged per side, projected on the
+  first left wheel's axis, in the base frame: a tyre offset along the axis from its hub joint frame counts where
+  the tyre is; compared with `wheel_separation x wheel_separation_multiplier`. A ROS 1 controller given no
+  `wheel_separation` computes the plain distance between the wheel joint origins, which is compared with the
+  projected separation instead;
+* radius: the rolling feature's radius, compared with `wheel_radius x left/right_wheel_radius_multiplier`; a
+  cylinder whose axis is not the joint axis is not a wheel rolling on its radius; a ROS 1 controller with no
+  `wheel_radius` needs such a shape. When another coaxial shape is close to the largest (a rim inside a thin
+  tyre) and the controller's radius lies between the two, the choice rests on shape alone (a `shape` evidence
+  step: said as info);
+* axes: every wheel's rolling heading in the ground plane (`a x z`) parallel or anti-parallel to the first left
+  one's. A camber (the axis tilted out of the ground plane, `rpy="3.14 0 0"` leaves 0.09 degrees) changes no
+  heading: below one degree it is the rounding of an rpy and not reported; above, the wheel rolls on its edge;
 * counts: as many wheels left as right (none on a side and the controller refuses to start);
 * sides (C014): the wheels named left must be on the left of the direction in which positive wheel rotation
   drives the robot. A wheel turning positively about its axis `a` (in the base frame, z up) rolls its centre
@@ -31,9 +40,14 @@ import math
 
 from urdfcheck.consumers.controllers import DriveSpec, JointUse, number, number_text
 from urdfcheck.core import geometry as G
+from urdfcheck.core.evidence import Step
 from urdfcheck.core.findings import Location, Severity
 from urdfcheck.core.records import FrozenRecord, Record, TupleRecord
 
+# a camber difference below this is the rounding of an rpy written with 2-4 digits (3.14 leaves 0.09 degrees,
+# 1.57 leaves 0.05): no differential-drive consumer reads the axis tilt
+CAMBER_TOLERANCE = math.radians(1.0)
+AMBIGUOUS_RATIO = 0.75  # another coaxial shape at least this share of the largest radius may be the rolling one
 MIN_FORWARD_SIGN = 0.5  # |mean left a_y + mean right a_y| below this: mixed axis signs, turning sense undefined
 
 
@@ -49,17 +63,20 @@ class Wheel(TupleRecord):
     shape_loc: Location | None = None
     shape_from: str = ""  # "collision" / "visual"
     cylinder_misaligned: float | None = None  # angle (rad) between the cylinder axis and the joint axis
+    centre: tuple[float, float, float] | None = None  # the rolling feature's centre in the base frame
+    others: tuple[float, ...] = ()  # radii of the other coaxial shapes the feature was chosen among
 
 
 class WheelProblem(FrozenRecord):
-    _fields = ('code', 'message', 'at', 'related', 'severity', 'data')
+    _fields = ('code', 'message', 'at', 'related', 'severity', 'data', 'rests_on')
 
     def __init__(self, code: str,
                  message: str,
                  at: Location,
                  related: tuple[Location, ...] = (),
                  severity: Severity | None = None,
-                 data: dict | None = None):
+                 data: dict | None = None,
+                 rests_on: tuple = ()):
         d = self.__dict__  # FrozenRecord forbids setattr
         d["code"] = code
         d["message"] = message
@@ -67,6 +84,7 @@ class WheelProblem(FrozenRecord):
         d["related"] = related
         d["severity"] = severity
         d["data"] = {} if data is None else data
+        d["rests_on"] = tuple(rests_on)
 
 
 class DriveReport(Record):
@@ -128,18 +146,54 @@ def _angle(a, b) -> float:
     return math.acos(d)
 
 
+def _heading_angle(a, b) -> float:
+    """Angle between the rolling headings (`a x z`, in the ground plane) of wheels turning about `a` and `b`
+    (parallel or anti-parallel count as 0); the 3-D angle for an axis standing upright (no heading)."""
+    ha, hb = _unit((a[1], -a[0], 0.0)), _unit((b[1], -b[0], 0.0))
+    if ha is None or hb is None or G.norm((a[0], a[1], 0.0)) < 1e-6 or G.norm((b[0], b[1], 0.0)) < 1e-6:
+        return _angle(a, b)
+    return _angle(ha, hb)
+
+
 def _fmt(x: float) -> str:
     return f"{x:.6g}"
 
 
-def _wheel_shape(link):
-    """First cylinder or sphere among the collisions, else among the visuals."""
+def _round_shapes(shapes):
+    return [s for s in shapes if s.geometry is not None and s.geometry.kind in ("cylinder", "sphere")
+            and s.geometry.radius is not None]
+
+
+def _coaxial(shape, axis, angle_tolerance: float, tolerance: float) -> bool:
+    """The shape (in the wheel link's frame) turns about the joint axis through the link origin: a cylinder along
+    the axis, or a sphere, whose centre lies on the axis line."""
+    m = G.origin_matrix(shape.origin)
+    c = G.translation(m)
+    along = _dot(c, axis)
+    off = G.norm(tuple(ci - along * ai for ci, ai in zip(c, axis)))
+    if off > max(tolerance, 0.05 * shape.geometry.radius):
+        return False
+    if shape.geometry.kind == "sphere":
+        return True
+    zc = _unit(G.rotate(m, (0.0, 0.0, 1.0)))
+    return zc is not None and _angle(zc, axis) <= angle_tolerance
+
+
+def _wheel_shape(link, axis=None, angle_tolerance: float = 0.0, tolerance: float = 0.0):
+    """(collision/visual, the rolling feature, radii of the other coaxial candidates): the largest coaxial
+    cylinder or sphere among the collisions, else the first collision cylinder or sphere (one lying the wrong way
+    is reported as such), then the same among the visuals."""
     for kind, shapes in (("collision", link.collisions), ("visual", link.visuals)):
-        for s in shapes:
-            g = s.geometry
-            if g is not None and g.kind in ("cylinder", "sphere") and g.radius is not None:
-                return kind, s
-    return "", None
+        round_ = _round_shapes(shapes)
+        if not round_:
+            continue
+        if axis is not None:
+            coaxial = [s for s in round_ if _coaxial(s, axis, angle_tolerance, tolerance)]
+            if coaxial:
+                best = max(coaxial, key=lambda s: s.geometry.radius)  # the first of equal radii
+                return kind, best, tuple(s.geometry.radius for s in coaxial if s is not best)
+        return kind, round_[0], ()
+    return "", None, ()
 
 
 def _base_frame(model, poses, drive: DriveSpec, base: str | None) -> str | None:
@@ -196,20 +250,23 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
             radius = shape_kind = shape_from = None
             shape_loc = None
             misaligned = None
+            centre = None
+            others = ()
+            ja = _unit(j.axis)
             if link is not None:
-                shape_from, shape = _wheel_shape(link)
+                shape_from, shape, others = _wheel_shape(link, ja, angle_tolerance, tolerance)
                 if shape is not None:
                     g = shape.geometry
                     radius, shape_kind, shape_loc = g.radius, g.kind, g.loc
+                    centre = G.translation(G.compose(t, G.origin_matrix(shape.origin)))
                     if g.kind == "cylinder":
                         zc = _unit(G.rotate(G.origin_matrix(shape.origin), (0.0, 0.0, 1.0)))
-                        ja = _unit(j.axis)
                         if zc is not None and ja is not None:
                             ang = _angle(zc, ja)
                             if ang > angle_tolerance:
                                 misaligned = ang
             rep.wheels.append(Wheel(u, side, j.child, G.translation(t), axis, j.loc, radius, shape_kind or "",
-                                    shape_loc, shape_from or "", misaligned))
+                                    shape_loc, shape_from or "", misaligned, centre, others))
     lefts = [w for w in rep.wheels if w.side == "left"]
     rights = [w for w in rep.wheels if w.side == "right"]
     ref = lefts[0] if lefts else (rights[0] if rights else None)
@@ -218,14 +275,23 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
         for w in rep.wheels:
             if w is ref:
                 continue
-            ang = _angle(ref.axis, w.axis)
+            ang = _heading_angle(ref.axis, w.axis)
+            tilt = _angle(ref.axis, w.axis)
             if ang > angle_tolerance:
-                rep.problems_.append(WheelProblem(
-                    "C012",
-                    f"wheel joint {w.use.joint} turns about {_vec(w.axis)} but {ref.use.joint} about {_vec(ref.axis)} "
-                    f"(in {base}); they are {math.degrees(ang):.3g} degrees apart, so the wheels fight each other",
-                    w.joint_loc, (ref.joint_loc, w.use.loc), None,
-                    {"angle": ang, "joint": w.use.joint, "reference": ref.use.joint}))
+                why = (f"they roll in headings {math.degrees(ang):.3g} degrees apart on the ground, so the wheels "
+                       f"fight each other")
+            elif tilt > max(angle_tolerance, CAMBER_TOLERANCE):
+                ang = tilt
+                why = (f"they roll the same heading, but one is tilted {math.degrees(tilt):.3g} degrees out of the "
+                       f"other's plane (camber): it rolls on its edge, not its tread")
+            else:
+                continue
+            rep.problems_.append(WheelProblem(
+                "C012",
+                f"wheel joint {w.use.joint} turns about {_vec(w.axis)} but {ref.use.joint} about {_vec(ref.axis)} "
+                f"(in {base}); {why}",
+                w.joint_loc, (ref.joint_loc, w.use.loc), None,
+                {"angle": ang, "joint": w.use.joint, "reference": ref.use.joint}))
     # --- directions (C015) --------------------------------------------------------------------------
     if ref is not None:
         rep.problems_.extend(_direction_problems(drive, base, lefts, rep.wheels))
@@ -233,7 +299,11 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
     if lefts and rights:
         pl, pr = _mean([w.position for w in lefts]), _mean([w.position for w in rights])
         d = _sub(pl, pr)
-        rep.measured_separation = abs(_dot(d, ref.axis))
+        # where the tyres are (a tyre may sit off its hub joint frame along the axis); the joint frames are what a
+        # ROS 1 controller measures itself (urdf_distance) and what the sides are judged by
+        tl = _mean([w.centre or w.position for w in lefts])
+        tr = _mean([w.centre or w.position for w in rights])
+        rep.measured_separation = abs(_dot(_sub(tl, tr), ref.axis))
         rep.urdf_distance = G.norm(d)
         lateral = d[1]
         if abs(lateral) > tolerance:
@@ -343,12 +413,21 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                 mult_v.loc, (w.shape_loc or w.joint_loc, rad_v.loc), Severity.INFO, data))
             continue
         if abs(expected - w.radius) > tolerance:
+            # truly ambiguous: another coaxial shape close to the largest (a rim inside a thin tyre, an inner and an
+            # outer tyre surface) and the controller's radius between the two: a loaded tyre rolls on a radius
+            # there, so which shape is the rolling one is a guess from shape alone. A hub far inside is not.
+            ambiguous = any(r >= AMBIGUOUS_RATIO * w.radius and r - tolerance <= expected <= w.radius
+                            for r in w.others)
+            steps = (Step("wheel", f"{w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m of {w.link}",
+                          "shape", confirm=f"leave one coaxial collision cylinder or sphere in {w.link}, the one "
+                                           f"that touches the ground"),) if ambiguous else ()
+            largest = " (the largest of its coaxial shapes)" if w.others else ""
             rep.problems_.append(WheelProblem(
                 "C011",
                 f"{drive.owner}: {drive.radius_key} {number_text(rad_v)} m, but wheel link {w.link} ({w.use.joint}) "
-                f"has a {w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m (difference "
+                f"has a {w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m{largest} (difference "
                 f"{_fmt(abs(expected - w.radius))} m, tolerance {_fmt(tolerance)} m)",
-                rad_v.loc, (w.shape_loc or w.joint_loc,), None, data))
+                rad_v.loc, (w.shape_loc or w.joint_loc,), None, data, steps))
     return rep
 
 

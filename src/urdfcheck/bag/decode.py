@@ -1,0 +1,222 @@
+"""JointState and TFMessage read straight from their bytes, ROS 1 serialisation or CDR (ROS 2).
+
+The two message types the bag checks read have a fixed layout, so they are decoded here with `struct` instead of
+a general deserialiser (rosbags' costs more per message than the checks themselves; issue 39). Every length is
+checked against the bytes that are there: a message that lies (a count of 4 billion names) is a DecodeError,
+never a huge allocation. The types are told by name (`msgtype`): other types are never decoded.
+
+ROS 1: header = uint32 seq, uint32 sec, uint32 nsec, string frame_id; string = uint32 length + bytes;
+arrays = uint32 count + elements. CDR: a 4-byte encapsulation header (byte 1: 0 big-, 1 little-endian), then
+fields aligned to their size relative to the end of that header; a string's length counts its NUL; a float64
+sequence is aligned to 8 only when it is not empty (what Fast-CDR writes).
+"""
+from __future__ import annotations
+
+import struct
+
+NS = 1_000_000_000
+JOINT_STATE_TYPES = ("sensor_msgs/msg/JointState", "sensor_msgs/JointState")
+TF_TYPES = ("tf2_msgs/msg/TFMessage", "tf2_msgs/TFMessage", "tf/tfMessage", "tf/msg/tfMessage")
+MAX_ITEMS = 1 << 20  # names or transforms in one message: far beyond any robot
+
+
+class DecodeError(ValueError):
+    pass
+
+
+def kind_of(msgtype: str) -> str | None:
+    """'joint_state', 'tf' or None (a type the checks do not read)."""
+    if msgtype in JOINT_STATE_TYPES:
+        return "joint_state"
+    if msgtype in TF_TYPES:
+        return "tf"
+    return None
+
+
+_U32 = {"<": struct.Struct("<I"), ">": struct.Struct(">I")}
+_I32 = {"<": struct.Struct("<i"), ">": struct.Struct(">i")}
+_TIME1 = struct.Struct("<III")  # ROS 1 header: seq, sec, nsec
+_SEVEN = {"<": struct.Struct("<7d"), ">": struct.Struct(">7d")}
+
+
+class _Cursor:
+    """Reads fields from `buf` at `pos`; `base` is where CDR alignment counts from (ROS 1: no alignment)."""
+
+    __slots__ = ("buf", "pos", "end", "base", "e", "cdr")
+
+    def __init__(self, buf, pos: int, e: str, cdr: bool):
+        self.buf, self.pos, self.end, self.base, self.e, self.cdr = buf, pos, len(buf), pos, e, cdr
+
+    def align(self, n: int) -> None:
+        if self.cdr:
+            off = (self.pos - self.base) % n
+            if off:
+                self.pos += n - off
+
+    def need(self, n: int) -> None:
+        if n < 0 or self.pos + n > self.end:
+            raise DecodeError("the message is shorter than its fields say")
+
+    def u32(self) -> int:
+        self.align(4)
+        self.need(4)
+        v = _U32[self.e].unpack_from(self.buf, self.pos)[0]
+        self.pos += 4
+        return v
+
+    def count(self) -> int:
+        n = self.u32()
+        if n > MAX_ITEMS:
+            raise DecodeError(f"a sequence of {n} elements")
+        return n
+
+    def string(self) -> str:
+        n = self.u32()
+        self.need(n)
+        raw = bytes(self.buf[self.pos:self.pos + n])
+        self.pos += n
+        if self.cdr and raw.endswith(b"\0"):
+            raw = raw[:-1]
+        return raw.decode("utf-8", "replace")
+
+    def stamp(self) -> int:
+        if self.cdr:
+            self.align(4)
+            self.need(8)
+            sec = _I32[self.e].unpack_from(self.buf, self.pos)[0]
+            nsec = _U32[self.e].unpack_from(self.buf, self.pos + 4)[0]
+        else:
+            self.need(12)
+            _seq, sec, nsec = _TIME1.unpack_from(self.buf, self.pos)  # ROS 1 is little-endian
+            self.pos += 4
+        self.pos += 8
+        return sec * NS + nsec
+
+    def doubles(self) -> tuple:
+        n = self.count()
+        if not n:
+            return ()
+        self.align(8)
+        self.need(8 * n)
+        v = struct.unpack_from(f"{self.e}{n}d", self.buf, self.pos)
+        self.pos += 8 * n
+        return v
+
+    def seven(self) -> tuple:
+        self.align(8)
+        self.need(56)
+        v = _SEVEN[self.e].unpack_from(self.buf, self.pos)
+        self.pos += 56
+        return v
+
+
+def _cursor(buf, cdr: bool) -> _Cursor:
+    if not cdr:
+        return _Cursor(buf, 0, "<", False)
+    if len(buf) < 4:
+        raise DecodeError("a CDR message shorter than its encapsulation header")
+    kind = buf[1]
+    if kind not in (0, 1) or buf[0] != 0:
+        raise DecodeError(f"unsupported CDR encapsulation {bytes(buf[:2]).hex()}")
+    return _Cursor(buf, 4, "<" if kind == 1 else ">", True)
+
+
+_last_names = [b"", ()]  # the names' bytes of the last JointState, and their tuple: they rarely change
+
+
+def joint_state(buf, cdr: bool):
+    """(stamp_ns, names, position, velocity, effort)."""
+    c = _cursor(buf, cdr)
+    stamp = c.stamp()
+    c.string()  # frame_id
+    n = c.count()
+    blob, names = _last_names
+    end = c.pos + len(blob)
+    if n == len(names) and blob and buf[c.pos:end] == blob:
+        c.pos = end
+    else:
+        start = c.pos
+        names = _strings(c, n)
+        _last_names[:] = [bytes(buf[start:c.pos]), names]
+    return stamp, names, c.doubles(), c.doubles(), c.doubles()
+
+
+def _strings(c: _Cursor, n: int) -> tuple:
+    """n strings, as `_Cursor.string` reads them, in one loop (a JointState of a PR2 names 50 joints)."""
+    buf, pos, end, base, cdr = c.buf, c.pos, c.end, c.base, c.cdr
+    u32 = _U32[c.e].unpack_from
+    out = []
+    for _ in range(n):
+        if cdr:
+            off = (pos - base) & 3
+            if off:
+                pos += 4 - off
+        if pos + 4 > end:
+            raise DecodeError("the message is shorter than its fields say")
+        k = u32(buf, pos)[0]
+        pos += 4
+        if pos + k > end:
+            raise DecodeError("the message is shorter than its fields say")
+        raw = bytes(buf[pos:pos + k])
+        pos += k
+        if cdr and raw[-1:] == b"\0":
+            raw = raw[:-1]
+        out.append(raw.decode("utf-8", "replace"))
+    c.pos = pos
+    return tuple(out)
+
+
+def tf_message(buf, cdr: bool) -> list[tuple]:
+    """[(parent, child, (x, y, z), (qx, qy, qz, qw), stamp_ns)], in one loop (a PR2's /tf carries 40 a message)."""
+    c = _cursor(buf, cdr)
+    n = c.count()
+    buf, pos, end, base, e = c.buf, c.pos, c.end, c.base, c.e
+    u32 = _U32[e].unpack_from
+    i32 = _I32[e].unpack_from
+    seven = _SEVEN[e].unpack_from
+    time1 = _TIME1.unpack_from
+    out = []
+
+    def text(pos):
+        if cdr:
+            off = (pos - base) & 3
+            if off:
+                pos += 4 - off
+        if pos + 4 > end:
+            raise DecodeError("the message is shorter than its fields say")
+        k = u32(buf, pos)[0]
+        pos += 4
+        if pos + k > end:
+            raise DecodeError("the message is shorter than its fields say")
+        raw = bytes(buf[pos:pos + k])
+        if cdr and raw[-1:] == b"\0":
+            raw = raw[:-1]
+        return raw.decode("utf-8", "replace"), pos + k
+
+    for _ in range(n):
+        if cdr:
+            off = (pos - base) & 3
+            if off:
+                pos += 4 - off
+            if pos + 8 > end:
+                raise DecodeError("the message is shorter than its fields say")
+            stamp = i32(buf, pos)[0] * NS + u32(buf, pos + 4)[0]
+            pos += 8
+        else:
+            if pos + 12 > end:
+                raise DecodeError("the message is shorter than its fields say")
+            _seq, sec, nsec = time1(buf, pos)
+            stamp = sec * NS + nsec
+            pos += 12
+        parent, pos = text(pos)
+        child, pos = text(pos)
+        if cdr:
+            off = (pos - base) & 7
+            if off:
+                pos += 8 - off
+        if pos + 56 > end:
+            raise DecodeError("the message is shorter than its fields say")
+        v = seven(buf, pos)
+        pos += 56
+        out.append((parent, child, v[:3], v[3:], stamp))
+    return out

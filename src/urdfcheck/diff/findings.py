@@ -1,0 +1,211 @@
+"""What a change does to lint's findings: new, fixed and unchanged against a git revision (`lint --diff-base REV`).
+
+The base revision's files are written by the git door (core.git) into a private temporary folder outside the
+user's tree, linted there with the same flags as the working tree (from the matching folder, so every path and
+message reads as it does in the working tree), and removed. A finding is matched by its code, its file relative
+to the repository, its message with line numbers taken out and the text of the line it points at; then, for
+what is left, without that text (the element's line was edited, the finding was not). So a finding that only
+moved lines is unchanged; a third identical finding where the base had two is new.
+"""
+from __future__ import annotations
+
+import os
+import re
+
+from urdfcheck.core.findings import Finding, clean_text
+from urdfcheck.core.records import Record
+
+
+class FindingsDiff(Record):
+    """rev: the base revision as typed. new: findings of the working tree the base did not have (Finding).
+    fixed: findings of the base the working tree no longer has (dicts: code, severity, file, line, message).
+    unchanged: how many are in both. notes: files of the revision that were not read, and why."""
+
+    _fields = ('rev', 'new', 'fixed', 'unchanged', 'notes')
+
+    def __init__(self, rev: str, new: list, fixed: list, unchanged: int, notes=()):
+        self.rev, self.new, self.fixed, self.unchanged, self.notes = rev, new, fixed, unchanged, list(notes)
+
+    def as_dict(self) -> dict:
+        return {"base": clean_text(self.rev), "new": [_summary(f) for f in self.new], "fixed": list(self.fixed),
+                "unchanged": self.unchanged, "notes": [clean_text(n, 4096) for n in self.notes]}
+
+    def tally(self) -> str:
+        return (f"against {clean_text(self.rev)}: {len(self.new)} new, {len(self.fixed)} fixed, "
+                f"{self.unchanged} unchanged")
+
+    def text_lines(self) -> list[str]:
+        out = ["", self.tally()]
+        out += [f"  note: {clean_text(n, 4096)}" for n in self.notes]
+        out += [f"  NEW   {_line(_summary(f))}" for f in self.new]
+        out += [f"  fixed {_line(x)}" for x in self.fixed]
+        return out
+
+    def markdown_lines(self) -> list[str]:
+        out = [f"### Findings {_md(self.tally())}", ""]
+        if self.new:
+            out += ["**New in this change:**", ""]
+            out += [f"- :new: `{_code(x['code'])}` {_md(x['severity'])} at `{_code(_where(x))}`: {_md(x['message'])}"
+                    for x in map(_summary, self.new)]
+            out.append("")
+        if self.fixed:
+            out += ["**Fixed by this change:**", ""]
+            out += [f"- `{_code(x['code'])}` at `{_code(_where(x))}`: {_md(x['message'])}" for x in self.fixed]
+            out.append("")
+        out += [f"- note: {_md(n)}" for n in self.notes]
+        return out
+
+
+def _summary(f: Finding) -> dict:
+    loc = f.location
+    return {"code": f.code, "severity": str(f.severity), "file": clean_text(str(loc.file), 4096),
+            "line": loc.line, "message": clean_text(f.message)}
+
+
+def _where(x: dict) -> str:
+    return x["file"] + (f":{x['line']}" if x.get("line") else "")
+
+
+def _line(x: dict) -> str:
+    return _clean(f"{_where(x)}: {x['severity']} {x['code']} {x['message']}", 4096)
+
+
+_BIDI = re.compile("[\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+_MD_SPECIAL = re.compile(r"([\\`*_\[\]|~#!$])")
+
+
+def _clean(s, limit: int = 500) -> str:
+    return _BIDI.sub("", clean_text(s, limit))
+
+
+def _code(s) -> str:
+    """Text for inside a code span (where nothing is interpreted but the closing backtick)."""
+    return _clean(str(s), 4096).replace("`", "'")
+
+
+def _md(s) -> str:
+    """Text from the checkout as inert Markdown (no HTML, links, emphasis or @mentions), as report.markdown does."""
+    s = _clean(str(s), 4096)
+    s = s.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")
+    return _MD_SPECIAL.sub(r"\\\1", s).replace("@", "@\u200b")
+
+
+def key(f: Finding, root: str) -> tuple[str, str, str, str]:
+    """(code, file relative to `root`, message without line numbers, hash of the line's text). Called while the
+    finding's files can still be read (the base's temporary folder exists, the working directory is the one the
+    run had)."""
+    from urdfcheck.finish import baseline
+
+    return (f.code, baseline.portable_path(str(f.location.file), root), baseline.normalise_message(f.message),
+            baseline.context(f))
+
+
+def classify(rev: str, base: list[tuple[tuple, dict]], findings: list[Finding], root: str, notes=()) -> FindingsDiff:
+    """`base`: (key, summary) of each base finding; `findings`: the working tree's, keyed against `root`."""
+    from urdfcheck.finish import baseline
+
+    baseline._LINES_CACHE.clear()
+    keys = [key(f, root) for f in findings]
+    exact: dict[tuple, list[int]] = {}
+    loose: dict[tuple, list[int]] = {}
+    for j, (k, _) in enumerate(base):
+        exact.setdefault(k, []).append(j)
+        loose.setdefault(k[:3], []).append(j)
+    taken = [False] * len(base)
+    matched = [False] * len(findings)
+    for i, k in enumerate(keys):  # the same text at the same place
+        free = [j for j in exact.get(k, ()) if not taken[j]]
+        if free:
+            taken[free[0]] = matched[i] = True
+    for i, k in enumerate(keys):  # the line it points at was edited, the finding was not
+        if matched[i]:
+            continue
+        free = [j for j in loose.get(k[:3], ()) if not taken[j]]
+        if free:
+            taken[free[0]] = matched[i] = True
+    fixed = [summary for (_, summary), t in zip(base, taken) if not t]
+    new = [f for f, m in zip(findings, matched) if not m]
+    return FindingsDiff(rev, new, fixed, sum(matched), notes)
+
+
+def base_findings(rev: str, paths: list[str], make_request, *, start: str | None = None):
+    """Lint `rev`'s version of `paths`: (root of the repository, [(key, summary)], notes).
+
+    `make_request(paths, map_root, in_tree) -> LintRequest`: the working tree's flags with these paths (and
+    --root, through `map_root`) in the revision's tree; `in_tree(path)`: the revision's copy of a working-tree
+    file (absolute; None when it has none or the path lies outside the repository). Raises core.git.GitError
+    when there is no repository or no such revision."""
+    from urdfcheck import run as pipeline
+    from urdfcheck.core import git
+    from urdfcheck.request.request import UsageError
+
+    start = start or (paths[0] if paths else ".")
+    repo = git.find(os.path.abspath(start))
+    if repo is None:
+        raise git.GitError("no git repository (a .git folder) around " + git.shown_name(os.fsencode(start)))
+    wt = repo.work_tree
+
+    def inside(p: str) -> str | None:
+        real = os.path.realpath(os.path.abspath(p))
+        rel = os.path.relpath(real, wt)
+        return None if rel == ".." or rel.startswith(".." + os.sep) else rel
+
+    from urdfcheck.core import door
+
+    with git.export(repo, rev) as tree:
+        door.add_root(tree.root)  # a run guarded already (the command line's): the base's files are readable too
+        here = os.getcwd()
+        rel_here = inside(here)
+        base_here = os.path.join(tree.root, rel_here) if rel_here is not None else tree.root
+        os.makedirs(base_here, exist_ok=True)
+        mapped = []
+        for p in paths or ["."]:
+            rel = inside(p)
+            if rel is None:
+                mapped.append(os.path.abspath(p))  # outside the repository: the runner's file, the same one
+            elif os.path.exists(os.path.join(tree.root, rel)):  # absolute: a worker forked earlier has another cwd
+                mapped.append(os.path.join(tree.root, rel))
+        if not mapped:  # the paths are new in this change: every finding is new
+            return wt, [], tree.notes
+        os.chdir(base_here)  # paths and messages read as in the working tree
+        try:
+            try:
+                result = pipeline.run(make_request(mapped, lambda r: _map_root(r, inside, tree.root, base_here),
+                                                   lambda p: _in_tree(p, inside, tree.root)))
+            except UsageError as e:
+                if "no URDF or xacro model found" in str(e):
+                    return wt, [], tree.notes
+                raise
+            from urdfcheck.finish import baseline
+
+            baseline._LINES_CACHE.clear()
+            shown_wt = os.path.relpath(wt, here)
+            out = [(key(f, tree.root), _scrubbed(_summary(f), tree.root, shown_wt)) for f in result.findings]
+        finally:
+            os.chdir(here)
+        return wt, out, tree.notes
+
+
+def _scrubbed(summary: dict, tree_root: str, shown_wt: str) -> dict:
+    """A base finding as the working tree would name it: never the temporary folder."""
+    for field in ("file", "message"):
+        text = summary[field]
+        for r in dict.fromkeys((os.path.realpath(tree_root), tree_root)):
+            text = text.replace(r, shown_wt)
+        summary[field] = os.path.normpath(text) if field == "file" and text else text
+    return summary
+
+
+def _in_tree(p: str, inside, tree_root: str) -> str | None:
+    rel = inside(p)
+    if rel is None:
+        return None
+    full = os.path.join(tree_root, rel)
+    return full if os.path.exists(full) else None
+
+
+def _map_root(root, inside, tree_root: str, base_here: str):
+    if not root:
+        return root
+    rel = inside(root)
+    return os.path.relpath(os.path.join(tree_root, rel), base_here) if rel is not None else os.path.abspath(root)

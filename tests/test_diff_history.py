@@ -1,0 +1,237 @@
+"""`urdfcheck diff --git` on real histories (issue 38): commits of public description repositories, each read by
+hand, with what a reviewer should see written down here. Nothing of those repositories is committed: the test
+reads a local mirror (URDFCHECK_HISTORY_MIRRORS, default /work/.mirror, laid out as `owner+name/repo`) and skips
+when it is absent."""
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+SRC = str(Path(__file__).resolve().parents[1] / "src")
+MIRRORS = Path(os.environ.get("URDFCHECK_HISTORY_MIRRORS", "/work/.mirror"))
+LINO = "linorobot+linorobot2"
+DEMOS = "ros-controls+ros2_control_demos"
+UR = "UniversalRobots+Universal_Robots_ROS2_Description"
+
+pytestmark = pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+
+
+def _git(*args, cwd):
+    env = {k: v for k, v in os.environ.items() if not k.startswith("GIT_")}
+    return subprocess.run(["git", *args], cwd=cwd, capture_output=True, env=env)
+
+
+@pytest.fixture(scope="module")
+def clones(tmp_path_factory):
+    made = {}
+
+    def get(name: str) -> Path:
+        if name not in made:
+            mirror = MIRRORS / name / "repo"
+            if not mirror.is_dir():
+                pytest.skip(f"no mirror of {name}")
+            dest = tmp_path_factory.mktemp("hist") / name
+            if _git("clone", "-q", "--no-checkout", "--shared", str(mirror), str(dest), cwd=mirror.parent).returncode:
+                pytest.skip(f"cannot clone the mirror of {name}")
+            # a mirror may lack its largest blobs (images, meshes): not checked out, never compared
+            _git("sparse-checkout", "set", "--no-cone", "/*", "!*.gif", "!*.png", "!*.jpg", "!*.stl", "!*.dae",
+                 "!/docs/", cwd=dest)
+            made[name] = dest
+        return made[name]
+
+    return get
+
+
+def diff_at(clones, name: str, commit: str, *extra: str):
+    repo = clones(name)
+    if _git("cat-file", "-e", f"{commit}^{{commit}}", cwd=repo).returncode:
+        pytest.skip(f"{commit} is not in the mirror of {name}")
+    _git("checkout", "-q", "-f", commit, cwd=repo)
+    env = {**os.environ, "PYTHONPATH": SRC + os.pathsep + os.environ.get("PYTHONPATH", ""), "URDFCHECK_NO_CACHE": "1"}
+    res = subprocess.run([sys.executable, "-m", "urdfcheck", "diff", "--git", f"{commit}~1", "--format", "json",
+                          *extra],
+                         cwd=repo, capture_output=True, text=True, env=env, timeout=300)
+    assert res.returncode in (0, 1), res.stderr
+    out = res.stdout + res.stderr
+    assert "Traceback" not in out and "urdfcheck-rev-" not in out and str(repo) not in out
+    data = json.loads(res.stdout)
+    # models only: a test launch file whose `model` argument lists the working directory is the planner's business
+    models = [m for m in data["models"] if m["model"].endswith((".xacro", ".urdf"))]
+    return res.returncode, models
+
+
+def changed(models) -> dict[str, tuple[set, set]]:
+    """model file name -> (the (kind, name, field) changed, the frames moved), the same in every variant."""
+    out: dict[str, tuple[set, set]] = {}
+    for m in models:
+        if m["status"] == "unchanged":
+            continue
+        assert m["status"] == "changed", m
+        got = ({(c["kind"], c["name"], c["field"]) for c in m["changes"]}, {x["frame"] for x in m["moved"]})
+        name = m["model"].rsplit("/", 1)[-1]
+        assert out.setdefault(name, got) == got, name  # every variant (launch file) saw the same change
+    return out
+
+
+def test_linorobot2_model_renamed_and_reshaped(clones):
+    """1ac1d5c "added new demo robot": square.urdf.xacro renamed to vattenkar.urdf.xacro and resized (git mv);
+    each of the bringup and gazebo launch files deploys it."""
+    code, models = diff_at(clones, LINO, "1ac1d5c")
+    got = changed(models)
+    assert set(got) == {"vattenkar.urdf.xacro"}
+    fields, moved = got["vattenkar.urdf.xacro"]
+    assert ("model", "linorobot2_description/urdf/robots/vattenkar.urdf.xacro", "file") in fields
+    assert ("joint", "laser_to_base_link", "origin.xyz") in fields and "laser" in moved
+    assert ("link", "base_link", "mass") in fields
+    launches = {m["variant"].split(" ")[0] for m in models if m["model"].endswith("vattenkar.urdf.xacro")}
+    assert launches == {"linorobot2_bringup/launch/bringup.launch.py", "linorobot2_gazebo/launch/gazebo.launch.py"}
+    assert not any(m["status"] in ("added", "removed") for m in models)
+
+
+def test_linorobot2_laser_collision_synced_with_visual(clones):
+    """46347df "sync laser visual with collision": the laser's collision origin, in every robot; nothing moves."""
+    _, models = diff_at(clones, LINO, "46347df")
+    got = changed(models)
+    for robot in ("2wd.urdf.xacro", "4wd.urdf.xacro", "mecanum.urdf.xacro"):
+        assert got[robot] == ({("link", "laser", "collision[#0].origin")}, set())
+    assert got["square.urdf.xacro"] == ({("link", "laser", "collision[#0].origin"),
+                                         ("link", "base_laser", "collision[#0].origin")}, set())
+
+
+def test_linorobot2_base_laser_raised(clones):
+    """b5480cf "fixed com problem": square's base laser mount 5 mm higher (and a property no model uses)."""
+    _, models = diff_at(clones, LINO, "b5480cf")
+    assert changed(models) == {"square.urdf.xacro": ({("joint", "base_laser_to_base_link", "origin.xyz")},
+                                                     {"base_laser"})}
+
+
+def test_linorobot2_macro_renamed_is_no_change(clones):
+    """06a0362 "renamed base laser": a macro's name, not what it expands to."""
+    code, models = diff_at(clones, LINO, "06a0362")
+    assert code == 0 and changed(models) == {}
+
+
+def test_linorobot2_broken_base_is_not_compared(clones):
+    """a6d9e72 "renamed to generic laser": the parent did not expand (a macro called without its parameters)."""
+    code, models = diff_at(clones, LINO, "a6d9e72")
+    assert code == 1
+    bad = [m for m in models if m["status"] == "unloadable"]
+    assert bad and all("old" in m["errors"] and "new" not in m["errors"] for m in bad)
+    assert any("X010" in e for m in bad for e in m["errors"]["old"])
+
+
+def test_linorobot2_camera_moved(clones):
+    """c25f22e "updated sensor pose" (4wd) and 185ad8f "updated depth sensor position" (2wd, also tilted)."""
+    _, models = diff_at(clones, LINO, "c25f22e")
+    assert changed(models) == {"4wd.urdf.xacro": ({("joint", "camera_to_base_link", "origin.xyz")},
+                                                  {"camera_link", "camera_depth_link"})}
+    _, models = diff_at(clones, LINO, "84ae70e")  # "updated sensor pose" (2wd): moved and untilted
+    assert changed(models) == {"2wd.urdf.xacro": ({("joint", "camera_to_base_link", "origin.xyz"),
+                                                   ("joint", "camera_to_base_link", "origin.rotation")},
+                                                  {"camera_link", "camera_depth_link"})}
+    _, models = diff_at(clones, LINO, "185ad8f")
+    assert changed(models) == {"2wd.urdf.xacro": ({("joint", "camera_to_base_link", "origin.xyz"),
+                                                   ("joint", "camera_to_base_link", "origin.rotation")},
+                                                  {"camera_link", "camera_depth_link"})}
+
+
+def test_linorobot2_caster_mass_and_a_copied_macro(clones):
+    """9e8be8e "updated wheels with mu values": 2wd's casters 0.1 -> 0.01 kg; mecanum now calls a copy of the
+    wheel macro (the same links); Gazebo friction tags are no model change."""
+    _, models = diff_at(clones, LINO, "9e8be8e")
+    got = changed(models)
+    assert set(got) == {"2wd.urdf.xacro"}
+    assert got["2wd.urdf.xacro"][0] == {("link", f"{s}_caster_wheel_link", f) for s in ("front", "rear")
+                                        for f in ("mass", "inertia")}
+    masses = {(c["old"], c["new"]) for m in models for c in m["changes"] if c["field"] == "mass"}
+    assert masses == {(0.1, 0.01)}
+
+
+@pytest.mark.parametrize("commit", ["b934e9f", "91ca638", "63fe5ae", "550153d", "e4fef1d"])
+def test_linorobot2_no_model_change(clones, commit):
+    """b934e9f spacing in xacro files; 91ca638 a laser node dropped from sensors.launch.py; 63fe5ae use_sim_time
+    for joint_state_publisher; 550153d Gazebo sensor and plugin names; e4fef1d a Gazebo ray sensor's min_range
+    (inside <gazebo>: what diff compares is the kinematic and inertial model and its contracts, not simulator
+    plugins): no model, contract or deployment changes."""
+    code, models = diff_at(clones, LINO, commit)
+    assert code == 0 and changed(models) == {} and models
+
+
+def test_ros2_control_demos_velocity_limits(clones):
+    """8240fa0e "[URDF] Fix velocity limit of carlikebot": three wheel joints' velocity limits."""
+    _, models = diff_at(clones, DEMOS, "8240fa0e")
+    got = changed(models)
+    assert set(got) == {"carlikebot.urdf.xacro"}
+    assert got["carlikebot.urdf.xacro"] == ({("joint", j, "limit.velocity") for j in (
+        "front_left_wheel_joint", "front_right_wheel_joint", "virtual_front_wheel_joint")}, set())
+
+
+def test_ros2_control_demos_arm_realigned(clones):
+    """618d8e61 "Fix URDF joint alignment ... for IKFast": r6bot's joint origins and shapes; every link moves."""
+    _, models = diff_at(clones, DEMOS, "618d8e61")
+    got = changed(models)
+    assert set(got) == {"r6bot.urdf.xacro"}
+    fields, moved = got["r6bot.urdf.xacro"]
+    assert {f"link_{i}" for i in range(1, 7)} | {"tool0", "ft_frame"} <= moved
+    assert {("joint", f"joint_{i}", "origin.xyz") for i in range(1, 7)} <= fields
+
+
+@pytest.mark.parametrize("commit", ["7eeeae45", "c141f0e5"])
+def test_ros2_control_demos_controller_keys_not_read_by_a_contract(clones, commit):
+    """7eeeae45 renames the bicycle controller's joint keys (the same joints); c141f0e5 changes diff_drive's
+    limiter parameters: nothing a contract with the model reads."""
+    code, models = diff_at(clones, DEMOS, commit)
+    assert changed(models) == {}
+
+
+def test_ur_absolute_mesh_paths_whitespace_edit(clones):
+    """dcb7db0 "Whitespace fixes" in the UR description, expanded for Gazebo (sim_gazebo:=true makes every mesh a
+    `file://$(find ur_description)/meshes/...` path, absolute): no change, though the revision's copy lies
+    elsewhere than the checkout."""
+    code, models = diff_at(clones, UR, "dcb7db0", "--arg", "sim_gazebo:=true")
+    ur = [m for m in models if m["model"] == "urdf/ur.urdf.xacro"]
+    assert ur and code == 0 and changed(ur) == {}
+
+
+def test_ur_dynamic_properties(clones):
+    """60e6974 "Update dynamic properties": centres of mass and inertia of the arm's links, no mesh (absolute
+    paths again) and no joint."""
+    _, models = diff_at(clones, UR, "60e6974", "--arg", "sim_gazebo:=true")
+    got = changed([m for m in models if m["model"] == "urdf/ur.urdf.xacro"])
+    fields, moved = got["ur.urdf.xacro"]
+    assert {f for _, _, f in fields} == {"com", "inertia"} and moved == set()
+    assert {n for _, n, _ in fields} == {"shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link",
+                                         "wrist_2_link"}
+
+
+def lint_base_at(clones, name: str, commit: str) -> dict:
+    repo = clones(name)
+    if _git("cat-file", "-e", f"{commit}^{{commit}}", cwd=repo).returncode:
+        pytest.skip(f"{commit} is not in the mirror of {name}")
+    _git("checkout", "-q", "-f", commit, cwd=repo)
+    env = {**os.environ, "PYTHONPATH": SRC + os.pathsep + os.environ.get("PYTHONPATH", ""), "URDFCHECK_NO_CACHE": "1"}
+    res = subprocess.run([sys.executable, "-m", "urdfcheck", "lint", "--diff-base", f"{commit}~1", "--format", "json",
+                          "-q"], cwd=repo, capture_output=True, text=True, env=env, timeout=300)
+    assert res.returncode in (0, 1), res.stderr
+    assert "urdfcheck-rev-" not in res.stdout + res.stderr
+    return json.loads(res.stdout)["diff_base"]
+
+
+def test_linorobot2_findings_the_fix_removes(clones):
+    """a6d9e72 fixed the laser macro's undefined parameters: X010 is fixed."""
+    d = lint_base_at(clones, LINO, "a6d9e72")
+    assert ("X010", "linorobot2_description/urdf/sensors/ld06.urdf.xacro", 5) in \
+        {(x["code"], x["file"], x["line"]) for x in d["fixed"]}
+
+
+@pytest.mark.parametrize("commit", ["b934e9f", "46347df"])
+def test_linorobot2_findings_unchanged_by_spacing_and_a_collision_origin(clones, commit):
+    """Spacing (lines move) and a collision origin: the findings of the base are all still there, none new."""
+    d = lint_base_at(clones, LINO, commit)
+    assert d["new"] == [] and d["fixed"] == [] and d["unchanged"] >= 1
