@@ -73,6 +73,7 @@ class Srdf(Record):
         self.passive: list[Named] = []
         self.disabled: list = []
         self.end_effectors: list = []
+        self.declared: tuple = ()  # the xacro arguments a `.srdf.xacro` declares (none for a plain SRDF)
 
     def group_joints(self, model) -> set[str] | None:
         """Every joint some group holds: named, on a chain, or between two of its links (a link group's
@@ -203,7 +204,14 @@ def _read_srdf(path: str, packages=None, args=None) -> Srdf:
         if exp.root is None:
             why = exp.findings[0].message if exp.findings else "not expanded"
             raise ConsumerError(f"SRDF could not be expanded: {why}", Location(path))
-        return _srdf_from(exp.root, exp.locate, path)
+        out = _srdf_from(exp.root, exp.locate, path)
+        from urdfcheck.load.variants import defaulted_args
+
+        try:
+            out.declared = tuple(dict.fromkeys([*(exp.declared_args or ()), *defaulted_args(path, packages)]))
+        except Exception:  # noqa: BLE001 - arguments not told: the SRDF follows none
+            out.declared = tuple(exp.declared_args or ())
+        return out
     from urdfcheck.core import xmlfront
 
     data = _read(path, "SRDF")

@@ -20,7 +20,58 @@ MAX_TURNS = 4
 
 
 def _configs(ctx):
-    return tuple(getattr(getattr(ctx, "contracts", None), "moveit", ()) or ())
+    """The MoveIt configs of the model, as the checked variant of the model sees them. A model expanded with
+    arguments other than its defaults (a launch file's, an explored variant such as gripper=false) meets an SRDF
+    written as xacro expanded with the same arguments when it declares them; an SRDF that cannot follow them (a
+    plain one, or one without those arguments) may be meant for another variant: its pairing is then a guess."""
+    found = tuple(getattr(getattr(ctx, "contracts", None), "moveit", ()) or ())
+    changed = _changed_args(ctx) if found else {}
+    if not changed:
+        return found
+    from urdfcheck.consumers.common import ConsumerError
+    from urdfcheck.consumers.moveit import read_srdf
+    from urdfcheck.core.evidence import Step
+
+    out = []
+    for cfg in found:
+        srdf = cfg.srdf
+        mine = {k: v for k, v in changed.items() if k in srdf.declared}
+        if mine:
+            try:
+                srdf = read_srdf(srdf.file, None, mine)
+            except ConsumerError:
+                continue
+        step = cfg.step if mine else Step(cfg.step.what, cfg.step.subject, "guess",
+                                          "the SRDF does not take the model's arguments "
+                                          f"({', '.join(f'{k}:={v}' for k, v in sorted(changed.items()))})")
+        out.append(_Variant(cfg, srdf, step))
+    return tuple(out)
+
+
+def _changed_args(ctx) -> dict:
+    """The xacro arguments the model was expanded with that differ from its declared defaults."""
+    exp = getattr(ctx, "expanded", None)
+    args = getattr(exp, "args", None) or {}
+    if not args or not getattr(exp, "entry", None):
+        return {}
+    from urdfcheck.load.variants import defaulted_args
+
+    try:
+        defaults = {**{k: v for k, v in (getattr(exp, "declared_args", None) or {}).items() if v is not None},
+                    **defaulted_args(exp.entry, None)}
+    except Exception:  # noqa: BLE001 - defaults not told: every argument counts as changed
+        defaults = {}
+    return {k: str(v) for k, v in args.items() if str(defaults.get(k)) != str(v)}
+
+
+class _Variant:
+    """A MoveIt config seen from one variant of the model: its SRDF and pairing step replaced."""
+
+    def __init__(self, cfg, srdf, step):
+        self._cfg, self.srdf, self.step = cfg, srdf, step
+
+    def __getattr__(self, name):
+        return getattr(self._cfg, name)
 
 
 def _hint(name: str, options) -> str:
