@@ -286,3 +286,40 @@ def test_a_moveit_controller_joint_its_ros2_control_controller_does_not_command(
           '<limit lower="-1.57" upper="1.57" effort="10" velocity="2.0"/>\n    <mimic joint="joint1"/>')
     _, report = lint_json(["moveit_config"], cwd=tmp_path)
     assert [f for f in report["findings"] if f["code"] == "M014"] == []
+
+
+def test_a_variant_of_the_model_meets_the_srdf_of_the_same_arguments(tmp_path):
+    """gripper:=false (an explored variant) has no hand: the SRDF xacro expanded with gripper:=false has none
+    either; a plain SRDF written for the default cannot follow, and what it says of that variant is an info."""
+    pkg = _copy("moveit_config", tmp_path)
+    desc, cfg = pkg / "arm_description", pkg / "arm_moveit_config"
+    urdf = (desc / "urdf" / "arm.urdf").read_text(encoding="utf-8")
+    urdf = urdf.replace('<robot name="arm">', '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                        '  <xacro:arg name="gripper" default="true"/>')
+    urdf = urdf.replace("</robot>", '  <xacro:if value="$(arg gripper)">\n    <link name="hand"/>\n'
+                        '    <joint name="hand_joint" type="fixed">\n      <parent link="tool0"/>\n'
+                        '      <child link="hand"/>\n    </joint>\n  </xacro:if>\n</robot>')
+    (desc / "urdf" / "arm.urdf").unlink()
+    (desc / "urdf" / "arm.urdf.xacro").write_text(urdf, encoding="utf-8")
+    _edit(cfg / ".setup_assistant", "urdf/arm.urdf", "urdf/arm.urdf.xacro")
+    (cfg / "config" / "joint_limits.yaml").unlink()
+    srdf = (cfg / "config" / "arm.srdf").read_text(encoding="utf-8")
+    srdf = srdf.replace('tip_link="tool"', 'tip_link="tool0"').replace('"jointZ"', '"joint2"')
+    xacro = srdf.replace('<robot name="arm">', '<robot name="arm" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+                         '  <xacro:arg name="gripper" default="true"/>')
+    xacro = xacro.replace("</robot>", '  <xacro:if value="$(arg gripper)">\n'
+                          '    <group name="hand">\n      <link name="hand"/>\n    </group>\n'
+                          '  </xacro:if>\n</robot>')
+    (cfg / "config" / "arm.srdf").unlink()
+    (cfg / "config" / "arm.srdf.xacro").write_text(xacro, encoding="utf-8")
+    _edit(cfg / ".setup_assistant", "config/arm.srdf", "config/arm.srdf.xacro")
+    _, report = lint_json(["moveit_config"], cwd=tmp_path)
+    assert _codes(report, "M") == [], report["findings"]
+    # the same SRDF written plain, for the default: the gripper:=false variant's hand is missing, said as info
+    plain = srdf.replace("</robot>", '  <group name="hand">\n    <link name="hand"/>\n  </group>\n</robot>')
+    (cfg / "config" / "arm.srdf.xacro").unlink()
+    (cfg / "config" / "arm.srdf").write_text(plain, encoding="utf-8")
+    _edit(cfg / ".setup_assistant", "config/arm.srdf.xacro", "config/arm.srdf")
+    _, report = lint_json(["moveit_config"], cwd=tmp_path)
+    assert _codes(report, "M") == [("M001", "info")], report["findings"]
+    assert "gripper:=false" in next(f["message"] for f in report["findings"] if f["code"] == "M001")
