@@ -2,13 +2,12 @@
 joint, a Gazebo sensor's frame. Each names it by a string nothing else checks, so a typo loses the block silently."""
 from __future__ import annotations
 
-import re
-
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Problem, Severity, closest
 from urdfcheck.rules.catalogue import check
 
 # (and the old Gazebo 0.x bodies and joints: <body:box name=...>, <joint:hinge name=...>)
-_SDF_PART = re.compile(r"<(?:link|joint|body)(?::\w+)?\s[^>]*?\bname=\"([^\"]+)\"")
+_SDF_PART = lazyre.compile(r"<(?:link|joint|body)(?::\w+)?\s[^>]*?\bname=\"([^\"]+)\"")
 
 # frames a sensor may stamp its data with that are not links of a robot
 WORLD_FRAMES = ("world", "map", "odom", "earth")
