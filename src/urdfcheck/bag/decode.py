@@ -132,7 +132,7 @@ def joint_state(buf, cdr: bool):
     n = c.count()
     blob, names = _last_names
     end = c.pos + len(blob)
-    if n == len(names) and blob and buf[c.pos:end] == blob:
+    if n == len(names) and blob and bytes(buf[c.pos:end]) == blob:
         c.pos = end
     else:
         start = c.pos
@@ -220,3 +220,105 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
         pos += 56
         out.append((parent, child, v[:3], v[3:], stamp))
     return out
+
+
+# --- JointState in batches ------------------------------------------------------------------------------------
+# A driver publishes the same joints, in the same order, message after message: every such message has the same
+# length and the same bytes from the end of the stamp to the first position (frame_id, names, counts, padding).
+# That layout, read once from one message (`js_layout`), lets a whole run of messages be read with numpy: the
+# stamps and the float64 arrays are gathered from fixed offsets. A message that differs anywhere outside the
+# stamp and the numbers is not of the layout and is read on its own (`joint_state`).
+class JsLayout:
+    __slots__ = ("cdr", "e", "length", "head", "lo", "hi", "fixed", "stamp_off", "pos", "vel", "eff", "words",
+                 "names")
+
+    def matches(self, buf) -> bool:
+        # (bytes() first: comparing a memoryview is item by item, a copy and memcmp is faster)
+        if len(buf) != self.length or bytes(buf[self.lo:self.hi]) != self.fixed:
+            return False
+        if self.cdr and bytes(buf[:4]) != self.head:
+            return False
+        for at, word in self.words:
+            if bytes(buf[at:at + len(word)]) != word:
+                return False
+        return True
+
+
+def js_layout(buf, cdr: bool) -> JsLayout:
+    """The layout of one JointState message (raises DecodeError as `joint_state` does)."""
+    c = _cursor(buf, cdr)
+    lay = JsLayout()
+    lay.cdr, lay.e, lay.length = cdr, c.e, len(buf)
+    lay.head = bytes(buf[:4]) if cdr else b""
+    if cdr:
+        c.align(4)
+        lay.stamp_off = c.pos
+    else:
+        lay.stamp_off = 4  # after seq
+    c.stamp()
+    lay.lo = c.pos
+    c.string()  # frame_id
+    n = c.count()
+    blob, names = _last_names
+    end = c.pos + len(blob)
+    if n == len(names) and blob and bytes(buf[c.pos:end]) == blob:
+        c.pos = end  # the same tuple as the last message's: the checks compare names by identity
+    else:
+        begin = c.pos
+        names = _strings(c, n)
+        _last_names[:] = [bytes(buf[begin:c.pos]), names]
+    lay.names = names
+    arrays = []
+    words = []
+    for i in range(3):
+        c.align(4)
+        at = c.pos
+        k = c.count()
+        if k:
+            c.align(8)
+        if i == 0:
+            lay.hi = c.pos  # frame_id, names, the position count and its padding: all fixed
+        c.need(8 * k)
+        arrays.append((c.pos, k))
+        if i:
+            words.append((at, bytes(buf[at:c.pos])))  # the count and the padding after it
+        c.pos += 8 * k
+    lay.pos, lay.vel, lay.eff = arrays
+    lay.fixed = bytes(buf[lay.lo:lay.hi])
+    lay.words = tuple(words)
+    return lay
+
+
+def js_batch(lay: JsLayout, payloads):
+    """(stamps int64 (n,), position (n, k), velocity (n, kv), effort (n, ke)) of messages of one layout."""
+    import numpy as np
+
+    n = len(payloads)
+    rows = np.frombuffer(b"".join(payloads), dtype=np.uint8).reshape(n, lay.length)
+    e = lay.e
+    s = lay.stamp_off
+    if lay.cdr:
+        sec = rows[:, s:s + 4].copy().view(e + "i4")[:, 0].astype(np.int64)
+    else:
+        sec = rows[:, s:s + 4].copy().view("<u4")[:, 0].astype(np.int64)
+    nsec = rows[:, s + 4:s + 8].copy().view(e + "u4")[:, 0].astype(np.int64)
+    stamps = sec * NS + nsec
+
+    def doubles(off, k):
+        if not k:
+            return np.empty((n, 0), dtype=np.float64)
+        return rows[:, off:off + 8 * k].copy().view(e + "f8").astype(np.float64, copy=False)
+
+    return stamps, doubles(*lay.pos), doubles(*lay.vel), doubles(*lay.eff)
+
+
+def remember_names(lay: JsLayout, buf) -> None:
+    """The next `joint_state` of these names hands back the layout's tuple (the checks compare by identity)."""
+    start = lay.lo
+    c = _cursor(buf, lay.cdr)
+    c.pos = start
+    c.string()
+    c.count()
+    begin = c.pos
+    _strings(c, len(lay.names))
+    _last_names[:] = [bytes(buf[begin:c.pos]), lay.names]

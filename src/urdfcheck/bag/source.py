@@ -54,15 +54,42 @@ class Message(TupleRecord):
         return f"{self.topic} message {self.index + 1} (at {(self.time_ns - self.start) / NS:+.3f} s)"
 
 
+class JointStateBatch:
+    """Consecutive JointState messages of one topic, publisher and layout, decoded together (bag.decode.js_batch):
+    `stamps` (n,) int64, `position` (n, k), `velocity` (n, kv), `effort` (n, ke) float64, `times` receive times."""
+
+    kind = "joint_state_batch"
+    __slots__ = ("topic", "index", "times", "names", "stamps", "position", "velocity", "effort", "callerid", "start")
+
+    def __init__(self, topic, index, times, names, stamps, position, velocity, effort, callerid, start):
+        self.topic, self.index, self.times, self.names = topic, index, times, names
+        self.stamps, self.position, self.velocity, self.effort = stamps, position, velocity, effort
+        self.callerid, self.start = callerid, start
+
+    def __len__(self) -> int:
+        return len(self.times)
+
+    def message(self, j: int) -> Message:
+        """The j-th message, as the message-by-message reader gives it."""
+        return Message(self.topic, self.index + j, self.times[j], "joint_state", JointStateMsg(
+            self.names, tuple(self.position[j].tolist()), tuple(self.velocity[j].tolist()),
+            tuple(self.effort[j].tolist()), int(self.stamps[j])), self.callerid, self.start)
+
+
+MAX_BATCH = 4096  # messages decoded together: memory stays flat whatever the recording's length
+
+
 def is_text(path: str) -> bool:
     return path.lower().endswith(TEXT_SUFFIXES)
 
 
 def messages(path: str, joint_topic: str | None = None, tf_topics=("/tf", "/tf_static"), others=None,
-             text: bool | None = None, facts: dict | None = None, runner: bool = False) -> Iterator[Message]:
+             text: bool | None = None, facts: dict | None = None, runner: bool = False,
+             batches: bool = False) -> Iterator[Message]:
     """Every JointState message of `joint_topic` (default: /joint_states, else the only JointState topic) and
     every TF message of `tf_topics`, in recording order. Raises RecordingError. `others` (a list) receives
-    the JointState topics that were not read."""
+    the JointState topics that were not read. `batches`: runs of JointState messages of a binary recording
+    come as JointStateBatch (in order with the other messages)."""
     others = [] if others is None else others
     facts = {} if facts is None else facts
     if not os.path.lexists(path):
@@ -70,11 +97,11 @@ def messages(path: str, joint_topic: str | None = None, tf_topics=("/tf", "/tf_s
     if os.path.basename(path) != "metadata.yaml" and (is_text(path) if text is None else text):
         yield from _text_messages(path, joint_topic or "/joint_states", tf_topics, others, runner)
     else:
-        yield from _bag_messages(path, joint_topic, tf_topics, others, facts, runner)
+        yield from _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches)
 
 
 # --- binary recordings -------------------------------------------------------------------------------------
-def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterator[Message]:
+def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=False) -> Iterator[Message]:
     from urdfcheck.bag import containers, decode
     from urdfcheck.bag.inflate import InflateError, Inflater
 
@@ -105,6 +132,20 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterat
     counters: dict[str, int] = {}
     late: set = set()
     n = start = 0
+    layouts: dict[tuple, object] = {}  # (topic, callerid, cdr) -> the layout of its last JointState
+    run: list = []  # the pending batch: [layout, topic, caller, first index, times, payloads]
+
+    def flush():
+        lay, topic, caller, index, times, payloads = run
+        run.clear()
+        if len(payloads) == 1:
+            st, names, pos, vel, eff = decode.joint_state(payloads[0], lay.cdr)
+            return Message(topic, index, times[0], "joint_state", JointStateMsg(names, pos, vel, eff, st), caller,
+                           start)
+        stamps, pos, vel, eff = decode.js_batch(lay, payloads)
+        decode.remember_names(lay, payloads[-1])
+        return JointStateBatch(topic, index, times, lay.names, stamps, pos, vel, eff, caller, start)
+
     try:
         for part in parts:
             for topic, msgtype, t, payload, caller, cdr in part.messages(want, inflater):
@@ -120,6 +161,25 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterat
                 if not n:
                     start = facts.get("start", t)
                 n += 1
+                if batches and kind == "joint_state":
+                    if run and run[1] == topic and run[2] == caller and run[0].cdr == cdr and \
+                            len(run[4]) < MAX_BATCH and run[0].matches(payload):
+                        run[4].append(t)
+                        run[5].append(payload)
+                        continue
+                    if run:
+                        yield flush()
+                    key = (topic, caller, cdr)
+                    lay = layouts.get(key)
+                    if lay is None or not lay.matches(payload):
+                        lay = decode.js_layout(payload, cdr)
+                        if len(layouts) > 64:
+                            layouts.clear()
+                        layouts[key] = lay
+                    run[:] = [lay, topic, caller, i, [t], [payload]]
+                    continue
+                if run:
+                    yield flush()
                 if kind == "joint_state":
                     st, names, pos, vel, eff = decode.joint_state(payload, cdr)
                     yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
@@ -127,6 +187,8 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterat
                     edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
                     yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
                                   start)
+        if run:
+            yield flush()
     except (containers.ContainerError, decode.DecodeError, InflateError, OSError) as e:
         raise RecordingError(f"the recording is truncated or corrupt after {n} messages: {_why(e)}") from None
     if chosen is None and joint_topic is None and len(late) > 1:

@@ -140,6 +140,26 @@ class TfChecks:
         if st in self.pending_stamps:
             self._settle(m.time_ns, st)
 
+    def joint_state_batch(self, b) -> None:
+        """A JointStateBatch: `joint_state` for each of its messages (its positions kept as the batch's rows)."""
+        names = b.names
+        if len(names) != b.position.shape[1]:
+            return
+        states, pending, keep = self.states, self.pending_stamps, self.KEEP_STATES
+        P, times = b.position, b.times
+        for j, st in enumerate(b.stamps.tolist()):
+            have = states.get(st)
+            if have is None:
+                states[st] = (names, P, j)
+            else:
+                have = self._positions(st)
+                have.update(zip(names, P[j].tolist()))
+                self.predicted.pop(st, None)
+            if len(states) > keep:
+                states.popitem(last=False)
+            if st in pending:
+                self._settle(times[j], st)
+
     def add(self, m: Message) -> None:
         self.count += 1
         if m.kind == "tf":
@@ -273,7 +293,10 @@ class TfChecks:
     def _positions(self, stamp: int) -> dict | None:
         pos = self.states.get(stamp)
         if isinstance(pos, tuple):
-            pos = self.states[stamp] = dict(zip(*pos))
+            if len(pos) == 3:  # (names, a batch's positions, its row)
+                pos = self.states[stamp] = dict(zip(pos[0], pos[1][pos[2]].tolist()))
+            else:
+                pos = self.states[stamp] = dict(zip(*pos))
         return pos
 
     def _expected(self, stamp: int, seg):
