@@ -230,7 +230,7 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
 # stamp and the numbers is not of the layout and is read on its own (`joint_state`).
 class JsLayout:
     __slots__ = ("cdr", "e", "length", "head", "lo", "hi", "fixed", "stamp_off", "pos", "vel", "eff", "words",
-                 "names")
+                 "names", "blob")
 
     def matches(self, buf) -> bool:
         # (bytes() first: comparing a memoryview is item by item, a copy and memcmp is faster)
@@ -266,8 +266,9 @@ def js_layout(buf, cdr: bool) -> JsLayout:
     else:
         begin = c.pos
         names = _strings(c, n)
-        _last_names[:] = [bytes(buf[begin:c.pos]), names]
-    lay.names = names
+        blob = bytes(buf[begin:c.pos])
+        _last_names[:] = [blob, names]
+    lay.names, lay.blob = names, blob
     arrays = []
     words = []
     for i in range(3):
@@ -312,13 +313,65 @@ def js_batch(lay: JsLayout, payloads):
     return stamps, doubles(*lay.pos), doubles(*lay.vel), doubles(*lay.eff)
 
 
-def remember_names(lay: JsLayout, buf) -> None:
+def remember_names(lay: JsLayout) -> None:
     """The next `joint_state` of these names hands back the layout's tuple (the checks compare by identity)."""
-    start = lay.lo
-    c = _cursor(buf, lay.cdr)
-    c.pos = start
-    c.string()
-    c.count()
-    begin = c.pos
-    _strings(c, len(lay.names))
-    _last_names[:] = [bytes(buf[begin:c.pos]), lay.names]
+    _last_names[:] = [lay.blob, lay.names]
+
+
+# --- TFMessage by layout ----------------------------------------------------------------------------------------
+# robot_state_publisher sends the same edges, in the same order, message after message: only the stamps and the
+# seven numbers of each transform change. The layout is read once (`tf_layout`); a message whose every other
+# byte is the same is read with numpy (`TfLayout.read`), any other on its own (`tf_message`).
+class TfLayout:
+    __slots__ = ("cdr", "e", "length", "keep", "keep_bytes", "sec", "nsec", "vals", "edges", "np")
+
+    def read(self, buf):
+        """(stamps int64 (E,), values float64 (E, 7)) when `buf` has this layout, else None."""
+        np = self.np
+        if len(buf) != self.length:
+            return None
+        a = np.frombuffer(buf, dtype=np.uint8)
+        if a[self.keep].tobytes() != self.keep_bytes:
+            return None
+        e = self.e
+        sec = a[self.sec].view((e + "i4") if self.cdr else "<u4").astype(np.int64)
+        nsec = a[self.nsec].view(e + "u4").astype(np.int64)
+        vals = a[self.vals].view(e + "f8").astype(np.float64, copy=False).reshape(-1, 7)
+        return sec * NS + nsec, vals
+
+
+def tf_layout(buf, cdr: bool) -> TfLayout:
+    """The layout of one TFMessage; raises DecodeError as `tf_message` does."""
+    import numpy as np
+
+    edges = tf_message(buf, cdr)
+    c = _cursor(buf, cdr)
+    lay = TfLayout()
+    lay.np, lay.cdr, lay.e, lay.length = np, cdr, c.e, len(buf)
+    lay.edges = tuple((p, ch) for p, ch, _t, _r, _s in edges)
+    n = c.count()
+    variable = np.zeros(len(buf), dtype=bool)
+    sec, nsec, vals = [], [], []
+    for _ in range(n):  # the walk of tf_message, keeping where the stamps and numbers are
+        if cdr:
+            c.align(4)
+            at = c.pos
+        else:
+            variable[c.pos:c.pos + 4] = True  # seq
+            at = c.pos + 4
+        sec.extend(range(at, at + 4))
+        nsec.extend(range(at + 4, at + 8))
+        c.stamp()
+        c.string()
+        c.string()
+        c.align(8)
+        vals.extend(range(c.pos, c.pos + 56))
+        c.pos += 56
+    for idx in (sec, nsec, vals):
+        variable[idx] = True
+    lay.keep = np.flatnonzero(~variable)
+    lay.keep_bytes = np.frombuffer(buf, dtype=np.uint8)[lay.keep].tobytes()
+    lay.sec = np.array(sec, dtype=np.intp)
+    lay.nsec = np.array(nsec, dtype=np.intp)
+    lay.vals = np.array(vals, dtype=np.intp)
+    return lay

@@ -76,6 +76,28 @@ class JointStateBatch:
             tuple(self.effort[j].tolist()), int(self.stamps[j])), self.callerid, self.start)
 
 
+class FastEdges:
+    """The edges of one TFMessage read by layout (bag.decode.TfLayout): `stamps` (E,) and `values` (E, 7: x y z,
+    qx qy qz qw) as arrays; iterating gives the Edge records the message-by-message reader gives."""
+
+    __slots__ = ("layout", "stamps", "values")
+
+    def __init__(self, layout, stamps, values):
+        self.layout, self.stamps, self.values = layout, stamps, values
+
+    def __len__(self) -> int:
+        return len(self.layout.edges)
+
+    def edge(self, i: int) -> Edge:
+        p, c = self.layout.edges[i]
+        v = self.values[i].tolist()
+        return Edge(p, c, tuple(v[:3]), tuple(v[3:]), int(self.stamps[i]))
+
+    def __iter__(self):
+        for (p, c), st, v in zip(self.layout.edges, self.stamps.tolist(), self.values.tolist()):
+            yield Edge(p, c, tuple(v[:3]), tuple(v[3:]), st)
+
+
 MAX_BATCH = 4096  # messages decoded together: memory stays flat whatever the recording's length
 
 
@@ -133,6 +155,7 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
     late: set = set()
     n = start = 0
     layouts: dict[tuple, object] = {}  # (topic, callerid, cdr) -> the layout of its last JointState
+    tf_layouts: dict[tuple, list] = {}  # (topic, callerid, cdr) -> the layouts of its last TF messages
     run: list = []  # the pending batch: [layout, topic, caller, first index, times, payloads]
 
     def flush():
@@ -143,7 +166,7 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
             return Message(topic, index, times[0], "joint_state", JointStateMsg(names, pos, vel, eff, st), caller,
                            start)
         stamps, pos, vel, eff = decode.js_batch(lay, payloads)
-        decode.remember_names(lay, payloads[-1])
+        decode.remember_names(lay)
         return JointStateBatch(topic, index, times, lay.names, stamps, pos, vel, eff, caller, start)
 
     try:
@@ -183,6 +206,23 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
                 if kind == "joint_state":
                     st, names, pos, vel, eff = decode.joint_state(payload, cdr)
                     yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
+                elif batches:
+                    key = (topic, caller, cdr)
+                    known = tf_layouts.setdefault(key, [])
+                    got = None
+                    for lay in known:
+                        got = lay.read(payload)
+                        if got is not None:
+                            break
+                    if got is None:
+                        lay = decode.tf_layout(payload, cdr)
+                        got = lay.read(payload)
+                        known.insert(0, lay)
+                        del known[4:]
+                        if len(tf_layouts) > 64:
+                            tf_layouts.clear()
+                    yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf",
+                                  FastEdges(lay, *got), caller, start)
                 else:
                     edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
                     yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
