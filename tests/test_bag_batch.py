@@ -177,11 +177,27 @@ def _events(n, defects):
             stamp = 0.0
         elif what == "unknown":
             names = ["shoulder", "elbow_renamed"]
-        events.append(("js", t, names, q, [], stamp))
-        if i % 10 == 0 and what is None:
-            s = ("base_link", "upper_arm", (0.0, 0.0, 0.1), (0.0, 0.0, math.sin(q[0] / 2), math.cos(q[0] / 2)))
-            e = ("upper_arm", "tool", (0.3, 0.0, 0.0), (0.0, math.sin(q[1] / 2), 0.0, math.cos(q[1] / 2)))
-            events.append(("tf", stamp, [s, e], "/tf"))
+        js = ("js", t, names, q, [], stamp)
+        s = ("base_link", "upper_arm", (0.0, 0.0, 0.1), (0.0, 0.0, math.sin(q[0] / 2), math.cos(q[0] / 2)))
+        e = ("upper_arm", "tool", (0.3, 0.0, 0.0), (0.0, math.sin(q[1] / 2), 0.0, math.cos(q[1] / 2)))
+        if what == "tf early":  # recorded before the joint state it was computed from
+            events.append(("tf", t, [s, e], "/tf", None, None, stamp))
+            events.append(js)
+            continue
+        events.append(js)
+        if what == "tf off":  # the elbow 2 mm away: another URDF on the robot
+            events.append(("tf", t, [s, ("upper_arm", "tool", (0.302, 0.0, 0.0), e[3])], "/tf", None, None, stamp))
+        elif what == "tf twice":  # the same stamp again, another value: a second publisher
+            events.append(("tf", t, [s, e], "/tf", None, None, stamp))
+            events.append(("tf", t, [s, ("upper_arm", "tool", (0.3, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0))], "/tf", None,
+                           None, stamp))
+        elif what == "tf unmatched":  # a stamp no joint state has
+            events.append(("tf", t, [s, e], "/tf", None, None, stamp + 0.0033))
+        elif what == "tf odom":  # an edge not of the model, in the same message
+            events.append(("tf", t, [("odom", "base_link", (i * 1e-3, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0)), s, e],
+                           "/tf", None, None, stamp))
+        elif i % 10 == 0 and what is None:
+            events.append(("tf", t, [s, e], "/tf", None, None, stamp))
     return events
 
 
@@ -190,13 +206,16 @@ DEFECTS = {
     "seeded late": {4500: "nan", 4600: "nan", 4700: "inf", 5000: "high", 5100: "low", 5200: "back", 5300: "repeat",
                     5400: "zero", 5500: "gap", 5600: "unknown", 5700: "high"},
     "seeded early and late": {3: "back", 20: "zero", 4200: "nan", 4201: "back", 5999: "low"},
+    "tf defects": {**{i: "tf early" for i in range(4400, 4460)}, 4500: "tf off", 4700: "tf off", 4800: "tf twice",
+                   **{i: "tf unmatched" for i in range(4900, 4960, 2)}, **{i: "tf odom" for i in range(5000, 5100)},
+                   5200: "nan", 5300: "high"},
 }
 
 
 @pytest.mark.parametrize("fmt", ["mcap", "ros1"])
 @pytest.mark.parametrize("case", sorted(DEFECTS))
 def test_batches_find_what_message_by_message_finds(case, fmt, tmp_path, monkeypatch):
-    from urdfcheck.bag import check_recording, jointstates, source
+    from urdfcheck.bag import check_recording, jointstates, source, tfcheck
     from urdfcheck.load import loader
 
     urdf = tmp_path / "arm.urdf"
@@ -211,13 +230,24 @@ def test_batches_find_what_message_by_message_finds(case, fmt, tmp_path, monkeyp
         return real(self, T, *a)
 
     monkeypatch.setattr(jointstates.JointStateChecks, "_steady_timing", counted)
+    by_layout = []
+    real_tf = tfcheck.TfChecks._add_fast
+
+    def counted_tf(self, m, plan):
+        by_layout.append(1)
+        return real_tf(self, m, plan)
+
+    monkeypatch.setattr(tfcheck.TfChecks, "_add_fast", counted_tf)
     fast = [(f.code, str(f.severity), f.message) for f in check_recording(model, str(bag))]
-    assert sum(steady) > 1000  # the numpy path did run
+    assert sum(steady) > 1000 and len(by_layout) > 400  # the numpy paths did run
     whole = source.messages
     monkeypatch.setattr(source, "messages", lambda *a, **kw: whole(*a, **dict(kw, batches=False)))
     slow = [(f.code, str(f.severity), f.message) for f in check_recording(model, str(bag))]
     assert fast == slow
-    if case != "clean":
-        assert {c for c, _s, _m in fast} >= {"B004", "B005", "B008"}
-    else:
+    codes = {c for c, _s, _m in fast}
+    if case == "clean":
         assert fast == []
+    elif case == "tf defects":
+        assert codes >= {"B004", "B005", "B010", "B013"}
+    else:
+        assert codes >= {"B004", "B005", "B008"}

@@ -64,13 +64,13 @@ every file inside a recording folder is read as the checkout's, whoever named th
                         ros=facts.get("ros"))
 
     held: list = []  # JointState batches not yet given to `states` (which needs no order with /tf): longer runs
-    held_n = [0]
+    held_n = [0, 0]  # messages, bytes
 
     def give():
         if held:
             states.add_batches(held)
             held.clear()
-            held_n[0] = 0
+            held_n[:] = [0, 0]
 
     try:
         for m in source.messages(path, opts.joint_topic, others=others, text=text, facts=facts, runner=runner,
@@ -89,10 +89,11 @@ every file inside a recording folder is read as the checkout's, whoever named th
                              held[0].callerid != m.callerid or held[0].position.shape[1:] != m.position.shape[1:]
                              or held[0].velocity.shape[1:] != m.velocity.shape[1:]
                              or held[0].effort.shape[1:] != m.effort.shape[1:]
-                             or held_n[0] >= source.MAX_BATCH):
+                             or held_n[0] >= source.MAX_BATCH or held_n[1] >= source.BATCH_BYTES):
                     give()
                 held.append(m)
                 held_n[0] += k
+                held_n[1] += m.position.nbytes + m.velocity.nbytes + m.effort.nbytes
                 tf.joint_state_batch(m)
                 continue
             n += 1

@@ -99,6 +99,8 @@ class FastEdges:
 
 
 MAX_BATCH = 4096  # messages decoded together: memory stays flat whatever the recording's length
+BATCH_BYTES = 8 << 20  # and their bytes
+TF_LAYOUT_BYTES = 1 << 16  # a TF message read by layout (its index arrays take 8 bytes a byte); larger: on its own
 
 
 def is_text(path: str) -> bool:
@@ -186,9 +188,10 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
                 n += 1
                 if batches and kind == "joint_state":
                     if run and run[1] == topic and run[2] == caller and run[0].cdr == cdr and \
-                            len(run[4]) < MAX_BATCH and run[0].matches(payload):
+                            len(run[4]) < MAX_BATCH and len(run[4]) * run[0].length < BATCH_BYTES and \
+                            run[0].matches(payload):
                         run[4].append(t)
-                        run[5].append(payload)
+                        run[5].append(bytes(payload))  # (a copy: a view would keep its whole chunk alive)
                         continue
                     if run:
                         yield flush()
@@ -199,14 +202,14 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
                         if len(layouts) > 64:
                             layouts.clear()
                         layouts[key] = lay
-                    run[:] = [lay, topic, caller, i, [t], [payload]]
+                    run[:] = [lay, topic, caller, i, [t], [bytes(payload)]]
                     continue
                 if run:
                     yield flush()
                 if kind == "joint_state":
                     st, names, pos, vel, eff = decode.joint_state(payload, cdr)
                     yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
-                elif batches:
+                elif batches and len(payload) <= TF_LAYOUT_BYTES:
                     key = (topic, caller, cdr)
                     known = tf_layouts.setdefault(key, [])
                     got = None

@@ -152,8 +152,8 @@ class TfChecks:
         P, times = b.position, b.times
         for j, st in enumerate(b.stamps.tolist()):
             have = states.get(st)
-            if have is None:
-                states[st] = (names, P, j)
+            if have is None:  # (a copy of the row: a view would keep the whole batch alive)
+                states[st] = (names, P[j].copy(), True)
             else:
                 have = self._positions(st)
                 have.update(zip(names, P[j].tolist()))
@@ -231,7 +231,7 @@ class TfChecks:
                 else:
                     self._unmatched(m, key)
             return
-        q = ent[1][ent[2]][cols]
+        q = ent[1][cols]
         t, r = plan.expected(q, np)
         dt = t - V[:, :3]
         dt2 = (dt * dt).sum(axis=1)
@@ -424,8 +424,8 @@ class TfChecks:
     def _positions(self, stamp: int) -> dict | None:
         pos = self.states.get(stamp)
         if isinstance(pos, tuple):
-            if len(pos) == 3:  # (names, a batch's positions, its row)
-                pos = self.states[stamp] = dict(zip(pos[0], pos[1][pos[2]].tolist()))
+            if len(pos) == 3:  # (names, a row of a batch's positions, True)
+                pos = self.states[stamp] = dict(zip(pos[0], pos[1].tolist()))
             else:
                 pos = self.states[stamp] = dict(zip(*pos))
         return pos
