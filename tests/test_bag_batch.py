@@ -178,6 +178,9 @@ def _events(n, defects):
         elif what == "unknown":
             names = ["shoulder", "elbow_renamed"]
         js = ("js", t, names, q, [], stamp)
+        if not all(math.isfinite(x) for x in q):
+            events.append(js)
+            continue
         s = ("base_link", "upper_arm", (0.0, 0.0, 0.1), (0.0, 0.0, math.sin(q[0] / 2), math.cos(q[0] / 2)))
         e = ("upper_arm", "tool", (0.3, 0.0, 0.0), (0.0, math.sin(q[1] / 2), 0.0, math.cos(q[1] / 2)))
         if what == "tf early":  # recorded before the joint state it was computed from

@@ -71,6 +71,7 @@ class TfChecks:
         self._cos2 = math.cos(tolerance / 2) ** 2
         self._cos4 = math.cos(tolerance / 4) ** 2  # (numpy's first look: half the tolerance, the rest exactly)
         self._fast: dict[tuple, _FastPlan] = {}
+        self._jobs: list = []  # comparisons of the replay put off (_replay_fast), made together (_run_jobs)
         self._lv_plan = None  # the plan whose arrays hold the last values of its edges (not yet in last_value)
         self.static_tolerance = static_tolerance
         self.count = 0
@@ -232,6 +233,11 @@ class TfChecks:
                     self._unmatched(m, key)
             return
         q = ent[1][cols]
+        if np.isfinite(q).all() and plan.all_plain:  # compared later, with other messages' (_run_jobs)
+            self._jobs.append((m, plan, q, V, ent))
+            if len(self._jobs) >= 256:
+                self._run_jobs()
+            return
         t, r = plan.expected(q, np)
         dt = t - V[:, :3]
         dt2 = (dt * dt).sum(axis=1)
@@ -248,6 +254,44 @@ class TfChecks:
             for c, good in enumerate(okl):
                 if not good:
                     self._compare(m, d.edge(int(plan.mov[c])), plan.mkeys[c], plan.msegs[c])
+
+    def _run_jobs(self) -> None:
+        """The replay's comparisons `_replay_fast` put off, made with numpy for many messages at once; in the
+        order of the messages, what is not clearly within tolerance goes through `_compare` with the joint
+        state the message was matched with."""
+        jobs = self._jobs
+        if not jobs:
+            return
+        self._jobs = []
+        import numpy as np
+
+        groups: dict[int, list] = {}
+        for i, job in enumerate(jobs):
+            groups.setdefault(id(job[1]), []).append(i)
+        bad: dict[int, list] = {}
+        for idx in groups.values():
+            plan = jobs[idx[0]][1]
+            Q = np.stack([jobs[i][2] for i in idx])
+            V = np.stack([jobs[i][3] for i in idx])
+            t, r = plan.expected(Q, np)
+            dt = t - V[..., :3]
+            qr = V[..., 3:]
+            with np.errstate(all="ignore"):
+                dt2 = (dt * dt).sum(axis=-1)
+                dot = (r * qr).sum(axis=-1)
+                n1 = (r * r).sum(axis=-1)
+                n2 = (qr * qr).sum(axis=-1)
+                ok = (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4)
+            plan.ok_counts += ok.sum(axis=0)
+            self.replayed += int(ok.sum())
+            if not ok.all():
+                for row, c in zip(*np.nonzero(~ok)):
+                    bad.setdefault(idx[int(row)], []).append(int(c))
+        for i in sorted(bad):
+            m, plan, _q, _v, ent = jobs[i]
+            pos = dict(zip(ent[0], ent[1].tolist()))
+            for c in bad[i]:
+                self._compare(m, m.data.edge(int(plan.mov[c])), plan.mkeys[c], plan.msegs[c], pos)
 
     def _own(self, plan, np) -> None:
         """`plan` keeps the last values of its edges in arrays; whoever kept them before writes them back."""
@@ -276,6 +320,7 @@ class TfChecks:
 
     def _fold(self) -> None:
         """The counts of `_add_fast` into `matched` and `on_tf`."""
+        self._run_jobs()
         self._disown()
         for plan in self._fast.values():
             if plan.seen:
@@ -367,8 +412,14 @@ class TfChecks:
         else:
             self._unmatched(m, key)
 
-    def _compare(self, m: Message, e: Edge, key, seg) -> None:
-        expected = self._expected(e.stamp_ns, seg)
+    def _compare(self, m: Message, e: Edge, key, seg, pos=None) -> None:
+        """`pos`: the joint state the edge was matched with, when the comparison was put off (_run_jobs)."""
+        if pos is None:
+            if self._jobs:  # those put off first: the first and the worst mismatch stay in recording order
+                self._run_jobs()
+            expected = self._expected(e.stamp_ns, seg)
+        else:
+            expected = self._expected_at(pos, e.stamp_ns, seg)
         rec = self.matched.get(key)
         if rec is None:
             rec = self.matched[key] = [0, 0, None]
@@ -443,6 +494,14 @@ class TfChecks:
             while len(self.predicted) > 64:
                 self.predicted.popitem(last=False)
         return cache.get(seg.child)
+
+    def _expected_at(self, pos: dict, stamp: int, seg):
+        """`_expected` from the given joint state, not the one kept now for that stamp."""
+        if seg.name not in pos and not _mimic_of(self.model, seg.name, pos):
+            return None
+        return {t.child: (t.translation, t.rotation) for t in self.pub.transforms_for(
+            {k: v for k, v in pos.items() if k in self.model.joints and math.isfinite(v)},
+            (stamp // NS, stamp % NS))}.get(seg.child)
 
     def _fixed(self, m: Message, e: Edge, key) -> None:
         seen = self.fixed_on.setdefault(key, {})
@@ -617,6 +676,8 @@ class _FastPlan:
         a = np.array(rows, dtype=np.float64).reshape(len(rows), 15)
         self.t0, self.d, self.q0, self.k, self.prism = a[:, 0:3], a[:, 3:6], a[:, 6:10], a[:, 10:14], a[:, 14] > 0
         self.plain = np.array(plain, dtype=bool)
+        self.all_plain = bool(self.plain.all())
+        self.any_prism = bool(self.prism.any())
 
     def columns(self, names):
         """Where each movable edge's joint is in `names` (the last, as dict(zip()) keeps); None: one is missing."""
@@ -634,12 +695,15 @@ class _FastPlan:
         return cols
 
     def expected(self, q, np):
-        """Translations (E, 3) and rotations (E, 4) the publisher gives these edges at joint values q (E,)."""
+        """Translations (..., E, 3) and rotations (..., E, 4) the publisher gives these edges at joint values
+        q (..., E)."""
         h = 0.5 * q
-        s = np.sin(h)[:, None]
-        c = np.cos(h)[:, None]
-        rot = np.where(self.prism[:, None], self.q0, self.q0 * c + self.k * s)
-        t = self.t0 + self.d * q[:, None]
+        s = np.sin(h)[..., None]
+        c = np.cos(h)[..., None]
+        rot = self.q0 * c + self.k * s
+        if self.any_prism:
+            rot = np.where(self.prism[:, None], self.q0, rot)
+        t = self.t0 + self.d * q[..., None]
         return t, rot
 
 
