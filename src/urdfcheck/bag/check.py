@@ -78,7 +78,7 @@ every file inside a recording folder is read as the checkout's, whoever named th
             if tf is None:
                 tf = tf_checks()
             if m.kind == "joint_state_batch":
-                k = len(m)
+                k = len(m) + len(m.tfs)
                 if budget is not None and (n + k) // 2048 != n // 2048 and budget.remaining() <= 0:
                     cut = f"the run's time budget ({budget.seconds:g} s) ran out after {n:,} messages"
                     break
@@ -94,7 +94,12 @@ every file inside a recording folder is read as the checkout's, whoever named th
                 held.append(m)
                 held_n[0] += k
                 held_n[1] += m.position.nbytes + m.velocity.nbytes + m.effort.nbytes
-                tf.joint_state_batch(m)
+                lo = 0
+                for j, tm in m.tfs:  # the replay needs the order of joint states and /tf as recorded
+                    tf.joint_state_batch(m, lo, j)
+                    tf.add(tm)
+                    lo = j
+                tf.joint_state_batch(m, lo, len(m))
                 continue
             n += 1
             if budget is not None and not n % 2048 and budget.remaining() <= 0:

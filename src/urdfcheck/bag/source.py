@@ -59,12 +59,20 @@ class JointStateBatch:
     `stamps` (n,) int64, `position` (n, k), `velocity` (n, kv), `effort` (n, ke) float64, `times` receive times."""
 
     kind = "joint_state_batch"
-    __slots__ = ("topic", "index", "times", "names", "stamps", "position", "velocity", "effort", "callerid", "start")
+    __slots__ = ("topic", "index", "times", "names", "stamps", "position", "velocity", "effort", "callerid", "start",
+                 "tfs", "_stamps")
 
-    def __init__(self, topic, index, times, names, stamps, position, velocity, effort, callerid, start):
+    def __init__(self, topic, index, times, names, stamps, position, velocity, effort, callerid, start, tfs=()):
         self.topic, self.index, self.times, self.names = topic, index, times, names
         self.stamps, self.position, self.velocity, self.effort = stamps, position, velocity, effort
         self.callerid, self.start = callerid, start
+        self.tfs = tfs  # [(j, Message)]: TF messages recorded between the batch's message j - 1 and j, in order
+        self._stamps = None
+
+    def stamp_list(self) -> list:
+        if self._stamps is None:
+            self._stamps = self.stamps.tolist()
+        return self._stamps
 
     def __len__(self) -> int:
         return len(self.times)
@@ -158,22 +166,38 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
     n = start = 0
     layouts: dict[tuple, object] = {}  # (topic, callerid, cdr) -> the layout of its last JointState
     tf_layouts: dict[tuple, list] = {}  # (topic, callerid, cdr) -> the layouts of its last TF messages
-    run: list = []  # the pending batch: [layout, topic, caller, first index, times, payloads]
+    run: list = []  # the pending batch: [layout, topic, caller, first index, times, payloads, TF messages, bytes]
+
+    hot = [None]  # (topic, callerid, cdr, layout, times, payloads, cap) of the run being gathered
 
     def flush():
-        lay, topic, caller, index, times, payloads = run
+        """The run as one batch (the TF messages recorded among its messages ride along, in order)."""
+        lay, topic, caller, index, times, payloads, tfs, _size = run
         run.clear()
+        hot[0] = None
         if len(payloads) == 1:
             st, names, pos, vel, eff = decode.joint_state(payloads[0], lay.cdr)
-            return Message(topic, index, times[0], "joint_state", JointStateMsg(names, pos, vel, eff, st), caller,
-                           start)
+            yield Message(topic, index, times[0], "joint_state", JointStateMsg(names, pos, vel, eff, st), caller,
+                          start)
+            for _j, m in tfs:
+                yield m
+            return
         stamps, pos, vel, eff = decode.js_batch(lay, payloads)
         decode.remember_names(lay)
-        return JointStateBatch(topic, index, times, lay.names, stamps, pos, vel, eff, caller, start)
+        yield JointStateBatch(topic, index, times, lay.names, stamps, pos, vel, eff, caller, start, tfs)
 
     try:
         for part in parts:
             for topic, msgtype, t, payload, caller, cdr in part.messages(want, inflater):
+                h = hot[0]
+                if h is not None and topic == h[0] and caller == h[1] and cdr == h[2] and len(h[4]) < h[6] and \
+                        h[3].matches(payload) and payload[0] != 0x28:  # (0x28: perhaps zstd, below)
+                    # the next message of the run: what the lines below do for it, in short
+                    h[4].append(t)
+                    h[5].append(bytes(payload))
+                    counters[topic] += 1
+                    n += 1
+                    continue
                 kind = decode.kind_of(msgtype)
                 if kind == "joint_state" and chosen is None and joint_topic is None:
                     late.add(topic)  # not indexed: the first JointState topic, or /joint_states once seen
@@ -194,7 +218,7 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
                         run[5].append(bytes(payload))  # (a copy: a view would keep its whole chunk alive)
                         continue
                     if run:
-                        yield flush()
+                        yield from flush()
                     key = (topic, caller, cdr)
                     lay = layouts.get(key)
                     if lay is None or not lay.matches(payload):
@@ -202,10 +226,12 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
                         if len(layouts) > 64:
                             layouts.clear()
                         layouts[key] = lay
-                    run[:] = [lay, topic, caller, i, [t], [bytes(payload)]]
+                    run[:] = [lay, topic, caller, i, [t], [bytes(payload)], [], 0]
+                    cap = min(MAX_BATCH, max(1, BATCH_BYTES // lay.length))
+                    hot[0] = (topic, caller, cdr, lay, run[4], run[5], cap)
                     continue
-                if run:
-                    yield flush()
+                if run and kind == "joint_state":
+                    yield from flush()
                 if kind == "joint_state":
                     st, names, pos, vel, eff = decode.joint_state(payload, cdr)
                     yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
@@ -224,15 +250,27 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
                         del known[4:]
                         if len(tf_layouts) > 64:
                             tf_layouts.clear()
-                    yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf",
-                                  FastEdges(lay, *got), caller, start)
+                    m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf",
+                                FastEdges(lay, *got), caller, start)
                 else:
                     edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
-                    yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
-                                  start)
+                    m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
+                                start)
+                if kind == "joint_state":
+                    continue
+                if not run:
+                    yield m
+                    continue
+                # among a run of joint states: rides along with them (the run goes on after it)
+                run[6].append((len(run[4]), m))
+                run[7] += len(payload)
+                if len(run[6]) >= MAX_BATCH or run[7] >= BATCH_BYTES:
+                    yield from flush()
         if run:
-            yield flush()
+            yield from flush()
     except (containers.ContainerError, decode.DecodeError, InflateError, OSError) as e:
+        if run:  # what was read before the damage is checked, as message by message
+            yield from flush()
         raise RecordingError(f"the recording is truncated or corrupt after {n} messages: {_why(e)}") from None
     if chosen is None and joint_topic is None and len(late) > 1:
         keep = "/joint_states" if "/joint_states" in late else min(late)

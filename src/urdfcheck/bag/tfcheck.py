@@ -144,14 +144,16 @@ class TfChecks:
         if st in self.pending_stamps:
             self._settle(m.time_ns, st)
 
-    def joint_state_batch(self, b) -> None:
-        """A JointStateBatch: `joint_state` for each of its messages (its positions kept as the batch's rows)."""
+    def joint_state_batch(self, b, lo: int = 0, hi: int | None = None) -> None:
+        """A JointStateBatch (its messages lo to hi): `joint_state` for each (the positions kept as rows)."""
         names = b.names
         if len(names) != b.position.shape[1]:
             return
         states, pending, keep = self.states, self.pending_stamps, self.KEEP_STATES
         P, times = b.position, b.times
-        for j, st in enumerate(b.stamps.tolist()):
+        stamps = b.stamp_list()
+        for j in range(lo, len(stamps) if hi is None else hi):
+            st = stamps[j]
             have = states.get(st)
             if have is None:  # (a copy of the row: a view would keep the whole batch alive)
                 states[st] = (names, P[j].copy(), True)
