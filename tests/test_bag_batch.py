@@ -254,3 +254,45 @@ def test_batches_find_what_message_by_message_finds(case, fmt, tmp_path, monkeyp
         assert codes >= {"B004", "B005", "B010", "B013"}
     else:
         assert codes >= {"B004", "B005", "B008"}
+
+
+def _findings(model, bag, monkeypatch, batches: bool):
+    from urdfcheck.bag import check_recording, source
+
+    whole = source.messages
+    with monkeypatch.context() as mp:
+        mp.setattr(source, "messages", lambda *a, **kw: whole(*a, **dict(kw, batches=batches)))
+        return [(f.code, str(f.severity), f.message) for f in check_recording(model, str(bag))]
+
+
+def test_small_bounds_change_nothing(tmp_path, monkeypatch):
+    """Runs cut short by the message and byte bounds (as a recording of huge JointStates cuts them) find the same."""
+    from urdfcheck.bag import source
+    from urdfcheck.load import loader
+
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text(ROBOT)
+    model = loader.load_model(str(urdf), {})
+    bag = write(tmp_path / "run", "mcap", _events(6000, {**DEFECTS["seeded late"], **DEFECTS["tf defects"]}))
+    slow = _findings(model, bag, monkeypatch, False)
+    monkeypatch.setattr(source, "MAX_BATCH", 7)
+    monkeypatch.setattr(source, "BATCH_BYTES", 900)
+    assert _findings(model, bag, monkeypatch, True) == slow
+    assert {c for c, _s, _m in slow} >= {"B004", "B005", "B008", "B010", "B013"}
+
+
+def test_real_ros1_recordings_find_the_same_either_way(monkeypatch):
+    from pathlib import Path
+
+    from urdfcheck.load import loader
+
+    folder = Path(__file__).parent / "fixtures" / "ros1"
+    if not (folder / "robot.urdf").exists():
+        pytest.skip("no ROS 1 fixtures")
+    model = loader.load_model(str(folder / "robot.urdf"), {})
+    seen = set()
+    for bag in sorted(folder.glob("*.bag")):
+        fast = _findings(model, bag, monkeypatch, True)
+        assert fast == _findings(model, bag, monkeypatch, False), bag.name
+        seen.update(c for c, _s, _m in fast)
+    assert seen  # the fixtures carry seeded defects
