@@ -91,10 +91,12 @@ def test_decoder_equals_rosbags_on_edge_cases(fmt, tmp_path):
         for _what, names, pos, vel in EDGES:
             t += 0.01
             events.append(("js", t, names, pos, vel, t + rep * 1e-9))
-    # many messages: several chunks, runs across chunk boundaries
+    # many messages (~4 MB): several chunks, runs across chunk boundaries
+    names = [f"joint_{k}" for k in range(60)]
     for i in range(3000):
         t += 0.001
-        events.append(("js", t, ["a", "bb"], [math.sin(i), NAN if i % 97 == 0 else i * 1.5], [], t))
+        events.append(("js", t, names, [math.sin(i + k) for k in range(59)] + [NAN if i % 97 == 0 else i * 1.5],
+                       [], t))
     path = write(tmp_path / "edges", fmt, events)
     assert _check_against_rosbags(path) == len(events)
 

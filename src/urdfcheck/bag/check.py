@@ -122,7 +122,10 @@ every file inside a recording folder is read as the checkout's, whoever named th
     except ArithmeticError as e:  # a value no arithmetic survives (the readers pass floats through as they are)
         issues.append(Issue("B014", f"the recording cannot be checked after {n:,} messages: a value out of "
                             f"range ({type(e).__name__})"))
-    give()
+    try:
+        give()  # what was read before a damaged part, or before the budget ran out, is checked
+    except MemoryError:
+        issues.append(Issue("B014", "the recording cannot be read: the run's memory budget was used up"))
     if cut is not None:
         issues.append(Issue("B014", f"the recording was read only in part: {cut}; what follows rests on "
                             "the part read"))
