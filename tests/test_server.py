@@ -147,6 +147,16 @@ async def test_definition_of_a_macro_call(client: LanguageClient):
 
 
 @pytest.mark.asyncio(loop_scope="module")
+async def test_definition_of_a_find_path(client: LanguageClient):
+    top = TOP.read_text(encoding="utf-8")
+    row = next(i for i, line in enumerate(top.splitlines()) if "$(find" in line and "wheel.xacro" in line)
+    col = top.splitlines()[row].index("$(find") + 10
+    loc = await client.text_document_definition_async(types.DefinitionParams(
+        text_document=types.TextDocumentIdentifier(uri=_uri(TOP)), position=types.Position(row, col)))
+    assert loc is not None and Path(loc.uri.replace("file://", "")).resolve() == WHEEL.resolve()
+
+
+@pytest.mark.asyncio(loop_scope="module")
 async def test_code_action_suppresses_the_finding(client: LanguageClient):
     await _until(client, _uri(WHEEL), lambda d: any(x.code == "I004" for x in d))
     actions = await client.text_document_code_action_async(types.CodeActionParams(

@@ -22,6 +22,7 @@ _WORD = lazyre.compile(r"[A-Za-z0-9_./:\-]+")
 _NAME = lazyre.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 MAX_STAMP_DIRS = 2_000  # folders of a unit looked at to tell "nothing changed"
 MAX_DEFINITION_FILES = 500  # xacro files of a package searched for a macro or property definition
+_FIND = lazyre.compile(r"\$\(find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)([^\"'\s<>]*)")
 _MEAN = lazyre.compile(r"did you mean '([^']+)'")
 _QUOTED = lazyre.compile(r"'([^']+)'")
 
@@ -174,11 +175,31 @@ class Session:
 
     def definition(self, path: str, line: int, col: int) -> tuple[str, int] | None:
         """(file, 1-based line) of what the word at the position names."""
+        found = self._find_path(path, line, col)
+        if found is not None:
+            return found, 1
         word = self._word(path, line, col)
         if not word:
             return None
         d = self.definition_of(path, word)
         return (d[0], d[1]) if d is not None else None
+
+    def _find_path(self, path: str, line: int, col: int) -> str | None:
+        """The file a `$(find pkg)/rest` under the position names (xacro includes, launch files), when it exists."""
+        text = self.text(path)
+        lines = text.splitlines() if text else []
+        if not 1 <= line <= len(lines):
+            return None
+        for m in _FIND.finditer(lines[line - 1]):
+            if m.start() <= col <= m.end():
+                from pathlib import Path
+
+                from urdfcheck.load.packages import Resolver
+
+                root = Resolver(near=Path(os.path.dirname(os.path.realpath(path)))).find(m.group(1))
+                target = os.path.join(str(root), m.group(2).lstrip("/")) if root is not None else None
+                return target if target and os.path.isfile(target) else None
+        return None
 
     def _word(self, path: str, line: int, col: int) -> str | None:
         text = self.text(path)
