@@ -592,7 +592,7 @@ def _first_by_name(parts) -> dict:
 
 
 def model_from_string(xml: str | bytes, path: str = "<string>") -> Model:
-    """Model from URDF text (plain URDF; for xacro use `urdfcheck.load.load_model`)."""
+    """Model from URDF text (plain URDF; for xacro use `urdfcheck.load.loader.load_model`)."""
     from urdfcheck.core import xmlfront
 
     data = xml.encode("utf-8") if isinstance(xml, str) else xml

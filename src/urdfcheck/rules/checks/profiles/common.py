@@ -17,7 +17,7 @@ PROFILES = {
 
 # General rules whose findings are, for a profile's consumer, the consumer's own refusal of the model: with the
 # profile on, those findings carry the profile (JSON "profile"), so a report filtered by profile is complete.
-# Each entry was checked by loading a model with the defect into the consumer (tests/test_consumers_diff.py).
+# Each entry was checked by loading a model with the defect into the consumer (tests/consumers_diff.py).
 ANNOTATES = {
     # urdfdom refuses these while parsing; Pinocchio reads URDF through urdfdom (parsers/urdf/model.cxx)
     "pinocchio": frozenset(("U001", "U004", "U005", "U006", "U007", "S001", "S002", "S003", "S004", "S005", "S006",
