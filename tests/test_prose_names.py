@@ -2,8 +2,9 @@
 names exists. A module moved or deleted leaves its old name in prose, where no import fails; this test does.
 
 Three spellings are checked: `urdfcheck.a.b[.name]` anywhere; `a.b` in backticks whose first word is a source
-package (consumers.discover_consumers, written in backticks); and file paths `a/b.py` whose first folder is a source package, tests/,
-tools/ or bench/ (`src/urdfcheck/` may precede). A trailing name after a module must be written in that module."""
+package (consumers.discover_consumers, written in backticks); and file paths `a/b.py` whose first folder is a
+source package, tests/, tools/ or bench/ (`src/urdfcheck/` may precede). A trailing name after a module must be
+written in that module."""
 from __future__ import annotations
 
 import io

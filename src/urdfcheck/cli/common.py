@@ -143,10 +143,9 @@ def add_config_options(p: argparse.ArgumentParser, command: str = "expand") -> N
 def load_one(ns, path: str, build: bool = True):
     """The model at `path` as `urdfcheck lint` loads it (the same request: config, packages, limits),
     the load flags over the config: a `run.Loaded`. Raises UsageError."""
+    from urdfcheck.cli.options import request_fields
     from urdfcheck.request.request import make_request
     from urdfcheck.run import load
-
-    from urdfcheck.cli.options import request_fields
 
     request = make_request([path], **request_fields(ns, getattr(ns, "command", None) or "expand"))
     return load(request, path, build=build)
