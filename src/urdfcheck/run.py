@@ -10,6 +10,7 @@ and paths shown relative to the request's root.
 """
 from __future__ import annotations
 
+import contextlib
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -105,13 +106,18 @@ def run(request: LintRequest, *, retain: list | None = None, targets: list[Targe
     Paths are shown relative to the request's root from the start (`core.paths.showing`): nothing is
     rewritten afterwards. The run's budget (load.budget) covers the planning too: launch files are read there.
     Raises UsageError when there is nothing to lint or an input is unusable."""
+    from urdfcheck.core import door
     from urdfcheck.core.findings import reset_hints
     from urdfcheck.core.paths import showing
     from urdfcheck.load.budget import run_budget
     from urdfcheck.load.discover import remembering
 
     reset_hints()
-    with showing(request.root), run_budget(request.budget), remembering():
+    typed = (*request.paths, request.config, request.baseline, *request.bags)
+    # the runner lowered the guard (`--trusted`, or `--config FILE --trust-config`: its paths are the runner's)
+    trusted = bool(request.trusted) or bool(request.config and request.trust_config)
+    with door.guarding(typed), (door.unconfined() if trusted else contextlib.nullcontext()), \
+            showing(request.root), run_budget(request.budget), remembering():
         try:
             return _run(request, retain, targets)
         except MemoryError:

@@ -107,6 +107,11 @@ def plan(argv: list[str]) -> Spec | None:
             return None
     folder = os.path.abspath(folder or env.get("URDFCHECK_CACHE_DIR") or user_cache_dir())
     folder = os.path.join(folder, f"v{SCHEMA}")
+    if cachefile.linked_in_checkout(folder, os.getcwd()):
+        if env.get("URDFCHECK_CACHE_TRACE", "") not in ("", "0"):
+            print("urdfcheck: cache off (its folder lies in the checkout and is reached through a symbolic link "
+                  "there: a link the checked files made would redirect the cache's writes)", file=sys.stderr)
+        return None
 
     import urdfcheck
 

@@ -18,11 +18,12 @@ def _run(fn):
 
 
 def add_parser(subparsers) -> None:
-    p = subparsers.add_parser("consumers", help="load the model into MuJoCo, Pinocchio, PyBullet, yourdfpy, urdfdom",
+    p = subparsers.add_parser("consumers",
+                              help="load the model into MuJoCo, Pinocchio, PyBullet, yourdfpy, urdfdom, sdformat",
                               description=__doc__.split("\n\n")[0])
     p.add_argument("model", metavar="MODEL")
     p.add_argument("--consumer", default=None, metavar="NAMES",
-                   help="comma-separated: mujoco, pinocchio, pybullet, yourdfpy, urdfdom (default: all)")
+                   help="comma-separated: mujoco, pinocchio, pybullet, yourdfpy, urdfdom, sdformat (default: all)")
     p.add_argument("--format", choices=["text", "json", "markdown"], default="text")
     p.add_argument("--consumer-timeout", type=float, default=None, metavar="SECONDS",
                    help="wall-clock and CPU limit for each consumer (default 30)")

@@ -24,6 +24,14 @@ def request_from_flags(ns) -> LintRequest:
 
 def run(ns, usage_error=UsageError) -> int:
     """`usage_error`: raised (with the message) for an unusable invocation; UsageError by default."""
+    from urdfcheck.core import door
+
+    # every read of the run goes through the door, confined to the checkout, the packages and what is typed
+    with door.guarding((*ns.paths, ns.config, ns.baseline, *(getattr(ns, "bags", None) or ()))):
+        return _with_config_from(ns, usage_error)
+
+
+def _with_config_from(ns, usage_error) -> int:
     rev = getattr(ns, "config_from", None)
     if not rev:
         return _run(ns, usage_error)

@@ -101,6 +101,13 @@ def cmd_server(ns) -> int:
 
 
 def cmd_expand(ns) -> int:
+    from urdfcheck.core import door
+
+    with door.guarding((ns.path, getattr(ns, "config", None))):
+        return _expand(ns)
+
+
+def _expand(ns) -> int:
     if not os.path.isfile(ns.path):
         raise UsageError(f"no such file: {ns.path}")
     exp = load_one(ns, ns.path, build=False).expanded

@@ -106,8 +106,13 @@ def _model_path(ns) -> str:
 
 def _run(fn):
     def wrapped(ns) -> int:
+        from urdfcheck.core import door
+
+        # every read of the command through the door: the checkout, the packages resolved, what is typed
+        typed = (getattr(ns, "model", None), getattr(ns, "joint_states", None), getattr(ns, "config", None))
         try:
-            return fn(ns)
+            with door.guarding(typed):
+                return fn(ns)
         except UsageError as e:
             print(usage_message(ns.command, e), file=sys.stderr)
             return EXIT_USAGE

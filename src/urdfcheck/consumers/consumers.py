@@ -409,8 +409,8 @@ def _mentions(path: str, name: str) -> bool:
         return False
     try:
         from urdfcheck.consumers.pairing import named_in
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        return named_in(read_file(path, 2 * 1024 * 1024), name)  # agv.urdf is not named by agv.urdf.xacro
+        return named_in(door.read_bytes(path, limit=2 * 1024 * 1024), name)  # agv.urdf is not named by agv.urdf.xacro
     except OSError:
         return False

@@ -36,10 +36,10 @@ def may_name(data: bytes, names) -> bool:
 
 def worth_parsing(path, names) -> bool:
     """`may_name` for a file; True when it cannot be read or is over the cap (its reader says why)."""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
     try:
-        data = read_file(path, LIMIT)
+        data = door.read_bytes(path, limit=LIMIT)
     except OSError:
         return True
     return len(data) > LIMIT or may_name(data, names)

@@ -173,9 +173,9 @@ def yaml_suppressions(file: str) -> list[Suppression]:
     hit = _YAML_CACHE.get(key)
     if hit is None:
         try:
-            from urdfcheck.core.safeio import read_file
+            from urdfcheck.core import door
 
-            text = read_file(file, 16 * 1024 * 1024)[:16 * 1024 * 1024].decode("utf-8", "replace")
+            text = door.read_bytes(file, limit=16 * 1024 * 1024)[:16 * 1024 * 1024].decode("utf-8", "replace")
         except OSError:
             text = ""
         hit = [Suppression(file, a, b, c, d) for a, b, c, d in scan_yaml_comments(text)]

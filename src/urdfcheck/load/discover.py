@@ -78,10 +78,11 @@ def _read_head(path: str, trusted: bool = False, cache: dict | None = None) -> s
     if not trusted and leaves_cwd(path, cache=cache):
         return ""
     try:
-        from urdfcheck.core.safeio import decode_model_text, read_file
+        from urdfcheck.core import door
+        from urdfcheck.core.safeio import decode_model_text
 
         # a regular file only (a FIFO must not block); a UTF-16 model is found, then reported by the loader
-        return decode_model_text(read_file(path, HEAD_BYTES)[:HEAD_BYTES])
+        return decode_model_text(door.read_bytes(path, limit=HEAD_BYTES)[:HEAD_BYTES])
     except OSError:
         return ""
 

@@ -24,6 +24,7 @@ from pathlib import Path
 
 from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
+from urdfcheck.plan.named import Named as _Named
 from urdfcheck.request.request import LintRequest, Settings, UsageError
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")  # config.CONFIG_NAMES (not imported: start-up)
@@ -126,17 +127,6 @@ class TargetList(list):
         self.findings = []  # about the plan itself: a config's ignored keys, a file walk cut short (issue 19)
         self.libraries = 0  # xacro libraries seen: "no robot found: N xacro libraries"
         self.included = []  # libraries by inclusion that may hold links (plan.robots.missed)
-
-
-class _Named(Record):
-    """The deployments of one folder the user named, found once for the whole tree.
-    deployments: those with a model, minus those defined in a folder whose config declares its models;
-    covered: the models (realpath) they load, which are then not linted alone."""
-
-    _fields = ('root', 'deployments', 'covered')
-
-    def __init__(self, root: str, deployments: list, covered: set):
-        self.root, self.deployments, self.covered = root, deployments, covered
 
 
 class Planner:

@@ -61,7 +61,7 @@ def check_yaml_text(text: str, name: str = "YAML") -> None:
 
 
 def check_yaml_file(path: str) -> None:
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
-    data = read_file(path, MAX_BYTES)  # a regular file only: a committed FIFO must not block
+    data = door.read_bytes(path, limit=MAX_BYTES)  # a regular file only: a committed FIFO must not block
     check_yaml_text(data.decode("utf-8", "replace"), path)
