@@ -127,19 +127,6 @@ def add_options(p: argparse.ArgumentParser, command: str, only=None) -> None:
         p.add_argument(*o.flags, **kw)
 
 
-LOAD_OPTIONS = ("args", "packages", "trusted", "allow_env", "timeout", "max_elements", "budget")
-CONFIG_OPTIONS = ("config", "no_config")
-
-
-def add_load_options(p: argparse.ArgumentParser, command: str = "lint") -> None:
-    add_options(p, command, LOAD_OPTIONS)
-
-
-def add_config_options(p: argparse.ArgumentParser, command: str = "expand") -> None:
-    """The config options of the commands that load one model (expand, tf, publish, tree, verify, consumers)."""
-    add_options(p, command, CONFIG_OPTIONS)
-
-
 def load_one(ns, path: str, build: bool = True):
     """The model at `path` as `urdfcheck lint` loads it (the same request: config, packages, limits),
     the load flags over the config: a `run.Loaded`. Raises UsageError."""

@@ -40,10 +40,6 @@ def _joint_value(text: str):
     return k, value
 
 
-def _add_load_options(p, command: str) -> None:
-    add_options(p, command)
-
-
 class _Deprecated(argparse.Action):
     """An old spelling, still read, with a note on stderr saying the new one."""
 
@@ -133,7 +129,7 @@ def add_parsers(subparsers) -> None:
                    help="movable joints without --joint are at 0 (default: an error naming them)")
     p.add_argument("--format", choices=["text", "json"], default="text")
     p.add_argument("--precision", type=int, default=6, help="decimals in text output (default 6)")
-    _add_load_options(p, "tf")
+    add_options(p, "tf")
     p.set_defaults(func=_run(cmd_tf))
 
     p = subparsers.add_parser("publish", help="what robot_state_publisher would publish for joint states",
@@ -151,7 +147,7 @@ def add_parsers(subparsers) -> None:
                    help="ros2 frame_prefix (prepended verbatim) or ros1 tf_prefix ('prefix/frame')")
     p.add_argument("--no-tf-static", dest="use_tf_static", action="store_false", default=None,
                    help="ros1 use_tf_static:=false: fixed transforms go on /tf every publish interval")
-    _add_load_options(p, "publish")
+    add_options(p, "publish")
     p.set_defaults(func=_run(cmd_publish))
 
     p = subparsers.add_parser("tree", help="the TF tree robot_state_publisher builds (static/dynamic edges)")
@@ -159,7 +155,7 @@ def add_parsers(subparsers) -> None:
     p.add_argument("--format", choices=["text", "mermaid", "dot", "json"], default="text")
     p.add_argument("--frame-prefix", default="", metavar="PREFIX")
     _add_ros(p)
-    _add_load_options(p, "tree")
+    add_options(p, "tree")
     p.set_defaults(func=_run(cmd_tree))
 
     p = subparsers.add_parser("verify", help="check the publisher against Pinocchio and yourdfpy",
@@ -183,7 +179,7 @@ def add_parsers(subparsers) -> None:
     p.add_argument("--max-dof", type=int, default=None, help="refuse Pinocchio above this many DoF (default 256)")
     p.add_argument("--max-depth", type=int, default=None,
                    help="refuse Pinocchio above this chain depth (default 1000)")
-    _add_load_options(p, "verify")
+    add_options(p, "verify")
     p.set_defaults(func=_run(cmd_verify))
 
 
