@@ -270,7 +270,9 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
         pf = r.params(p, errs)
         if pf is None:
             if single or real in mine:
-                out.errors.extend(errs)
+                from urdfcheck.consumers.params import foreign
+
+                out.errors.extend(e for e in errs if real in mine or not foreign(p, e))
             continue
         if single or real in mine or _names_a_joint(pf, joints):
             pfs.append(pf)

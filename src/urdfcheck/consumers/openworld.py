@@ -254,7 +254,9 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
         pf = reader.params(f, errs)
         if pf is None:
             if single or real in mine:
-                c.errors.extend(e for e in errs if e not in c.errors)
+                from urdfcheck.consumers.params import foreign
+
+                c.errors.extend(e for e in errs if e not in c.errors and (real in mine or not foreign(f, e)))
             continue
         if single or real in mine or names_a_joint(pf, joints):
             pfs.append(pf)

@@ -120,7 +120,10 @@ def _is_library(text: str, includes: bool = False) -> bool:
     defs = _definitions(kids, 0)
     # macros or properties only (an `xacro:if` holding only definitions counts): a library, certainly (its
     # expansion is an empty robot). An include may bring a robot body: such a file is expanded to tell
-    return defs is not None and bool(defs & {"macro", "property"}) and (includes or "include" not in defs)
+    # with `includes`, a file of includes only (uuv_simulator's snippets.xacro: the macro libraries of a package
+    # in one include) is a probe too: its expansion has no link unless an included file brings a robot body
+    return defs is not None and (bool(defs & {"macro", "property"}) or (includes and defs == {"include"})) and (
+        includes or "include" not in defs)
 
 
 def _definitions(kids, depth: int) -> set[str] | None:
@@ -191,6 +194,7 @@ def _included_files(ref: str, includer: str, xacros: _Xacros) -> set[str]:
 _LEGACY = lazyre.compile(r"""<\s*include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
 _COMMENTED = lazyre.compile(r"<!--(.*?)(?:-->|\Z)", re.S)
 _SUBST = lazyre.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
+_FIND_PATH = lazyre.compile(r"""\$\(\s*find\s+[\w-]+\s*\)/[^"'<>\s$]+\.xacro\b""")
 
 
 def _fragment_hints(text: str, includer: str, xacros: _Xacros) -> set[str]:
@@ -201,7 +205,11 @@ def _fragment_hints(text: str, includer: str, xacros: _Xacros) -> set[str]:
     import fnmatch
 
     out: set[str] = set()
-    refs = [m.group(2) for m in _LEGACY.finditer(_COMMENT.sub("", text))]
+    bare = _COMMENT.sub("", text)
+    refs = [m.group(2) for m in _LEGACY.finditer(bare)]
+    # a path handed to a macro or property (`thruster_layout="$(find pkg)/urdf/aft.xacro"`) that the macro then
+    # includes (`<xacro:include filename="${thruster_layout}"/>`): vrx's thruster layouts
+    refs.extend(m.group(0) for m in _FIND_PATH.finditer(_INCLUDE.sub("", bare)))
     for c in _COMMENTED.finditer(text):
         refs.extend(m.group(2) for m in _INCLUDE.finditer(c.group(1)))
     for ref in refs:

@@ -115,7 +115,10 @@ def auto_variants(path: str, base: Mapping[str, str], packages: Mapping[str, str
     if len(names) <= MAX_AUTO_ARGS:
         rows = list(itertools.product((False, True), repeat=len(names)))
     else:
-        rows = pairwise(len(names))
+        # each flag flipped alone first: a defect one option reaches is seen in a variant of that option alone,
+        # not only inside a combination of several (which no launch file may use: a guess, plan.plan.variants)
+        single = [tuple(i == j for j in range(len(names))) for i in range(len(names))]
+        rows = list(dict.fromkeys([*pairwise(len(names))[:1], *single, *pairwise(len(names))[1:]]))
     out = []
     for flips in rows:
         args = {n: (_BOOLS[flags[n]] if f else flags[n]) for n, f in zip(names, flips)}

@@ -67,6 +67,7 @@ class Target(Record):
     # how the model and its deployment were chosen (core.evidence.Step), which every finding of it rests on
     evidence: tuple = ()
     library = False  # a probe whose expansion has no link: not a robot, not checked as one
+    combination = False  # an automatic variant of a discovered model flipping several options (run._combinations)
     twin = False  # a declared model linted again with the consumers found beside it (an unvouched config's)
 
     def __init__(self, path: Path,
@@ -359,12 +360,12 @@ class Planner:
                                   "linted through the robots that include them")
             for entry in found.models:
                 if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
-                    out.extend(_mark(self.variants(Path(entry), settings, named.root), "complete"))
+                    out.extend(_mark(self.variants(Path(entry), settings, named.root, found=True), "complete"))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
             for entry in self.discover(folder, settings).models:
                 if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
-                    out.extend(_mark(self.variants(Path(entry), settings, named.root), "complete"))
+                    out.extend(_mark(self.variants(Path(entry), settings, named.root, found=True), "complete"))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
 
     def named(self, root: str, settings: Settings, skip=()) -> _Named:
@@ -477,16 +478,24 @@ class Planner:
             self._robots[ws] = list(sub.path_targets(ws))
         return self._robots[ws]
 
-    def variants(self, entry: Path, settings: Settings, root: str | None = None) -> list[Target]:
-        """Each combination of the boolean xacro:args the request does not fix (bounded; named)."""
+    def variants(self, entry: Path, settings: Settings, root: str | None = None, found: bool = False
+                 ) -> list[Target]:
+        """Each combination of the boolean xacro:args the request does not fix (bounded; named). `found`: the
+        model was discovered (no one named it), so a combination of several options rests on a guess."""
         packages = _packages(root, str(entry), settings) if root is not None else None
         if not entry.name.endswith(".xacro"):
             return [self.target(entry, {}, "", None, settings, packages)]
         from urdfcheck.load.variants import auto_variants  # not the config module: a run without one never imports it
 
-        return [self.target(entry, vargs, name, None, settings, packages)
-                for name, vargs in auto_variants(str(entry), dict(self.request.args),
-                                                 dict(settings.packages) if packages is None else packages)]
+        out = []
+        for name, vargs in auto_variants(str(entry), dict(self.request.args),
+                                         dict(settings.packages) if packages is None else packages):
+            out.append(self.target(entry, vargs, name, None, settings, packages))
+            # several options flipped together on a discovered model: a combination no launch file or config
+            # was seen to use, so what only it shows rests on a guess (issue 37; run._combinations); each option
+            # alone is a variant of its own
+            out[-1].combination = found and name.count(",") >= 1
+        return out
 
     def target(self, path: Path, args: dict, variant: str, consumers, settings: Settings,
                packages: dict | None = None) -> Target:
@@ -521,8 +530,8 @@ def _step(what: str, subject: str, how: str, confirm: str = ""):
 def _mark(targets: list[Target], how: str, force: bool = False) -> list[Target]:
     """Record how these targets' model was chosen (core.evidence), unless a step already says so."""
     for t in targets:
-        if force or not t.evidence:
-            t.evidence = (_step("model", str(t.path), how),)
+        if force or not any(s.what == "model" for s in t.evidence):
+            t.evidence = (_step("model", str(t.path), how),) + tuple(s for s in t.evidence if s.what != "model")
     return targets
 
 
