@@ -35,10 +35,6 @@ def from_rt(rot, xyz) -> Mat:
     )
 
 
-def pose_matrix(xyz, rpy) -> Mat:
-    return from_rt(rpy_matrix(*rpy), xyz)
-
-
 def quat_from_rpy(r: float, p: float, y: float) -> tuple[float, float, float, float]:
     """urdfdom's Rotation::setFromRPY (then normalised), as (x, y, z, w)."""
     phi, the, psi = r / 2.0, p / 2.0, y / 2.0
