@@ -22,6 +22,7 @@ from urdfcheck.model import extensions
 from urdfcheck.model import grammar as G
 from urdfcheck.model.robot import (
     Block,
+    FrameRef,
     GazeboPlugin,
     Geometry,
     HardwareItem,
@@ -479,10 +480,24 @@ class _Builder:
                                     el.get("reference") or ""))
         return out
 
+    def frame_refs(self, el) -> list[FrameRef]:
+        """The frames the sensors of a <gazebo> block name (ROS 2 and ROS 1 gazebo_ros plugins, gz-sim)."""
+        out = []
+        for sensor in el.iter("sensor"):
+            for c in sensor.iter(*FRAME_TAGS):
+                text = (c.text or "").strip()
+                if text and not len(c):
+                    out.append(FrameRef(c.tag, text, self.locate(c), sensor.get("name") or "",
+                                        el.get("reference") or ""))
+        return out
+
     def transmission(self, el) -> Transmission:
         joints = tuple(Interface(j.get("name") or "", self.locate(j)) for j in el.findall("joint"))
         return Transmission(el.get("name") or "", self.locate(el), joints)
 
+
+# the elements a Gazebo sensor names its frame with: gazebo_ros (ROS 2), gazebo_plugins (ROS 1), gz-sim, Ignition
+FRAME_TAGS = ("frame_name", "frameName", "gz_frame_id", "ignition_frame_id")
 
 # what urdfdom 6.0 then does, by where the <origin> is (run on urdfdom 6.0.0)
 _BOTH = {
@@ -536,7 +551,7 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
         b.issue("U001", f"the root element is <{root.tag}>, not <robot>", root)
     else:
         b.R["robot"](b, root)
-    links, joints, materials, blocks, r2c, trans, plugins = [], [], [], [], [], [], []
+    links, joints, materials, blocks, r2c, trans, plugins, frames = [], [], [], [], [], [], [], []
     for el in children:
         tag = el.tag
         if tag == "link":
@@ -559,6 +574,7 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
                 for inner in el.iter("ros2_control"):
                     r2c.append(b.ros2_control(inner, True))
                 plugins.extend(b.plugins(el))
+                frames.extend(b.frame_refs(el))
             else:
                 trans.append(b.transmission(el))
         elif is_robot and isinstance(tag, str):
@@ -581,6 +597,7 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
         version=version,
         declared_version=declared,
         plugins=tuple(plugins),
+        frame_refs=tuple(frames),
     )
 
 

@@ -191,6 +191,16 @@ class GazeboPlugin(TupleRecord):
         return tuple(p for p in self.params if p.tag in tags)
 
 
+class FrameRef(TupleRecord):
+    """A frame a <gazebo> sensor stamps its data with (<frame_name>, <frameName>, <gz_frame_id>...), as written."""
+
+    tag: str
+    name: str
+    loc: Location
+    sensor: str = ""  # the <sensor name>
+    reference: str = ""  # the <gazebo reference> it sits in
+
+
 class Transmission(TupleRecord):
     name: str
     loc: Location
@@ -214,10 +224,10 @@ class Model(FrozenRecord):
     #   when the declared one is one no urdfdom reads); declared_version: <robot version> as written
     _fields = ('name', 'loc', 'links', 'joints', 'materials', 'link_list', 'joint_list', 'material_list', 'blocks',
                'issues', 'source', 'ros2_control', 'transmissions', 'version', 'declared_version', 'plugins',
-               'repeated')
+               'repeated', 'frame_refs')
 
     _defaults = {"ros2_control": (), "transmissions": (), "version": (1, 0), "declared_version": None,
-                 "plugins": (), "repeated": ()}
+                 "plugins": (), "repeated": (), "frame_refs": ()}
     name: str
     loc: Location
     links: Mapping[str, Link]
@@ -237,6 +247,7 @@ class Model(FrozenRecord):
     # per element that holds a sub-element twice where readers take one, (owner kind, owner name, its path such as
     # "link/collision/geometry", the repeated tags sorted), in reading order
     repeated: tuple
+    frame_refs: tuple
 
     # --- derived structure -------------------------------------------------
     @property

@@ -361,12 +361,44 @@ class Planner:
             for entry in found.models:
                 if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
                     out.extend(_mark(self.variants(Path(entry), settings, named.root, found=True), "complete"))
+        if not out:
+            out.extend(self.moveit_model(folder, settings))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
             for entry in self.discover(folder, settings).models:
                 if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
                     out.extend(_mark(self.variants(Path(entry), settings, named.root, found=True), "complete"))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
+
+    def moveit_model(self, folder: str, settings: Settings) -> list[Target]:
+        """A MoveIt config package with no model of its own: the model its `.setup_assistant` names, whose
+        checks then read this config (consumers.moveit) as one beside the model's package (issue 41)."""
+        from urdfcheck.load.packages import enclosing_package
+
+        pkg = enclosing_package(Path(os.path.abspath(folder)))
+        if pkg is None:
+            return []
+        from urdfcheck.consumers.moveit import named_model
+
+        model = named_model(str(pkg), dict(settings.packages))
+        if model is None:
+            return []
+        from urdfcheck.load.packages import workspace_root
+
+        real = os.path.realpath(model)
+        inside = _below(real, os.path.realpath(os.getcwd()))
+        if not inside and not _below(real, str(workspace_root(pkg))) \
+                and not any(_below(real, os.path.realpath(p)) for p in settings.packages.values()):
+            # a file of the checkout names it: a package of its workspace (as a launch file's $(find) resolves
+            # one) or one the runner named, never an installed package elsewhere on the machine
+            return []
+        from urdfcheck.core.evidence import Step
+
+        out = self.variants(Path(os.path.relpath(model)) if inside else Path(model), settings)
+        for t in out:
+            t.evidence = (Step("model", shown(model), "referenced",
+                               f"named by {shown(str(pkg / '.setup_assistant'))}"),)
+        return out
 
     def named(self, root: str, settings: Settings, skip=()) -> _Named:
         """The deployments of a named folder, found once (`skip`: folders whose config declares the models)."""

@@ -33,7 +33,8 @@ CHECKS: dict[str, Check] = {}  # code -> check function (one function may serve 
 # every module of rules/checks, named here so that a run imports them without walking the folder (pkgutil: ~4 ms of
 # imports); tests/test_catalogue.py fails when a module of the folder is missing from the list
 CHECK_MODULES = tuple(f"urdfcheck.rules.checks.{m}" for m in (
-    "contracts", "frames", "geometry", "inertial", "joints", "profiles", "structure", "values"))
+    "contracts", "frames", "geometry", "inertial", "joints", "moveit", "profiles", "references", "structure",
+    "units", "values"))
 
 
 def check(*codes: str):

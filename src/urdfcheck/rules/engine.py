@@ -10,7 +10,7 @@ import os
 from urdfcheck.core import nogc
 from urdfcheck.core.findings import Finding, Location, Problem, Severity, clean_text
 from urdfcheck.core.records import Record
-from urdfcheck.core.suppress import is_yaml, yaml_suppressions
+from urdfcheck.core.suppress import is_srdf, is_yaml, srdf_suppressions, yaml_suppressions
 from urdfcheck.rules import catalogue as rulebook
 
 
@@ -236,6 +236,8 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
                 if yaml_used is not None:  # absolute, like the consumer files `unused_yaml` is given
                     yaml_used.add((os.path.abspath(f.location.file), hit))
                 continue
+        elif is_srdf(f.location.file) and _suppressed(f, srdf_suppressions(f.location.file)) is not None:
+            continue  # `<!-- urdfcheck: ignore[...] -->` in the MoveIt SRDF the finding points into
         kept.append(Finding(f.code, sev, f.message, _shown(f.location),
                             f.name or (info.name if info else ""),
                             tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant,

@@ -17,15 +17,15 @@ by a rounding error are how links are drawn flush against each other.
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Iterator
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Problem, Severity
 
-_SRDF_NAME = re.compile(r"<robot\b[^>]*\bname\s*=\s*[\"']([^\"']+)[\"']")
-_DISABLE = re.compile(r"<disable_collisions\b([^>]*)/?>")
-_ATTR = re.compile(r"\b(link1|link2)\s*=\s*[\"']([^\"']*)[\"']")
-_SUBST = re.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
+_SRDF_NAME = lazyre.compile(r"<robot\b[^>]*\bname\s*=\s*[\"']([^\"']+)[\"']")
+_DISABLE = lazyre.compile(r"<disable_collisions\b([^>]*)/?>")
+_ATTR = lazyre.compile(r"\b(link1|link2)\s*=\s*[\"']([^\"']*)[\"']")
+_SUBST = lazyre.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
 _HUGE = 1000.0
 _SRDF_FILES = 40  # at most this many SRDF files are read per model
 _SRDF_BYTES = 2_000_000

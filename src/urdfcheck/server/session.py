@@ -13,16 +13,17 @@ import os
 import re
 import threading
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Finding
 
 MODEL_SUFFIXES = (".urdf", ".xacro", ".urdf.xacro")
 TEXT_SUFFIXES = MODEL_SUFFIXES + (".yaml", ".yml", ".launch", ".xml", ".py", ".lua", ".srdf")
-_WORD = re.compile(r"[A-Za-z0-9_./:\-]+")
-_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_WORD = lazyre.compile(r"[A-Za-z0-9_./:\-]+")
+_NAME = lazyre.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 MAX_STAMP_DIRS = 2_000  # folders of a unit looked at to tell "nothing changed"
 MAX_DEFINITION_FILES = 500  # xacro files of a package searched for a macro or property definition
-_MEAN = re.compile(r"did you mean '([^']+)'")
-_QUOTED = re.compile(r"'([^']+)'")
+_MEAN = lazyre.compile(r"did you mean '([^']+)'")
+_QUOTED = lazyre.compile(r"'([^']+)'")
 
 
 class Unit:
@@ -95,11 +96,12 @@ class Session:
         by_file: dict[str, list[Finding]] = {f: [] for f in unit.files}
         if result is not None:
             for f in result.findings:
-                by_file.setdefault(self.absolute(f.location.file), []).append(f)
+                by_file.setdefault(os.path.realpath(self.absolute(f.location.file)), []).append(f)
             unit.read = {os.path.realpath(p) for p in getattr(result, "read", ()) or ()}
             unit.models = dict(result.models)
             unit.findings = list(result.findings)
         unit.files = {f for f, fs in by_file.items() if fs}
+        by_file.setdefault(os.path.realpath(path), [])  # the edited document always hears back (cleared if clean)
         unit.stamp, unit.last = stamp, dict(by_file)
         return by_file
 
