@@ -291,3 +291,13 @@ def budget() -> RunBytes | None:
     read from a file, such as git blobs streamed from `git cat-file`."""
     run = _current()
     return run.budget if run is not None else None
+
+
+def leaves(path) -> bool:
+    """Whether the door would refuse `path` for leaving the run's roots (a committed link out of the checkout):
+    discovery lists such a model so that the loader names it (X014) rather than it dropping out of the run."""
+    try:
+        confine(path)
+    except Refused:
+        return True
+    return False

@@ -332,7 +332,9 @@ def _discover(package_dir, max_files: int, trusted: bool) -> Discovered:
     # a model file linked out of the working directory is listed as a model, so that the loader names it
     # (X014) instead of it silently dropping out of the run; nothing behind the link is read
     real_dirs: dict = {}  # one realpath per folder, not per file
-    models = [] if trusted else [p for p in urdfs + xacros if leaves_cwd(p, cache=real_dirs)]
+    from urdfcheck.core import door
+
+    models = [] if trusted else [p for p in urdfs + xacros if leaves_cwd(p, cache=real_dirs) or door.leaves(p)]
     urdfs = [p for p in urdfs if p not in models]
     xacros = [p for p in xacros if p not in models]
     texts = {p: _read_head(p, trusted, real_dirs) for p in xacros}

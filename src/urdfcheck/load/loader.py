@@ -177,7 +177,7 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     caller that only wants the model."""
     p = Path(path)
     entry = paths.shown(p)
-    escapes = not trusted and _links_outside(p, packages)
+    escapes = not trusted and (_links_outside(p, packages) or door.leaves(p))
     resolver = None if escapes else Resolver(packages, near=p.resolve(), environ=environ)
     out = Expanded(entry=entry, xacro=False, files=[entry], args=dict(args or {}), resolver=resolver)
     if escapes:  # a symlink committed in a pull request must not read the runner's files

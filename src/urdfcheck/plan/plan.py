@@ -491,8 +491,12 @@ class Planner:
         """The targets of the library's workspace whose model includes it (literal includes, read as text)."""
         from urdfcheck.load.packages import included_files
 
+        from urdfcheck.core.checkout import run_roots
+
+        # the checkout around the library (where the door lets the run read), never a folder above it: the working
+        # directory may hold the runner's other files
         here = os.path.abspath(self.here)
-        ws = here if _below(library, here) else os.path.abspath(pkg)
+        ws = next((r for r in run_roots((library,), cwd=here) if _below(library, r)), os.path.abspath(pkg))
         real, out = os.path.realpath(library), []
         for t in self.workspace_targets(ws):
             key = (os.path.realpath(t.path), tuple(sorted(t.packages.items())))
