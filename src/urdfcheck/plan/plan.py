@@ -489,9 +489,8 @@ class Planner:
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
         """The targets of the library's workspace whose model includes it (literal includes, read as text)."""
-        from urdfcheck.load.packages import included_files
-
         from urdfcheck.core.checkout import run_roots
+        from urdfcheck.load.packages import included_files
 
         # the checkout around the library (where the door lets the run read), never a folder above it: the working
         # directory may hold the runner's other files
