@@ -323,7 +323,8 @@ def refusals(copy: str, consumers) -> dict[str, list[str]]:
         f.write("rules:\n" + "".join(f"  {c}: {{sdformat: '{version}'}}\n" for c in ("P011", "P012", "P052")))
     os.chdir(folder)  # the model's folder is the run's root, as when linted from there
     try:
-        res = urdfcheck.lint([copy], profiles=list(consumers), config=config, root=folder, select=["ALL"])
+        res = urdfcheck.lint([copy], profiles=list(consumers), config=config, trust_config=True, root=folder,
+                             select=["ALL"])
     finally:
         os.chdir(here)
     return {c: sorted({f.code for f in res.findings if c in (f.profiles or (f.profile,))

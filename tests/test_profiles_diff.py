@@ -35,8 +35,8 @@ def _lint(tmp_path, text, profiles, sdformat=None):
         return report["findings"]
     cfg = tmp_path / f"sdformat-{sdformat}.yaml"
     cfg.write_text("rules:\n" + "".join(f"  {c}: {{sdformat: '{sdformat}'}}\n" for c in ("P011", "P012", "P052")))
-    _, out, _ = run_cli(["lint", "--format", "json", str(p), "--profile", profiles, "--config", str(cfg)],
-                        cwd=tmp_path)
+    _, out, _ = run_cli(["lint", "--format", "json", str(p), "--profile", profiles, "--config", str(cfg),
+                         "--trust-config"], cwd=tmp_path)
     return json.loads(out)["findings"]
 
 
@@ -64,7 +64,7 @@ def test_gazebo_refuses_floating_and_planar_joints_and_negative_mass(tmp_path):
     p = newer / "robot.urdf"
     p.write_text(M["negative mass"][0])
     _, out, _ = run_cli(["lint", "--format", "json", str(p), "--profile", "gazebo", "--config",
-                         str(newer / "urdfcheck.yaml")], cwd=newer)
+                         str(newer / "urdfcheck.yaml"), "--trust-config"], cwd=newer)
     codes = {f["code"] for f in json.loads(out)["findings"]}
     assert "P011" in codes and "P012" not in codes
 
@@ -153,7 +153,7 @@ def test_newer_sdformat_keeps_a_massless_link_on_a_reduced_fixed_joint(tmp_path)
         cfg = tmp_path / f"{version}.yaml"
         cfg.write_text(f"rules:\n  P011: {{sdformat: '{version}'}}\n")
         _, out, _ = run_cli(["lint", "--format", "json", str(tmp_path / "robot.urdf"), "--profile", "gazebo",
-                             "--config", str(cfg)], cwd=tmp_path)
+                             "--config", str(cfg), "--trust-config"], cwd=tmp_path)
         hits = [f for f in json.loads(out)["findings"] if f["code"] == "P011"]
         assert bool(hits) == dropped, version
 
