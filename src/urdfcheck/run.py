@@ -753,13 +753,6 @@ def _outside(f: Finding, name: str, targets) -> Finding:
 
 
 # --- for tests and scripts ---------------------------------------------------------------------------------
-def entry_models(folder: Path, trusted: bool = False) -> list[Path]:
-    """Entry models of a package: URDF files, and xacro robots that no other file includes."""
-    from urdfcheck.load.discover import discover
-
-    return [Path(m) for m in discover(folder, trusted=trusted).models]
-
-
 class Loaded(Record):
     """One model as `lint` loads it: the expansion (findings, source map), the model (None when it failed to
     load, or was not asked for) and the settings it was loaded under."""

@@ -25,6 +25,7 @@ from __future__ import annotations
 import os
 import sys
 
+from urdfcheck.cli import options
 from urdfcheck.cli.commands import COMMANDS
 from urdfcheck.core import cachefile
 from urdfcheck.core.cachefile import digest
@@ -382,11 +383,9 @@ def console() -> None:
     main.run(after=finish)
 
 
-# lint options that take a value (a value is not a path); any option not known here leaves the fork to cli.main
-_VALUED = frozenset(("--arg", "--package", "--allow-env", "--timeout", "--max-elements", "--budget", "--select",
-                     "--ignore", "--fail-on", "--format", "--output", "-o", "--report", "--color", "--config",
-                     "--target", "--root", "--baseline", "--cache-dir"))
-_FLAGS = frozenset(("--trusted", "--no-config", "--no-cache", "--quiet", "-q"))
+# lint's options (cli/options.py, pure data): those taking a value (a value is not a path) and plain flags
+_VALUED = options.valued_flags("lint")
+_FLAGS = options.plain_flags("lint")
 
 
 def fork_early(argv: list[str]) -> None:
@@ -403,6 +402,8 @@ def fork_early(argv: list[str]) -> None:
             paths.append(a)
             continue
         name, eq, value = a.partition("=")
+        if name in ("--list", "--write-baseline"):  # no lint run (cli.main forks no worker for them either)
+            return
         if name in _FLAGS and not eq:
             trusted = trusted or name == "--trusted"
             continue

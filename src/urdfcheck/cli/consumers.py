@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, add_load_options
+from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, add_options
 from urdfcheck.cli.common import UsageError as _Usage
 
 
@@ -29,7 +29,7 @@ def add_parser(subparsers) -> None:
                    help="wall-clock and CPU limit for each consumer (default 30)")
     p.add_argument("--consumer-memory", type=float, default=None, metavar="GIB",
                    help="address space each consumer may add (default 2 GiB)")
-    add_load_options(p)
+    add_options(p, "consumers")
     p.set_defaults(func=_run(cmd_consumers))
 
 

@@ -156,7 +156,7 @@ def read_bytes(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) -
     try:
         data = safeio.read_file(real, limit)
     except safeio.NotRegularFile as e:
-        raise Refused(_shown(path), e.strerror) from None
+        raise Refused(_shown(path), e.strerror or "not a regular file") from None
     run = _current()
     if run is not None:
         run.budget.take(len(data), _shown(path))
@@ -225,7 +225,7 @@ def open_stream(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) 
         safeio.check_regular(real)
         fd = os.open(real, safeio._FLAGS)
     except safeio.NotRegularFile as e:
-        raise Refused(_shown(path), e.strerror) from None
+        raise Refused(_shown(path), e.strerror or "not a regular file") from None
     st = os.fstat(fd)
     if not _regular(st.st_mode):
         os.close(fd)

@@ -171,6 +171,7 @@ class Repo:
                                     stderr=subprocess.DEVNULL, env=env(), cwd=self.work_tree)
         except FileNotFoundError:
             raise GitError("git is not installed") from None
+        assert proc.stdout is not None  # stdout=PIPE
 
         def feed():  # a thread: cat-file stops reading while its output is not read
             try:

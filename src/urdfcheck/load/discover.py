@@ -6,8 +6,8 @@
   inside `xacro:if`/`unless`, at least one macro or property, and expands to an empty robot; it is linted
   through the robots that include it, never alone);
 * parameter YAML: `*.yaml`/`*.yml` in any `config/`, `params/` or `param/` directory;
-* launch files: `*.launch`, `*.launch.xml`, `*.launch.py`, `*.launch.yaml`, `*.launch.yml` in any `launch/`
-  directory.
+* launch files: names ending in one of `LAUNCH_SUFFIXES` (`*.launch`, `*.launch.xml`, `*.launch.py`,
+  `*_launch.py`, ...) in any `launch/` directory.
 
 Hidden directories and the folders ROS's tools skip by their marker files (COLCON_IGNORE, AMENT_IGNORE,
 CATKIN_IGNORE, which colcon writes into its build/install/log bases; core.walk), never by name, are skipped; at most
@@ -26,7 +26,9 @@ from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
 
 PARAM_DIRS = {"config", "params", "param"}
 LAUNCH_DIRS = {"launch"}
-LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml")
+# the one list of launch-file endings (plan/plan.py, plan/deployments.py and the pre-commit hooks' `files` read it;
+# `_launch.py` is ROS 2's other convention: realsense2_camera's rs_launch.py)
+LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml", "_launch.py")
 _ROLES = (".urdf", ".xacro", ".yaml", ".yml") + LAUNCH_SUFFIXES  # the endings `_scan` sorts by role
 MAX_FILES = 20_000
 HEAD_BYTES = 4 * 1024 * 1024

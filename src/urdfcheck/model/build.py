@@ -11,7 +11,7 @@ and what is read come from the same code and the same table.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from math import isfinite
 from types import MappingProxyType
 
@@ -47,7 +47,7 @@ SRC_ATTR = G.SRC_ATTR
 ZERO, ONE, INERTIA = G.ZERO, G.ONE, G.INERTIA
 X_AXIS = (1.0, 0.0, 0.0)
 POSE0 = Pose()
-NO_DYNAMICS = MappingProxyType({})
+NO_DYNAMICS: Mapping[str, float] = MappingProxyType({})
 TOLERATED = G.TOLERATED
 _SHAPE_SINCE = {tag: G.GRAMMAR[tag].since for tag in G.SHAPES}
 _new = tuple.__new__  # parts filled in field order, without namedtuple's keyword handling (half the cost)
@@ -452,7 +452,7 @@ class _Builder:
 
     # --- extension blocks kept for the contract rules --------------------------------------------------------
     def ros2_control(self, el, in_gazebo: bool) -> Ros2Control:
-        items = {"joint": [], "sensor": [], "gpio": []}
+        items: dict[str, list] = {"joint": [], "sensor": [], "gpio": []}
         plugin = ""
         hw = el.find("hardware")
         if hw is not None:
@@ -527,11 +527,11 @@ def _raw_xml(el) -> str:
     return re.sub(r' __ucsrc="[^"]*"', "", text)
 
 
-def build(root, locate: Callable[[object], Location], source: str) -> Model:
+def build(root, locate: Callable[[etree._Element], Location], source: str) -> Model:
     return nogc.call(_build, root, iter(root), locate, source, long_lived=True)
 
 
-def build_streamed(elements: Iterator, locate: Callable[[object], Location], source: str) -> Model:
+def build_streamed(elements: Iterator, locate: Callable[[etree._Element], Location], source: str) -> Model:
     """The model of a document read as it is parsed (`core.xmlfront.stream`: the root element first, then each
     of its children once whole, each dropped once read), so that a large model and its whole libxml2 tree never
     share the memory. The parse's errors propagate (the caller reads the document again, whole, to report them)."""
@@ -559,13 +559,13 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
             if part:
                 links.append(part)
         elif tag == "joint":
-            part = b.joint(el)
-            if part:
-                joints.append(part)
+            joint = b.joint(el)
+            if joint:
+                joints.append(joint)
         elif tag == "material":
-            part = b.material(el)
-            if part:
-                materials.append(part)
+            material = b.material(el)
+            if material:
+                materials.append(material)
         elif tag in ("transmission", "gazebo", "ros2_control"):
             blocks.append(Block(tag, locate(el), MappingProxyType(dict(el.attrib)), _raw_xml(el)))
             if tag == "ros2_control":
@@ -602,14 +602,14 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
 
 
 def _first_by_name(parts) -> dict:
-    out = {}
+    out: dict = {}
     for p in parts:
         out.setdefault(p.name, p)
     return out
 
 
 def model_from_string(xml: str | bytes, path: str = "<string>") -> Model:
-    """Model from URDF text (plain URDF; for xacro use `urdfcheck.load.load_model`)."""
+    """Model from URDF text (plain URDF; for xacro use `urdfcheck.load.loader.load_model`)."""
     from urdfcheck.core import xmlfront
 
     data = xml.encode("utf-8") if isinstance(xml, str) else xml

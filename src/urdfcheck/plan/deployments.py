@@ -221,7 +221,7 @@ def _is_launch(name: str) -> bool:
     from urdfcheck.load.discover import LAUNCH_SUFFIXES
 
     low = name.lower()
-    return low.endswith(LAUNCH_SUFFIXES) or low.endswith("_launch.py")
+    return low.endswith(LAUNCH_SUFFIXES)
 
 
 class _Workspace:

@@ -29,7 +29,6 @@ from urdfcheck.request.request import LintRequest, Settings, UsageError
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")  # config.CONFIG_NAMES (not imported: start-up)
 MAX_DIRS = 20_000  # folders a workspace walk looks at
-LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml", "_launch.py")
 # files named on the command line that are certainly no robot description (a .xml or odd suffix may be one)
 NOT_MODELS = (".yaml", ".yml", ".py", ".json", ".toml", ".txt", ".md", ".rst", ".cfg", ".ini", ".srdf", ".stl",
               ".dae", ".obj", ".png", ".jpg")
@@ -629,6 +628,8 @@ def _srdf_text(path: str) -> bool:
 
 
 def _is_launch(path: str) -> bool:
+    from urdfcheck.load.discover import LAUNCH_SUFFIXES
+
     return path.lower().endswith(LAUNCH_SUFFIXES)
 
 

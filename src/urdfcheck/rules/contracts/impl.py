@@ -2,7 +2,7 @@
 
 The consumers come from `ctx.contracts` (a `consumers.consumers.Consumers`), which the planner gives every
 target (`plan.plan`): a config's declared consumers, a launch file's deployment, or, with zero config,
-those beside the model (`consumers.consumers_near`: the enclosing ROS package's config/ and launch/ files),
+those beside the model (`consumers.consumers.consumers_near`: the enclosing ROS package's config/ and launch/ files),
 computed once per target when its model is built. Options come from the engine (`ctx.options`, catalogue
 defaults filled in). The checks never change the context.
 """
