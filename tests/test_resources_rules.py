@@ -119,7 +119,7 @@ def test_self_collision_twin(tmp_path):
 def _srdf(pkg, entries):
     (pkg / "config").mkdir(exist_ok=True)
     (pkg / "config" / "arm.srdf").write_text(
-        '<?xml version="1.0"?>\n<robot name="arm">\n  <group name="arm"><chain base_link="base_link" '
+        '<?xml version="1.0"?>\n<robot name="home_arm">\n  <group name="arm"><chain base_link="base_link" '
         f'tip_link="link2"/></group>\n{entries}</robot>\n', encoding="utf-8")
 
 
