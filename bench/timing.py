@@ -59,12 +59,14 @@ def _quartiles(xs) -> tuple[float, float]:
     return xs[round(0.25 * (len(xs) - 1))], xs[round(0.75 * (len(xs) - 1))]
 
 
-def paired(a: list[str], b: list[str], n: int = 11, *, env=None, env_b=None, before_a=None, before_b=None) -> dict:
-    """A and B in turn, n pairs after one warm-up each: medians of wall and CPU, and the medians of the pair
-    ratios (pairing keeps a ratio meaningful while a shared machine's speed drifts), with their quartiles
-    (`wall_q`, `cpu_q`)."""
-    run_measured(a, env, before_a)
-    run_measured(b, env_b if env_b is not None else env, before_b)
+def paired(a: list[str], b: list[str], n: int = 11, *, env=None, env_b=None, before_a=None, before_b=None,
+           warm: bool = True) -> dict:
+    """A and B in turn, n pairs after one warm-up each (`warm`): medians of wall and CPU, and the medians of the
+    pair ratios (pairing keeps a ratio meaningful while a shared machine's speed drifts), with their quartiles
+    (`wall_q`, `cpu_q`), and the largest peak resident size (KiB) of each side (`rss_a`, `rss_b`)."""
+    if warm:
+        run_measured(a, env, before_a)
+        run_measured(b, env_b if env_b is not None else env, before_b)
     ra, rb = [], []
     for _ in range(n):
         ra.append(run_measured(a, env, before_a))
@@ -73,7 +75,8 @@ def paired(a: list[str], b: list[str], n: int = 11, *, env=None, env_b=None, bef
     cpus = [x[1] / y[1] for x, y in zip(ra, rb) if y[1] > 0] or [float("inf")]
     return {"wall_a": _median([x[0] for x in ra]), "wall_b": _median([x[0] for x in rb]),
             "cpu_a": _median([x[1] for x in ra]), "cpu_b": _median([x[1] for x in rb]),
-            "wall": _median(walls), "cpu": _median(cpus), "wall_q": _quartiles(walls), "cpu_q": _quartiles(cpus)}
+            "wall": _median(walls), "cpu": _median(cpus), "wall_q": _quartiles(walls), "cpu_q": _quartiles(cpus),
+            "rss_a": max(x[2] for x in ra), "rss_b": max(x[2] for x in rb)}
 
 
 def peak_kib(cmd: list[str], env: Mapping[str, str] | None = None) -> int:

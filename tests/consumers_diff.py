@@ -73,10 +73,18 @@ def predict(path: str, consumer: str) -> tuple[bool, list[str]] | None:
     import urdfcheck
 
     folder = os.path.dirname(path)
-    res = urdfcheck.lint([path], profiles=[consumer], no_config=True, root=folder, select=["ALL"])
+    here = os.getcwd()
+    os.chdir(folder)  # the copy's folder is the run's root: the box meshes written next to it are inside
+    try:
+        res = urdfcheck.lint([path], profiles=[consumer], no_config=True, root=folder, select=["ALL"])
+    finally:
+        os.chdir(here)
     if any(f.code.startswith("X") and str(f.severity) == "error" for f in res.findings):
         return None
-    codes = sorted({f.code for f in res.findings if f.profile == consumer and str(f.severity) == "error"})
+    # the consumers load copies whose meshes are boxes (truths): what a finding says of the mesh files themselves
+    # (P008, G001) is not compared here; tests/differential.py's mesh mutants load them as written
+    codes = sorted({f.code for f in res.findings if f.profile == consumer and str(f.severity) == "error"
+                    and f.code not in ("P008", "G001")})
     return bool(codes), codes
 
 

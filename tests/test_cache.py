@@ -82,8 +82,10 @@ def test_hit_imports_no_pipeline(pkg, tmp_path):
     imported = [ln.rsplit("|", 1)[-1].strip() for ln in proc.stderr.splitlines() if ln.startswith("import time:")]
     assert "urdfcheck.cli.cache" in imported
     # (`urdfcheck.load` itself is the empty package that is also the API function `urdfcheck.load()`)
-    heavy = [m for m in imported if m.startswith(("urdfcheck.pipeline", "urdfcheck.load.", "urdfcheck.rules",
-                                                   "urdfcheck.contracts", "urdfcheck.cli.main", "lxml", "yaml",
+    heavy = [m for m in imported if m.startswith(("urdfcheck.run", "urdfcheck.plan", "urdfcheck.load.",
+                                                   "urdfcheck.model", "urdfcheck.consumers", "urdfcheck.rules",
+                                                   "urdfcheck.finish", "urdfcheck.report", "urdfcheck.request",
+                                                   "urdfcheck.cli.main", "urdfcheck.cli.common", "lxml", "yaml",
                                                    "argparse"))]
     assert heavy == []
 

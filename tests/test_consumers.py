@@ -90,3 +90,18 @@ def test_mujoco_log_never_lands_in_the_checked_tree(tmp_path):
     code, out, err = run_cli(["consumers", str(p), "--consumer", "mujoco"], cwd=tmp_path)
     assert code in (0, 1), err
     assert sorted(x.name for x in tmp_path.iterdir()) == before
+
+
+def test_sdformat_drops_a_massless_link_and_refuses_a_massless_root(tmp_path):
+    import shutil
+
+    if shutil.which("ign") is None:
+        pytest.skip("ign sdf (Debian ignition-tools, libsdformat-dev) not installed")
+    p = _model(tmp_path, "")  # 'arm' has no <inertial>: dropped, the model loads
+    code, out, err = run_cli(["consumers", str(p), "--consumer", "sdformat", "--format", "json"], cwd=tmp_path)
+    sdf = json.loads(out)["consumers"][0]
+    assert sdf["status"] == "loaded" and any("'arm'" in c or "arm" in c for c in sdf["changes"]), sdf
+    p.write_text(ARM.replace(INR, "", 1).replace("CHILD", INR))  # the root has none: nothing left
+    code, out, err = run_cli(["consumers", str(p), "--consumer", "sdformat", "--format", "json"], cwd=tmp_path)
+    sdf = json.loads(out)["consumers"][0]
+    assert code == 1 and sdf["status"] == "rejected" and "link" in sdf["message"], sdf

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from conftest import CORPUS, REPO, lint_json
 
-from urdfcheck.run import entry_models
+from urdfcheck.load.discover import discover
 
 _SANDBOX = ("X010", "X011")
 
@@ -28,7 +28,7 @@ def _corpus_models() -> list[Path]:
         return []
     found: set[Path] = set(CORPUS.rglob("*.urdf"))
     for repo in sorted(p for p in CORPUS.iterdir() if p.is_dir()):
-        found.update(p for p in entry_models(repo) if p.name.endswith(".xacro"))
+        found.update(p for p in map(Path, discover(repo).models) if p.name.endswith(".xacro"))
     return sorted(found)
 
 

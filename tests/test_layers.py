@@ -87,7 +87,7 @@ def _import_graph() -> dict[str, dict[str, int]]:
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names if a.name in paths]
             elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-                for a in node.names:  # `from urdfcheck.contracts import pylaunch` imports the sub-module
+                for a in node.names:  # `from urdfcheck.consumers.launch import python` imports the sub-module
                     sub = f"{node.module}.{a.name}"
                     targets.append(sub if sub in paths else node.module)
             for t in targets:

@@ -1,7 +1,8 @@
 """contracts/prefilter: a parameter file is skipped only when no value it holds can be a joint name we look for.
 
 The superset test reads every YAML file of the corpus and the examples: for each string value the parser finds
-(each joint name that would keep the file in `consumers._names_a_joint`), the byte filter must pass the file."""
+(each joint name that would keep the file in `consumers.openworld.names_a_joint`), the byte filter must pass the
+file."""
 from __future__ import annotations
 
 import subprocess

@@ -26,7 +26,7 @@ hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from urdfcheck.core.geometry import pose_matrix  # noqa: E402
+from urdfcheck.core.geometry import from_rt, rpy_matrix  # noqa: E402
 from urdfcheck.model.build import model_from_string  # noqa: E402
 from urdfcheck.publisher import JointState, StatePublisher  # noqa: E402
 
@@ -149,7 +149,7 @@ def origin_matrix(j):
         m = np.eye(4)
         m[:3, :3], m[:3, 3] = quat_matrix(j["quat"]), j["xyz"]
         return m
-    return np.array(pose_matrix(j["xyz"], j["rpy"]))
+    return np.array(from_rt(rpy_matrix(*j["rpy"]), j["xyz"]))
 
 
 def local_matrix(j, q, *, normalise=True):

@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 
 from urdfcheck.core import worker
 from urdfcheck.load import loader
+from urdfcheck.load.discover import discover
 from urdfcheck.load.packages import Resolver
-from urdfcheck.run import entry_models
 
 # Arguments some corpus models need (as their launch files pass them).
 ARGS = {
@@ -47,8 +47,8 @@ def entries():
     out = []
     for pkg in sorted(CORPUS.iterdir()):
         if pkg.is_dir():
-            out += [p for p in entry_models(pkg) if p.name.endswith(".xacro")]
-    out += [p for p in entry_models(REPO / "examples") if p.name.endswith(".xacro")]
+            out += [p for p in map(Path, discover(pkg).models) if p.name.endswith(".xacro")]
+    out += [p for p in map(Path, discover(REPO / "examples").models) if p.name.endswith(".xacro")]
     return out
 
 

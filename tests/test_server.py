@@ -23,12 +23,18 @@ DEFECT = 'iyy="${mass * radius * radius}"'
 FIXED = 'iyy="${mass * radius * radius / 2}"'
 
 
+ANYMAL = REPO.parent / "shared" / "corpus" / "ANYbotics+anymal_c_simple_description"
+
+
 def _workspace() -> Path:
     import tempfile
 
     base = Path(tempfile.mkdtemp(prefix="urdfcheck-lsp-"))
     shutil.copytree(EXAMPLE, base / "xacro_macro")
     shutil.copytree(REPO / "examples" / "agv", base / "agv")
+    shutil.copytree(REPO / "examples" / "broken" / "contract_driver_joint_typo", base / "typo")
+    if ANYMAL.is_dir():  # a corpus package (public, unseen by the rules' authors), when the corpus is present
+        shutil.copytree(ANYMAL, base / "anymal")
     return base
 
 
@@ -141,6 +147,16 @@ async def test_definition_of_a_macro_call(client: LanguageClient):
 
 
 @pytest.mark.asyncio(loop_scope="module")
+async def test_definition_of_a_find_path(client: LanguageClient):
+    top = TOP.read_text(encoding="utf-8")
+    row = next(i for i, line in enumerate(top.splitlines()) if "$(find" in line and "wheel.xacro" in line)
+    col = top.splitlines()[row].index("$(find") + 10
+    loc = await client.text_document_definition_async(types.DefinitionParams(
+        text_document=types.TextDocumentIdentifier(uri=_uri(TOP)), position=types.Position(row, col)))
+    assert loc is not None and Path(loc.uri.replace("file://", "")).resolve() == WHEEL.resolve()
+
+
+@pytest.mark.asyncio(loop_scope="module")
 async def test_code_action_suppresses_the_finding(client: LanguageClient):
     await _until(client, _uri(WHEEL), lambda d: any(x.code == "I004" for x in d))
     actions = await client.text_document_code_action_async(types.CodeActionParams(
@@ -158,7 +174,7 @@ async def test_joint_name_in_controller_yaml_leads_to_the_model(client: Language
     text = AGV_YAML.read_text(encoding="utf-8")
     client.text_document_did_open(types.DidOpenTextDocumentParams(types.TextDocumentItem(
         uri=_uri(AGV_YAML), language_id="yaml", version=1, text=text)))
-    await client.wait_for_notification(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+    await _until(client, _uri(AGV_YAML), lambda d: True)  # its package was linted (the file may be clean)
     row = next(i for i, line in enumerate(text.splitlines()) if "left_wheel_names" in line)
     col = text.splitlines()[row].index("left_wheel_joint") + 2
 
@@ -176,6 +192,48 @@ async def test_joint_name_in_controller_yaml_leads_to_the_model(client: Language
     assert loc is not None and loc.uri.endswith(".xacro")
     target = Path(loc.uri.replace("file://", "")).read_text().splitlines()[loc.range.start.line]
     assert "left_wheel_joint" in target or "_wheel_joint" in target
+
+
+@pytest.mark.asyncio(loop_scope="module")
+async def test_corpus_package_diagnostics_equal_lints(client: LanguageClient):
+    import urdfcheck
+
+    model = BASE / "anymal" / "urdf" / "anymal.urdf"
+    if not model.is_file():
+        pytest.skip("shared corpus not present")
+    text = model.read_text(encoding="utf-8")
+    client.text_document_did_open(types.DidOpenTextDocumentParams(types.TextDocumentItem(
+        uri=_uri(model), language_id="xml", version=1, text=text)))
+    diags = await _until(client, _uri(model), lambda d: len(d) > 0, timeout=240)
+    cwd = os.getcwd()
+    try:
+        os.chdir(BASE)
+        expected = {(f.code, f.location.line) for f in urdfcheck.lint([str(BASE / "anymal")]).findings
+                    if Path(f.location.file).name == model.name}
+    finally:
+        os.chdir(cwd)
+    assert expected and _codes(diags) == expected
+
+
+@pytest.mark.asyncio(loop_scope="module")
+async def test_did_you_mean_is_a_quick_fix(client: LanguageClient):
+    yaml_file = BASE / "typo" / "config" / "agv_driver_ros1.yaml"
+    text = yaml_file.read_text(encoding="utf-8")
+    client.text_document_did_open(types.DidOpenTextDocumentParams(types.TextDocumentItem(
+        uri=_uri(yaml_file), language_id="yaml", version=1, text=text)))
+    diags = await _until(client, _uri(yaml_file), lambda d: any(x.code == "C001" for x in d))
+    row = next(d.range.start.line for d in diags if d.code == "C001")
+    actions = await client.text_document_code_action_async(types.CodeActionParams(
+        text_document=types.TextDocumentIdentifier(uri=_uri(yaml_file)),
+        range=types.Range(types.Position(row, 0), types.Position(row, 0)),
+        context=types.CodeActionContext(diagnostics=[])))
+    fix = next(a for a in actions if a.title.startswith("Replace 'left_wheel_jiont'"))
+    edit = fix.edit.changes[_uri(yaml_file)][0]
+    line = text.splitlines()[row]
+    assert edit.new_text == "left_wheel_joint"
+    assert line[edit.range.start.character:edit.range.end.character] == "left_wheel_jiont"
+    suppress = next(a for a in actions if a.title.startswith("Suppress C001"))
+    assert "# urdfcheck: ignore[C001]" in suppress.edit.changes[_uri(yaml_file)][0].new_text
 
 
 def test_nothing_written_into_the_workspace():

@@ -365,6 +365,7 @@ def test_verify_documents_yourdfpy_ignoring_the_quaternion():
 
 def test_verify_skips_a_pinocchio_that_cannot_read_the_version(monkeypatch):
     pytest.importorskip("numpy")
+    pytest.importorskip("pinocchio")  # verify builds Pinocchio's model before it compares versions
     from urdfcheck.verify import compare as V
 
     monkeypatch.setattr(V, "_urdf_read_by_pinocchio", lambda: (1, 0))

@@ -33,11 +33,12 @@ def pytest_addoption(parser):
     group.addoption("--urdfcheck", action="store_true", default=False,
                     help="lint the package's URDF/xacro models as test items (automatic when the rootdir "
                          "has a urdfcheck.yaml)")
-    group.addoption("--urdfcheck-fail-on", default=None, choices=("error", "warning", "info"),
-                    help="fail a model's item on findings at least this severe (default: config fail_on, "
-                         "else warning)")
-    group.addoption("--urdfcheck-baseline", default=None, metavar="FILE",
-                    help="fail only on findings not in this baseline (written by `urdfcheck lint --write-baseline`)")
+    from urdfcheck.cli.options import choices, for_command
+
+    for o in for_command("pytest"):  # lint's options, prefixed (cli/options.py): --urdfcheck-fail-on, ...
+        group.addoption("--urdfcheck-" + o.flags[0][2:], dest="urdfcheck_" + o.dest, default=None,
+                        metavar=o.metavar, help=f"lint's {o.flags[0]}: {o.help}",
+                        choices=choices("severities") if o.type == "severity" else None)
 
 
 def pytest_configure(config):
@@ -78,15 +79,25 @@ def _prepare(state, config) -> None:
     from urdfcheck.plan.plan import plan
     from urdfcheck.request.request import make_request
 
-    level = config.getoption("urdfcheck_fail_on")
-    base = config.getoption("urdfcheck_baseline")
-    state.request = make_request([], fail_on=level, baseline=os.path.abspath(base) if base else None,
-                                 root=str(state.rootdir))
+    state.request = make_request([], **request_fields(config), root=str(state.rootdir))
     from urdfcheck.core.paths import showing
 
     with showing(state.request.root):
         state.targets = plan(state.request, here=str(state.rootdir))
     state.fail_on = state.request.fail_on  # None: each item's config decides
+
+
+def request_fields(config) -> dict:
+    """The request fields of the `--urdfcheck-*` options, as lint's flags fill them (cli/options.py)."""
+    from urdfcheck.cli.options import for_command
+
+    out = {}
+    for o in for_command("pytest"):
+        value = config.getoption("urdfcheck_" + o.dest)
+        if value is not None and o.dest == "baseline":
+            value = os.path.abspath(value)
+        out[o.field] = value
+    return out
 
 
 def _result(state):

@@ -10,6 +10,7 @@ and paths shown relative to the request's root.
 """
 from __future__ import annotations
 
+import contextlib
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -105,13 +106,18 @@ def run(request: LintRequest, *, retain: list | None = None, targets: list[Targe
     Paths are shown relative to the request's root from the start (`core.paths.showing`): nothing is
     rewritten afterwards. The run's budget (load.budget) covers the planning too: launch files are read there.
     Raises UsageError when there is nothing to lint or an input is unusable."""
+    from urdfcheck.core import door
     from urdfcheck.core.findings import reset_hints
     from urdfcheck.core.paths import showing
     from urdfcheck.load.budget import run_budget
     from urdfcheck.load.discover import remembering
 
     reset_hints()
-    with showing(request.root), run_budget(request.budget), remembering():
+    typed = (*request.paths, request.config, request.baseline, *request.bags)
+    # the runner lowered the guard (`--trusted`, or `--config FILE --trust-config`: its paths are the runner's)
+    trusted = bool(request.trusted) or bool(request.config and request.trust_config)
+    with door.guarding(typed), (door.unconfined() if trusted else contextlib.nullcontext()), \
+            showing(request.root), run_budget(request.budget), remembering():
         try:
             return _run(request, retain, targets)
         except MemoryError:
@@ -125,9 +131,13 @@ def _run(request: LintRequest, retain, targets) -> Result:
     noted = [f._replace(location=f.location.shown())
              for f in getattr(targets, "findings", ())]  # about the plan: a config's ignored keys, a walk cut short
     if not targets:
-        if infos or noted:  # xacro libraries only: nothing to lint alone, not an unusable invocation
+        # xacro libraries only, or deployments whose model is no URDF (an SDFormat model): nothing to lint
+        # alone, not an unusable invocation; a deployment not understood is still said (C021)
+        unread = list(getattr(targets, "not_understood", ()))
+        if infos or noted or unread:
             result = Result(noted, [], fail_on=request.fail_on or Severity.WARNING, root=request.root)
             result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
+            _not_understood(result, unread, request)
             return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     if request.bags:
@@ -175,6 +185,126 @@ def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
         t.joint_states = topic
 
 
+def _attachable(t: Target, model) -> tuple:
+    """A discovered model with no root link of its own, every link a child of a joint and some parent link
+    defined nowhere in it (intera's controller_box.urdf: parts attached to Sawyer's `base` at run time), is a
+    fragment for another robot, not a robot: what it says rests on that guess (issue 37). A robot with a
+    misspelt parent still has its root link, and one named or launched is a robot by evidence."""
+    if any(s.how in ("named", "config", "launched") for s in t.evidence) or getattr(t, "deployment", None):
+        return ()
+    if not model.links or model.roots:
+        return ()
+    if not any(j.parent is not None and j.parent not in model.links for j in model.joint_list):
+        return ()
+    from urdfcheck.core.evidence import Step
+
+    return (Step("model", shown(str(t.path)), "probe", "name it under models: in urdfcheck.yaml if it is a whole "
+                 "robot"),)
+
+
+def _combinations(targets: list[Target], by_target: list[list[Finding]]) -> None:
+    """The evidence rule for automatic variants (issue 37): a problem that only a combination of several options
+    shows (a variant of a discovered model that no launch file or config was seen to use) is an info saying how
+    to confirm it; one that the defaults or an option alone show too keeps its severity in every variant."""
+    if not any(getattr(t, "combination", False) for t in targets):
+        return
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.finish.collapse import _shape
+    from urdfcheck.rules import engine
+
+    def key(t, f):
+        loc = f.location
+        return (os.path.realpath(str(t.path)), f.code, loc.file, loc.line, loc.column, _shape(f.message))
+
+    plain = {key(t, f) for t, found in zip(targets, by_target) if not getattr(t, "combination", False)
+             for f in found}
+    step = Step("variant", "with several options", "combination", "name the combination under the model's "
+                "variants: in urdfcheck.yaml, or pass it with --arg, if a deployment uses it")
+    for i, t in enumerate(targets):
+        if getattr(t, "combination", False):
+            by_target[i] = [f if f.severity <= Severity.INFO or key(t, f) in plain
+                            else engine.on_evidence([f], (step,))[0] for f in by_target[i]]
+
+
+_NO_DEFAULT = None
+
+
+def _required_args(t: Target, found: list[Finding]) -> list[Finding]:
+    """The evidence rule for a required xacro argument (no default) that nothing sets, on a model found by
+    discovery (no launch file runs it, no one named it): the argument is an input of the model (UR's `name`), the
+    deployment that gives it is what is missing, so an info naming it. A launch file that runs the model without
+    it, or a model the runner named, keeps the error."""
+    global _NO_DEFAULT
+    d = getattr(t, "deployment", None)
+    if d is not None:
+        if getattr(d, "dropped_args", None):
+            found = _given_at_launch(t, found)
+        if getattr(d, "variant", "") and not d.variant.startswith("model="):
+            found = _choice(t, found)
+        return found
+    if any(s.how in ("named", "config", "launched") for s in t.evidence) or d is not None:
+        return found
+    import re
+
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    _NO_DEFAULT = _NO_DEFAULT or re.compile(r"^xacro argument '([^']+)' has no default and nothing sets it")
+    out = []
+    flipped = t.variant not in ("", "defaults")
+    for f in found:
+        m = _NO_DEFAULT.match(f.message) if f.code == "X010" else None
+        # an option flipped on its own whose branch includes a file named by another argument left empty
+        # (vrx's yaml_component_generation and component_xacro_file): that argument is the deployment's too
+        empty = f.code == "X010" and flipped and f.message.startswith("not a regular file (a folder)")
+        if m is not None or empty:
+            step = Step("deployment", f"a launch file running {shown(str(t.path))}", "undeployed",
+                        "lint the launch file that runs it")
+            f = engine.on_evidence([f], (step,))[0]
+        out.append(f)
+    return out
+
+
+def _given_at_launch(t: Target, found: list[Finding]) -> list[Finding]:
+    """A launch file that passes a xacro argument from a launch argument decided at launch time (denso's
+    `model:=<model>`, a launch argument without default): that the model then lacks it is no defect of the
+    launch file, whose users give it; an info (issue 37). An argument the launch file does not pass at all keeps
+    the error."""
+    import re
+
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    given = set(t.deployment.dropped_args or ())
+    out = []
+    for f in found:
+        m = re.match(r"^xacro argument '([^']+)' has no default", f.message) if f.code == "X010" else None
+        if m is not None and m.group(1) in given:
+            step = Step("deployment", shown(t.deployment.launch.file), "required",
+                        f"lint with --arg {m.group(1)}:=... or name the deployment's arguments in urdfcheck.yaml")
+            f = engine.on_evidence([f], (step,))[0]
+        out.append(f)
+    return out
+
+
+def _choice(t: Target, found: list[Finding]) -> list[Finding]:
+    """A deployment of a launch-argument value other than the default (panther's wheel_type:=custom, which its
+    description says needs the user's own wheel_config_path) whose model reads a file that does not exist: the
+    value needs arguments the launch file's users give, so an info (issue 37). The defaults keep the error."""
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    out = []
+    for f in found:
+        if f.code == "X010" and f.severity > Severity.INFO and (
+                "No such file or directory" in f.message or f.message.startswith("not a regular file")):
+            step = Step("deployment", f"{shown(t.deployment.launch.file)} [{t.deployment.variant}]", "choice",
+                        "name the arguments that value needs under models: in urdfcheck.yaml")
+            f = engine.on_evidence([f], (step,))[0]
+        out.append(f)
+    return out
+
+
 def _fragment(t: Target) -> bool:
     """A probe whose load failed only on symbols the files that include it provide (`_load_findings`)."""
     return bool(t.probe) and getattr(t, "fragment", False)
@@ -187,7 +317,7 @@ def _load_findings(t: Target, exp) -> list[Finding]:
     keeps its severity (a decoy include never hides a broken robot)."""
     from urdfcheck.rules import engine
 
-    found = engine.on_evidence(exp.findings, t.evidence)
+    found = _required_args(t, engine.on_evidence(exp.findings, t.evidence))
     if not (t.probe and t.includers and exp.findings):
         return found
     from urdfcheck.core.evidence import Step
@@ -331,7 +461,7 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
         ctx = engine.Context(selection=selection, expanded=exp, config=config, contracts=contracts,
                              variant=t.variant, target=t.settings.target if t.settings is not None else None,
                              profiles=t.settings.profiles if t.settings is not None else (),
-                             evidence=t.evidence)
+                             evidence=t.evidence + _attachable(t, model))
         findings.extend(engine.run_checks(model, ctx))
         if t.bags:
             findings.extend(_bag_findings(model, t, selection, contracts))
@@ -445,6 +575,7 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                 p.cancel()
     for i, f in yaml.unused():
         by_target[i].append(f)
+    _combinations(targets, by_target)
     result = Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
     result.read = read
     return result
@@ -549,6 +680,7 @@ def _missing_packages_once(result: Result) -> dict[str, Finding]:
     from urdfcheck.load.packages import Resolver, missing_packages
 
     template: dict[str, Finding] = {}
+    owners: dict[str, list] = {}  # package -> the targets that stopped at it
     places: dict[str, list[tuple[str, int]]] = {}
     variants: dict[str, list] = {}  # package -> the (model, variant) places the loader stopped at it
     for t, found in zip(result.targets, result.by_target):
@@ -558,6 +690,8 @@ def _missing_packages_once(result: Result) -> dict[str, Finding]:
         names = {m.group(1) for f in hits if (m := _MISSING.search(f.message))}
         if not names:
             continue
+        for n in names:
+            owners.setdefault(n, []).append(t)
         find = Resolver(dict(t.packages), near=Path(os.path.abspath(t.path))).find
         missing = missing_packages([str(t.path)], find)
         for f in hits:
@@ -587,21 +721,38 @@ def _missing_packages_once(result: Result) -> dict[str, Finding]:
         msg = (f"package {name!r} not found (pass --package {name}=PATH)"
                + (f"; referenced in {n} places" if n > 1 else ""))
         seen_in = variants.get(name, [])
-        merged[name] = base._replace(message=msg, location=first, related=rest,
-                                     where=tuple(seen_in) if len(seen_in) > 1 else ())
+        merged[name] = _outside(base._replace(message=msg, location=first, related=rest,
+                                              where=tuple(seen_in) if len(seen_in) > 1 else ()),
+                                name, owners.get(name, ()))
     result.findings = sorted([f for f in result.findings if f.code != "X013"] + list(merged.values()),
                              key=Finding.sort_key)
     return merged
 
 
+def _outside(f: Finding, name: str, targets) -> Finding:
+    """The evidence rule for a package not found (issue 37): one the checkout references but does not hold is a
+    dependency the workspace provides (colcon builds the repository beside its dependencies): linted alone, its
+    absence is no defect of the repository, so an info saying how to confirm. It stays an error when the runner
+    named the package (--package, the config's packages:) or when a package of the checkout has a name it
+    nearly matches (a misspelt name: that package never provides it)."""
+    import difflib
+
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    have: set[str] = set()
+    for t in targets:
+        settings = getattr(t, "settings", None)
+        if settings is not None and name in dict(settings.packages):
+            return f
+        have.update(t.packages)
+    if difflib.get_close_matches(name, sorted(have), n=1, cutoff=0.85):
+        return f
+    step = Step("package", name, "outside", f"pass --package {name}=PATH, or lint from a workspace that holds it")
+    return engine.on_evidence([f], (step,))[0]
+
+
 # --- for tests and scripts ---------------------------------------------------------------------------------
-def entry_models(folder: Path, trusted: bool = False) -> list[Path]:
-    """Entry models of a package: URDF files, and xacro robots that no other file includes."""
-    from urdfcheck.load.discover import discover
-
-    return [Path(m) for m in discover(folder, trusted=trusted).models]
-
-
 class Loaded(Record):
     """One model as `lint` loads it: the expansion (findings, source map), the model (None when it failed to
     load, or was not asked for) and the settings it was loaded under."""

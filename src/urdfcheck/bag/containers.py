@@ -97,8 +97,12 @@ def _time(b: bytes) -> int:
 
 
 def _ros1_inner(buf: bytes):
-    """(header fields, data) of each record in an inflated chunk."""
+    """(header fields, data) of each record in an inflated chunk; a message record's header as `_quick` reads
+    it."""
     pos, end = 0, len(buf)
+    mv = memoryview(buf)
+    unpack_from = struct.unpack_from
+    shapes: dict[int, list] = {}  # header length -> message headers seen: every byte but the time's is the same
     ticks = 0
     while pos < end:
         ticks += 1
@@ -106,16 +110,57 @@ def _ros1_inner(buf: bytes):
             _in_time()
         if pos + 4 > end:
             raise ContainerError("a chunk ends in the middle of a record")
-        (hl,) = struct.unpack_from("<I", buf, pos)
+        (hl,) = unpack_from("<I", buf, pos)
         if pos + 4 + hl + 4 > end:
             raise ContainerError("a chunk record runs past its chunk")
         header = buf[pos + 4:pos + 4 + hl]
-        (dl,) = struct.unpack_from("<I", buf, pos + 4 + hl)
+        (dl,) = unpack_from("<I", buf, pos + 4 + hl)
         start = pos + 8 + hl
         if start + dl > end:
             raise ContainerError("a chunk record runs past its chunk")
-        yield _fields(header), memoryview(buf)[start:start + dl]
+        quick = None
+        for toff, pre, post, conn in shapes.get(hl, ()):
+            if header.startswith(pre) and header.endswith(post):
+                sec, nsec = unpack_from("<II", header, toff)
+                quick = (conn, sec * 1_000_000_000 + nsec, header)
+                break
+        else:
+            quick = _quick(header)
+            if quick is not None:
+                shape = shapes.setdefault(hl, [])
+                if len(shape) < 16 and len(shapes) < 64:
+                    toff = quick[3]
+                    shape.append((toff, header[:toff], header[toff + 8:], quick[0]))
+        yield (quick if quick is not None else _fields(header)), mv[start:start + dl]
         pos = start + dl
+
+
+def _quick(raw: bytes):
+    """(conn, time_ns, raw) of a message record's header (fields op, conn, time, in any order, each once), else
+    None: `_fields` reads it (the same answer, slower)."""
+    pos, end = 0, len(raw)
+    op = conn = tm = None
+    unpack_from = struct.unpack_from
+    while pos < end:
+        if pos + 4 > end:
+            return None
+        (n,) = unpack_from("<I", raw, pos)
+        pos += 4
+        f = raw[pos:pos + n]
+        pos += n
+        if f[:3] == b"op=" and op is None:
+            op = f[3:]
+        elif f[:5] == b"conn=" and conn is None and n == 9:
+            conn = f[5:]
+        elif f[:5] == b"time=" and tm is None and n == 13:
+            tm = f[5:]
+            toff = pos - 8
+        else:
+            return None
+    if op != b"\x02" or conn is None or tm is None or pos != end:
+        return None
+    sec, nsec = unpack_from("<II", tm)
+    return unpack_from("<I", conn)[0], sec * 1_000_000_000 + nsec, raw, toff
 
 
 def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater):
@@ -173,6 +218,13 @@ def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                 except InflateError as e:
                     raise ContainerError(str(e)) from None
                 for fi, data in _ros1_inner(inner):
+                    if type(fi) is tuple:  # a message record, its header read in short (_quick)
+                        c = conns.get(fi[0])
+                        if c is not None and "start" in facts:
+                            if c[3]:
+                                yield (c[0], c[1], fi[1], data, c[2], False)
+                            continue
+                        fi = _fields(fi[2])
                     iop = fi.get("op", b"")
                     if iop == b"\x07":
                         connection(fi, data)
@@ -223,11 +275,7 @@ class _Buf:
 
 def _mcap_inner(buf):
     pos, end = 0, len(buf)
-    ticks = 0
     while pos < end:
-        ticks += 1
-        if not ticks & 4095:
-            _in_time()
         if pos + 9 > end:
             raise ContainerError("an MCAP chunk ends in the middle of a record")
         op = buf[pos]
@@ -239,6 +287,7 @@ def _mcap_inner(buf):
 
 
 def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater, stream=None):
+    unpack_from = struct.unpack_from
     schemas: dict[int, str] = {}
     channels: dict[int, tuple] = {}  # id -> (topic, type, wanted, cdr)
     topics = facts.setdefault("topics", {})
@@ -307,10 +356,33 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                     inner = inflater.inflate(comp, bytes(data), size, "an MCAP chunk")
                 except InflateError as e:
                     raise ContainerError(str(e)) from None
-                for iop, body in _mcap_inner(inner):
-                    got = record(iop, body)
+                # the records of the chunk, as _mcap_inner and record() read them, message records inline (most)
+                mv = memoryview(inner)
+                pos, end = 0, len(inner)
+                ticks = 0
+                while pos < end:
+                    ticks += 1
+                    if not ticks & 4095:  # the budget holds inside a chunk of millions of records
+                        _in_time()
+                    if pos + 9 > end:
+                        raise ContainerError("an MCAP chunk ends in the middle of a record")
+                    iop = inner[pos]
+                    (m,) = unpack_from("<Q", inner, pos + 1)
+                    stop = pos + 9 + m
+                    if stop > end:
+                        raise ContainerError("an MCAP chunk record runs past its chunk")
+                    if iop == 0x05 and m >= 22:
+                        c = channels.get(unpack_from("<H", inner, pos + 9)[0])
+                        if c is not None and "start" in facts:
+                            if c[2]:
+                                yield (c[0], c[1], unpack_from("<Q", inner, pos + 15)[0], mv[pos + 31:stop], "",
+                                       c[3])
+                            pos = stop
+                            continue
+                    got = record(iop, mv[pos + 9:stop])
                     if got is not None:
                         yield got
+                    pos = stop
             elif op in (0x03, 0x04, 0x05):
                 if n > MAX_CHUNK:
                     raise ContainerError(f"an MCAP record of {n} bytes")

@@ -132,7 +132,7 @@ def joint_state(buf, cdr: bool):
     n = c.count()
     blob, names = _last_names
     end = c.pos + len(blob)
-    if n == len(names) and blob and buf[c.pos:end] == blob:
+    if n == len(names) and blob and bytes(buf[c.pos:end]) == blob:
         c.pos = end
     else:
         start = c.pos
@@ -220,3 +220,158 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
         pos += 56
         out.append((parent, child, v[:3], v[3:], stamp))
     return out
+
+
+# --- JointState in batches ------------------------------------------------------------------------------------
+# A driver publishes the same joints, in the same order, message after message: every such message has the same
+# length and the same bytes from the end of the stamp to the first position (frame_id, names, counts, padding).
+# That layout, read once from one message (`js_layout`), lets a whole run of messages be read with numpy: the
+# stamps and the float64 arrays are gathered from fixed offsets. A message that differs anywhere outside the
+# stamp and the numbers is not of the layout and is read on its own (`joint_state`).
+class JsLayout:
+    __slots__ = ("cdr", "e", "length", "head", "lo", "hi", "fixed", "stamp_off", "pos", "vel", "eff", "words",
+                 "names", "blob")
+
+    def matches(self, buf) -> bool:
+        # (bytes() first: comparing a memoryview is item by item, a copy and memcmp is faster)
+        if len(buf) != self.length or bytes(buf[self.lo:self.hi]) != self.fixed:
+            return False
+        if self.cdr and bytes(buf[:4]) != self.head:
+            return False
+        for at, word in self.words:
+            if bytes(buf[at:at + len(word)]) != word:
+                return False
+        return True
+
+
+def js_layout(buf, cdr: bool) -> JsLayout:
+    """The layout of one JointState message (raises DecodeError as `joint_state` does)."""
+    c = _cursor(buf, cdr)
+    lay = JsLayout()
+    lay.cdr, lay.e, lay.length = cdr, c.e, len(buf)
+    lay.head = bytes(buf[:4]) if cdr else b""
+    if cdr:
+        c.align(4)
+        lay.stamp_off = c.pos
+    else:
+        lay.stamp_off = 4  # after seq
+    c.stamp()
+    lay.lo = c.pos
+    c.string()  # frame_id
+    n = c.count()
+    blob, names = _last_names
+    end = c.pos + len(blob)
+    if n == len(names) and blob and bytes(buf[c.pos:end]) == blob:
+        c.pos = end  # the same tuple as the last message's: the checks compare names by identity
+    else:
+        begin = c.pos
+        names = _strings(c, n)
+        blob = bytes(buf[begin:c.pos])
+        _last_names[:] = [blob, names]
+    lay.names, lay.blob = names, blob
+    arrays = []
+    words = []
+    for i in range(3):
+        c.align(4)
+        at = c.pos
+        k = c.count()
+        if k:
+            c.align(8)
+        if i == 0:
+            lay.hi = c.pos  # frame_id, names, the position count and its padding: all fixed
+        c.need(8 * k)
+        arrays.append((c.pos, k))
+        if i:
+            words.append((at, bytes(buf[at:c.pos])))  # the count and the padding after it
+        c.pos += 8 * k
+    lay.pos, lay.vel, lay.eff = arrays
+    lay.fixed = bytes(buf[lay.lo:lay.hi])
+    lay.words = tuple(words)
+    return lay
+
+
+def js_batch(lay: JsLayout, payloads):
+    """(stamps int64 (n,), position (n, k), velocity (n, kv), effort (n, ke)) of messages of one layout."""
+    import numpy as np
+
+    n = len(payloads)
+    rows = np.frombuffer(b"".join(payloads), dtype=np.uint8).reshape(n, lay.length)
+    e = lay.e
+    s = lay.stamp_off
+    if lay.cdr:
+        sec = rows[:, s:s + 4].copy().view(e + "i4")[:, 0].astype(np.int64)
+    else:
+        sec = rows[:, s:s + 4].copy().view("<u4")[:, 0].astype(np.int64)
+    nsec = rows[:, s + 4:s + 8].copy().view(e + "u4")[:, 0].astype(np.int64)
+    stamps = sec * NS + nsec
+
+    def doubles(off, k):
+        if not k:
+            return np.empty((n, 0), dtype=np.float64)
+        return rows[:, off:off + 8 * k].copy().view(e + "f8").astype(np.float64, copy=False)
+
+    return stamps, doubles(*lay.pos), doubles(*lay.vel), doubles(*lay.eff)
+
+
+def remember_names(lay: JsLayout) -> None:
+    """The next `joint_state` of these names hands back the layout's tuple (the checks compare by identity)."""
+    _last_names[:] = [lay.blob, lay.names]
+
+
+# --- TFMessage by layout ----------------------------------------------------------------------------------------
+# robot_state_publisher sends the same edges, in the same order, message after message: only the stamps and the
+# seven numbers of each transform change. The layout is read once (`tf_layout`); a message whose every other
+# byte is the same is read with numpy (`TfLayout.read`), any other on its own (`tf_message`).
+class TfLayout:
+    __slots__ = ("cdr", "e", "length", "keep", "keep_bytes", "sec", "nsec", "vals", "edges", "np")
+
+    def read(self, buf):
+        """(stamps int64 (E,), values float64 (E, 7)) when `buf` has this layout, else None."""
+        np = self.np
+        if len(buf) != self.length:
+            return None
+        a = np.frombuffer(buf, dtype=np.uint8)
+        if a[self.keep].tobytes() != self.keep_bytes:
+            return None
+        e = self.e
+        sec = a[self.sec].view((e + "i4") if self.cdr else "<u4").astype(np.int64)
+        nsec = a[self.nsec].view(e + "u4").astype(np.int64)
+        vals = a[self.vals].view(e + "f8").astype(np.float64, copy=False).reshape(-1, 7)
+        return sec * NS + nsec, vals
+
+
+def tf_layout(buf, cdr: bool) -> TfLayout:
+    """The layout of one TFMessage; raises DecodeError as `tf_message` does."""
+    import numpy as np
+
+    edges = tf_message(buf, cdr)
+    c = _cursor(buf, cdr)
+    lay = TfLayout()
+    lay.np, lay.cdr, lay.e, lay.length = np, cdr, c.e, len(buf)
+    lay.edges = tuple((p, ch) for p, ch, _t, _r, _s in edges)
+    n = c.count()
+    variable = np.zeros(len(buf), dtype=bool)
+    sec, nsec, vals = [], [], []
+    for _ in range(n):  # the walk of tf_message, keeping where the stamps and numbers are
+        if cdr:
+            c.align(4)
+            at = c.pos
+        else:
+            variable[c.pos:c.pos + 4] = True  # seq
+            at = c.pos + 4
+        sec.extend(range(at, at + 4))
+        nsec.extend(range(at + 4, at + 8))
+        c.stamp()
+        c.string()
+        c.string()
+        c.align(8)
+        vals.extend(range(c.pos, c.pos + 56))
+        c.pos += 56
+    for idx in (sec, nsec, vals):
+        variable[idx] = True
+    lay.keep = np.flatnonzero(~variable)
+    lay.keep_bytes = np.frombuffer(buf, dtype=np.uint8)[lay.keep].tobytes()
+    lay.sec = np.array(sec, dtype=np.intp)
+    lay.nsec = np.array(nsec, dtype=np.intp)
+    lay.vals = np.array(vals, dtype=np.intp)
+    return lay

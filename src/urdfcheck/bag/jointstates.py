@@ -95,6 +95,133 @@ class JointStateChecks:
         self._stamp(m, stamp, names)
         self._timing(m)
 
+    def add_batches(self, batches) -> None:
+        """JointStateBatch runs of one topic, publisher and layout, in order: the same as `add` for each of their
+        messages, with numpy once the steady state holds (the names of the last message, this publisher's last
+        stamp known, the sample of periods full, no velocities still to sample)."""
+        import numpy as np
+
+        first = batches[0]
+        names, caller = first.names, first.callerid
+        k, kv, ke = first.position.shape[1], first.velocity.shape[1], first.effort.shape[1]
+        at = [0]  # where each batch starts in the concatenation
+        for b in batches:
+            at.append(at[-1] + len(b))
+
+        def msg(g: int) -> Message:
+            i = int(np.searchsorted(at, g, side="right")) - 1
+            return batches[i].message(g - at[i])
+
+        n = at[-1]
+        j = 0
+        if len(names) == k and kv in (0, k) and ke in (0, k):
+            while j < n:
+                g = self._group.get(caller)
+                if names is self._plan_names and g is not None and g[0] is names and len(self.periods) >= 4096 \
+                        and (not kv or self._ratios_full):
+                    break
+                self.add(msg(j))
+                j += 1
+        else:  # names and positions of different lengths: message by message (each is a finding)
+            for g in range(n):
+                self.add(msg(g))
+            return
+        if j >= n:
+            return
+        cat = np.concatenate
+        P = cat([b.position for b in batches])[j:]
+        S = cat([b.stamps for b in batches])[j:]
+        T = np.array([t for b in batches for t in b.times][j:], dtype=np.int64)
+        self.count += n - j
+        self._steady_ranges(P, j, msg)
+        self._steady_stamps(S, j, msg, names, caller)
+        self._steady_timing(T, j, msg)
+
+    def _steady_ranges(self, P, j0: int, msg) -> None:
+        import numpy as np
+
+        plan = self._plan
+        if not plan:
+            return
+        cols = [k for k, _n, _r in plan]
+        Q = P[:, cols]
+        fin = np.isfinite(Q)
+        if not fin.all():
+            for c, (_k, name, _r) in enumerate(plan):
+                bad = np.flatnonzero(~fin[:, c])
+                if len(bad):
+                    rec = self.nonfinite.get(name)
+                    if rec is None:
+                        rec = self.nonfinite[name] = [0, msg(j0 + int(bad[0]))]
+                    rec[0] += len(bad)
+            lo_q = np.where(fin, Q, np.inf)
+            hi_q = np.where(fin, Q, -np.inf)
+        else:
+            lo_q = hi_q = Q
+        lo_i = lo_q.argmin(axis=0)
+        hi_i = hi_q.argmax(axis=0)
+        r_cols = np.arange(len(cols))
+        lows = lo_q[lo_i, r_cols]
+        highs = hi_q[hi_i, r_cols]
+        now_lo = np.array([r.lo for _k, _n, r in plan])
+        now_hi = np.array([r.hi for _k, _n, r in plan])
+        for c in np.flatnonzero(lows < now_lo).tolist():
+            r = plan[c][2]
+            r.lo, r.lo_msg = float(lows[c]), msg(j0 + int(lo_i[c]))
+        for c in np.flatnonzero(highs > now_hi).tolist():
+            r = plan[c][2]
+            r.hi, r.hi_msg = float(highs[c]), msg(j0 + int(hi_i[c]))
+
+    def _steady_stamps(self, S, j0: int, msg, names, caller) -> None:
+        import numpy as np
+
+        zero = S == 0
+        nz = np.flatnonzero(~zero)
+        if len(nz) != len(S):
+            z = np.flatnonzero(zero)
+            rec = self.stamps["zero"]
+            rec[0] += len(z)
+            if rec[1] is None:
+                rec[1] = msg(j0 + int(z[0]))
+        if not len(nz):
+            return
+        Sn = S[nz]
+        prev = np.empty_like(Sn)
+        prev[0] = self._group[caller][1]
+        prev[1:] = Sn[:-1]
+        back = np.flatnonzero(Sn < prev)
+        if len(back):
+            rec = self.stamps["backwards"]
+            rec[0] += len(back)
+            if rec[1] is None:
+                rec[1] = msg(j0 + int(nz[back[0]]))
+            self.worst_back = max(self.worst_back, int((prev[back] - Sn[back]).max()))
+        rep = np.flatnonzero(Sn == prev)
+        if len(rep):
+            rec = self.stamps["repeated"]
+            rec[0] += len(rep)
+            if rec[1] is None:
+                rec[1] = msg(j0 + int(nz[rep[0]]))
+        self._group[caller] = (names, int(Sn[-1]))
+
+    def _steady_timing(self, T, j0: int, msg) -> None:
+        import numpy as np
+
+        prev = np.empty_like(T)
+        prev[0] = self.last_time
+        prev[1:] = T[:-1]
+        period = T - prev
+        limit = max(self.gap_factor * self.median_period, self.min_gap_ns)
+        gaps = np.flatnonzero((T > prev) & (period > limit))
+        if len(gaps):
+            self.gaps[0] += len(gaps)
+            if self.gaps[1] is None:
+                self.gaps[1] = msg(j0 + int(gaps[0]))
+            big = int(gaps[int(period[gaps].argmax())])
+            if int(period[big]) > self.gaps[2]:
+                self.gaps[2], self.gaps[3] = int(period[big]), msg(j0 + big)
+        self.last_time = int(T[-1])
+
     def _known(self, m: Message, pos, plan) -> None:
         """Ranges and non-finite values of the known joints, by their index in the message."""
         for k, name, r in plan:

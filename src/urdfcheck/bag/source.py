@@ -54,15 +54,74 @@ class Message(TupleRecord):
         return f"{self.topic} message {self.index + 1} (at {(self.time_ns - self.start) / NS:+.3f} s)"
 
 
+class JointStateBatch:
+    """Consecutive JointState messages of one topic, publisher and layout, decoded together (bag.decode.js_batch):
+    `stamps` (n,) int64, `position` (n, k), `velocity` (n, kv), `effort` (n, ke) float64, `times` receive times."""
+
+    kind = "joint_state_batch"
+    __slots__ = ("topic", "index", "times", "names", "stamps", "position", "velocity", "effort", "callerid", "start",
+                 "tfs", "_stamps")
+
+    def __init__(self, topic, index, times, names, stamps, position, velocity, effort, callerid, start, tfs=()):
+        self.topic, self.index, self.times, self.names = topic, index, times, names
+        self.stamps, self.position, self.velocity, self.effort = stamps, position, velocity, effort
+        self.callerid, self.start = callerid, start
+        self.tfs = tfs  # [(j, Message)]: TF messages recorded between the batch's message j - 1 and j, in order
+        self._stamps = None
+
+    def stamp_list(self) -> list:
+        if self._stamps is None:
+            self._stamps = self.stamps.tolist()
+        return self._stamps
+
+    def __len__(self) -> int:
+        return len(self.times)
+
+    def message(self, j: int) -> Message:
+        """The j-th message, as the message-by-message reader gives it."""
+        return Message(self.topic, self.index + j, self.times[j], "joint_state", JointStateMsg(
+            self.names, tuple(self.position[j].tolist()), tuple(self.velocity[j].tolist()),
+            tuple(self.effort[j].tolist()), int(self.stamps[j])), self.callerid, self.start)
+
+
+class FastEdges:
+    """The edges of one TFMessage read by layout (bag.decode.TfLayout): `stamps` (E,) and `values` (E, 7: x y z,
+    qx qy qz qw) as arrays; iterating gives the Edge records the message-by-message reader gives."""
+
+    __slots__ = ("layout", "stamps", "values")
+
+    def __init__(self, layout, stamps, values):
+        self.layout, self.stamps, self.values = layout, stamps, values
+
+    def __len__(self) -> int:
+        return len(self.layout.edges)
+
+    def edge(self, i: int) -> Edge:
+        p, c = self.layout.edges[i]
+        v = self.values[i].tolist()
+        return Edge(p, c, tuple(v[:3]), tuple(v[3:]), int(self.stamps[i]))
+
+    def __iter__(self):
+        for (p, c), st, v in zip(self.layout.edges, self.stamps.tolist(), self.values.tolist()):
+            yield Edge(p, c, tuple(v[:3]), tuple(v[3:]), st)
+
+
+MAX_BATCH = 4096  # messages decoded together: memory stays flat whatever the recording's length
+BATCH_BYTES = 8 << 20  # and their bytes
+TF_LAYOUT_BYTES = 1 << 16  # a TF message read by layout (its index arrays take 8 bytes a byte); larger: on its own
+
+
 def is_text(path: str) -> bool:
     return path.lower().endswith(TEXT_SUFFIXES)
 
 
 def messages(path: str, joint_topic: str | None = None, tf_topics=("/tf", "/tf_static"), others=None,
-             text: bool | None = None, facts: dict | None = None, runner: bool = False) -> Iterator[Message]:
+             text: bool | None = None, facts: dict | None = None, runner: bool = False,
+             batches: bool = False) -> Iterator[Message]:
     """Every JointState message of `joint_topic` (default: /joint_states, else the only JointState topic) and
     every TF message of `tf_topics`, in recording order. Raises RecordingError. `others` (a list) receives
-    the JointState topics that were not read."""
+    the JointState topics that were not read. `batches`: runs of JointState messages of a binary recording
+    come as JointStateBatch (in order with the other messages)."""
     others = [] if others is None else others
     facts = {} if facts is None else facts
     if not os.path.lexists(path):
@@ -70,11 +129,11 @@ def messages(path: str, joint_topic: str | None = None, tf_topics=("/tf", "/tf_s
     if os.path.basename(path) != "metadata.yaml" and (is_text(path) if text is None else text):
         yield from _text_messages(path, joint_topic or "/joint_states", tf_topics, others, runner)
     else:
-        yield from _bag_messages(path, joint_topic, tf_topics, others, facts, runner)
+        yield from _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches)
 
 
 # --- binary recordings -------------------------------------------------------------------------------------
-def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterator[Message]:
+def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=False) -> Iterator[Message]:
     from urdfcheck.bag import containers, decode
     from urdfcheck.bag.inflate import InflateError, Inflater
 
@@ -105,9 +164,40 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterat
     counters: dict[str, int] = {}
     late: set = set()
     n = start = 0
+    layouts: dict[tuple, object] = {}  # (topic, callerid, cdr) -> the layout of its last JointState
+    tf_layouts: dict[tuple, list] = {}  # (topic, callerid, cdr) -> the layouts of its last TF messages
+    run: list = []  # the pending batch: [layout, topic, caller, first index, times, payloads, TF messages, bytes]
+
+    hot = [None]  # (topic, callerid, cdr, layout, times, payloads, cap) of the run being gathered
+
+    def flush():
+        """The run as one batch (the TF messages recorded among its messages ride along, in order)."""
+        lay, topic, caller, index, times, payloads, tfs, _size = run
+        run.clear()
+        hot[0] = None
+        if len(payloads) == 1:
+            st, names, pos, vel, eff = decode.joint_state(payloads[0], lay.cdr)
+            yield Message(topic, index, times[0], "joint_state", JointStateMsg(names, pos, vel, eff, st), caller,
+                          start)
+            for _j, m in tfs:
+                yield m
+            return
+        stamps, pos, vel, eff = decode.js_batch(lay, payloads)
+        decode.remember_names(lay)
+        yield JointStateBatch(topic, index, times, lay.names, stamps, pos, vel, eff, caller, start, tfs)
+
     try:
         for part in parts:
             for topic, msgtype, t, payload, caller, cdr in part.messages(want, inflater):
+                h = hot[0]
+                if h is not None and topic == h[0] and caller == h[1] and cdr == h[2] and len(h[4]) < h[6] and \
+                        h[3].matches(payload) and payload[0] != 0x28:  # (0x28: perhaps zstd, below)
+                    # the next message of the run: what the lines below do for it, in short
+                    h[4].append(t)
+                    h[5].append(bytes(payload))
+                    counters[topic] += 1
+                    n += 1
+                    continue
                 kind = decode.kind_of(msgtype)
                 if kind == "joint_state" and chosen is None and joint_topic is None:
                     late.add(topic)  # not indexed: the first JointState topic, or /joint_states once seen
@@ -120,14 +210,67 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner) -> Iterat
                 if not n:
                     start = facts.get("start", t)
                 n += 1
+                if batches and kind == "joint_state":
+                    if run and run[1] == topic and run[2] == caller and run[0].cdr == cdr and \
+                            len(run[4]) < MAX_BATCH and len(run[4]) * run[0].length < BATCH_BYTES and \
+                            run[0].matches(payload):
+                        run[4].append(t)
+                        run[5].append(bytes(payload))  # (a copy: a view would keep its whole chunk alive)
+                        continue
+                    if run:
+                        yield from flush()
+                    key = (topic, caller, cdr)
+                    lay = layouts.get(key)
+                    if lay is None or not lay.matches(payload):
+                        lay = decode.js_layout(payload, cdr)
+                        if len(layouts) > 64:
+                            layouts.clear()
+                        layouts[key] = lay
+                    run[:] = [lay, topic, caller, i, [t], [bytes(payload)], [], 0]
+                    cap = min(MAX_BATCH, max(1, BATCH_BYTES // lay.length))
+                    hot[0] = (topic, caller, cdr, lay, run[4], run[5], cap)
+                    continue
+                if run and kind == "joint_state":
+                    yield from flush()
                 if kind == "joint_state":
                     st, names, pos, vel, eff = decode.joint_state(payload, cdr)
                     yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
+                elif batches and len(payload) <= TF_LAYOUT_BYTES:
+                    key = (topic, caller, cdr)
+                    known = tf_layouts.setdefault(key, [])
+                    got = None
+                    for lay in known:
+                        got = lay.read(payload)
+                        if got is not None:
+                            break
+                    if got is None:
+                        lay = decode.tf_layout(payload, cdr)
+                        got = lay.read(payload)
+                        known.insert(0, lay)
+                        del known[4:]
+                        if len(tf_layouts) > 64:
+                            tf_layouts.clear()
+                    m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf",
+                                FastEdges(lay, *got), caller, start)
                 else:
                     edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
-                    yield Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
-                                  start)
+                    m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
+                                start)
+                if kind == "joint_state":
+                    continue
+                if not run:
+                    yield m
+                    continue
+                # among a run of joint states: rides along with them (the run goes on after it)
+                run[6].append((len(run[4]), m))
+                run[7] += len(payload)
+                if len(run[6]) >= MAX_BATCH or run[7] >= BATCH_BYTES:
+                    yield from flush()
+        if run:
+            yield from flush()
     except (containers.ContainerError, decode.DecodeError, InflateError, OSError) as e:
+        if run:  # what was read before the damage is checked, as message by message
+            yield from flush()
         raise RecordingError(f"the recording is truncated or corrupt after {n} messages: {_why(e)}") from None
     if chosen is None and joint_topic is None and len(late) > 1:
         keep = "/joint_states" if "/joint_states" in late else min(late)

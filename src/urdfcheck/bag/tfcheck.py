@@ -20,7 +20,7 @@ import math
 from collections import OrderedDict, deque
 
 from urdfcheck.bag.jointstates import Issue
-from urdfcheck.bag.source import NS, Edge, Message
+from urdfcheck.bag.source import NS, Edge, FastEdges, Message
 from urdfcheck.publisher.state import StatePublisher
 
 WAIT_NS = NS // 2  # how long (receive time) a /tf transform waits for the JointState it was computed from
@@ -69,6 +69,10 @@ class TfChecks:
         self.tolerance = tolerance
         self._tol2 = tolerance * tolerance
         self._cos2 = math.cos(tolerance / 2) ** 2
+        self._cos4 = math.cos(tolerance / 4) ** 2  # (numpy's first look: half the tolerance, the rest exactly)
+        self._fast: dict[tuple, _FastPlan] = {}
+        self._jobs: list = []  # comparisons of the replay put off (_replay_fast), made together (_run_jobs)
+        self._lv_plan = None  # the plan whose arrays hold the last values of its edges (not yet in last_value)
         self.static_tolerance = static_tolerance
         self.count = 0
         self.tf_messages = 0
@@ -140,7 +144,199 @@ class TfChecks:
         if st in self.pending_stamps:
             self._settle(m.time_ns, st)
 
+    def joint_state_batch(self, b, lo: int = 0, hi: int | None = None) -> None:
+        """A JointStateBatch (its messages lo to hi): `joint_state` for each (the positions kept as rows)."""
+        names = b.names
+        if len(names) != b.position.shape[1]:
+            return
+        states, pending, keep = self.states, self.pending_stamps, self.KEEP_STATES
+        P, times = b.position, b.times
+        stamps = b.stamp_list()
+        for j in range(lo, len(stamps) if hi is None else hi):
+            st = stamps[j]
+            have = states.get(st)
+            if have is None:  # (a copy of the row: a view would keep the whole batch alive)
+                states[st] = (names, P[j].copy(), True)
+            else:
+                have = self._positions(st)
+                have.update(zip(names, P[j].tolist()))
+                self.predicted.pop(st, None)
+            if len(states) > keep:
+                states.popitem(last=False)
+            if st in pending:
+                self._settle(times[j], st)
+
     def add(self, m: Message) -> None:
+        d = m.data
+        if m.kind == "tf" and type(d) is FastEdges:
+            plan = self._fast.get((id(d.layout), m.callerid))
+            if plan is not None and plan.layout is d.layout and plan.usable:
+                self._add_fast(m, plan)
+                return
+            self._add_slow(m)
+            if len(self._fast) > 256:
+                self._fold()
+                self._fast.clear()
+            self._fast[(id(d.layout), m.callerid)] = _FastPlan(self, d.layout)
+            return
+        self._add_slow(m)
+
+    def _add_fast(self, m: Message, plan) -> None:
+        """`_add_slow` for a /tf message of a layout seen before from the same publisher: its edges' parents and
+        publishers are already known; the replay's comparisons are made with numpy, and what numpy finds not
+        clearly within tolerance goes through `_compare` itself."""
+        import numpy as np
+
+        self.count += 1
+        self.tf_messages += 1
+        d = m.data
+        S, V = d.stamps, d.values
+        plan.seen += 1  # (folded into on_tf by _fold)
+        for i, raw in plan.others:
+            self._jumps(m, raw, tuple(V[i, :3].tolist()))
+        for i, key in plan.fixed:
+            self._fixed(m, d.edge(i), key)
+        mi = plan.mov
+        if len(mi):
+            Sm, Vm = S[mi], V[mi]
+            if self._lv_plan is not plan:  # the last values of these edges, from last_value into the plan's arrays
+                self._own(plan, np)
+            same = np.flatnonzero(Sm == plan.last_s)
+            if len(same):
+                second, tol10 = self.second, 10 * self.tolerance
+                for c in same.tolist():
+                    key = plan.mkeys[c]
+                    if key not in second and plan.had[c] and sum(_diff(plan.last_v[c, :3].tolist(),
+                                                                      plan.last_v[c, 3:].tolist(),
+                                                                      d.edge(int(mi[c])))) > tol10:
+                        second[key] = (m, "two different transforms carry the same stamp")
+            plan.last_s, plan.last_v = Sm, Vm
+            plan.had[:] = True
+            Sl = Sm.tolist()
+            self._replay_fast(m, plan, Sl, V[mi], np)
+        self._expire(m.time_ns)
+
+    def _replay_fast(self, m, plan, Sl, V, np) -> None:
+        d = m.data
+        st = Sl[0]
+        ent = self.states.get(st)
+        cols = None
+        if ent is not None and type(ent) is tuple and len(ent) == 3 and Sl.count(st) == len(Sl):
+            cols = plan.columns(ent[0])
+        if cols is None:  # another stamp, a merged state, a state not yet recorded: edge by edge, as before
+            for c, key in enumerate(plan.mkeys):
+                e = d.edge(int(plan.mov[c]))
+                if e.stamp_ns in self.states:
+                    self._compare(m, e, key, plan.msegs[c])
+                elif len(self.pending) < MAX_PENDING:
+                    self.pending.append((m.time_ns, m, e, key, plan.msegs[c]))
+                    self.pending_stamps[e.stamp_ns] = self.pending_stamps.get(e.stamp_ns, 0) + 1
+                else:
+                    self._unmatched(m, key)
+            return
+        q = ent[1][cols]
+        if np.isfinite(q).all() and plan.all_plain:  # compared later, with other messages' (_run_jobs)
+            self._jobs.append((m, plan, q, V, ent))
+            if len(self._jobs) >= 256:
+                self._run_jobs()
+            return
+        t, r = plan.expected(q, np)
+        dt = t - V[:, :3]
+        dt2 = (dt * dt).sum(axis=1)
+        qr = V[:, 3:]
+        dot = (r * qr).sum(axis=1)
+        n1 = (r * r).sum(axis=1)
+        n2 = (qr * qr).sum(axis=1)
+        with np.errstate(all="ignore"):
+            ok = (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4) & plan.plain & np.isfinite(q)
+        okl = ok.tolist()
+        plan.ok_counts += ok
+        self.replayed += okl.count(True)
+        if okl.count(True) != len(okl):
+            for c, good in enumerate(okl):
+                if not good:
+                    self._compare(m, d.edge(int(plan.mov[c])), plan.mkeys[c], plan.msegs[c])
+
+    def _run_jobs(self) -> None:
+        """The replay's comparisons `_replay_fast` put off, made with numpy for many messages at once; in the
+        order of the messages, what is not clearly within tolerance goes through `_compare` with the joint
+        state the message was matched with."""
+        jobs = self._jobs
+        if not jobs:
+            return
+        self._jobs = []
+        import numpy as np
+
+        groups: dict[int, list] = {}
+        for i, job in enumerate(jobs):
+            groups.setdefault(id(job[1]), []).append(i)
+        bad: dict[int, list] = {}
+        for idx in groups.values():
+            plan = jobs[idx[0]][1]
+            Q = np.stack([jobs[i][2] for i in idx])
+            V = np.stack([jobs[i][3] for i in idx])
+            t, r = plan.expected(Q, np)
+            dt = t - V[..., :3]
+            qr = V[..., 3:]
+            with np.errstate(all="ignore"):
+                dt2 = (dt * dt).sum(axis=-1)
+                dot = (r * qr).sum(axis=-1)
+                n1 = (r * r).sum(axis=-1)
+                n2 = (qr * qr).sum(axis=-1)
+                ok = (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4)
+            plan.ok_counts += ok.sum(axis=0)
+            self.replayed += int(ok.sum())
+            if not ok.all():
+                for row, c in zip(*np.nonzero(~ok)):
+                    bad.setdefault(idx[int(row)], []).append(int(c))
+        for i in sorted(bad):
+            m, plan, _q, _v, ent = jobs[i]
+            pos = dict(zip(ent[0], ent[1].tolist()))
+            for c in bad[i]:
+                self._compare(m, m.data.edge(int(plan.mov[c])), plan.mkeys[c], plan.msegs[c], pos)
+
+    def _own(self, plan, np) -> None:
+        """`plan` keeps the last values of its edges in arrays; whoever kept them before writes them back."""
+        self._disown()
+        lv = self.last_value
+        plan.last_s = np.full(len(plan.mkeys), -(1 << 62), dtype=np.int64)
+        plan.last_v = np.zeros((len(plan.mkeys), 7))
+        plan.had = np.zeros(len(plan.mkeys), dtype=bool)
+        for c, key in enumerate(plan.mkeys):
+            prev = lv.get(key)
+            if prev is not None:
+                plan.last_s[c] = prev[0]
+                plan.last_v[c] = (*prev[1], *prev[2])
+                plan.had[c] = True
+        self._lv_plan = plan
+
+    def _disown(self) -> None:
+        plan = self._lv_plan
+        if plan is None:
+            return
+        self._lv_plan = None
+        lv = self.last_value
+        for c, (st, v, had) in enumerate(zip(plan.last_s.tolist(), plan.last_v.tolist(), plan.had.tolist())):
+            if had:
+                lv[plan.mkeys[c]] = (st, tuple(v[:3]), tuple(v[3:]))
+
+    def _fold(self) -> None:
+        """The counts of `_add_fast` into `matched` and `on_tf`."""
+        self._run_jobs()
+        self._disown()
+        for plan in self._fast.values():
+            if plan.seen:
+                for key in plan.keys:
+                    self.on_tf[key] = self.on_tf.get(key, 0) + plan.seen
+                plan.seen = 0
+            for c in plan.ok_counts.nonzero()[0].tolist():
+                rec = self.matched.get(plan.mkeys[c])
+                if rec is None:
+                    rec = self.matched[plan.mkeys[c]] = [0, 0, None]
+                rec[0] += int(plan.ok_counts[c])
+            plan.ok_counts[:] = 0
+
+    def _add_slow(self, m: Message) -> None:
         self.count += 1
         if m.kind == "tf":
             self.tf_messages += 1
@@ -200,6 +396,8 @@ class TfChecks:
         rec[0], rec[1] = last, xyz
 
     def _movable(self, m: Message, e: Edge, key, seg) -> None:
+        if self._lv_plan is not None:
+            self._disown()
         if m.kind == "tf_static" and key not in self.second:
             self.second[key] = (m, f"it is published on /tf_static, while robot_state_publisher publishes joint "
                                    f"{seg.name!r} ({seg.type}) on /tf")
@@ -216,8 +414,14 @@ class TfChecks:
         else:
             self._unmatched(m, key)
 
-    def _compare(self, m: Message, e: Edge, key, seg) -> None:
-        expected = self._expected(e.stamp_ns, seg)
+    def _compare(self, m: Message, e: Edge, key, seg, pos=None) -> None:
+        """`pos`: the joint state the edge was matched with, when the comparison was put off (_run_jobs)."""
+        if pos is None:
+            if self._jobs:  # those put off first: the first and the worst mismatch stay in recording order
+                self._run_jobs()
+            expected = self._expected(e.stamp_ns, seg)
+        else:
+            expected = self._expected_at(pos, e.stamp_ns, seg)
         rec = self.matched.get(key)
         if rec is None:
             rec = self.matched[key] = [0, 0, None]
@@ -273,7 +477,10 @@ class TfChecks:
     def _positions(self, stamp: int) -> dict | None:
         pos = self.states.get(stamp)
         if isinstance(pos, tuple):
-            pos = self.states[stamp] = dict(zip(*pos))
+            if len(pos) == 3:  # (names, a row of a batch's positions, True)
+                pos = self.states[stamp] = dict(zip(pos[0], pos[1].tolist()))
+            else:
+                pos = self.states[stamp] = dict(zip(*pos))
         return pos
 
     def _expected(self, stamp: int, seg):
@@ -289,6 +496,14 @@ class TfChecks:
             while len(self.predicted) > 64:
                 self.predicted.popitem(last=False)
         return cache.get(seg.child)
+
+    def _expected_at(self, pos: dict, stamp: int, seg):
+        """`_expected` from the given joint state, not the one kept now for that stamp."""
+        if seg.name not in pos and not _mimic_of(self.model, seg.name, pos):
+            return None
+        return {t.child: (t.translation, t.rotation) for t in self.pub.transforms_for(
+            {k: v for k, v in pos.items() if k in self.model.joints and math.isfinite(v)},
+            (stamp // NS, stamp % NS))}.get(seg.child)
 
     def _fixed(self, m: Message, e: Edge, key) -> None:
         seen = self.fixed_on.setdefault(key, {})
@@ -313,6 +528,7 @@ class TfChecks:
     # --- the verdict -----------------------------------------------------------------------------------------
     def finish(self) -> None:
         self._expire(None)
+        self._fold()
 
     def compared(self) -> int:
         return self.replayed + self.static_compared
@@ -415,6 +631,82 @@ class TfChecks:
                       + ") never carries their transforms: the robot_state_publisher that ran does not hear this "
                       "JointState topic (another namespace, a remap) or runs another model", None,
                       tuple(joints[n].loc for n in missing if n in joints))]
+
+
+class _FastPlan:
+    """What `_add_fast` needs of one TF layout: its edges sorted into the model's movable and fixed joints and the
+    others, and the movable joints' motion as arrays (the publisher's per-joint rule, kinematics.Segment)."""
+
+    def __init__(self, checks: TfChecks, layout):
+        import numpy as np
+
+        self.layout = layout
+        self.keys, self.others, self.fixed, mov, self.mkeys, self.msegs = [], [], [], [], [], []
+        for i, raw in enumerate(layout.edges):
+            key = checks.model_key(*raw)
+            if key is None:
+                self.others.append((i, raw))
+                continue
+            self.keys.append(key)
+            seg = checks.movable.get(key)
+            if seg is None:
+                self.fixed.append((i, key))
+            else:
+                mov.append(i)
+                self.mkeys.append(key)
+                self.msegs.append(seg)
+        self.mov = np.array(mov, dtype=np.intp)
+        self.seen = 0
+        self.usable = len(set(self.mkeys)) == len(self.mkeys)  # an edge twice in a message: edge by edge
+        self.ok_counts = np.zeros(len(mov), dtype=np.int64)
+        self._cols: dict = {}
+        rows = []
+        plain = []
+        for seg in self.msegs:
+            x0, y0, z0, w0 = seg.origin_q
+            t0 = seg.origin_t
+            ax, ay, az = seg.axis if seg.axis is not None else (0.0, 0.0, 0.0)
+            r = seg.origin_r
+            d = (r[0][0] * ax + r[0][1] * ay + r[0][2] * az, r[1][0] * ax + r[1][1] * ay + r[1][2] * az,
+                 r[2][0] * ax + r[2][1] * ay + r[2][2] * az)
+            k = (w0 * ax + y0 * az - z0 * ay, w0 * ay + z0 * ax - x0 * az, w0 * az + x0 * ay - y0 * ax,
+                 -(x0 * ax + y0 * ay + z0 * az))
+            prism = seg.type == "prismatic"
+            rows.append((*t0, *(d if prism else (0.0, 0.0, 0.0)), x0, y0, z0, w0, *((0.0,) * 4 if prism else k),
+                         1.0 if prism else 0.0))
+            plain.append(seg.axis is not None)  # a zero axis: the publisher's own rule, through _compare
+        a = np.array(rows, dtype=np.float64).reshape(len(rows), 15)
+        self.t0, self.d, self.q0, self.k, self.prism = a[:, 0:3], a[:, 3:6], a[:, 6:10], a[:, 10:14], a[:, 14] > 0
+        self.plain = np.array(plain, dtype=bool)
+        self.all_plain = bool(self.plain.all())
+        self.any_prism = bool(self.prism.any())
+
+    def columns(self, names):
+        """Where each movable edge's joint is in `names` (the last, as dict(zip()) keeps); None: one is missing."""
+        got = self._cols.get(id(names))
+        if got is not None and got[0] is names:
+            return got[1]
+        import numpy as np
+
+        where = {n: i for i, n in enumerate(names)}
+        idx = [where.get(seg.name, -1) for seg in self.msegs]
+        cols = None if -1 in idx else np.array(idx, dtype=np.intp)
+        if len(self._cols) > 64:
+            self._cols.clear()
+        self._cols[id(names)] = (names, cols)
+        return cols
+
+    def expected(self, q, np):
+        """Translations (..., E, 3) and rotations (..., E, 4) the publisher gives these edges at joint values
+        q (..., E)."""
+        h = 0.5 * q
+        s = np.sin(h)[..., None]
+        c = np.cos(h)[..., None]
+        rot = self.q0 * c + self.k * s
+        if self.any_prism:
+            rot = np.where(self.prism[:, None], self.q0, rot)
+        t = self.t0 + self.d * q[..., None]
+        return t, rot
 
 
 def _dist(a, b) -> float:

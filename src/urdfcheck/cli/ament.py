@@ -15,8 +15,8 @@ import argparse
 import os
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, EXIT_USAGE, kv
-from urdfcheck.request.request import UsageError, make_request
+from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, EXIT_USAGE, add_options
+from urdfcheck.request.request import LintRequest, UsageError, make_request
 
 SUFFIXES = (".urdf", ".xacro")
 
@@ -30,12 +30,7 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--exclude", nargs="*", default=[], metavar="NAME",
                    help="file or folder names to leave out")
     p.add_argument("--xunit-file", metavar="FILE", help="write a JUnit (xunit) file for colcon test-result")
-    p.add_argument("--fail-on", default=None, metavar="LEVEL", help="error, warning (default) or info")
-    p.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
-    p.add_argument("--arg", dest="args", action="append", default=[], type=kv(":=", "NAME:=VALUE"),
-                   metavar="NAME:=VALUE", help="xacro argument (repeatable)")
-    p.add_argument("--package", dest="packages", action="append", default=[], type=kv("=", "NAME=PATH"),
-                   metavar="NAME=PATH", help="where a ROS package lives (repeatable)")
+    add_options(p, "ament")  # --fail-on, --config, --arg, --package: lint's, from the one table (cli/options.py)
     return p
 
 
@@ -76,6 +71,12 @@ def main(argv=None) -> int:
         return EXIT_USAGE
 
 
+def request_from_flags(ns, paths) -> LintRequest:
+    from urdfcheck.cli.options import request_fields
+
+    return make_request(paths, **request_fields(ns, "ament"))
+
+
 def _main(ns) -> int:
     from urdfcheck import run as pipeline
     from urdfcheck.report import escape_bidi, render
@@ -89,8 +90,7 @@ def _main(ns) -> int:
         if not paths:
             print("No files found", file=sys.stderr)
             return EXIT_FINDINGS
-    request = make_request(paths, args=dict(ns.args), packages=dict(ns.packages), fail_on=ns.fail_on,
-                           config=ns.config)
+    request = request_from_flags(ns, paths)
     result = pipeline.run(request)
     for line in getattr(result, "infos", ()):
         print(f"urdfcheck: info: {line}", file=sys.stderr)

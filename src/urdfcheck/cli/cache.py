@@ -25,6 +25,7 @@ from __future__ import annotations
 import os
 import sys
 
+from urdfcheck.cli import options
 from urdfcheck.cli.commands import COMMANDS
 from urdfcheck.core import cachefile
 from urdfcheck.core.cachefile import digest
@@ -106,6 +107,11 @@ def plan(argv: list[str]) -> Spec | None:
             return None
     folder = os.path.abspath(folder or env.get("URDFCHECK_CACHE_DIR") or user_cache_dir())
     folder = os.path.join(folder, f"v{SCHEMA}")
+    if cachefile.linked_in_checkout(folder, os.getcwd()):
+        if env.get("URDFCHECK_CACHE_TRACE", "") not in ("", "0"):
+            print("urdfcheck: cache off (its folder lies in the checkout and is reached through a symbolic link "
+                  "there: a link the checked files made would redirect the cache's writes)", file=sys.stderr)
+        return None
 
     import urdfcheck
 
@@ -377,11 +383,9 @@ def console() -> None:
     main.run(after=finish)
 
 
-# lint options that take a value (a value is not a path); any option not known here leaves the fork to cli.main
-_VALUED = frozenset(("--arg", "--package", "--allow-env", "--timeout", "--max-elements", "--budget", "--select",
-                     "--ignore", "--fail-on", "--format", "--output", "-o", "--report", "--color", "--config",
-                     "--target", "--root", "--baseline", "--cache-dir"))
-_FLAGS = frozenset(("--trusted", "--no-config", "--no-cache", "--quiet", "-q"))
+# lint's options (cli/options.py, pure data): those taking a value (a value is not a path) and plain flags
+_VALUED = options.valued_flags("lint")
+_FLAGS = options.plain_flags("lint")
 
 
 def fork_early(argv: list[str]) -> None:
@@ -398,6 +402,8 @@ def fork_early(argv: list[str]) -> None:
             paths.append(a)
             continue
         name, eq, value = a.partition("=")
+        if name in ("--list", "--write-baseline"):  # no lint run (cli.main forks no worker for them either)
+            return
         if name in _FLAGS and not eq:
             trusted = trusted or name == "--trusted"
             continue

@@ -58,42 +58,83 @@ def kv(sep: str, what: str):
     return parse
 
 
-def add_load_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--arg", dest="args", action="append", default=[], type=kv(":=", "NAME:=VALUE"),
-                   metavar="NAME:=VALUE", help="xacro argument (repeatable)")
-    p.add_argument("--package", dest="packages", action="append", default=[], type=kv("=", "NAME=PATH"),
-                   metavar="NAME=PATH", help="where a ROS package lives, for $(find) and package:// (repeatable)")
-    p.add_argument("--trusted", action="store_true", default=None,
-                   help="evaluate xacro with stock Python eval and allow $(env): only for your own files")
-    p.add_argument("--allow-env", action="append", default=[], metavar="VAR",
-                   help="environment variable that $(env)/$(optenv) may read in the sandbox (repeatable)")
-    p.add_argument("--timeout", type=float, default=20.0, metavar="SECONDS",
-                   help="wall-clock limit for one xacro expansion (default 20)")
-    p.add_argument("--max-elements", type=int, default=None, metavar="N",
-                   help="xacro elements one expansion may evaluate (default 20000; 400000 with --trusted); "
-                        "a macro bomb stops here")
-    p.add_argument("--budget", type=float, default=None, metavar="SECONDS",
-                   help="wall-clock budget for the whole run, all models and variants (default 300, or "
-                        "URDFCHECK_RUN_BUDGET); what it leaves unlinted is an X017 finding")
+def codes(text: str) -> list[str]:
+    """argparse type: rule codes or prefixes, comma-separated."""
+    out = [c.strip().upper() for c in text.split(",") if c.strip()]
+    for c in out:
+        if not (c == "ALL" or (c[0].isalpha() and (c[1:] == "" or c[1:].isdigit()))):
+            raise argparse.ArgumentTypeError(f"{c!r} is not a rule code or prefix (e.g. S001, J, ALL)")
+    return out
 
 
-def add_config_options(p: argparse.ArgumentParser) -> None:
-    """The config options of the commands that load one model (expand, tf, publish, tree, verify)."""
-    p.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
-    p.add_argument("--no-config", action="store_true", help="ignore config files")
+def severity(text: str):
+    """argparse type: error, warning or info."""
+    from urdfcheck.core.findings import Severity
+
+    try:
+        return Severity.parse(text)
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(str(e)) from None
+
+
+class _Choices:
+    """A named list of choices (cli/options.py), imported when argparse first looks into it: a lint command line
+    that does not name a target does not import the URDF grammar while parsing."""
+
+    def __init__(self, name: str):
+        self.name, self._items = name, None
+
+    def _get(self):
+        if self._items is None:
+            from urdfcheck.cli.options import choices
+
+            self._items = choices(self.name)
+        return self._items
+
+    def __contains__(self, item) -> bool:
+        return item in self._get()
+
+    def __iter__(self):
+        return iter(self._get())
+
+
+_TYPES = {"codes": codes, "severity": severity, "kv:=": kv(":=", "NAME:=VALUE"), "kv=": None, "float": float,
+          "int": int}
+
+
+def add_options(p: argparse.ArgumentParser, command: str, only=None) -> None:
+    """`command`'s options from the one table (cli/options.py); `only`: the dests to add (a group of them)."""
+    from urdfcheck.cli.options import for_command
+
+    for o in for_command(command):
+        if only is not None and o.dest not in only:
+            continue
+        kw: dict = {"dest": o.dest, "help": o.help}
+        if o.value == "flag":
+            kw.update(action="store_true", default=None if o.dest in ("trusted", "trust_config") else False)
+        else:
+            kw.update(default=o.default, metavar=o.metavar)
+            if o.value == "append":
+                kw["action"] = "append"
+            if o.type == "kv=":
+                kw["type"] = kv("=", o.metavar)
+            elif o.type is not None:
+                kw["type"] = _TYPES[o.type]
+            if o.choices is not None:
+                kw["choices"] = _Choices(o.choices)
+                if o.choices == "targets":  # argparse would list them in the usage line: the grammar's import
+                    kw["metavar"] = "DISTRO"
+        p.add_argument(*o.flags, **kw)
 
 
 def load_one(ns, path: str, build: bool = True):
     """The model at `path` as `urdfcheck lint` loads it (the same request: config, packages, limits),
     the load flags over the config: a `run.Loaded`. Raises UsageError."""
+    from urdfcheck.cli.options import request_fields
     from urdfcheck.request.request import make_request
     from urdfcheck.run import load
 
-    request = make_request(
-        [path], args=dict(getattr(ns, "args", None) or []), packages=dict(ns.packages),
-        trusted=True if ns.trusted else None, allow_env=tuple(ns.allow_env), timeout=ns.timeout,
-        max_elements=ns.max_elements, config=getattr(ns, "config", None),
-        use_config=not getattr(ns, "no_config", False), budget=getattr(ns, "budget", None))
+    request = make_request([path], **request_fields(ns, getattr(ns, "command", None) or "expand"))
     return load(request, path, build=build)
 
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, add_load_options
+from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, add_options
 from urdfcheck.cli.common import UsageError as _Usage
 
 
@@ -18,17 +18,18 @@ def _run(fn):
 
 
 def add_parser(subparsers) -> None:
-    p = subparsers.add_parser("consumers", help="load the model into MuJoCo, Pinocchio, PyBullet, yourdfpy, urdfdom",
+    p = subparsers.add_parser("consumers",
+                              help="load the model into MuJoCo, Pinocchio, PyBullet, yourdfpy, urdfdom, sdformat",
                               description=__doc__.split("\n\n")[0])
     p.add_argument("model", metavar="MODEL")
     p.add_argument("--consumer", default=None, metavar="NAMES",
-                   help="comma-separated: mujoco, pinocchio, pybullet, yourdfpy, urdfdom (default: all)")
+                   help="comma-separated: mujoco, pinocchio, pybullet, yourdfpy, urdfdom, sdformat (default: all)")
     p.add_argument("--format", choices=["text", "json", "markdown"], default="text")
     p.add_argument("--consumer-timeout", type=float, default=None, metavar="SECONDS",
                    help="wall-clock and CPU limit for each consumer (default 30)")
     p.add_argument("--consumer-memory", type=float, default=None, metavar="GIB",
                    help="address space each consumer may add (default 2 GiB)")
-    add_load_options(p)
+    add_options(p, "consumers")
     p.set_defaults(func=_run(cmd_consumers))
 
 

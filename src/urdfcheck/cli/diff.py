@@ -8,7 +8,7 @@ from __future__ import annotations
 import os
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, UsageError, add_load_options
+from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, UsageError, add_options
 
 
 def add_parser(sub) -> None:
@@ -28,16 +28,14 @@ def add_parser(sub) -> None:
                    "`lint --diff-base REV`; informational: the exit code stays diff's)")
     p.add_argument("--seeds", type=int, default=5, metavar="N",
                    help="random joint configurations besides zero at which frame poses are compared (default 5)")
-    p.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
-    p.add_argument("--no-config", action="store_true", help="ignore config files")
-    add_load_options(p)
+    add_options(p, "diff")
     p.set_defaults(func=cmd_diff)
 
 
 def _options(ns) -> dict:
-    return dict(args=dict(ns.args), packages=dict(ns.packages), trusted=True if ns.trusted else None,
-                allow_env=tuple(ns.allow_env), timeout=ns.timeout, max_elements=ns.max_elements,
-                config=ns.config, use_config=not ns.no_config, budget=ns.budget)
+    from urdfcheck.cli.options import request_fields
+
+    return request_fields(ns, "diff")
 
 
 def cmd_diff(ns) -> int:

@@ -14,23 +14,24 @@ _UNTIL_EXIT: list = []
 
 
 def request_from_flags(ns) -> LintRequest:
-    def flat(groups):
-        return [c for g in groups or () for c in g]
+    from urdfcheck.cli.options import request_fields
 
-    return make_request(
-        ns.paths, args=dict(ns.args), packages=dict(ns.packages),
-        select=flat(ns.select) or None, ignore=flat(ns.ignore), fail_on=ns.fail_on,
-        trusted=True if ns.trusted else None, allow_env=tuple(ns.allow_env), timeout=ns.timeout,
-        max_elements=ns.max_elements, config=ns.config, use_config=not ns.no_config,
-        trust_config=getattr(ns, "trust_config", None), max_files=getattr(ns, "max_files", None),
-        root=getattr(ns, "root", None), baseline=None if ns.write_baseline else ns.baseline,
-        budget=getattr(ns, "budget", None), target=getattr(ns, "target", None),
-        bags=getattr(ns, "bags", None) or None, joint_states=getattr(ns, "joint_states", None),
-        profiles=getattr(ns, "profile", None))
+    fields = request_fields(ns, "lint")
+    if getattr(ns, "write_baseline", None):  # the baseline being written is not read
+        fields["baseline"] = None
+    return make_request(ns.paths, **fields)
 
 
 def run(ns, usage_error=UsageError) -> int:
     """`usage_error`: raised (with the message) for an unusable invocation; UsageError by default."""
+    from urdfcheck.core import door
+
+    # every read of the run goes through the door, confined to the checkout, the packages and what is typed
+    with door.guarding((*ns.paths, ns.config, ns.baseline, *(getattr(ns, "bags", None) or ()))):
+        return _with_config_from(ns, usage_error)
+
+
+def _with_config_from(ns, usage_error) -> int:
     rev = getattr(ns, "config_from", None)
     if not rev:
         return _run(ns, usage_error)

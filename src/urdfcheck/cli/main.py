@@ -19,31 +19,11 @@ from urdfcheck.cli.common import (  # noqa: F401  (EXIT_*, UsageError: also read
     Formatter,
     RawFormatter,
     UsageError,
-    add_config_options,
-    add_load_options,
+    add_options,
     kv,
     load_one,
     usage_message,
 )
-
-
-def _codes(text: str) -> list[str]:
-    out = [c.strip().upper() for c in text.split(",") if c.strip()]
-    for c in out:
-        if not (c == "ALL" or (c[0].isalpha() and (c[1:] == "" or c[1:].isdigit()))):
-            raise argparse.ArgumentTypeError(f"{c!r} is not a rule code or prefix (e.g. S001, J, ALL)")
-    return out
-
-
-def _severity(text: str):
-    from urdfcheck.core.findings import Severity
-
-    try:
-        return Severity.parse(text)
-    except ValueError as e:
-        raise argparse.ArgumentTypeError(str(e)) from None
-
-
 
 
 def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse.ArgumentParser:
@@ -63,56 +43,7 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
                           formatter_class=RawFormatter)
     lint.add_argument("paths", nargs="*", metavar="PATH",
                       help="URDF/xacro files or package folders (default: what the config declares, else .)")
-    add_load_options(lint)
-    lint.add_argument("--select", action="append", type=_codes, default=[], metavar="CODES",
-                      help="only these rule codes or prefixes, comma-separated (e.g. S,J002)")
-    lint.add_argument("--ignore", action="append", type=_codes, default=[], metavar="CODES",
-                      help="skip these rule codes or prefixes")
-    lint.add_argument("--fail-on", type=_severity, default=None, metavar="LEVEL",
-                      help="exit 1 when a finding is at least this severe: error, warning (default), info")
-    lint.add_argument("--format", default="text", choices=["text", "json", "sarif", "junit", "github", "markdown"],
-                      help="report format on stdout (default text)")
-    lint.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
-    lint.add_argument("--report", action="append", default=[], type=kv("=", "FORMAT=FILE"),
-                      metavar="FORMAT=FILE", help="also write another format to a file (repeatable)")
-    lint.add_argument("--color", choices=["auto", "always", "never"], default="auto")
-    lint.add_argument("--config", metavar="FILE", help="config file (default: urdfcheck.yaml found upward)")
-    lint.add_argument("--trust-config", action="store_true", default=None,
-                      help="the --config FILE is yours: honour what lowers the guard there (trusted, allow_env, "
-                           "higher limits, paths outside the checkout, ignore, select, severity, fail_on, rule "
-                           "options, packages, models as the only ones); a config found in the checkout, or named "
-                           "without this flag, may only add checks")
-    lint.add_argument("--max-files", type=int, default=None, metavar="N",
-                      help="files the walk of one package looks at (default 20000); a walk cut short is X019")
-    lint.add_argument("--no-config", action="store_true", help="ignore config files")
-    lint.add_argument("--target", choices=["noetic", "humble", "jazzy", "kilted", "rolling"], default=None,
-                      help="ROS distribution whose urdfdom must read the models (URDF versions, U007); default: "
-                           "the config's target, else noetic for a catkin package, else what the workspace names "
-                           "(ROS_DISTRO in CI files, .repos, Dockerfile FROM ros:..., branch), else humble")
-    lint.add_argument("--profile", metavar="NAMES", default=None,
-                      help="consumer profiles, comma-separated: mujoco, gazebo, isaac, kdl, pinocchio, pybullet, "
-                           "moveit (what each will reject or silently change; config key profiles)")
-    lint.add_argument("--list", action="store_true",
-                      help="print what would be linted (models, variants, deployments from launch files) and exit")
-    lint.add_argument("--root", metavar="DIR",
-                      help="show paths relative to DIR (default: the working directory)")
-    lint.add_argument("--baseline", metavar="FILE", help="only fail on findings not in this baseline")
-    lint.add_argument("--write-baseline", metavar="FILE", help="write current findings as a baseline and exit 0")
-    lint.add_argument("--diff-base", metavar="REV",
-                      help="also lint git revision REV (read with git into a temporary folder, nothing checked "
-                      "out) and tell new, fixed and unchanged findings; --fail-on then applies to new ones only")
-    lint.add_argument("--config-from", metavar="REV",
-                      help="use the config file of git revision REV (e.g. the pull request's base), trusted, "
-                      "instead of the checkout's; say whether the checkout's config differs from it")
-    lint.add_argument("--bag", dest="bags", action="append", default=[], metavar="RECORDING",
-                      help="also check a recording against the model: a ROS 1 .bag, a ROS 2 bag folder, a .db3 "
-                           "or .mcap file, or a YAML/JSON list of messages (repeatable; `urdfcheck bag` is the short "
-                           "form)")
-    lint.add_argument("--joint-states", metavar="TOPIC",
-                      help="the recordings' JointState topic (default /joint_states, else the only one)")
-    lint.add_argument("--no-cache", action="store_true", help="neither read nor write the lint cache (cli/cache.py)")
-    lint.add_argument("--cache-dir", metavar="DIR", help="the lint cache's folder (default: the user's cache folder)")
-    lint.add_argument("--quiet", "-q", action="store_true", help="no progress on a terminal")
+    add_options(lint, "lint")  # every lint option, from the one table (cli/options.py)
     lint.set_defaults(func=cmd_lint)
     if lint_only:
         return parser
@@ -128,8 +59,7 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
 
     exp = sub.add_parser("expand", help="print the expanded URDF exactly as the rules see it")
     exp.add_argument("path", metavar="FILE")
-    add_load_options(exp)
-    add_config_options(exp)
+    add_options(exp, "expand")
     exp.set_defaults(func=cmd_expand)
 
     rules = sub.add_parser("rules", help="list the rules, or show one rule's page")
@@ -139,7 +69,7 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
 
     srv = sub.add_parser("server", help="a language server (LSP over stdio) for editors: findings as you type")
     srv.add_argument("--stdio", action="store_true", help="speak over standard input and output (the default)")
-    add_config_options(srv)
+    add_options(srv, "server")
     srv.set_defaults(func=cmd_server)
 
     if with_publish:  # skipped for lint/expand/rules: its import is a measurable part of a lint run
@@ -171,6 +101,13 @@ def cmd_server(ns) -> int:
 
 
 def cmd_expand(ns) -> int:
+    from urdfcheck.core import door
+
+    with door.guarding((ns.path, getattr(ns, "config", None))):
+        return _expand(ns)
+
+
+def _expand(ns) -> int:
     if not os.path.isfile(ns.path):
         raise UsageError(f"no such file: {ns.path}")
     exp = load_one(ns, ns.path, build=False).expanded
@@ -229,10 +166,10 @@ def bag_argv(rest: list[str]) -> list[str] | None:
     """`bag MODEL RECORDING... [options]` as the lint command it is: the first two positional words are the
     model and a recording, later positional words more recordings; without --select, the B and X rules.
     None when the model or the recording is missing."""
+    from urdfcheck.cli.options import valued_flags
+
     out, positional, skip = ["lint"], [], False
-    valued = {"--arg", "--package", "--allow-env", "--timeout", "--max-elements", "--budget", "--select", "--ignore",
-              "--fail-on", "--format", "--output", "-o", "--report", "--color", "--config", "--target", "--root",
-              "--baseline", "--write-baseline", "--joint-states", "--bag"}
+    valued = valued_flags("lint")
     for word in rest:
         if skip:
             out.append(word)

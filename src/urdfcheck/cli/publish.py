@@ -17,8 +17,7 @@ from urdfcheck.cli.common import (
     EXIT_FINDINGS,
     EXIT_USAGE,
     UsageError,
-    add_config_options,
-    add_load_options,
+    add_options,
     load_one,
     print_findings,
     usage_message,
@@ -41,9 +40,22 @@ def _joint_value(text: str):
     return k, value
 
 
-def _add_load_options(p) -> None:
-    add_load_options(p)
-    add_config_options(p)
+class _Deprecated(argparse.Action):
+    """An old spelling, still read, with a note on stderr saying the new one."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"urdfcheck: warning: {option_string} is deprecated here (it is lint's consumer profiles); "
+              "use --ros", file=sys.stderr)
+        setattr(namespace, self.dest, values)
+
+
+def _add_ros(p) -> None:
+    """ROS 1 or 2 publisher behaviour. It was `--profile`, which in `lint` names consumer profiles: one meaning
+    per word, the old spelling kept as a deprecated alias."""
+    p.add_argument("--ros", dest="profile", choices=["ros2", "ros1"], default="ros2",
+                   help="robot_state_publisher of ROS 2 (default) or ROS 1")
+    p.add_argument("--profile", dest="profile", choices=["ros2", "ros1"], default="ros2", action=_Deprecated,
+                   help=argparse.SUPPRESS)
 
 
 def _load(ns, want_xml: bool = False):
@@ -90,8 +102,13 @@ def _model_path(ns) -> str:
 
 def _run(fn):
     def wrapped(ns) -> int:
+        from urdfcheck.core import door
+
+        # every read of the command through the door: the checkout, the packages resolved, what is typed
+        typed = (getattr(ns, "model", None), getattr(ns, "joint_states", None), getattr(ns, "config", None))
         try:
-            return fn(ns)
+            with door.guarding(typed):
+                return fn(ns)
         except UsageError as e:
             print(usage_message(ns.command, e), file=sys.stderr)
             return EXIT_USAGE
@@ -112,7 +129,7 @@ def add_parsers(subparsers) -> None:
                    help="movable joints without --joint are at 0 (default: an error naming them)")
     p.add_argument("--format", choices=["text", "json"], default="text")
     p.add_argument("--precision", type=int, default=6, help="decimals in text output (default 6)")
-    _add_load_options(p)
+    add_options(p, "tf")
     p.set_defaults(func=_run(cmd_tf))
 
     p = subparsers.add_parser("publish", help="what robot_state_publisher would publish for joint states",
@@ -122,7 +139,7 @@ def add_parsers(subparsers) -> None:
     p.add_argument("model", metavar="MODEL")
     p.add_argument("--joint-states", required=True, metavar="FILE",
                    help="JSON or YAML: a list of {name: [...], position: [...], stamp: SECONDS|[sec, nanosec]}")
-    p.add_argument("--profile", choices=["ros2", "ros1"], default="ros2")
+    _add_ros(p)
     p.add_argument("--publish-frequency", type=float, default=None, metavar="HZ",
                    help="default 20 (ros2) or 50 (ros1)")
     p.add_argument("--ignore-timestamp", action="store_true")
@@ -130,15 +147,15 @@ def add_parsers(subparsers) -> None:
                    help="ros2 frame_prefix (prepended verbatim) or ros1 tf_prefix ('prefix/frame')")
     p.add_argument("--no-tf-static", dest="use_tf_static", action="store_false", default=None,
                    help="ros1 use_tf_static:=false: fixed transforms go on /tf every publish interval")
-    _add_load_options(p)
+    add_options(p, "publish")
     p.set_defaults(func=_run(cmd_publish))
 
     p = subparsers.add_parser("tree", help="the TF tree robot_state_publisher builds (static/dynamic edges)")
     p.add_argument("model", metavar="MODEL")
     p.add_argument("--format", choices=["text", "mermaid", "dot", "json"], default="text")
     p.add_argument("--frame-prefix", default="", metavar="PREFIX")
-    p.add_argument("--profile", choices=["ros2", "ros1"], default="ros2")
-    _add_load_options(p)
+    _add_ros(p)
+    add_options(p, "tree")
     p.set_defaults(func=_run(cmd_tree))
 
     p = subparsers.add_parser("verify", help="check the publisher against Pinocchio and yourdfpy",
@@ -162,7 +179,7 @@ def add_parsers(subparsers) -> None:
     p.add_argument("--max-dof", type=int, default=None, help="refuse Pinocchio above this many DoF (default 256)")
     p.add_argument("--max-depth", type=int, default=None,
                    help="refuse Pinocchio above this chain depth (default 1000)")
-    _add_load_options(p)
+    add_options(p, "verify")
     p.set_defaults(func=_run(cmd_verify))
 
 

@@ -49,7 +49,7 @@ class Value(FrozenRecord):
         return str(self.value)
 
 
-def read_capped(path, max_bytes: int, what: str = "file") -> bytes:
+def read_capped(path, max_bytes: int, what: str = "file", *, runner: bool = False) -> bytes:
     """The bytes of a consumer file, refusing one over `max_bytes`. Raises ConsumerError."""
     import os
 
@@ -59,13 +59,14 @@ def read_capped(path, max_bytes: int, what: str = "file") -> bytes:
     if leaves_cwd(file):
         raise ConsumerError(f"{what} is, or lies in, a symbolic link that leads out of the working directory; "
                             "not read", Location(file))
+    from urdfcheck.core import door
+
     try:
-        size = os.path.getsize(file)
+        # confined first: the size of a file outside the run's roots is not told either
+        size = os.path.getsize(door.confine(file, runner=runner))
         if size > max_bytes:
             raise ConsumerError(f"{what} is larger than {max_bytes} bytes ({size}); refused", Location(file))
-        from urdfcheck.core.safeio import read_file
-
-        return read_file(file, max_bytes)  # a regular file only: a committed FIFO must not block
+        return door.read_bytes(file, limit=max_bytes, runner=runner)  # inside the roots; never a FIFO
     except OSError as e:
         raise ConsumerError(f"cannot read file: {e.strerror or e}", Location(file)) from None
 

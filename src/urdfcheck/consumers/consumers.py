@@ -43,11 +43,19 @@ class Consumers(Record):
     package_single = True
     elsewhere_localization: list = ()
     workspace: str | None = None  # the folder whose joint state broadcasters may run beside this deployment
+    moveit: list = ()  # consumers.moveit.MoveItConfig: the MoveIt configs paired with the model (issue 41)
 
     plugin_files: tuple = ()
 
     def settle(self, model) -> Consumers:
-        """Add the package's unread parameter files, once, now that the model is known."""
+        """Add the package's unread parameter files, once, now that the model is known; and, for a deployment or
+        a config's model, the MoveIt configs beside the model (discovery looks for them itself)."""
+        if self.origin != "discovered" and not self.__dict__.get("_moveit_looked"):
+            self._moveit_looked = True
+            entry = getattr(model, "source", None)
+            root = _package_root(entry) if entry else None
+            if root is not None and not self.moveit:
+                self.moveit = _moveit(entry, model, root, {}, self.notes)
         plugin, self.plugin_files = self.plugin_files, ()
         if plugin:
             from urdfcheck.consumers.pairing import drop_unloaded
@@ -270,7 +278,9 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
         pf = r.params(p, errs)
         if pf is None:
             if single or real in mine:
-                out.errors.extend(errs)
+                from urdfcheck.consumers.params import foreign
+
+                out.errors.extend(e for e in errs if real in mine or not foreign(p, e))
             continue
         if single or real in mine or _names_a_joint(pf, joints):
             pfs.append(pf)
@@ -301,7 +311,18 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     from urdfcheck.consumers.pairing import others_files
 
     out.unknown = package_unknowns(out) + others_files(skipped)
+    out.moveit = _moveit(entry, model, root, pk, out.notes)
     return out
+
+
+def _moveit(entry: str, model, package: Path, packages: dict, notes: list) -> list:
+    """The MoveIt configs in the model's package and beside it (issue 41); best effort, like discovery."""
+    from urdfcheck.consumers.moveit import moveit_configs
+
+    try:
+        return moveit_configs(entry, model, package, packages=packages, notes=notes)
+    except Exception:  # noqa: BLE001 - a MoveIt config that cannot be read leaves the model's other checks alone
+        return []
 
 
 def _references(entry: str, root, several: bool, params, launches, packages) -> tuple[set, set]:
@@ -409,8 +430,8 @@ def _mentions(path: str, name: str) -> bool:
         return False
     try:
         from urdfcheck.consumers.pairing import named_in
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        return named_in(read_file(path, 2 * 1024 * 1024), name)  # agv.urdf is not named by agv.urdf.xacro
+        return named_in(door.read_bytes(path, limit=2 * 1024 * 1024), name)  # agv.urdf is not named by agv.urdf.xacro
     except OSError:
         return False

@@ -183,6 +183,9 @@ class Controller(Record):
     _fields = ('name', 'node', 'type', 'type_loc', 'loc', 'kind', 'ros', 'file', 'params', 'joints', 'broadcasts_all',
                'state_joints', 'drive', 'odom_tf', 'frames', 'notes', 'components', 'wheels')
     inferred = False
+    # configured in a file the deployment loads, while the deployment's spawners (all read) start others: a
+    # controller for another launch-argument choice (schunk_svh's left_hand when `control` is right_hand)
+    idle = False
 
     def __init__(self, name: str,
                  node: str,
@@ -431,6 +434,14 @@ def _finish(c: Controller, names_set: set[str]) -> None:
             c.state_joints += _joint_uses(extra[0], extra[1], c.name, set(), (), (), role="extra")
     elif c.kind == JSC:
         c.broadcasts_all = True
+        # ROS 1 joint_state_controller's extra_joints: [{name:, position:, ...}] published with those values
+        # (a passive caster's joints): state sources, with no interface claims
+        v = p.get("extra_joints")
+        items = v.value if v is not None and isinstance(v.value, list) else []
+        names = [i if isinstance(i, str) else i.get("name") for i in items[:1000] if isinstance(i, (str, dict))]
+        names = [n for n in names if isinstance(n, str) and n]
+        if names:
+            c.state_joints += _joint_uses(names, v, c.name, set(), (), (), role="extra")
     elif c.kind == OTHER:
         from urdfcheck.consumers import catalog
 

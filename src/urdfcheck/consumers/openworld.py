@@ -96,7 +96,7 @@ def _read_and_silent(node, workspace: str | None) -> bool:
 
 
 def _silent_script(workspace: str, package: str, exe: str) -> bool:
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
     from urdfcheck.load.discover import _walk
     from urdfcheck.load.packages import leaves_cwd, workspace_packages
 
@@ -106,7 +106,7 @@ def _silent_script(workspace: str, package: str, exe: str) -> bool:
     if len(hits) != 1 or leaves_cwd(hits[0]):
         return False
     try:
-        text = read_file(hits[0], 1024 * 1024)
+        text = door.read_bytes(hits[0], limit=1024 * 1024)
     except OSError:
         return False
     if not (hits[0].endswith(".py") or text.startswith(b"#!") and b"python" in text.split(b"\n", 1)[0]):
@@ -133,10 +133,10 @@ def _gives_a_model(li) -> bool:
     if any(s.description is not None or getattr(s, "unread", "") for s in li.state_publishers) \
             or getattr(li, "descriptions", None):
         return True
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
     try:
-        return b"robot_description" in read_file(li.path, 2 * 1024 * 1024)
+        return b"robot_description" in door.read_bytes(li.path, limit=2 * 1024 * 1024)
     except OSError:
         return False
 
@@ -254,7 +254,9 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
         pf = reader.params(f, errs)
         if pf is None:
             if single or real in mine:
-                c.errors.extend(e for e in errs if e not in c.errors)
+                from urdfcheck.consumers.params import foreign
+
+                c.errors.extend(e for e in errs if e not in c.errors and (real in mine or not foreign(f, e)))
             continue
         if single or real in mine or names_a_joint(pf, joints):
             pfs.append(pf)
@@ -352,13 +354,13 @@ def _broadcasters(root: str) -> list:
     from urdfcheck.consumers.common import ConsumerError
     from urdfcheck.consumers.controllers import JSB, JSC, read_controllers
     from urdfcheck.consumers.params import read_params
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
     from urdfcheck.load.discover import discover
 
     out = []
     for f in discover(root).params:
         try:
-            if not _BROADCASTER.search(read_file(f, 2 * 1024 * 1024)):
+            if not _BROADCASTER.search(door.read_bytes(f, limit=2 * 1024 * 1024)):
                 continue
         except OSError:
             continue

@@ -69,7 +69,7 @@ def _name_of(path: str, paths) -> str:
 def launch_files_named(launches, models, params) -> dict[str, set[str]]:
     """model realpath -> the parameter files (realpaths) a launch file that mentions that model (by file name)
     loads (names by file name): a launch file naming two models pairs its files with both."""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
     from urdfcheck.load.packages import leaves_cwd
 
     out: dict[str, set[str]] = {}
@@ -77,7 +77,7 @@ def launch_files_named(launches, models, params) -> dict[str, set[str]]:
         if leaves_cwd(lf):
             continue
         try:
-            text = read_file(lf, MAX_LAUNCH_BYTES)
+            text = door.read_bytes(lf, limit=MAX_LAUNCH_BYTES)
         except OSError:
             continue
         named = [m for m in models if named_in(text, os.path.basename(m))]

@@ -164,12 +164,31 @@ def _has_ros2_key(value, depth=0) -> bool:
     return ROS2_KEY in value or any(_has_ros2_key(v, depth + 1) for v in value.values())
 
 
+NOT_A_MAPPING = "a parameter file must be a mapping at the top level"
+
+
+def foreign(path: str, error) -> bool:
+    """A YAML file found in a config folder that is another tool's, not a ROS parameter file, so that failing to
+    read it as one is no defect (issue 37): OpenCV's FileStorage (`%YAML:1.0`, which PyYAML refuses: camera
+    calibrations, VINS configs), or a top-level sequence (ros_gz_bridge's topic list; no ROS parameter loader
+    takes one). Said only of files found by their folder: a file a launch file or the model names stays C007."""
+    if str(getattr(error, "message", error)).startswith(NOT_A_MAPPING):
+        return True
+    from urdfcheck.core.door import read_bytes
+
+    try:
+        head = read_bytes(path, limit=256)
+    except OSError:
+        return False
+    return head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"%YAML:")
+
+
 def params_from_doc(doc: YamlDoc) -> ParamFile:
     data = doc.data
     if data is None:
         return ParamFile(doc.file, "empty", {}, doc)
     if not isinstance(data, dict):
-        raise ConsumerError("a parameter file must be a mapping at the top level", doc.loc())
+        raise ConsumerError(NOT_A_MAPPING, doc.loc())
     nodes: dict[str, NodeParams] = {}
     notes: list = list(doc.notes)
     if _has_ros2_key(data):

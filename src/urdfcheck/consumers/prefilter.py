@@ -1,6 +1,6 @@
 """Which parameter files found beside a model are worth parsing: a look at their bytes, before PyYAML.
 
-In a package with several models, zero-config discovery (`consumers.discover_consumers`) keeps a parameter
+In a package with several models, zero-config discovery (`consumers.consumers.discover_consumers`) keeps a parameter
 file for a model only when one of its values names a joint of that model (`_names_a_joint`); a file that fails
 to parse is dropped there without a word. So a file whose bytes hold none of the model's joint names cannot be
 kept, and is not parsed: example-robot-data's 69 models share one package whose YAML files name none of the
@@ -36,10 +36,10 @@ def may_name(data: bytes, names) -> bool:
 
 def worth_parsing(path, names) -> bool:
     """`may_name` for a file; True when it cannot be read or is over the cap (its reader says why)."""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
     try:
-        data = read_file(path, LIMIT)
+        data = door.read_bytes(path, limit=LIMIT)
     except OSError:
         return True
     return len(data) > LIMIT or may_name(data, names)

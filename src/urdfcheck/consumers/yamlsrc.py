@@ -284,9 +284,11 @@ def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_
     return YamlDoc(file, data, b.value_locs, b.key_locs, b.notes)
 
 
-def load_yaml(path: str | os.PathLike, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES) -> YamlDoc:
-    """Read and parse a YAML file. Raises ConsumerError (unreadable, too large, bad YAML, bomb)."""
+def load_yaml(path: str | os.PathLike, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES,
+              runner: bool = False) -> YamlDoc:
+    """Read and parse a YAML file. Raises ConsumerError (unreadable, too large, bad YAML, bomb). `runner`: the
+    file is the runner's (core.door), as a config named or found above the checkout is."""
     from urdfcheck.consumers.common import read_capped
 
     file = str(path)
-    return parse_yaml(read_capped(file, max_bytes), file, max_bytes=max_bytes, max_nodes=max_nodes)
+    return parse_yaml(read_capped(file, max_bytes, runner=runner), file, max_bytes=max_bytes, max_nodes=max_nodes)

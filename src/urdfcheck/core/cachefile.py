@@ -23,14 +23,37 @@ def digest_json(value) -> str:
     return digest(json.dumps(value, ensure_ascii=False, separators=(",", ":")).encode("utf-8", "surrogateescape"))
 
 
+def linked_in_checkout(folder: str, cwd: str) -> bool:
+    """`folder` (absolute) lies in the checkout around `cwd` and a folder on its way there, itself included, is a
+    symbolic link: a `.urdfcheck-cache` link committed in a pull request would send the cache's writes and its
+    pruning anywhere the runner may write. The runner's own cache folder elsewhere may be reached through links."""
+    from urdfcheck.core.checkout import around
+
+    top = around(os.path.abspath(cwd))
+    folder = os.path.normpath(folder)
+    if not folder.startswith(top.rstrip(os.sep) + os.sep):
+        return False
+    d = folder
+    while len(d) > len(top):
+        if os.path.islink(d):
+            return True
+        d = os.path.dirname(d)
+    return False
+
+
 def versions(folder: str) -> list[str]:
-    """The entries (.json) in `folder`, most recently used first."""
+    """The entries (.json) in `folder`, most recently used first; none when `folder` is a symbolic link (a
+    key's folder a checked tree planted), and no entry that is one."""
     found = []
+    if os.path.islink(folder):
+        return []
     try:
         with os.scandir(folder) as it:
             for e in it:
                 if e.name.endswith(".json"):
                     try:
+                        if e.is_symlink():
+                            continue
                         found.append((e.stat(follow_symlinks=False).st_mtime_ns, e.path))
                     except OSError:
                         continue
@@ -43,10 +66,12 @@ def read_json(path: str, limit: int):
     """The JSON value in `path`, or None (missing, larger than `limit`, not JSON)."""
     import json
 
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
+    if os.path.islink(path) or os.path.islink(os.path.dirname(path)):
+        return None  # the cache writes no links: one is planted
     try:
-        data = read_file(path, limit)
+        data = door.read_bytes(path, limit=limit, runner=True)  # the runner's cache folder, named by them
     except OSError:
         return None
     if len(data) > limit:
@@ -58,7 +83,10 @@ def read_json(path: str, limit: int):
 
 
 def write(folder: str, name: str, data: bytes) -> str:
-    """`data` as `folder`/`name`, atomically (the folder is made, private to the user); returns the path."""
+    """`data` as `folder`/`name`, atomically (the folder is made, private to the user); returns the path.
+    Never through a folder that is a symbolic link (the cache makes none: one was planted)."""
+    if os.path.islink(folder) or os.path.islink(os.path.dirname(folder)):
+        raise OSError(f"the cache folder {os.path.basename(folder)} is a symbolic link; not written")
     os.makedirs(folder, mode=0o700, exist_ok=True)
     final = os.path.join(folder, name)
     tmp = os.path.join(folder, f".{name}.{os.getpid()}.{id(data):x}.tmp")

@@ -36,3 +36,46 @@ def relative(p: str, base: str) -> str | None:
     if t is not None and (p == t or p.startswith(t.rstrip(os.sep) + os.sep)):
         return os.path.relpath(p, base)
     return None
+
+
+def around(folder: str) -> str:
+    """The checkout holding the folder `folder` (absolute): the nearest folder above holding `.git`, else the
+    outermost holding a package.xml, else `folder` itself."""
+    return marked(folder) or folder
+
+
+def marked(folder: str) -> str | None:
+    """`around`, or None when no folder at or above `folder` holds `.git` or a package.xml."""
+    found = top(folder)
+    if found is not None:
+        return found
+    if os.path.exists(os.path.join(folder, ".git")) or os.path.isfile(os.path.join(folder, "package.xml")):
+        return folder
+    return None
+
+
+def run_roots(typed=(), cwd: str | None = None) -> list[str]:
+    """The folders a run may read below before any package is resolved (core.door.guarded): the checkout around
+    each path the runner typed, and the checkout around the working directory when it lies in one (or when
+    nothing is typed). A working directory in no checkout (`/` in a container, a home folder) is no root when
+    paths are typed: it would hold every file the checked tree could link to.
+    A typed path inside a root adds nothing: its real path must stay inside (a link committed there that leads
+    out is refused by the door)."""
+    base = os.path.abspath(cwd or os.getcwd())
+    typed = [os.path.normpath(os.path.join(base, os.fspath(p))) for p in typed if p]
+    here = _repository(marked(base))
+    roots = [here] if here is not None else ([] if typed else [base])
+    for a in typed:
+        if any(a == r or a.startswith(r.rstrip(os.sep) + os.sep) for r in roots):
+            continue
+        folder = a if os.path.isdir(a) else os.path.dirname(a)
+        roots.append(_repository(marked(folder)) or folder)
+    return roots
+
+
+def _repository(found: str | None) -> str | None:
+    """The folder a run may read for a checkout `marked` found: the `.git` folder's own; without `.git` (a copy, an
+    archive) the folder holding the outermost package, whose sibling packages belong to the same repository."""
+    if found is None or os.path.exists(os.path.join(found, ".git")):
+        return found
+    return os.path.dirname(found) if os.path.isfile(os.path.join(found, "package.xml")) else found

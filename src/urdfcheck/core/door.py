@@ -67,6 +67,7 @@ class _Run:
     def __init__(self, roots, budget: RunBytes):
         self.roots: list[str] = []
         self.budget = budget
+        self.unconfined = False  # the runner lowered the guard (`unconfined`)
         for r in roots:
             self.add_root(r)
 
@@ -120,7 +121,7 @@ def confine(path, *, runner: bool = False) -> str:
     p = os.path.abspath(os.fspath(path))
     real = os.path.realpath(p)
     run = _current()
-    if run is None or not run.roots:
+    if run is None or not run.roots or run.unconfined:
         return real
     if any(_under(real, r) for r in run.roots):
         return real
@@ -155,7 +156,7 @@ def read_bytes(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) -
     try:
         data = safeio.read_file(real, limit)
     except safeio.NotRegularFile as e:
-        raise Refused(_shown(path), e.strerror) from None
+        raise Refused(_shown(path), e.strerror or "not a regular file") from None
     run = _current()
     if run is not None:
         run.budget.take(len(data), _shown(path))
@@ -224,7 +225,7 @@ def open_stream(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) 
         safeio.check_regular(real)
         fd = os.open(real, safeio._FLAGS)
     except safeio.NotRegularFile as e:
-        raise Refused(_shown(path), e.strerror) from None
+        raise Refused(_shown(path), e.strerror or "not a regular file") from None
     st = os.fstat(fd)
     if not _regular(st.st_mode):
         os.close(fd)
@@ -236,6 +237,42 @@ def _regular(mode: int) -> bool:
     import stat
 
     return stat.S_ISREG(mode)
+
+
+def active() -> bool:
+    """A run is guarded (`guarded` entered): a caller that may be inside one enters its own only when not."""
+    return _current() is not None
+
+
+def guarding(typed=()):
+    """`guarded` around the checkout of the working directory and the paths the runner `typed`
+    (core.checkout.run_roots), unless a run is guarded already: then its roots and budget go on, and the roots of
+    what is typed are added to it."""
+    from urdfcheck.core.checkout import run_roots
+
+    roots = run_roots([p for p in typed if p])
+    run = _current()
+    if run is None:
+        return guarded(roots)
+    for r in roots:  # an inner run (the base revision's tree of --diff-base): what it was typed is the runner's
+        if not any(_under(os.path.realpath(r), x) for x in run.roots):
+            run.add_root(r)
+    return contextlib.nullcontext()
+
+
+@contextlib.contextmanager
+def unconfined():
+    """The runner lowered the guard (`--trusted`): reads keep their per-file checks and caps and still count in
+    the run's budget, but are not confined to the roots."""
+    run = _current()
+    if run is None or run.unconfined:
+        yield
+        return
+    run.unconfined = True
+    try:
+        yield
+    finally:
+        run.unconfined = False
 
 
 def runner_folder(path) -> str:
@@ -254,3 +291,13 @@ def budget() -> RunBytes | None:
     read from a file, such as git blobs streamed from `git cat-file`."""
     run = _current()
     return run.budget if run is not None else None
+
+
+def leaves(path) -> bool:
+    """Whether the door would refuse `path` for leaving the run's roots (a committed link out of the checkout):
+    discovery lists such a model so that the loader names it (X014) rather than it dropping out of the run."""
+    try:
+        confine(path)
+    except Refused:
+        return True
+    return False

@@ -30,6 +30,21 @@ HOW = {
     "probe": (False, "a file that may be a fragment of another model"),
     "shape": (False, "picked by its shape"),
     "guess": (False, "a guess"),
+    # issue 37's precision pass (docs/triage.md): guesses the corpora showed
+    # a discovered model no launch file runs: the values its required xacro arguments get are unknown
+    "undeployed": (False, "no launch file of the checkout runs it, so the values of its required arguments are "
+                          "unknown"),
+    # boolean options flipped together (automatic variants): each option alone is linted as a variant of its own
+    "combination": (False, "options set together in a way no launch file or config was seen to use"),
+    # a controller configured in the deployment's parameter files that none of its (all read) spawners starts
+    "idle": (False, "configured but not spawned by this deployment (another launch-argument choice may start it)"),
+    # a launch-argument value other than the default (a variant) whose model reads a file that does not exist
+    "choice": (False, "a launch-argument value other than the default, which may need other arguments its users give"),
+    # a xacro argument a launch file passes from a launch argument without default
+    "required": (False, "a launch argument without default, which the launch file's users give"),
+    # a package the checkout references but does not hold: the workspace's business (a dependency), unless the
+    # runner named where it lives
+    "outside": (False, "a package outside the checkout, which the workspace that builds it provides"),
 }
 
 

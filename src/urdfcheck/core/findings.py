@@ -86,6 +86,9 @@ class Finding(TupleRecord):
     # the planning steps the finding rests on (core.evidence.Step): how its model, deployment, parameter files
     # and features were chosen; a finding with a step that is a guess is said at info (rules.engine)
     evidence: tuple = ()
+    # every active profile whose consumer the finding concerns (`profile` is the first): two roots are refused by
+    # Pinocchio, Gazebo, KDL and PyBullet alike, and `--profile gazebo,kdl` says so for both
+    profiles: tuple = ()
 
     def places(self) -> tuple[Place, ...]:
         return self.where or (Place(self.model, self.variant),)

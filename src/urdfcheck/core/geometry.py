@@ -26,18 +26,6 @@ def rpy_matrix(r: float, p: float, y: float) -> tuple:
     )
 
 
-def axis_angle_matrix(axis, angle: float) -> tuple:
-    """Rotation about a unit axis (Rodrigues)."""
-    x, y, z = axis
-    c, s = math.cos(angle), math.sin(angle)
-    t = 1.0 - c
-    return (
-        (t * x * x + c, t * x * y - s * z, t * x * z + s * y),
-        (t * x * y + s * z, t * y * y + c, t * y * z - s * x),
-        (t * x * z - s * y, t * y * z + s * x, t * z * z + c),
-    )
-
-
 def from_rt(rot, xyz) -> Mat:
     return (
         (rot[0][0], rot[0][1], rot[0][2], float(xyz[0])),
@@ -45,10 +33,6 @@ def from_rt(rot, xyz) -> Mat:
         (rot[2][0], rot[2][1], rot[2][2], float(xyz[2])),
         (0.0, 0.0, 0.0, 1.0),
     )
-
-
-def pose_matrix(xyz, rpy) -> Mat:
-    return from_rt(rpy_matrix(*rpy), xyz)
 
 
 def quat_from_rpy(r: float, p: float, y: float) -> tuple[float, float, float, float]:

@@ -30,7 +30,7 @@ import subprocess
 import tempfile
 import threading
 
-from urdfcheck.core import door
+from urdfcheck.core import door, lazyre
 
 # a blob above the door's cap for one file is written empty (and noted): the working tree's copy is not read either
 MAX_FILE = door.DEFAULT_FILE_BYTES
@@ -45,7 +45,7 @@ _CONFIG = (
     "fetch.recurseSubmodules=false", "submodule.recurse=false", "core.untrackedCache=false",
     "log.showSignature=false", "gc.auto=0", "maintenance.auto=false",
 )
-_ODD = re.compile(r"[\x00-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+_ODD = lazyre.compile(r"[\x00-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
 
 
 class GitError(ValueError):
@@ -171,6 +171,7 @@ class Repo:
                                     stderr=subprocess.DEVNULL, env=env(), cwd=self.work_tree)
         except FileNotFoundError:
             raise GitError("git is not installed") from None
+        assert proc.stdout is not None  # stdout=PIPE
 
         def feed():  # a thread: cat-file stops reading while its output is not read
             try:

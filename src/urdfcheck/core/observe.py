@@ -221,9 +221,9 @@ def fingerprint(kind: str, path: str, digest) -> str:
     if not stat.S_ISREG(mode):
         return _type(mode)
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        return "f" + digest(read_file(path, 1 << 30))
+        return "f" + digest(door.read_bytes(path, limit=1 << 30))
     except OSError:
         return "?"
 

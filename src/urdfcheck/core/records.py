@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import collections
 
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing (start-up); mypy reads the name as true
+
 # what a class body may not define (namedtuple's own machinery), and what it defines but is not copied
 _PROHIBITED = frozenset(("__new__", "__init__", "__slots__", "__getnewargs__", "_fields", "_field_defaults",
                          "_make", "_replace", "_asdict", "_source"))
@@ -46,11 +48,14 @@ class _TupleMeta(type):
         return cls
 
 
-class TupleRecord(metaclass=_TupleMeta):
-    """`class Pose(TupleRecord): xyz: Vec3 = (0.0, 0.0, 0.0)` is a `collections.namedtuple` with those fields,
-    defaults, methods and properties, like `typing.NamedTuple` (whose annotations cost a compile each)."""
+if TYPE_CHECKING:  # what it is to a type checker: a NamedTuple (the metaclass below builds the same)
+    from typing import NamedTuple as TupleRecord
+else:
+    class TupleRecord(metaclass=_TupleMeta):
+        """`class Pose(TupleRecord): xyz: Vec3 = (0.0, 0.0, 0.0)` is a `collections.namedtuple` with those fields,
+        defaults, methods and properties, like `typing.NamedTuple` (whose annotations cost a compile each)."""
 
-    _is_base = True
+        _is_base = True
 
 
 class Record:
@@ -69,7 +74,7 @@ class Record:
             return NotImplemented
         return self._values() == other._values()
 
-    __hash__ = None  # mutable: like a dataclass, equal by value and unhashable
+    __hash__ = None  # type: ignore[assignment]  # mutable: like a dataclass, equal by value and unhashable
 
 
 class FrozenRecord(Record):
@@ -104,6 +109,6 @@ class FrozenRecord(Record):
     def __delattr__(self, name):
         raise AttributeError(f"{type(self).__name__} is immutable: cannot delete {name!r}")
 
-    def __hash__(self) -> int:
+    def __hash__(self) -> int:  # type: ignore[override]  # immutable: hashable again
         return hash(self._values())
 

@@ -173,9 +173,9 @@ def yaml_suppressions(file: str) -> list[Suppression]:
     hit = _YAML_CACHE.get(key)
     if hit is None:
         try:
-            from urdfcheck.core.safeio import read_file
+            from urdfcheck.core import door
 
-            text = read_file(file, 16 * 1024 * 1024)[:16 * 1024 * 1024].decode("utf-8", "replace")
+            text = door.read_bytes(file, limit=16 * 1024 * 1024)[:16 * 1024 * 1024].decode("utf-8", "replace")
         except OSError:
             text = ""
         hit = [Suppression(file, a, b, c, d) for a, b, c, d in scan_yaml_comments(text)]
@@ -187,3 +187,44 @@ def yaml_suppressions(file: str) -> list[Suppression]:
 
 def is_yaml(file: str) -> bool:
     return file.lower().endswith(YAML_SUFFIXES)
+
+
+# --- SRDF files (MoveIt semantic descriptions that M findings point into) --------------------------
+#
+#     <!-- urdfcheck: ignore[M003] reason -->   before an element: that element
+#     <!-- urdfcheck: ignore-file[M011] -->     anywhere: the whole file
+#
+# Read like YAML files: lazily, when a finding points into the file, cached per (path, mtime, size).
+
+SRDF_SUFFIXES = (".srdf", ".srdf.xacro")
+_SRDF_CACHE: dict = {}
+
+
+def is_srdf(file: str) -> bool:
+    return file.lower().endswith(SRDF_SUFFIXES)
+
+
+def srdf_suppressions(file: str) -> list[Suppression]:
+    """Suppressions written as XML comments in the SRDF `file` (a finding's `Location.file`). An unreadable or
+    malformed file has none."""
+    import os
+
+    try:
+        st = os.stat(file)
+    except OSError:
+        return []
+    key = (file, st.st_mtime_ns, st.st_size)
+    hit = _SRDF_CACHE.get(key)
+    if hit is None:
+        hit = []
+        try:
+            from urdfcheck.core import door, xmlfront
+
+            root, _ = xmlfront.parse(door.read_bytes(file, limit=16 * 1024 * 1024))
+            hit = [Suppression(file, a, b, c, d) for a, b, c, d in scan_comments(root)]
+        except Exception:  # noqa: BLE001 - a file that cannot be read or parsed suppresses nothing
+            hit = []
+        if len(_SRDF_CACHE) > 256:
+            _SRDF_CACHE.clear()
+        _SRDF_CACHE[key] = hit
+    return hit

@@ -53,6 +53,11 @@ class Limits(FrozenRecord):
     but `env_keep` (argv is always replaced)."""
 
     _fields = ('memory', 'timeout', 'result', 'scrub_env', 'env_keep')
+    memory: int | None
+    timeout: float
+    result: int | None
+    scrub_env: bool
+    env_keep: tuple
 
     def __init__(self, memory: int | None = DEFAULT_MEMORY, timeout: float = DEFAULT_TIMEOUT,
                  result: int = MAX_RESULT, scrub_env: bool = True, env_keep=()):
@@ -274,7 +279,7 @@ def _child(fn, lim: Limits, call, preload, prog_w, efd_w, capture, go_r, job_fil
     gc.enable()  # a one-shot lint pauses the collector; an expansion makes cyclic garbage (DOM trees)
     t0 = time.monotonic()
     try:
-        payload = ("ok", fn(*args, **kwargs))
+        payload: tuple = ("ok", fn(*args, **kwargs))
     except MemoryError:
         payload = ("memory", "out of memory")
     except RecursionError:
@@ -365,17 +370,23 @@ class Job:
         self.value = value
         self.grace = grace
         self.name = ""
-        self.limits = None
+        self.limits: Limits | None = None
         self.group = False  # the child leads a process group: kills reach the children it forked
-        self.prog_fd = self.go_fd = self.job_file = None
+        self.prog_fd: int | None = None
+        self.go_fd: int | None = None
+        self.job_file = None  # a prepared child's job file (a binary file object)
         self.progress = (0, 0)
         self.started = time.monotonic()
         self.seconds = 0.0
         self.stderr = ""
-        self._chunks, self._size, self._errs, self._failure = [], 0, [], None
+        self._chunks: list[bytes] = []
+        self._errs: list[bytes] = []
+        self._size = 0
+        self._failure: Failure | None = None
 
     def send(self, *args) -> None:
         """Hand a prepared child its arguments; its clock starts now."""
+        assert self.job_file is not None and self.go_fd is not None, "send: the child was not prepared"
         pickle.dump(args, self.job_file, protocol=pickle.HIGHEST_PROTOCOL)
         self.job_file.flush()
         try:

@@ -116,7 +116,7 @@ def _prolog_doctype(data: bytes, max_items: int = 1000) -> int | None:
             return i
         end = b"?>" if data.startswith(b"<?", i) else b"-->" if data.startswith(b"<!--", i) else None
         j = data.find(end, i + 2) if end is not None else -1
-        if j < 0:
+        if j < 0 or end is None:
             return None
         i = j + len(end)
     return None

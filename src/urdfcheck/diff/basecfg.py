@@ -233,7 +233,7 @@ def _rewrite(data: bytes, name: str, folder: str, config_dir: str, said: dict | 
                 d["file"] = absolute(d["file"])
     if isinstance(table.get("packages"), dict):
         table["packages"] = {k: absolute(v) for k, v in table["packages"].items()}
-    import yaml
+    from urdfcheck.core.yamlimport import yaml
 
     out = os.path.join(folder, "urdfcheck.yaml")
     with open(out, "w", encoding="utf-8") as f:

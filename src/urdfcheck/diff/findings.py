@@ -10,8 +10,8 @@ moved lines is unchanged; a third identical finding where the base had two is ne
 from __future__ import annotations
 
 import os
-import re
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Finding, clean_text
 from urdfcheck.core.records import Record
 
@@ -70,8 +70,8 @@ def _line(x: dict) -> str:
     return _clean(f"{_where(x)}: {x['severity']} {x['code']} {x['message']}", 4096)
 
 
-_BIDI = re.compile("[\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
-_MD_SPECIAL = re.compile(r"([\\`*_\[\]|~#!$])")
+_BIDI = lazyre.compile("[\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]")
+_MD_SPECIAL = lazyre.compile(r"([\\`*_\[\]|~#!$])")
 
 
 def _clean(s, limit: int = 500) -> str:

@@ -60,9 +60,10 @@ def _source_line(file: str, line: int | None) -> str:
     lines = _LINES_CACHE.get(file)
     if lines is None:
         try:
-            from urdfcheck.core.safeio import read_file
+            from urdfcheck.core import door
 
-            lines = read_file(file, 64 * 1024 * 1024)[:64 * 1024 * 1024].decode("utf-8", "replace").splitlines()
+            data = door.read_bytes(file, limit=64 * 1024 * 1024)[:64 * 1024 * 1024]
+            lines = data.decode("utf-8", "replace").splitlines()
         except OSError:
             lines = []
         _LINES_CACHE[file] = lines
@@ -113,12 +114,12 @@ def load(path: str) -> Counter:
     """Counter of keys in a baseline file. Raises OSError or ValueError, whose messages never quote the file:
     it may be a link a pull request pointed at a secret (refused when it leaves the working directory), a FIFO
     (refused, never waited on), too large, or nested to exhaust the parser."""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
     from urdfcheck.load.packages import leaves_cwd
 
     if leaves_cwd(path):
         raise ValueError("it is a link that leads out of the working directory; refused")
-    raw = read_file(path, MAX_BYTES)
+    raw = door.read_bytes(path, limit=MAX_BYTES)
     if len(raw) > MAX_BYTES:
         raise ValueError(f"larger than {MAX_BYTES // 2**20} MiB; refused")
     try:

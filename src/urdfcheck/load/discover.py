@@ -6,8 +6,8 @@
   inside `xacro:if`/`unless`, at least one macro or property, and expands to an empty robot; it is linted
   through the robots that include it, never alone);
 * parameter YAML: `*.yaml`/`*.yml` in any `config/`, `params/` or `param/` directory;
-* launch files: `*.launch`, `*.launch.xml`, `*.launch.py`, `*.launch.yaml`, `*.launch.yml` in any `launch/`
-  directory.
+* launch files: names ending in one of `LAUNCH_SUFFIXES` (`*.launch`, `*.launch.xml`, `*.launch.py`,
+  `*_launch.py`, ...) in any `launch/` directory.
 
 Hidden directories and the folders ROS's tools skip by their marker files (COLCON_IGNORE, AMENT_IGNORE,
 CATKIN_IGNORE, which colcon writes into its build/install/log bases; core.walk), never by name, are skipped; at most
@@ -26,7 +26,9 @@ from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
 
 PARAM_DIRS = {"config", "params", "param"}
 LAUNCH_DIRS = {"launch"}
-LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml")
+# the one list of launch-file endings (plan/plan.py, plan/deployments.py and the pre-commit hooks' `files` read it;
+# `_launch.py` is ROS 2's other convention: realsense2_camera's rs_launch.py)
+LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml", "_launch.py")
 _ROLES = (".urdf", ".xacro", ".yaml", ".yml") + LAUNCH_SUFFIXES  # the endings `_scan` sorts by role
 MAX_FILES = 20_000
 HEAD_BYTES = 4 * 1024 * 1024
@@ -76,10 +78,11 @@ def _read_head(path: str, trusted: bool = False, cache: dict | None = None) -> s
     if not trusted and leaves_cwd(path, cache=cache):
         return ""
     try:
-        from urdfcheck.core.safeio import decode_model_text, read_file
+        from urdfcheck.core import door
+        from urdfcheck.core.safeio import decode_model_text
 
         # a regular file only (a FIFO must not block); a UTF-16 model is found, then reported by the loader
-        return decode_model_text(read_file(path, HEAD_BYTES)[:HEAD_BYTES])
+        return decode_model_text(door.read_bytes(path, limit=HEAD_BYTES)[:HEAD_BYTES])
     except OSError:
         return ""
 
@@ -117,7 +120,10 @@ def _is_library(text: str, includes: bool = False) -> bool:
     defs = _definitions(kids, 0)
     # macros or properties only (an `xacro:if` holding only definitions counts): a library, certainly (its
     # expansion is an empty robot). An include may bring a robot body: such a file is expanded to tell
-    return defs is not None and bool(defs & {"macro", "property"}) and (includes or "include" not in defs)
+    # with `includes`, a file of includes only (uuv_simulator's snippets.xacro: the macro libraries of a package
+    # in one include) is a probe too: its expansion has no link unless an included file brings a robot body
+    return defs is not None and (bool(defs & {"macro", "property"}) or (includes and defs == {"include"})) and (
+        includes or "include" not in defs)
 
 
 def _definitions(kids, depth: int) -> set[str] | None:
@@ -188,6 +194,7 @@ def _included_files(ref: str, includer: str, xacros: _Xacros) -> set[str]:
 _LEGACY = lazyre.compile(r"""<\s*include\b[^>]*?\bfilename\s*=\s*(["'])(.*?)\1""", re.S)
 _COMMENTED = lazyre.compile(r"<!--(.*?)(?:-->|\Z)", re.S)
 _SUBST = lazyre.compile(r"\$\{[^}]*\}|\$\([^)]*\)")
+_FIND_PATH = lazyre.compile(r"""\$\(\s*find\s+[\w-]+\s*\)/[^"'<>\s$]+\.xacro\b""")
 
 
 def _fragment_hints(text: str, includer: str, xacros: _Xacros) -> set[str]:
@@ -198,7 +205,11 @@ def _fragment_hints(text: str, includer: str, xacros: _Xacros) -> set[str]:
     import fnmatch
 
     out: set[str] = set()
-    refs = [m.group(2) for m in _LEGACY.finditer(_COMMENT.sub("", text))]
+    bare = _COMMENT.sub("", text)
+    refs = [m.group(2) for m in _LEGACY.finditer(bare)]
+    # a path handed to a macro or property (`thruster_layout="$(find pkg)/urdf/aft.xacro"`) that the macro then
+    # includes (`<xacro:include filename="${thruster_layout}"/>`): vrx's thruster layouts
+    refs.extend(m.group(0) for m in _FIND_PATH.finditer(_INCLUDE.sub("", bare)))
     for c in _COMMENTED.finditer(text):
         refs.extend(m.group(2) for m in _INCLUDE.finditer(c.group(1)))
     for ref in refs:
@@ -321,7 +332,9 @@ def _discover(package_dir, max_files: int, trusted: bool) -> Discovered:
     # a model file linked out of the working directory is listed as a model, so that the loader names it
     # (X014) instead of it silently dropping out of the run; nothing behind the link is read
     real_dirs: dict = {}  # one realpath per folder, not per file
-    models = [] if trusted else [p for p in urdfs + xacros if leaves_cwd(p, cache=real_dirs)]
+    from urdfcheck.core import door
+
+    models = [] if trusted else [p for p in urdfs + xacros if leaves_cwd(p, cache=real_dirs) or door.leaves(p)]
     urdfs = [p for p in urdfs if p not in models]
     xacros = [p for p in xacros if p not in models]
     texts = {p: _read_head(p, trusted, real_dirs) for p in xacros}

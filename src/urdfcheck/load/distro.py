@@ -28,10 +28,10 @@ MAX_FILES = 40
 
 
 def _read(path: str) -> str:
-    from urdfcheck.core.safeio import read_text
+    from urdfcheck.core import door
 
     try:
-        return read_text(path, LIMIT)
+        return door.read_text(path, limit=LIMIT)
     except (OSError, ValueError):
         return ""
 

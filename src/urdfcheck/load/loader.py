@@ -9,10 +9,10 @@ import os
 import re
 from pathlib import Path
 
-from urdfcheck.core import bytescan, lazyre, paths, xmlfront
+from urdfcheck.core import bytescan, door, lazyre, paths, xmlfront
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
-from urdfcheck.core.safeio import UTF8_BOM, encoding_problem, read_file
+from urdfcheck.core.safeio import UTF8_BOM, encoding_problem
 from urdfcheck.core.suppress import Suppression
 from urdfcheck.load import budget, reuse
 from urdfcheck.load.packages import Resolver
@@ -106,7 +106,7 @@ class Expanded(Record):
 
         if self.text is not None:
             return STRIP_RE.sub("", self.text)
-        return read_file(self.entry, MAX_BYTES).decode("utf-8", "replace")
+        return door.read_bytes(self.entry, limit=MAX_BYTES).decode("utf-8", "replace")
 
     def locator(self):
         """`locate` as the model builder calls it: for a plain URDF a function of the element alone (a 10,000-link
@@ -177,7 +177,7 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     caller that only wants the model."""
     p = Path(path)
     entry = paths.shown(p)
-    escapes = not trusted and _links_outside(p, packages)
+    escapes = not trusted and (_links_outside(p, packages) or door.leaves(p))
     resolver = None if escapes else Resolver(packages, near=p.resolve(), environ=environ)
     out = Expanded(entry=entry, xacro=False, files=[entry], args=dict(args or {}), resolver=resolver)
     if escapes:  # a symlink committed in a pull request must not read the runner's files
@@ -194,7 +194,12 @@ def begin(path: str | os.PathLike, args: dict | None = None, *, packages: dict |
     if run is not None:
         timeout, cut = run.timeout(timeout)
     try:
-        data = read_file(p, MAX_BYTES)  # a regular file only: a committed FIFO must not block the run
+        # a regular file only (a committed FIFO must not block the run), inside the run's roots unless trusted
+        if trusted:
+            with door.unconfined():
+                data = door.read_bytes(p, limit=MAX_BYTES)
+        else:
+            data = door.read_bytes(p, limit=MAX_BYTES)
     except OSError as e:
         out.findings.append(_finding("X001", f"cannot read file: {e.strerror}", entry))
         return Pending(out)

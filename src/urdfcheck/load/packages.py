@@ -18,11 +18,23 @@ SCAN_DEPTH = 6
 SCAN_LIMIT = 5000  # directories visited at most
 
 
+def _listed_name(package_xml: Path, root) -> str | None:
+    """`package_name` of a package.xml a workspace scan below `root` listed: the scan looks at folders beside the
+    checkout, not yet roots of the run, so the read is not confined to them, but to `root` (never a link out)."""
+    from urdfcheck.core import door
+
+    real = os.path.realpath(package_xml)
+    if not _below(real, os.path.realpath(root)):
+        return None
+    with door.unconfined():
+        return package_name(package_xml)
+
+
 def package_name(package_xml: Path) -> str | None:
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        head = read_file(package_xml, 65536)
+        head = door.read_bytes(package_xml, limit=65536)
     except OSError:
         return None
     m = _NAME.search(head)
@@ -91,7 +103,7 @@ def scan(root: Path, near: Path | None = None) -> dict[str, Path]:
     for d, entries in folders(root, max_dirs=SCAN_LIMIT, max_depth=SCAN_DEPTH):
         for e in entries:
             if e.name == "package.xml" and e.is_file():
-                name = package_name(Path(e.path))
+                name = _listed_name(Path(e.path), root)
                 if name and (name not in found or _closer(Path(d), found[name], near)):
                     found[name] = Path(d)
     return found
@@ -114,7 +126,7 @@ def workspace_packages(root: str | os.PathLike) -> dict[str, list[Path]]:
     for d, entries in folders(key, max_dirs=WORKSPACE_LIMIT):
         for e in entries:
             if e.name == "package.xml" and e.is_file(follow_symlinks=False):
-                name = package_name(Path(e.path))
+                name = _listed_name(Path(e.path), key)
                 if name:
                     found.setdefault(name, []).append(Path(d))
     _WORKSPACES[key] = found
@@ -247,10 +259,22 @@ class Resolver:
         self._ros_scanned: dict[str, Path] | None = None
         self._own_pkg: tuple | None = None
         self.used: dict[str, Path] = {}
+        from urdfcheck.core import door
+
+        # the folders this resolver lets files be read from are the run's roots too (core.door)
+        # (not the workspace around the input, which may be the folder above the checkout: its packages become
+        # roots one by one, as `find` resolves them)
+        for root in (*self.explicit.values(), self.named_workspace):
+            if root is not None:
+                door.add_root(root)
 
     def find(self, name: str) -> Path | None:
         hit = self._find(name)
         if hit is not None:
+            if name not in self.used:
+                from urdfcheck.core import door
+
+                door.add_root(hit)  # a package the run resolved: its files may be read (core.door)
             self.used[name] = hit
         return hit
 
@@ -435,7 +459,7 @@ def literal_includes(entries, find, max_files: int = MAX_REF_FILES, allow=None):
     name or `$(find known_package)/literal`), breadth first, each once, read as text without expanding: what
     the unresolved packages, a library's robots and a model's Gazebo parameter files are found from.
     `allow(path)`: whether an included file may be looked at at all (asked before any stat or read)."""
-    from urdfcheck.core.safeio import read_file  # a regular file only: a FIFO must not block
+    from urdfcheck.core import door  # a regular file inside the run's roots only: a FIFO must not block
 
     queue, seen = [os.path.abspath(e) for e in entries], set()
     while queue and len(seen) < max_files:
@@ -446,7 +470,7 @@ def literal_includes(entries, find, max_files: int = MAX_REF_FILES, allow=None):
             continue
         seen.add(path)
         try:
-            text = read_file(path, MAX_REF_BYTES)[:MAX_REF_BYTES].decode("utf-8", "replace")
+            text = door.read_bytes(path, limit=MAX_REF_BYTES)[:MAX_REF_BYTES].decode("utf-8", "replace")
         except OSError:
             continue
         yield path, text

@@ -40,11 +40,11 @@ def _declared(text: str, out: dict[str, str]) -> None:
 def boolean_args(path: str, packages: Mapping[str, str] | None = None, *, included: bool = True) -> dict[str, str]:
     """xacro:args whose default is a boolean literal (name -> default), in declaration order: the entry's, then
     (with `included`) those its literal includes declare."""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
     declared: dict[str, str] = {}
     try:
-        text = read_file(path, 4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
+        text = door.read_bytes(path, limit=4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
     except OSError:
         return {}
     _declared(text, declared)
@@ -57,10 +57,10 @@ def boolean_args(path: str, packages: Mapping[str, str] | None = None, *, includ
 def defaulted_args(path: str, packages: Mapping[str, str] | None = None) -> dict[str, str]:
     """The xacro:args declared with a default (name -> its text, the first declaration's), in the entry and its
     literal includes: what a config's `args` replace rather than supply (request.config; issue 36)."""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
     try:
-        text = read_file(path, 4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
+        text = door.read_bytes(path, limit=4 * 1024 * 1024)[:4 * 1024 * 1024].decode("utf-8", "replace")
     except OSError:
         return set()
     texts = [text]
@@ -115,7 +115,10 @@ def auto_variants(path: str, base: Mapping[str, str], packages: Mapping[str, str
     if len(names) <= MAX_AUTO_ARGS:
         rows = list(itertools.product((False, True), repeat=len(names)))
     else:
-        rows = pairwise(len(names))
+        # each flag flipped alone first: a defect one option reaches is seen in a variant of that option alone,
+        # not only inside a combination of several (which no launch file may use: a guess, plan.plan.variants)
+        single = [tuple(i == j for j in range(len(names))) for i in range(len(names))]
+        rows = list(dict.fromkeys([*pairwise(len(names))[:1], *single, *pairwise(len(names))[1:]]))
     out = []
     for flips in rows:
         args = {n: (_BOOLS[flags[n]] if f else flags[n]) for n, f in zip(names, flips)}

@@ -11,7 +11,7 @@ and what is read come from the same code and the same table.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from math import isfinite
 from types import MappingProxyType
 
@@ -22,6 +22,7 @@ from urdfcheck.model import extensions
 from urdfcheck.model import grammar as G
 from urdfcheck.model.robot import (
     Block,
+    FrameRef,
     GazeboPlugin,
     Geometry,
     HardwareItem,
@@ -46,7 +47,7 @@ SRC_ATTR = G.SRC_ATTR
 ZERO, ONE, INERTIA = G.ZERO, G.ONE, G.INERTIA
 X_AXIS = (1.0, 0.0, 0.0)
 POSE0 = Pose()
-NO_DYNAMICS = MappingProxyType({})
+NO_DYNAMICS: Mapping[str, float] = MappingProxyType({})
 TOLERATED = G.TOLERATED
 _SHAPE_SINCE = {tag: G.GRAMMAR[tag].since for tag in G.SHAPES}
 _new = tuple.__new__  # parts filled in field order, without namedtuple's keyword handling (half the cost)
@@ -451,7 +452,7 @@ class _Builder:
 
     # --- extension blocks kept for the contract rules --------------------------------------------------------
     def ros2_control(self, el, in_gazebo: bool) -> Ros2Control:
-        items = {"joint": [], "sensor": [], "gpio": []}
+        items: dict[str, list] = {"joint": [], "sensor": [], "gpio": []}
         plugin = ""
         hw = el.find("hardware")
         if hw is not None:
@@ -479,10 +480,24 @@ class _Builder:
                                     el.get("reference") or ""))
         return out
 
+    def frame_refs(self, el) -> list[FrameRef]:
+        """The frames the sensors of a <gazebo> block name (ROS 2 and ROS 1 gazebo_ros plugins, gz-sim)."""
+        out = []
+        for sensor in el.iter("sensor"):
+            for c in sensor.iter(*FRAME_TAGS):
+                text = (c.text or "").strip()
+                if text and not len(c):
+                    out.append(FrameRef(c.tag, text, self.locate(c), sensor.get("name") or "",
+                                        el.get("reference") or ""))
+        return out
+
     def transmission(self, el) -> Transmission:
         joints = tuple(Interface(j.get("name") or "", self.locate(j)) for j in el.findall("joint"))
         return Transmission(el.get("name") or "", self.locate(el), joints)
 
+
+# the elements a Gazebo sensor names its frame with: gazebo_ros (ROS 2), gazebo_plugins (ROS 1), gz-sim, Ignition
+FRAME_TAGS = ("frame_name", "frameName", "gz_frame_id", "ignition_frame_id")
 
 # what urdfdom 6.0 then does, by where the <origin> is (run on urdfdom 6.0.0)
 _BOTH = {
@@ -512,11 +527,11 @@ def _raw_xml(el) -> str:
     return re.sub(r' __ucsrc="[^"]*"', "", text)
 
 
-def build(root, locate: Callable[[object], Location], source: str) -> Model:
+def build(root, locate: Callable[[etree._Element], Location], source: str) -> Model:
     return nogc.call(_build, root, iter(root), locate, source, long_lived=True)
 
 
-def build_streamed(elements: Iterator, locate: Callable[[object], Location], source: str) -> Model:
+def build_streamed(elements: Iterator, locate: Callable[[etree._Element], Location], source: str) -> Model:
     """The model of a document read as it is parsed (`core.xmlfront.stream`: the root element first, then each
     of its children once whole, each dropped once read), so that a large model and its whole libxml2 tree never
     share the memory. The parse's errors propagate (the caller reads the document again, whole, to report them)."""
@@ -536,7 +551,7 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
         b.issue("U001", f"the root element is <{root.tag}>, not <robot>", root)
     else:
         b.R["robot"](b, root)
-    links, joints, materials, blocks, r2c, trans, plugins = [], [], [], [], [], [], []
+    links, joints, materials, blocks, r2c, trans, plugins, frames = [], [], [], [], [], [], [], []
     for el in children:
         tag = el.tag
         if tag == "link":
@@ -544,13 +559,13 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
             if part:
                 links.append(part)
         elif tag == "joint":
-            part = b.joint(el)
-            if part:
-                joints.append(part)
+            joint = b.joint(el)
+            if joint:
+                joints.append(joint)
         elif tag == "material":
-            part = b.material(el)
-            if part:
-                materials.append(part)
+            material = b.material(el)
+            if material:
+                materials.append(material)
         elif tag in ("transmission", "gazebo", "ros2_control"):
             blocks.append(Block(tag, locate(el), MappingProxyType(dict(el.attrib)), _raw_xml(el)))
             if tag == "ros2_control":
@@ -559,6 +574,7 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
                 for inner in el.iter("ros2_control"):
                     r2c.append(b.ros2_control(inner, True))
                 plugins.extend(b.plugins(el))
+                frames.extend(b.frame_refs(el))
             else:
                 trans.append(b.transmission(el))
         elif is_robot and isinstance(tag, str):
@@ -581,18 +597,19 @@ def _build(root, children: Iterator, locate: Callable[[object], Location], sourc
         version=version,
         declared_version=declared,
         plugins=tuple(plugins),
+        frame_refs=tuple(frames),
     )
 
 
 def _first_by_name(parts) -> dict:
-    out = {}
+    out: dict = {}
     for p in parts:
         out.setdefault(p.name, p)
     return out
 
 
 def model_from_string(xml: str | bytes, path: str = "<string>") -> Model:
-    """Model from URDF text (plain URDF; for xacro use `urdfcheck.load.load_model`)."""
+    """Model from URDF text (plain URDF; for xacro use `urdfcheck.load.loader.load_model`)."""
     from urdfcheck.core import xmlfront
 
     data = xml.encode("utf-8") if isinstance(xml, str) else xml

@@ -191,6 +191,16 @@ class GazeboPlugin(TupleRecord):
         return tuple(p for p in self.params if p.tag in tags)
 
 
+class FrameRef(TupleRecord):
+    """A frame a <gazebo> sensor stamps its data with (<frame_name>, <frameName>, <gz_frame_id>...), as written."""
+
+    tag: str
+    name: str
+    loc: Location
+    sensor: str = ""  # the <sensor name>
+    reference: str = ""  # the <gazebo reference> it sits in
+
+
 class Transmission(TupleRecord):
     name: str
     loc: Location
@@ -214,15 +224,30 @@ class Model(FrozenRecord):
     #   when the declared one is one no urdfdom reads); declared_version: <robot version> as written
     _fields = ('name', 'loc', 'links', 'joints', 'materials', 'link_list', 'joint_list', 'material_list', 'blocks',
                'issues', 'source', 'ros2_control', 'transmissions', 'version', 'declared_version', 'plugins',
-               'repeated')
+               'repeated', 'frame_refs')
 
     _defaults = {"ros2_control": (), "transmissions": (), "version": (1, 0), "declared_version": None,
-                 "plugins": (), "repeated": ()}
-    # name: str, loc: Location, links/joints/materials: Mapping[str, ...], link_list/joint_list/material_list,
-    # blocks, issues: tuples, source: str, ros2_control, transmissions: tuples, version: (major, minor),
-    # declared_version: str | None; plugins: the <gazebo> plugins (consumers/gazebo.py); repeated: per element
-    # that holds a sub-element twice where readers take one, (owner kind, owner name, its path such as
+                 "plugins": (), "repeated": (), "frame_refs": ()}
+    name: str
+    loc: Location
+    links: Mapping[str, Link]
+    joints: Mapping[str, Joint]
+    materials: Mapping[str, Material]
+    link_list: tuple[Link, ...]
+    joint_list: tuple[Joint, ...]
+    material_list: tuple[Material, ...]
+    blocks: tuple
+    issues: tuple
+    source: str
+    ros2_control: tuple
+    transmissions: tuple
+    version: tuple[int, int]
+    declared_version: str | None
+    plugins: tuple  # the <gazebo> plugins (consumers/gazebo.py)
+    # per element that holds a sub-element twice where readers take one, (owner kind, owner name, its path such as
     # "link/collision/geometry", the repeated tags sorted), in reading order
+    repeated: tuple
+    frame_refs: tuple
 
     # --- derived structure -------------------------------------------------
     @property

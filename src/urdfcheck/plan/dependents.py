@@ -89,7 +89,7 @@ def _candidates(planner, ws: str, path: str, pkg, settings) -> list:
                 chosen.add(p)
                 words.add(os.path.basename(p).encode())
                 grew = True
-    from urdfcheck.plan.plan import _Named
+    from urdfcheck.plan.named import Named as _Named
 
     # as a plan of the whole workspace has them: these deployments found for `ws` (its packages resolvable), the
     # models they load linted through them only, the own package's other models with `ws`'s packages and variants

@@ -130,6 +130,16 @@ class Deployment(Record):
             out.notes.append((f"controller {name} is spawned here and taken to be a joint_state_broadcaster "
                               "(its parameter file is not among the files read)", loc))
 
+    def _idle(self, out) -> None:
+        """Mark the controllers this deployment configures but does not spawn, when its spawners were all read
+        (every argument literal or resolved): what names them rests on a guess (rules.contracts, issue 37)."""
+        if not self.spawned or any(getattr(li, "unread_spawners", False) for li in self.infos):
+            return
+        started = {n.strip("/").split("/")[-1] for n, _ in self.spawned}
+        for c in out.controllers:
+            if c.name not in started and "joint_state" not in (c.type or ""):
+                c.idle = True
+
     def consumers(self):
         """The contract checks' view of this deployment (read on each call; cheap, files are small)."""
         from urdfcheck.consumers.consumers import Consumers, _Reader, tf_owners
@@ -143,6 +153,7 @@ class Deployment(Record):
         for c in out.controllers:
             out.notes.extend(c.notes)
         self._spawned_broadcasters(out)
+        self._idle(out)
         lpfs = [pf for pf in (r.params(p, out.errors) for p in self.localization_files) if pf is not None]
         out.drivers = infer_drivers(self.driver_nodes, r)
         out.launch = list(self.infos)
@@ -168,6 +179,35 @@ class Deployment(Record):
         return out
 
 
+def _model_like(path: str) -> bool:
+    """A file a launch-time pattern may pick as the robot: a `.urdf`/`.xacro` (the loader says what is wrong
+    with it), or any other whose root element is <robot>; never an SDFormat file, a text or a YAML."""
+    low = path.lower()
+    if low.endswith((".urdf", ".xacro")):
+        return True
+    if low.endswith(_NOT_URDF):
+        return False
+    from urdfcheck.load.discover import _read_head, _root_tag
+
+    tag = _root_tag(_read_head(path))
+    return tag is not None and tag.split(":")[-1] == "robot"
+
+
+_NOT_URDF = (".sdf", ".world", ".yaml", ".yml", ".json", ".py", ".md", ".txt", ".rst", ".srdf", ".launch",
+             ".stl", ".dae", ".obj", ".png", ".jpg", ".xml")
+
+
+def sdformat(path: str) -> bool:
+    """An SDFormat model (`.sdf`, or root <sdf>): robot_state_publisher reads it through sdformat_urdf, but it
+    is no URDF, and linting it as one reports its every element."""
+    if path.lower().endswith((".sdf", ".world")):
+        return True
+    from urdfcheck.load.discover import _read_head, _root_tag
+
+    tag = _root_tag(_read_head(path))
+    return tag is not None and tag.split(":")[-1] == "sdf"
+
+
 def _same_file(path: str, files) -> str | None:
     """`path` as read (a source file), or the file of `files` it names in the install layout."""
     if os.path.isfile(path):
@@ -181,7 +221,7 @@ def _is_launch(name: str) -> bool:
     from urdfcheck.load.discover import LAUNCH_SUFFIXES
 
     low = name.lower()
-    return low.endswith(LAUNCH_SUFFIXES) or low.endswith("_launch.py")
+    return low.endswith(LAUNCH_SUFFIXES)
 
 
 class _Workspace:
@@ -252,7 +292,12 @@ class _Workspace:
         return None
 
     def match(self, pattern: str) -> list[str]:
-        """Files matching a path with pieces decided at launch time (UNKNOWN), in the source layout too."""
+        """Model files matching a path with pieces decided at launch time (UNKNOWN), in the source layout too.
+        A path that is nothing but launch-time pieces (`robot_xacro_file` with no default), or is relative (to a
+        working directory the launch file never had), names no file: matching it would take a LICENSE or a
+        README of the checkout for the robot. Only files that may be URDF robots are matched (`_model_like`)."""
+        if not os.path.isabs(pattern):
+            return []
         pat = glob.escape(pattern).replace("\x00", "*")
         hits = [h for h in sorted(glob.glob(pat)) if os.path.isfile(h)]
         if not hits:
@@ -267,7 +312,7 @@ class _Workspace:
                         if hits:
                             break
                     break
-        return [h for h in hits if self.inside(h)][:MAX_MODEL_FILES]
+        return [h for h in hits if self.inside(h) and _model_like(h)][:MAX_MODEL_FILES]
 
     def inactive_includes(self, path: str) -> list[str]:
         """Files a Python launch file includes under a condition that is false with its defaults."""
@@ -445,13 +490,17 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
             files = ws.match(ref.path)
             picked = [(f, f"model={os.path.basename(f)}") for f in files]
             if not picked:
-                notes.append((f"model path {ref.path.replace(UNKNOWN, '*')} is decided at launch time and "
+                notes.append((f"model path {_show(ref.path).replace(UNKNOWN, '*')} is decided at launch time and "
                                "matches no file", ref.loc))
         else:
             f = ws.locate(ref.path)
             picked = [(f, "")] if f else []
             if not picked:
                 notes.append((f"model file {_show(ref.path)} not found in the workspace", ref.loc))
+            elif sdformat(f):
+                notes.append((f"{_show(f)} is an SDFormat model (read through sdformat_urdf), not a URDF: "
+                              "not checked", ref.loc))
+                picked = []
         if not picked:
             out.append(Deployment(None, notes=notes, **common))
             continue

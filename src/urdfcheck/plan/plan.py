@@ -24,11 +24,11 @@ from pathlib import Path
 
 from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
+from urdfcheck.plan.named import Named as _Named
 from urdfcheck.request.request import LintRequest, Settings, UsageError
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")  # config.CONFIG_NAMES (not imported: start-up)
 MAX_DIRS = 20_000  # folders a workspace walk looks at
-LAUNCH_SUFFIXES = (".launch", ".launch.xml", ".launch.py", ".launch.yaml", ".launch.yml", "_launch.py")
 # files named on the command line that are certainly no robot description (a .xml or odd suffix may be one)
 NOT_MODELS = (".yaml", ".yml", ".py", ".json", ".toml", ".txt", ".md", ".rst", ".cfg", ".ini", ".srdf", ".stl",
               ".dae", ".obj", ".png", ".jpg")
@@ -67,6 +67,7 @@ class Target(Record):
     # how the model and its deployment were chosen (core.evidence.Step), which every finding of it rests on
     evidence: tuple = ()
     library = False  # a probe whose expansion has no link: not a robot, not checked as one
+    combination = False  # an automatic variant of a discovered model flipping several options (run._combinations)
     twin = False  # a declared model linted again with the consumers found beside it (an unvouched config's)
 
     def __init__(self, path: Path,
@@ -127,17 +128,6 @@ class TargetList(list):
         self.findings = []  # about the plan itself: a config's ignored keys, a file walk cut short (issue 19)
         self.libraries = 0  # xacro libraries seen: "no robot found: N xacro libraries"
         self.included = []  # libraries by inclusion that may hold links (plan.robots.missed)
-
-
-class _Named(Record):
-    """The deployments of one folder the user named, found once for the whole tree.
-    deployments: those with a model, minus those defined in a folder whose config declares its models;
-    covered: the models (realpath) they load, which are then not linted alone."""
-
-    _fields = ('root', 'deployments', 'covered')
-
-    def __init__(self, root: str, deployments: list, covered: set):
-        self.root, self.deployments, self.covered = root, deployments, covered
 
 
 class Planner:
@@ -370,13 +360,45 @@ class Planner:
                                   "linted through the robots that include them")
             for entry in found.models:
                 if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
-                    out.extend(_mark(self.variants(Path(entry), settings, named.root), "complete"))
+                    out.extend(_mark(self.variants(Path(entry), settings, named.root, found=True), "complete"))
+        if not out:
+            out.extend(self.moveit_model(folder, settings))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
             for entry in self.discover(folder, settings).models:
                 if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
-                    out.extend(_mark(self.variants(Path(entry), settings, named.root), "complete"))
+                    out.extend(_mark(self.variants(Path(entry), settings, named.root, found=True), "complete"))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
+
+    def moveit_model(self, folder: str, settings: Settings) -> list[Target]:
+        """A MoveIt config package with no model of its own: the model its `.setup_assistant` names, whose
+        checks then read this config (consumers.moveit) as one beside the model's package (issue 41)."""
+        from urdfcheck.load.packages import enclosing_package
+
+        pkg = enclosing_package(Path(os.path.abspath(folder)))
+        if pkg is None:
+            return []
+        from urdfcheck.consumers.moveit import named_model
+
+        model = named_model(str(pkg), dict(settings.packages))
+        if model is None:
+            return []
+        from urdfcheck.load.packages import workspace_root
+
+        real = os.path.realpath(model)
+        inside = _below(real, os.path.realpath(os.getcwd()))
+        if not inside and not _below(real, str(workspace_root(pkg))) \
+                and not any(_below(real, os.path.realpath(p)) for p in settings.packages.values()):
+            # a file of the checkout names it: a package of its workspace (as a launch file's $(find) resolves
+            # one) or one the runner named, never an installed package elsewhere on the machine
+            return []
+        from urdfcheck.core.evidence import Step
+
+        out = self.variants(Path(os.path.relpath(model)) if inside else Path(model), settings)
+        for t in out:
+            t.evidence = (Step("model", shown(model), "referenced",
+                               f"named by {shown(str(pkg / '.setup_assistant'))}"),)
+        return out
 
     def named(self, root: str, settings: Settings, skip=()) -> _Named:
         """The deployments of a named folder, found once (`skip`: folders whose config declares the models)."""
@@ -467,10 +489,13 @@ class Planner:
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
         """The targets of the library's workspace whose model includes it (literal includes, read as text)."""
+        from urdfcheck.core.checkout import run_roots
         from urdfcheck.load.packages import included_files
 
+        # the checkout around the library (where the door lets the run read), never a folder above it: the working
+        # directory may hold the runner's other files
         here = os.path.abspath(self.here)
-        ws = here if _below(library, here) else os.path.abspath(pkg)
+        ws = next((r for r in run_roots((library,), cwd=here) if _below(library, r)), os.path.abspath(pkg))
         real, out = os.path.realpath(library), []
         for t in self.workspace_targets(ws):
             key = (os.path.realpath(t.path), tuple(sorted(t.packages.items())))
@@ -488,16 +513,24 @@ class Planner:
             self._robots[ws] = list(sub.path_targets(ws))
         return self._robots[ws]
 
-    def variants(self, entry: Path, settings: Settings, root: str | None = None) -> list[Target]:
-        """Each combination of the boolean xacro:args the request does not fix (bounded; named)."""
+    def variants(self, entry: Path, settings: Settings, root: str | None = None, found: bool = False
+                 ) -> list[Target]:
+        """Each combination of the boolean xacro:args the request does not fix (bounded; named). `found`: the
+        model was discovered (no one named it), so a combination of several options rests on a guess."""
         packages = _packages(root, str(entry), settings) if root is not None else None
         if not entry.name.endswith(".xacro"):
             return [self.target(entry, {}, "", None, settings, packages)]
         from urdfcheck.load.variants import auto_variants  # not the config module: a run without one never imports it
 
-        return [self.target(entry, vargs, name, None, settings, packages)
-                for name, vargs in auto_variants(str(entry), dict(self.request.args),
-                                                 dict(settings.packages) if packages is None else packages)]
+        out = []
+        for name, vargs in auto_variants(str(entry), dict(self.request.args),
+                                         dict(settings.packages) if packages is None else packages):
+            out.append(self.target(entry, vargs, name, None, settings, packages))
+            # several options flipped together on a discovered model: a combination no launch file or config
+            # was seen to use, so what only it shows rests on a guess (issue 37; run._combinations); each option
+            # alone is a variant of its own
+            out[-1].combination = found and name.count(",") >= 1
+        return out
 
     def target(self, path: Path, args: dict, variant: str, consumers, settings: Settings,
                packages: dict | None = None) -> Target:
@@ -532,8 +565,8 @@ def _step(what: str, subject: str, how: str, confirm: str = ""):
 def _mark(targets: list[Target], how: str, force: bool = False) -> list[Target]:
     """Record how these targets' model was chosen (core.evidence), unless a step already says so."""
     for t in targets:
-        if force or not t.evidence:
-            t.evidence = (_step("model", str(t.path), how),)
+        if force or not any(s.what == "model" for s in t.evidence):
+            t.evidence = (_step("model", str(t.path), how),) + tuple(s for s in t.evidence if s.what != "model")
     return targets
 
 
@@ -595,6 +628,8 @@ def _srdf_text(path: str) -> bool:
 
 
 def _is_launch(path: str) -> bool:
+    from urdfcheck.load.discover import LAUNCH_SUFFIXES
+
     return path.lower().endswith(LAUNCH_SUFFIXES)
 
 

@@ -76,7 +76,7 @@ def includers_of(path: str) -> list[str]:
     """The xacro files of `path`'s package whose text names its file name: who may include it."""
     from pathlib import Path
 
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
     from urdfcheck.load.discover import discover
     from urdfcheck.load.packages import enclosing_package, leaves_cwd
 
@@ -89,7 +89,7 @@ def includers_of(path: str) -> list[str]:
         if os.path.realpath(f) == real or leaves_cwd(f):
             continue
         try:
-            if base in read_file(f, 4 * 1024 * 1024):
+            if base in door.read_bytes(f, limit=4 * 1024 * 1024):
                 out.append(f)
         except OSError:
             continue

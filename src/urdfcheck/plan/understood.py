@@ -80,10 +80,10 @@ def _source_line(loc: Location | None) -> str:
     node's call) that names robot_description, else the line at `loc`; trimmed; "" when unreadable."""
     if loc is None or not loc.line or not loc.file:
         return ""
-    from urdfcheck.core.safeio import read_file
+    from urdfcheck.core import door
 
     try:
-        lines = read_file(loc.file, 4 * 1024 * 1024).decode("utf-8", "replace").splitlines()
+        lines = door.read_bytes(loc.file, limit=4 * 1024 * 1024).decode("utf-8", "replace").splitlines()
     except (OSError, ValueError):
         return ""
     if loc.line > len(lines):

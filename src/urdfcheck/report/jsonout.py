@@ -48,6 +48,8 @@ def as_dict(result) -> dict:
                              for a in f.also]} if f.also else {}),
                 # the consumer whose behaviour the finding predicts (--profile; rules/checks/profiles)
                 **({"profile": f.profile} if f.profile else {}),
+                # every active profile whose consumer refuses or changes the model for this finding
+                **({"profiles": list(f.profiles)} if len(f.profiles) > 1 else {}),
                 # the planning steps it rests on (core.evidence): how the model, parameter files, features were chosen
                 **({"evidence": [{k: clean_text(v) if isinstance(v, str) else v for k, v in s.as_json().items()}
                                  for s in f.evidence]} if f.evidence else {}),

@@ -207,9 +207,9 @@ class Config(FrozenRecord):
 # --- finding and reading -------------------------------------------------------------------------------
 def _pyproject_has_table(path: Path) -> bool:
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        text = read_file(path, 1024 * 1024).decode("utf-8", "replace")
+        text = door.read_bytes(path, limit=1024 * 1024, runner=True).decode("utf-8", "replace")
     except OSError:
         return False
     return re.search(r"^\s*\[\[?\s*tool\.urdfcheck(\s*\]|\.)", text, re.M) is not None
@@ -236,7 +236,7 @@ def _read_yaml(path: str):
     from urdfcheck.consumers.yamlsrc import load_yaml
 
     try:
-        doc = load_yaml(path, max_bytes=1024 * 1024)
+        doc = load_yaml(path, max_bytes=1024 * 1024, runner=True)  # the runner's: see `_read_pyproject`
     except ConsumerError as e:
         raise ConfigError(e.message, e.location) from None
     data = {} if doc.data is None else doc.data
@@ -272,9 +272,11 @@ def _read_pyproject(path: str):
     import tomllib
 
     try:
-        from urdfcheck.core.safeio import read_file
+        from urdfcheck.core import door
 
-        raw = read_file(path, 1024 * 1024)
+        # `runner`: a config named by --config, or found above the checkout, is the runner's; one inside the
+        # checkout that links out of it is refused all the same (core.door.confine)
+        raw = door.read_bytes(path, limit=1024 * 1024, runner=True)
         text = raw.decode("utf-8")
         data = tomllib.loads(text)
     except OSError as e:

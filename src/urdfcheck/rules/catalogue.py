@@ -8,23 +8,39 @@ from __future__ import annotations
 import functools
 import importlib
 import os
-from collections.abc import Callable
 from pathlib import Path
 
 from urdfcheck.core.findings import Severity
 from urdfcheck.core.records import TupleRecord
 
-CHECKS: dict[str, Callable] = {}  # code -> check function (one function may serve several codes)
+TYPE_CHECKING = False  # typing.TYPE_CHECKING without importing typing at start-up
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+    from typing import Protocol
+
+    from urdfcheck.core.findings import Problem
+    from urdfcheck.model.robot import Model
+
+    class Check(Protocol):
+        """What `@check(codes)` registers: `fn(model, ctx) -> Iterable[Problem] | None`, with its codes."""
+
+        codes: tuple[str, ...]
+        __name__: str
+
+        def __call__(self, model: Model, ctx) -> Iterable[Problem] | None: ...
+
+CHECKS: dict[str, Check] = {}  # code -> check function (one function may serve several codes)
 # every module of rules/checks, named here so that a run imports them without walking the folder (pkgutil: ~4 ms of
 # imports); tests/test_catalogue.py fails when a module of the folder is missing from the list
 CHECK_MODULES = tuple(f"urdfcheck.rules.checks.{m}" for m in (
-    "contracts", "frames", "geometry", "inertial", "joints", "profiles", "structure", "values"))
+    "contracts", "frames", "geometry", "inertial", "joints", "moveit", "profiles", "references", "structure",
+    "units", "values"))
 
 
 def check(*codes: str):
     """Register `fn(model, ctx) -> Iterable[Problem]` for the given codes."""
 
-    def deco(fn):
+    def deco(fn):  # a function becomes a `Check` here (its codes attached)
         fn.codes = codes
         for c in codes:
             if c in CHECKS and CHECKS[c] is not fn:
@@ -36,7 +52,7 @@ def check(*codes: str):
 
 
 # option types a catalogue entry may declare -> the JSON Schema a config value must satisfy
-OPTION_TYPES = {
+OPTION_TYPES: dict[str, dict] = {
     "number": {"type": "number"},
     "integer": {"type": "integer"},
     "boolean": {"type": "boolean"},
@@ -283,7 +299,7 @@ def _info(data: dict, path: str) -> RuleInfo:
 
 
 @functools.cache
-def load_checks() -> dict[str, Callable]:
+def load_checks() -> dict[str, Check]:
     for name in CHECK_MODULES:
         importlib.import_module(name)
     return dict(CHECKS)

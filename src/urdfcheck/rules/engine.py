@@ -10,7 +10,7 @@ import os
 from urdfcheck.core import nogc
 from urdfcheck.core.findings import Finding, Location, Problem, Severity, clean_text
 from urdfcheck.core.records import Record
-from urdfcheck.core.suppress import is_yaml, yaml_suppressions
+from urdfcheck.core.suppress import is_srdf, is_yaml, srdf_suppressions, yaml_suppressions
 from urdfcheck.rules import catalogue as rulebook
 
 
@@ -147,6 +147,7 @@ def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
         related=related,
         profile=p.data.get("profile") or _annotated(code, ctx),
         evidence=steps,
+        profiles=tuple(p.data.get("profiles", ())) or _annotating(code, ctx),
     )
 
 
@@ -163,6 +164,14 @@ def _paired(contracts, locs, have) -> tuple:
         if s is not None and s not in out and s not in have:
             out.append(s)
     return tuple(out)
+
+
+def _annotating(code: str, ctx: Context) -> tuple:
+    if not ctx.profiles:
+        return ()
+    from urdfcheck.rules.checks.profiles.common import annotating
+
+    return annotating(code, ctx.profiles)
 
 
 def _annotated(code: str, ctx: Context) -> str:
@@ -227,10 +236,12 @@ def finish(findings: list[Finding], selection: Selection, suppressions=(), model
                 if yaml_used is not None:  # absolute, like the consumer files `unused_yaml` is given
                     yaml_used.add((os.path.abspath(f.location.file), hit))
                 continue
+        elif is_srdf(f.location.file) and _suppressed(f, srdf_suppressions(f.location.file)) is not None:
+            continue  # `<!-- urdfcheck: ignore[...] -->` in the MoveIt SRDF the finding points into
         kept.append(Finding(f.code, sev, f.message, _shown(f.location),
                             f.name or (info.name if info else ""),
                             tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant,
-                            profile=f.profile, evidence=f.evidence))
+                            profile=f.profile, evidence=f.evidence, profiles=f.profiles))
     if selection.enabled("R002"):
         for i, s in enumerate(suppressions):
             if i in used:

@@ -13,16 +13,18 @@ import os
 import re
 import threading
 
+from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Finding
 
 MODEL_SUFFIXES = (".urdf", ".xacro", ".urdf.xacro")
 TEXT_SUFFIXES = MODEL_SUFFIXES + (".yaml", ".yml", ".launch", ".xml", ".py", ".lua", ".srdf")
-_WORD = re.compile(r"[A-Za-z0-9_./:\-]+")
-_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_WORD = lazyre.compile(r"[A-Za-z0-9_./:\-]+")
+_NAME = lazyre.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 MAX_STAMP_DIRS = 2_000  # folders of a unit looked at to tell "nothing changed"
 MAX_DEFINITION_FILES = 500  # xacro files of a package searched for a macro or property definition
-_MEAN = re.compile(r"did you mean '([^']+)'")
-_QUOTED = re.compile(r"'([^']+)'")
+_FIND = lazyre.compile(r"\$\(find(?:-pkg-share)?\s+([A-Za-z0-9_]+)\s*\)([^\"'\s<>]*)")
+_MEAN = lazyre.compile(r"did you mean '([^']+)'")
+_QUOTED = lazyre.compile(r"'([^']+)'")
 
 
 class Unit:
@@ -95,11 +97,12 @@ class Session:
         by_file: dict[str, list[Finding]] = {f: [] for f in unit.files}
         if result is not None:
             for f in result.findings:
-                by_file.setdefault(self.absolute(f.location.file), []).append(f)
+                by_file.setdefault(os.path.realpath(self.absolute(f.location.file)), []).append(f)
             unit.read = {os.path.realpath(p) for p in getattr(result, "read", ()) or ()}
             unit.models = dict(result.models)
             unit.findings = list(result.findings)
         unit.files = {f for f, fs in by_file.items() if fs}
+        by_file.setdefault(os.path.realpath(path), [])  # the edited document always hears back (cleared if clean)
         unit.stamp, unit.last = stamp, dict(by_file)
         return by_file
 
@@ -172,11 +175,31 @@ class Session:
 
     def definition(self, path: str, line: int, col: int) -> tuple[str, int] | None:
         """(file, 1-based line) of what the word at the position names."""
+        found = self._find_path(path, line, col)
+        if found is not None:
+            return found, 1
         word = self._word(path, line, col)
         if not word:
             return None
         d = self.definition_of(path, word)
         return (d[0], d[1]) if d is not None else None
+
+    def _find_path(self, path: str, line: int, col: int) -> str | None:
+        """The file a `$(find pkg)/rest` under the position names (xacro includes, launch files), when it exists."""
+        text = self.text(path)
+        lines = text.splitlines() if text else []
+        if not 1 <= line <= len(lines):
+            return None
+        for m in _FIND.finditer(lines[line - 1]):
+            if m.start() <= col <= m.end():
+                from pathlib import Path
+
+                from urdfcheck.load.packages import Resolver
+
+                root = Resolver(near=Path(os.path.dirname(os.path.realpath(path)))).find(m.group(1))
+                target = os.path.join(str(root), m.group(2).lstrip("/")) if root is not None else None
+                return target if target and os.path.isfile(target) else None
+        return None
 
     def _word(self, path: str, line: int, col: int) -> str | None:
         text = self.text(path)

@@ -19,7 +19,7 @@ from urdfcheck.core import lazyre, worker
 from urdfcheck.core.findings import Finding, Location, Severity, clean_text
 from urdfcheck.core.records import Record
 
-CONSUMERS = ("mujoco", "pinocchio", "pybullet", "yourdfpy", "urdfdom")
+CONSUMERS = ("mujoco", "pinocchio", "pybullet", "yourdfpy", "urdfdom", "sdformat")
 MODULE = {"mujoco": "mujoco", "pinocchio": "pinocchio", "pybullet": "pybullet", "yourdfpy": "yourdfpy"}
 DEFAULT_TIMEOUT = 30.0
 DEFAULT_MEMORY = 2 * 1024**3
@@ -52,6 +52,8 @@ class Outcome(Record):
 def available(name: str) -> bool:
     if name == "urdfdom":
         return shutil.which("check_urdf") is not None
+    if name == "sdformat":
+        return shutil.which("ign") is not None
     import importlib.util
 
     try:
@@ -73,11 +75,14 @@ def without_meshes(xml: str, folder: str | None = None) -> tuple[str, int]:
         return xml, 0  # the consumers get it as it is, and say what they think of it
     n = 0
     boxes: dict[tuple, str] = {}
-    for mesh in list(root.iter("mesh")):
+    # by local name, whatever the namespace: MuJoCo's and PyBullet's readers ignore namespaces, so a
+    # `<mesh xmlns="urn:x" filename="/abs/...">` is a mesh they open (issue 36); no file the model names is
+    # ever handed to a consumer
+    for mesh in [el for el in root.iter() if isinstance(el.tag, str) and etree.QName(el).localname == "mesh"]:
         parent = mesh.getparent()
-        if parent is None or parent.tag != "geometry":
+        if parent is None:
             continue
-        n += 1
+        n += isinstance(parent.tag, str) and etree.QName(parent).localname == "geometry"
         if folder is None:
             box = etree.Element("box", size=MESH_BOX)
             box.tail = mesh.tail
@@ -86,7 +91,14 @@ def without_meshes(xml: str, folder: str | None = None) -> tuple[str, int]:
         scale = _scale(mesh.get("scale"))
         if scale not in boxes:
             boxes[scale] = _box_stl(folder, [0.1 / s if s else 0.1 for s in scale], len(boxes))
+        for name in [a for a in mesh.attrib if etree.QName(a).localname == "filename"]:
+            del mesh.attrib[name]
         mesh.set("filename", boxes[scale])
+    for el in root.iter():  # any other file the model names (a texture, a namespaced copy): dropped
+        if not isinstance(el.tag, str) or etree.QName(el).localname == "mesh":
+            continue
+        for name in [a for a in el.attrib if etree.QName(a).localname == "filename"]:
+            del el.attrib[name]
     return etree.tostring(root, encoding="unicode"), n
 
 
@@ -196,8 +208,42 @@ def _urdfdom_job(path: str, timeout: float) -> dict:
     return {"version": "", "output": text}
 
 
+def _sdformat_job(path: str, timeout: float) -> dict:
+    """Gazebo's reading: sdformat's URDF converter (`ign sdf -p`), then its validation of the result (`ign sdf -k`),
+    as Gazebo's loader validates it (Debian ignition-tools + libsdformat)."""
+    import subprocess
+
+    from urdfcheck.core.lxmlimport import etree
+
+    exe = shutil.which("ign")
+    env = {"PATH": "/usr/bin:/bin", "HOME": os.path.dirname(path)}
+    conv = subprocess.run([exe, "sdf", "-p", path], capture_output=True, text=True, timeout=timeout, env=env)
+    noise = ("libignition-tools-backward", "No HOME defined")
+    lines = [ln for ln in conv.stderr.splitlines() if ln.strip() and not any(n in ln for n in noise)]
+    if conv.returncode != 0 or "<sdf" not in conv.stdout:
+        return {"rejected": " ".join(lines[-3:]) or f"exit status {conv.returncode}"}
+    sdf = os.path.join(os.path.dirname(path), "model.sdf")
+    text = conv.stdout[conv.stdout.index("<sdf"):]
+    with open(sdf, "w", encoding="utf-8") as f:
+        f.write(text)
+    check = subprocess.run([exe, "sdf", "-k", sdf], capture_output=True, text=True, timeout=timeout, env=env)
+    # <gazebo> extension XML is copied as written, undeclared namespace prefixes included
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(recover=True, huge_tree=True, resolve_entities=False,
+                                                                  no_network=True))
+    model = root.find("model") if root is not None else None
+    links = [] if model is None else [lk.get("name") for lk in model.findall("link")]
+    said = [ln for ln in (check.stdout + check.stderr).splitlines() if ln.strip() and not any(n in ln for n in noise)]
+    if check.returncode != 0 or any("Error" in ln for ln in said):
+        return {"rejected": " ".join(ln.strip() for ln in said if "Error" in ln)[:500] or "ign sdf -k failed"}
+    if not links:
+        return {"rejected": "no link left after conversion (every link without <inertial> or with mass 0 is "
+                            "dropped with everything below it)"}
+    joints = [(j.get("name"), j.get("type")) for j in model.findall("joint")]
+    return {"version": "", "links": links, "joints": joints}
+
+
 JOBS = {"mujoco": _mujoco_job, "pinocchio": _pinocchio_job, "pybullet": _pybullet_job,
-        "yourdfpy": _yourdfpy_job, "urdfdom": _urdfdom_job}
+        "yourdfpy": _yourdfpy_job, "urdfdom": _urdfdom_job, "sdformat": _sdformat_job}
 
 
 # --- what changed -----------------------------------------------------------------------------------------------
@@ -243,6 +289,16 @@ def _changes(name: str, facts: dict, model) -> list[str]:
                      and abs(facts["mass"].get(lk.name, 0.0) - 1.0) < 1e-12]
         if defaulted:
             out.append(f"{len(defaulted)} link(s) without <inertial> got mass 1 kg: {_few(defaulted)}")
+    elif name == "sdformat":
+        kept = set(facts["links"])
+        gone = [n for n in links if n not in kept and n != "world"]
+        if gone:
+            out.append(f"{len(gone)} link(s) lumped into their parents (fixed joints) or dropped (no mass, with "
+                       "everything below them): " + _few(gone))
+        jnames = {n for n, _ in facts["joints"]}
+        lost = [j.name for j in movable if j.name not in jnames]
+        if lost:
+            out.append(f"movable joint(s) not in the SDFormat model: {_few(lost)}")
     elif name == "yourdfpy":
         if facts.get("invalid"):
             out.append("validate() failed: " + "; ".join(facts["invalid"][:3]))
@@ -293,12 +349,14 @@ def run(model, xml: str, consumers=CONSUMERS, *, timeout: float = DEFAULT_TIMEOU
 
 def _one(name: str, path: str, model, timeout: float, memory, notes) -> Outcome:
     if not available(name):
-        hint = "check_urdf (Debian liburdfdom-tools)" if name == "urdfdom" else "pip install 'urdfcheck[consumers]'"
+        hint = {"urdfdom": "check_urdf (Debian liburdfdom-tools)",
+                "sdformat": "ign sdf (Debian ignition-tools and libsdformat-dev)"}.get(
+                    name, "pip install 'urdfcheck[consumers]'")
         return Outcome(name, "missing", f"not installed ({hint})")
     limits = worker.Limits(memory=memory, timeout=timeout, result=16 * 1024 * 1024)
     job = worker.prepare(JOBS[name], limits=limits, preload=(MODULE.get(name, "subprocess"),), capture="output",
                          name=name)
-    job.send(*((path, timeout) if name == "urdfdom" else (path,)))
+    job.send(*((path, timeout) if name in ("urdfdom", "sdformat") else (path,)))
     value = job.result()
     seconds = getattr(job, "seconds", 0.0) or 0.0
     if isinstance(value, worker.Failure):

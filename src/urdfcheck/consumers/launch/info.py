@@ -171,6 +171,8 @@ class LaunchInfo(Record):
     _fields = ('path', 'format', 'nodes', 'static_tfs', 'state_publishers', 'joint_state_publishers', 'spawned',
                'param_files', 'includes', 'notes', 'param_sets', 'declared')
 
+    unread_spawners = False  # a spawner argument decided at launch time: what it starts is unknown
+
     def __init__(self, path: str,
                  format: str,
                  nodes: list[LaunchNode] | None = None,
@@ -360,6 +362,8 @@ def record_node(info: LaunchInfo, node: LaunchNode, ros: int) -> None:
                         info.param_files.append((toks[i + 1], node.loc))
                     i += 2
                     continue
+                if "\x00" in t:  # a controller name decided at launch time: what this spawner starts is unknown
+                    info.unread_spawners = True
                 if t.startswith("-") or t in ("spawn", "load", "start", "stop") or "\x00" in t:
                     i += 1
                     continue

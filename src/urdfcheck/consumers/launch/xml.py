@@ -150,7 +150,24 @@ class _Subst:
                 v = self._one("arg", n.id)
                 if v is None:
                     raise ValueError
-                return v
+                # roslaunch reads a bare argument name with its type guessed ('true' is True), so that
+                # `$(eval simulation_mode and not gazebo)` is a boolean (ned_ros picks its model this way)
+                return {"true": True, "false": False}.get(v.strip().lower(), v)
+            if isinstance(n, ast.BoolOp) and len(n.values) <= 16:
+                vals = [ev(x, depth + 1) for x in n.values]
+                if not all(isinstance(x, bool) for x in vals):
+                    raise ValueError
+                return all(vals) if isinstance(n.op, ast.And) else any(vals)
+            if isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.Not):
+                x = ev(n.operand, depth + 1)
+                if not isinstance(x, bool):
+                    raise ValueError
+                return not x
+            if isinstance(n, ast.Compare) and len(n.ops) == 1 and isinstance(n.ops[0], (ast.Eq, ast.NotEq)):
+                a, b = ev(n.left, depth + 1), ev(n.comparators[0], depth + 1)
+                if type(a) is not type(b):
+                    raise ValueError
+                return (a == b) if isinstance(n.ops[0], ast.Eq) else (a != b)
             if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and not n.keywords:
                 args = [ev(a, depth + 1) for a in n.args]
                 if n.func.id in ("arg", "find") and len(args) == 1 and isinstance(args[0], str):
@@ -164,7 +181,7 @@ class _Subst:
                 return v
             if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Add):
                 a, b = ev(n.left, depth + 1), ev(n.right, depth + 1)
-                if isinstance(a, str) != isinstance(b, str):
+                if isinstance(a, str) != isinstance(b, str) or isinstance(a, bool) or isinstance(b, bool):
                     raise ValueError
                 out = a + b
                 if isinstance(out, str) and len(out) > 4096:

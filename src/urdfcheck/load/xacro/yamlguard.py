@@ -58,10 +58,3 @@ def check_yaml_text(text: str, name: str = "YAML") -> None:
     node = yaml.compose(text, Loader=loader)
     if node is not None and expanded_size(node) > MAX_NODES:
         raise YamlRefused(f"{name} expands to more than {MAX_NODES} nodes through aliases (a YAML bomb)")
-
-
-def check_yaml_file(path: str) -> None:
-    from urdfcheck.core.safeio import read_file
-
-    data = read_file(path, MAX_BYTES)  # a regular file only: a committed FIFO must not block
-    check_yaml_text(data.decode("utf-8", "replace"), path)

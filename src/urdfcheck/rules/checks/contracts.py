@@ -25,6 +25,9 @@ _RULES = (
     ("C016", "drive_geometry_mismatch"),
     ("C017", "unknown_hardware_component"),
     ("C020", "unknown_frame"),
+    ("C022", "claims:interface_claimed_twice"),
+    ("C023", "claims:chained_reference_missing"),
+    ("C024", "navframes:navigation_frame_unknown"),
     ("T001", "duplicate_tf_owner"),
     ("T002", "static_and_dynamic_tf"),
     ("T003", "tf_multiple_parents"),
@@ -50,19 +53,23 @@ def _may_have_consumers(model, ctx) -> bool:
 MODEL_ONLY = {"C004", "C006"}  # read only the URDF's own <ros2_control> blocks
 
 
-def _lazy(code: str, name: str):
+def _lazy(code: str, spec: str):
+    # "name": a function of rules.contracts.impl; "module:name": of rules.contracts.<module>
+    module, _, name = spec.rpartition(":")
+
     def run(model, ctx):
         if code not in MODEL_ONLY and not _may_have_consumers(model, ctx):
             return ()
         if code in MODEL_ONLY and not model.ros2_control:
             return ()
-        from urdfcheck.rules.contracts import impl as rules_impl
+        import importlib
 
-        return getattr(rules_impl, name)(model, ctx)
+        impl = importlib.import_module(f"urdfcheck.rules.contracts.{module or 'impl'}")
+        return getattr(impl, name)(model, ctx)
 
     run.__name__ = run.__qualname__ = name
     return check(code)(run)
 
 
-for _code, _name in _RULES:
-    globals()[_name] = _lazy(_code, _name)
+for _code, _spec in _RULES:
+    globals()[_spec.rpartition(":")[2]] = _lazy(_code, _spec)

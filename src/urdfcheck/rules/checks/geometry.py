@@ -77,8 +77,20 @@ def mesh_not_found(model, ctx):
         link, shape = where[0]
         more = len(where) - 1
         also = f" (and {more} more use{'s' if more > 1 else ''})" if more else ""
-        yield Problem(f"mesh {uri!r} of the {_what(link, shape)}{also}: {problem}", at=shape.geometry,
+        yield Problem(f"mesh {_shown_uri(uri)!r} of the {_what(link, shape)}{also}: {problem}", at=shape.geometry,
                       related=tuple(s.geometry for _, s in where[1:]))
+
+
+def _shown_uri(uri: str) -> str:
+    """A mesh URI as reports show paths: `file:///$(find pkg)/m.dae` expands to the runner's absolute folder,
+    which a report must not print (issue 37); the path after `file://` is shown like any path."""
+    if uri.startswith("file://") and uri[len("file://"):].startswith("/"):
+        path = "/" + uri[len("file://"):].lstrip("/")
+        got = shown(path)
+        return got if got != path else uri
+    if os.path.isabs(uri):
+        return shown(uri)
+    return uri
 
 
 def _mesh_verdict(uri: str, resolver, base: Path, ignore: list[str], listing: dict) -> str | None:
@@ -247,3 +259,15 @@ def missing_geometry(model, ctx):
         elif g.kind not in _KNOWN_SHAPES:
             yield Problem(f"the <geometry> of the {what} holds <{g.kind}>, which is not a URDF shape (box, cylinder, "
                           f"sphere, mesh): {consequence}", at=g)
+
+
+# --- G006 ------------------------------------------------------------------------------------------
+@check("G006")
+def self_collision_at_zero(model, ctx):
+    """Collision primitives of two non-adjacent links interpenetrate at the zero configuration (coal, lazily)."""
+    if sum(1 for link in model.link_list if link.collisions) < 2:
+        return
+    from urdfcheck.rules.selfcollision import self_collisions
+
+    entry = getattr(ctx.expanded, "entry", None) or model.source
+    yield from self_collisions(model, str(entry) if entry else "", float(ctx.options["depth"]))

@@ -67,9 +67,9 @@ def _catkin_package(source: str) -> bool:
     key = str(d)
     if key not in _CATKIN:
         try:
-            from urdfcheck.core.safeio import read_file  # a regular file only: a FIFO must not block
+            from urdfcheck.core import door  # a regular file only: a FIFO must not block
 
-            head = read_file(d / "package.xml", 65536)
+            head = door.read_bytes(d / "package.xml", limit=65536)
         except OSError:
             head = b""
         _CATKIN[key] = b"<buildtool_depend>catkin</buildtool_depend>" in head.replace(b" ", b"")

@@ -2,7 +2,7 @@
 
 The consumers come from `ctx.contracts` (a `consumers.consumers.Consumers`), which the planner gives every
 target (`plan.plan`): a config's declared consumers, a launch file's deployment, or, with zero config,
-those beside the model (`consumers.consumers_near`: the enclosing ROS package's config/ and launch/ files),
+those beside the model (`consumers.consumers.consumers_near`: the enclosing ROS package's config/ and launch/ files),
 computed once per target when its model is built. Options come from the engine (`ctx.options`, catalogue
 defaults filled in). The checks never change the context.
 """
@@ -126,6 +126,17 @@ def _shape_note(owner) -> str:
     return ""
 
 
+def _idle(owner) -> tuple:
+    """A controller the deployment configures but does not spawn (`Controller.idle`): another launch-argument
+    choice may start it with another model, so what it says of this one is a guess (issue 37)."""
+    if not getattr(owner, "idle", False):
+        return ()
+    from urdfcheck.core.evidence import Step
+
+    return (Step("controller", owner.name, "idle", f"spawn {owner.name} in the launch file that runs this model, "
+                 "or name its model in urdfcheck.yaml"),)
+
+
 def _owner_desc(owner_kind: str, owner) -> str:
     if owner_kind == "controller":
         return f"controller {owner.name}"
@@ -154,7 +165,8 @@ def unknown_joint(model, ctx) -> Iterator[Problem]:
         else:
             hint = _suggest(u.joint, model.joints)
         yield Problem(f"{_owner_desc(kind, owner)} names joint {u.joint!r}{via}, which the model does not "
-                      f"have{hint}{_shape_note(owner)}", at=u.loc, data={"joint": u.joint}, severity=_inferred(owner))
+                      f"have{hint}{_shape_note(owner)}", at=u.loc, data={"joint": u.joint}, severity=_inferred(owner),
+                      rests_on=_idle(owner))
 
 
 def joint_not_movable(model, ctx) -> Iterator[Problem]:

@@ -13,10 +13,19 @@ from urdfcheck.rules.checks.profiles.common import speak
 @check("P030")
 def floating_or_planar_fixed(model, ctx):
     for j in model.joint_list:
-        if j.type in ("floating", "planar"):
+        if j.type == "floating":
+            # PyBullet too (UrdfParser.cpp parseJoint, "joint unsupported, creating a fixed joint instead";
+            # measured: getJointInfo type JOINT_FIXED); a planar joint it keeps (JOINT_PLANAR)
+            p = speak(ctx, ("kdl", "pybullet"),
+                      f"KDL and PyBullet make floating joint '{j.name}' a fixed joint (kdl_parser: \"Converting "
+                      f"unknown joint type of joint '{j.name}' into a fixed joint\"; Bullet's UrdfParser: \"joint "
+                      "unsupported, creating a fixed joint instead\"): no degree of freedom there", j, quiet=True)
+        elif j.type == "planar":
             p = speak(ctx, ("kdl",),
-                      f"KDL makes {j.type} joint '{j.name}' a fixed joint (kdl_parser: \"Converting unknown joint "
+                      f"KDL makes planar joint '{j.name}' a fixed joint (kdl_parser: \"Converting unknown joint "
                       f"type of joint '{j.name}' into a fixed joint\"): KDL solvers see no degree of freedom there",
                       j, quiet=True)  # J010/J011 report it for robot_state_publisher
-            if p is not None:
-                yield p
+        else:
+            continue
+        if p is not None:
+            yield p

@@ -233,3 +233,73 @@ def fused_links(model, ctx):
                       + (f"; {names(world)} and the root '{root}' are welded to the world" if world else
                          f"; the root '{root}' is welded to the world (no free joint)"),
                       at=model, data={"profile": "mujoco"})
+
+
+@check("P007")
+def joint_refused(model, ctx):
+    """Joints MuJoCo's compiler refuses (measured with mujoco 4.0): a floating joint whose parent is not welded to
+    the world becomes a free joint below a moving body ("free joint can only be used on top level"); a <mimic>
+    naming its own joint makes an equality constraint on one joint twice ("element 'X' is repeated in equality
+    constraint")."""
+    if not is_tree(model):
+        return
+    group = fixed_groups(model)
+    top = set(model.roots) | {"world"}
+    for j in model.joint_list:
+        if j.type == "floating" and group.get(j.parent, j.parent) not in top:
+            p = speak(ctx, ("mujoco",),
+                      f"MuJoCo refuses the model: floating joint '{j.name}' hangs below a moving body, and MuJoCo "
+                      "makes it a free joint: \"free joint can only be used on top level\" (user_objects.cc); "
+                      "attach the part to the root, or make it a model of its own", j, quiet=True)  # J010
+            if p is not None:
+                yield p
+        if j.mimic is not None and j.mimic.joint == j.name and j.type in ("revolute", "continuous", "prismatic"):
+            p = speak(ctx, ("mujoco",),
+                      f"MuJoCo refuses the model: joint '{j.name}' mimics itself, and the equality constraint "
+                      f"MuJoCo makes of it names the joint twice: \"element '{j.name}' is repeated in equality "
+                      "constraint\" (user_objects.cc mjCEquality)", j.mimic, quiet=True)  # J008
+            if p is not None:
+                yield p
+
+
+MESH_DECODERS = (".stl", ".obj", ".msh")  # mujoco 4.0 user_mesh.cc; anything else: "no decoder found for mesh file"
+
+
+@check("P008")
+def collision_mesh_refused(model, ctx):
+    """A collision mesh MuJoCo cannot open (measured with mujoco 4.0): it opens the filename as a path, relative to
+    the URDF's folder, with no package:// or file:// resolution ("Error opening file 'package:/...'"), and decodes
+    only STL, OBJ and MSH ("no decoder found for mesh file"). Visual meshes are discarded first and never opened.
+    Whether a plain path exists is said only inside the run's roots (the resolver's, as G001)."""
+    from pathlib import Path
+
+    from urdfcheck.rules.checks.geometry import _base_dir, _resolver
+
+    if "mujoco" not in ctx.profiles:
+        return  # most ROS robots name meshes by package://: only those who convert for MuJoCo need to hear it
+    base = _base_dir(model, ctx)
+    resolver = None
+    seen: set[str] = set()
+    for link in model.link_list:
+        for shape in link.collisions:
+            g = shape.geometry
+            uri = (g.filename or "").strip() if g is not None and g.kind == "mesh" else ""
+            if not uri or uri in seen:
+                continue
+            seen.add(uri)
+            why = None
+            if "://" in uri:
+                why = (f"MuJoCo opens '{uri}' as a file path (no package:// or file:// resolution: \"Error opening "
+                       "file\"); write the path relative to the URDF, or set <compiler meshdir> in a MuJoCo "
+                       "<mujoco> block")
+            elif Path(uri).suffix.lower() not in MESH_DECODERS:
+                why = (f"MuJoCo has no decoder for '{Path(uri).suffix or uri}' meshes (\"no decoder found for mesh "
+                       "file\"; it reads STL, OBJ and MSH): convert the collision mesh")
+            else:
+                resolver = resolver or _resolver(model, ctx)
+                path = Path(uri) if Path(uri).is_absolute() else base / uri
+                if resolver.allowed(path) and not path.is_file():
+                    why = f"MuJoCo cannot open '{uri}' (no such file next to the URDF: \"Error opening file\")"
+            if why:
+                yield Problem(f"MuJoCo refuses the model: the collision mesh of link '{link.name}': {why}", at=g,
+                              data={"profile": "mujoco", "profiles": ("mujoco",)})
