@@ -119,3 +119,24 @@ def test_config_from_a_path_leaving_the_config_folder_names_no_absolute_path(tmp
 
     for p in (str(tmp_path), os.path.realpath(tmp_path), tempfile.gettempdir() + "/nothere"):
         assert p not in out + err
+
+
+def test_a_db3_whose_schema_sql_is_a_blob_is_read(tmp_path):
+    """fuzz/recordings.py: a mutated .db3 whose sqlite_master holds a table's sql as a blob: TypeError
+    (bytes.startswith(str)) out of the sqlite reader."""
+    import sqlite3
+
+    _robot(tmp_path)
+    p = tmp_path / "rec.db3"
+    c = sqlite3.connect(p)
+    c.execute("CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT, type TEXT, serialization_format TEXT, "
+              "offered_qos_profiles TEXT)")
+    c.execute("CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER, timestamp INTEGER, data BLOB)")
+    c.commit()
+    c.execute("PRAGMA writable_schema = ON")
+    c.execute("UPDATE sqlite_master SET sql = CAST(sql AS BLOB) WHERE name = 'messages'")
+    c.commit()
+    c.close()
+    code, out, err = run_cli(["bag", "robot.urdf", "rec.db3", "--no-config", "--format", "json"], cwd=tmp_path)
+    assert code in (0, 1), err
+    assert "Traceback" not in out + err and "internal error" not in out + err

@@ -483,7 +483,10 @@ def sqlite_messages(path: str, want, facts: dict, runner: bool, inflater: Inflat
         conn.execute("PRAGMA trusted_schema = OFF")
         conn.execute("PRAGMA temp_store = MEMORY")
         conn.execute("PRAGMA hard_heap_limit = 536870912")
-        kinds = {name: (typ, sql or "") for typ, name, sql in
+        # a damaged sqlite_master may hold its sql as a blob or a number: read as text, never trusted as such
+        kinds = {name: (typ, sql if isinstance(sql, str) else bytes(sql).decode("utf-8", "replace")
+                        if isinstance(sql, (bytes, bytearray, memoryview)) else str(sql or ""))
+                 for typ, name, sql in
                  conn.execute("SELECT type, name, sql FROM sqlite_master WHERE name IN ('topics', 'messages', "
                               "'schema', 'metadata')")}
         for name in ("topics", "messages", "schema"):
