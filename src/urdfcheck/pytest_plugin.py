@@ -80,10 +80,12 @@ def _prepare(state, config) -> None:
     from urdfcheck.request.request import make_request
 
     state.request = make_request([], **request_fields(config), root=str(state.rootdir))
+    from urdfcheck.core import door
     from urdfcheck.core.paths import showing
 
-    with showing(state.request.root):
+    with showing(state.request.root), door.guarding(_typed(state.request)):
         state.targets = plan(state.request, here=str(state.rootdir))
+        state.roots = door.roots()  # the packages the plan resolved: readable when the items run (core.door)
     state.fail_on = state.request.fail_on  # None: each item's config decides
 
 
@@ -100,13 +102,22 @@ def request_fields(config) -> dict:
     return out
 
 
+def _typed(request) -> tuple:
+    """What the runner typed, as `run.run` guards it."""
+    return (*request.paths, request.config, request.baseline, *request.bags)
+
+
 def _result(state):
     """The whole run, once, as `urdfcheck lint` runs it (suppression bookkeeping, one X013 per package, the
     baseline); each item shows its target's share (`Result.shares`)."""
     if state.result is None:
+        from urdfcheck.core import door
         from urdfcheck.run import run
 
-        state.result = run(state.request, targets=state.targets)
+        with door.guarding(_typed(state.request)):
+            for root in getattr(state, "roots", ()):
+                door.add_root(root)
+            state.result = run(state.request, targets=state.targets)
     return state.result
 
 

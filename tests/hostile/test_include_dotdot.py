@@ -45,11 +45,25 @@ def test_entry_model_that_is_a_symlink_out_of_the_workspace_is_not_read(arena):
         link.unlink()
 
 
-def test_symlink_to_a_sibling_package_is_still_linted(arena):
+def _sibling_link(arena):
     other = arena.ws / "other_description"
     (other / "urdf").mkdir(parents=True)
     (other / "package.xml").write_text("<package format='3'><name>other_description</name></package>\n")
     (other / "urdf" / "arm.urdf").write_text('<robot name="arm">\n  <link name="a"/>\n  <link name="b"/>\n</robot>\n')
     os.symlink(other / "urdf" / "arm.urdf", arena.pkg / "urdf" / "arm.urdf")
+
+
+def test_symlink_to_a_sibling_package_is_still_linted(arena):
+    """In one repository (.git above both), the sibling package is inside the checkout and is linted."""
+    (arena.ws / ".git").mkdir()
+    _sibling_link(arena)
     r = arena.lint(arena.pkg / "urdf" / "arm.urdf")
     assert "X014" not in r.codes() and "S001" in r.codes(), r.findings
+
+
+def test_symlink_to_a_sibling_package_outside_the_checkout_is_named(arena):
+    """Without a repository around them the checkout is the package: the sibling lies outside, and the link is
+    named (X014), never silently dropped (issue 36: the one door)."""
+    _sibling_link(arena)
+    r = arena.lint(arena.pkg / "urdf" / "arm.urdf")
+    assert r.codes() == ["X014"], r.findings

@@ -63,19 +63,12 @@ def run_roots(typed=(), cwd: str | None = None) -> list[str]:
     out is refused by the door)."""
     base = os.path.abspath(cwd or os.getcwd())
     typed = [os.path.normpath(os.path.join(base, os.fspath(p))) for p in typed if p]
-    here = _repository(marked(base))
+    here = marked(base)
     roots = [here] if here is not None else ([] if typed else [base])
     for a in typed:
         if any(a == r or a.startswith(r.rstrip(os.sep) + os.sep) for r in roots):
             continue
         folder = a if os.path.isdir(a) else os.path.dirname(a)
-        roots.append(_repository(marked(folder)) or folder)
+        roots.append(around(folder))
     return roots
 
-
-def _repository(found: str | None) -> str | None:
-    """The folder a run may read for a checkout `marked` found: the `.git` folder's own; without `.git` (a copy, an
-    archive) the folder holding the outermost package, whose sibling packages belong to the same repository."""
-    if found is None or os.path.exists(os.path.join(found, ".git")):
-        return found
-    return os.path.dirname(found) if os.path.isfile(os.path.join(found, "package.xml")) else found

@@ -301,3 +301,10 @@ def leaves(path) -> bool:
     except Refused:
         return True
     return False
+
+
+def roots() -> tuple[str, ...]:
+    """The roots of the run in progress (empty outside one): what a plan made in one guarded block hands to the
+    run that lints it later (the pytest plugin plans at collection and lints at the first item)."""
+    run = _current()
+    return tuple(run.roots) if run is not None else ()
