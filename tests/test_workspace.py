@@ -240,6 +240,7 @@ def test_the_per_file_hook_given_a_library_lints_the_robots_that_include_it(tmp_
     src = arm_workspace(tmp_path)
     other = pkg(src / "other_description", "other_description")
     write(other / "urdf" / "o.urdf", '<robot name="o"><link name="base_link"/></robot>')
+    (tmp_path / ".git").mkdir()  # a repository: its packages are one checkout (core.checkout)
     monkeypatch.chdir(tmp_path)  # pre-commit runs the hook from the repository root, with file names
     targets = _plan([src / "arm_description" / "urdf" / "parts.xacro"], here=tmp_path)
     assert [os.path.basename(str(t.path)) for t in targets] == ["robot.urdf.xacro"]
