@@ -278,6 +278,7 @@ def run(count: int, seed: int, hang: float, batch: int, report: str | None, seco
 
 
 def main(argv=None) -> int:
+    harness.stop_on_sigterm()
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--count", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=3636)

@@ -340,6 +340,7 @@ def run(count: int, seed: int, nrepos: int, hang: float, batch: int, report: str
 
 
 def main(argv=None) -> int:
+    harness.stop_on_sigterm()
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--count", type=int, default=500)
     ap.add_argument("--seed", type=int, default=3637)

@@ -190,9 +190,14 @@ def _account(stats: dict, examples: list, case, out: dict, show) -> None:
 
 
 def new_stats() -> dict:
-    # a run stopped with SIGTERM still removes its temp folder (the callers' `finally`)
-    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
     return {"inputs": 0, **{k: 0 for k in KINDS}, "outcomes": {}}
+
+
+def stop_on_sigterm() -> None:
+    """A fuzzing run stopped with SIGTERM still removes its temp folder (the callers' `finally`). Only for a
+    fuzzer's own process (`main`): in the test suite a handler would outlive the test and change how every later
+    forked child dies."""
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
 
 
 def finish(stats: dict, examples: list, t0: float, report: str | None, show: int = 5) -> int:

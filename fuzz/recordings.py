@@ -663,6 +663,7 @@ def run(count: int, seed: int, hang: float, batch: int = 100, report: str | None
 
 
 def main(argv=None) -> int:
+    harness.stop_on_sigterm()
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--count", type=int, default=2000)
     ap.add_argument("--seed", type=int, default=36)
