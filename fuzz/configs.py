@@ -23,7 +23,6 @@ when any count is non-zero.
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import random
@@ -278,14 +277,7 @@ def run(count: int, seed: int, hang: float, batch: int, report: str | None, seco
 
 
 def main(argv=None) -> int:
-    harness.stop_on_sigterm()
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--count", type=int, default=1000)
-    ap.add_argument("--seed", type=int, default=3636)
-    ap.add_argument("--hang", type=float, default=20.0)
-    ap.add_argument("--batch", type=int, default=100)
-    ap.add_argument("--seconds", type=float, help="start no new step of inputs after this many seconds")
-    ap.add_argument("--report")
+    ap = harness.parser(__doc__, count=1000, seed=3636, hang=20.0, batch=100)
     ns = ap.parse_args(argv)
     stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report, seconds=ns.seconds)
     return harness.finish(stats, examples, t0, ns.report)

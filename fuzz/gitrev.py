@@ -25,7 +25,6 @@ temporary folder left behind. Exit 1 when any count is non-zero.
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import random
@@ -340,15 +339,8 @@ def run(count: int, seed: int, nrepos: int, hang: float, batch: int, report: str
 
 
 def main(argv=None) -> int:
-    harness.stop_on_sigterm()
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--count", type=int, default=500)
-    ap.add_argument("--seed", type=int, default=3637)
+    ap = harness.parser(__doc__, count=500, seed=3637, hang=30.0, batch=50)
     ap.add_argument("--repos", type=int, default=24)
-    ap.add_argument("--hang", type=float, default=30.0)
-    ap.add_argument("--batch", type=int, default=50)
-    ap.add_argument("--seconds", type=float, help="start no new step of inputs after this many seconds")
-    ap.add_argument("--report")
     ns = ap.parse_args(argv)
     stats, examples, t0 = run(ns.count, ns.seed, ns.repos, ns.hang, ns.batch, ns.report, seconds=ns.seconds)
     rc = harness.finish(stats, examples, t0, ns.report)

@@ -193,6 +193,22 @@ def new_stats() -> dict:
     return {"inputs": 0, **{k: 0 for k in KINDS}, "outcomes": {}}
 
 
+def parser(doc: str, *, count: int, seed: int, hang: float, batch: int):
+    """The options every fuzzer takes (--count --seed --hang --batch --seconds --report); its own go on top.
+    Called from a fuzzer's `main`, so the SIGTERM handler is installed there only."""
+    import argparse
+
+    stop_on_sigterm()
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("--count", type=int, default=count)
+    ap.add_argument("--seed", type=int, default=seed)
+    ap.add_argument("--hang", type=float, default=hang)
+    ap.add_argument("--batch", type=int, default=batch)
+    ap.add_argument("--seconds", type=float, help="start no new step of inputs after this many seconds")
+    ap.add_argument("--report")
+    return ap
+
+
 def stop_on_sigterm() -> None:
     """A fuzzing run stopped with SIGTERM still removes its temp folder (the callers' `finally`). Only for a
     fuzzer's own process (`main`): in the test suite a handler would outlive the test and change how every later

@@ -24,7 +24,6 @@ count is non-zero.
 """
 from __future__ import annotations
 
-import argparse
 import bz2
 import json
 import os
@@ -663,17 +662,10 @@ def run(count: int, seed: int, hang: float, batch: int = 100, report: str | None
 
 
 def main(argv=None) -> int:
-    harness.stop_on_sigterm()
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--count", type=int, default=2000)
-    ap.add_argument("--seed", type=int, default=36)
-    ap.add_argument("--hang", type=float, default=15.0)
-    ap.add_argument("--batch", type=int, default=100)
+    ap = harness.parser(__doc__, count=2000, seed=36, hang=15.0, batch=100)
     ap.add_argument("--only", help="only inputs whose kind starts with this (mutate, bomb, sqlite, symlink, ...)")
     ap.add_argument("--cli-every", type=int, default=5, help="every N-th input through the whole CLI (the others "
                     "call check_recording in-process, as `urdfcheck bag` does)")
-    ap.add_argument("--seconds", type=float, help="start no new step of inputs after this many seconds")
-    ap.add_argument("--report")
     ns = ap.parse_args(argv)
     stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report, ns.only, max(ns.cli_every, 1),
                               seconds=ns.seconds)
