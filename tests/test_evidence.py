@@ -340,3 +340,17 @@ def test_a_symbol_from_a_package_the_includer_cannot_find_may_be_provided(tmp_pa
     assert not provided("unknown macro name: xacro:default_dvl_macro", found)
     assert provided("name 'ns' is not defined", ['<xacro:property name="ns" value="a"/>'])
     assert not provided("No such file or directory: x.xacro", ['<xacro:property name="ns" value="a"/>'])
+
+
+def test_the_report_schema_knows_every_way_a_step_is_taken():
+    """The JSON report's `evidence[].how` enum is core.evidence.HOW (a key added there and not here made every
+    report with that step invalid)."""
+    import json
+
+    from conftest import REPO
+
+    from urdfcheck.core.evidence import HOW
+
+    schema = json.loads((REPO / "src/urdfcheck/schemas/report.schema.json").read_text())
+    how = schema["$defs"]["finding"]["properties"]["evidence"]["items"]["properties"]["how"]["enum"]
+    assert set(how) == set(HOW)
