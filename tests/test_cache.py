@@ -269,6 +269,18 @@ def test_parallel_runs_share_an_entry(pkg, tmp_path):
     assert cli(args, pkg, c)[3] == ["urdfcheck: cache hit"]
 
 
+def test_a_run_that_reuses_expansions_stores_the_same_version(pkg, tmp_path):
+    """What the parallel runs race into, in order: the second run finds the first one's expansions (but not its
+    report) and must name its report as the first did (reading an entry is no look at the checked tree)."""
+    c = tmp_path / "cache"
+    args = ["lint", "--format", "json", "urdf/agv.urdf.xacro"]
+    cli(args, pkg, c)
+    [first] = entries(c)
+    first.unlink()
+    assert cli(args, pkg, c, raw=True)[3][-1].endswith("(xacro expansions: 2 reused, 0 expanded)")
+    assert entries(c) == [first]
+
+
 def test_prune_keeps_the_folder_bounded(tmp_path):
     folder = tmp_path / "v1"
     for i in range(10):

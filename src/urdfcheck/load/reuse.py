@@ -96,9 +96,17 @@ def seen(items) -> list:
     from urdfcheck.core.observe import fingerprint
 
     folder = os.path.join(_STATE["folder"], "")
+    # reading an entry resolves its path, which probes the cache folder and those above it: only a run that
+    # found an entry makes those probes, and two runs of the same tree must agree on what they looked at
+    above = set()
+    if _STATE["folder"]:
+        d = os.path.normpath(_STATE["folder"])
+        while d not in above:
+            above.add(d)
+            d = os.path.dirname(d)
     out = []
     for kind, path in items:
-        if folder != os.sep and path.startswith(folder):
+        if folder != os.sep and path.startswith(folder) or kind in ("p", "q") and path in above:
             continue
         fp = _NOW.get((kind, path))
         if fp is None:
