@@ -351,3 +351,35 @@ def test_a_linked_entry_or_key_folder_is_not_read(tmp_path, outside):
     with pytest.raises(OSError):
         cachefile.write(str(tmp_path / "linked"), "b.json", b"{}")
     assert [p.name for p in outside.iterdir()] == ["e.json"]
+
+
+def test_the_xacro_worker_forked_before_the_guard_reads_through_it(tmp_path, outside):
+    """The spare worker (cli.cache.fork_early, cli.main) is forked before the run enters its door: the job it is
+    handed inside the run reads under the run's guard, as a worker forked then would."""
+    from urdfcheck.core import worker
+    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, XACRO_TIMEOUT, worker_limits
+
+    secret = outside / "parts.xacro"
+    secret.write_text(f"<robot><link name='{LEAK}'/></robot>\n")
+    root = _checkout(tmp_path / "ws")
+    limits = worker_limits(False, [], XACRO_TIMEOUT)
+    worker.drop_spares()
+    worker.keep_spare(SPARE, limits, SPARE_PRELOAD)  # as the console does, before any guard
+    try:
+        with door.guarded([str(root)]):
+            job = worker.take_spare(SPARE, limits)
+            assert job is not None
+            job.send("urdfcheck.core.door:read_text", str(secret))
+            got = job.result()
+    finally:
+        worker.drop_spares()
+    assert isinstance(got, worker.Failure), got
+    assert "outside the checkout" in got.message and LEAK not in got.message
+    # the same job outside any run reads the file (the API and tests read what they name)
+    worker.keep_spare(SPARE, limits, SPARE_PRELOAD)
+    try:
+        job = worker.take_spare(SPARE, limits)
+        job.send("urdfcheck.core.door:read_text", str(secret))
+        assert LEAK in job.result()
+    finally:
+        worker.drop_spares()
