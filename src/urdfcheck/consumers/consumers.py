@@ -363,7 +363,8 @@ def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace
     parameters over the files each node is given), then those of parameter files no such node has read.
     Discovered launch files of a package are often alternatives (sim/real): their nodes count only when one
     launch file starts them all."""
-    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace)
+    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace,
+                                                  refused=out.errors)  # C007 at the launch line, as controllers
     starters = {n.loc.file for n in nodes}
     if out.origin == "discovered" and len(starters) > 1:
         out.notes.append((f"TF-owning nodes are started by {len(starters)} launch files of the package, which may "
