@@ -320,6 +320,16 @@ class Planner:
                 twin.twin = True
                 twin.evidence = (_step("model", str(m.path), "config"),)
                 out.append(twin)
+            if not _vouched(cfg) and (m.launch_args or m.frame_prefix):
+                # launch arguments and a frame prefix choose what the declared launch files run and which frames
+                # the model publishes: from an untrusted config they add a reading, never replace the one the
+                # launch files give by themselves (issue 36): the same files, their own defaults and prefix
+                plain = m.launch_defaults()
+                twin = self.target(Path(m.path), m.variant_args()[0][1], "launch defaults",
+                                   Later(lambda m=plain: _consumers(m, cfg, dict(settings.packages))), settings)
+                twin.twin = "launch defaults"
+                twin.evidence = (_step("model", str(m.path), "config"),)
+                out.append(twin)
         for raw in rest:
             out.extend(self.file_targets(Path(raw), settings) if not os.path.isdir(raw)
                        else self.discovered(raw, self.walk(raw), settings))

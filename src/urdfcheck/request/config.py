@@ -119,6 +119,11 @@ class ModelConfig(FrozenRecord):
         # xacro args whose default an untrusted config replaces: the defaults are linted too (issue 36)
         d["defaults"] = _ro({}) if defaults is None else defaults
 
+    def launch_defaults(self) -> ModelConfig:
+        """This model with its launch files read as they are: no `launch_args`, no `frame_prefix` (the launch
+        defaults twin of a config the runner did not trust; plan.plan)."""
+        return ModelConfig(**{**{f: getattr(self, f) for f in self._fields}, "launch_args": None, "frame_prefix": ""})
+
     def variant_args(self) -> list[tuple[str, dict]]:
         """(variant name, xacro args) pairs: one ("", args) when there are no variants."""
         base = dict(self.args)
@@ -466,6 +471,9 @@ def load_config(path: str | os.PathLike, trusted: bool = False, root: str | None
         if replaced and any(n == "xacro defaults" for n, _ in models[-1].variant_args()):
             key = "args" if m.get("args") else "variants"
             notes += (trust.defaults_kept(str(m["path"]), replaced, key_loc("models", i, key)),)
+        if not trusted and (models[-1].launch_args or models[-1].frame_prefix):
+            key = "launch_args" if models[-1].launch_args else "frame_prefix"
+            notes += (trust.launch_defaults_kept(str(m["path"]), key, key_loc("models", i, key)),)
     packages = {str(k): resolve(v, "packages", k, kind="folder") for k, v in (data.get("packages") or {}).items()}
     for k, p in packages.items():
         if not os.path.isdir(p):
