@@ -43,7 +43,10 @@ trusted: false                            # stock xacro evaluation (only for you
 allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read
 max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
 # trusted, allow_env and max_elements above the default count only in a config named with
-# --config FILE --trust-config; elsewhere they are an X018 finding and ignored (request/trust.py)
+# --config FILE --trust-config; elsewhere they are an X018 finding and ignored (request/trust.py), as are the keys
+# that lower the gate: ignore, a narrower select, lower severities, fail_on above warning, looser rule options,
+# packages remapping the checkout's own package, frames renaming a REP-105 frame, target. There, tf_owners may add a
+# publisher but never publish a frame, and launch_args/frame_prefix add the launch files' own defaults (a variant)
 target: humble                            # ROS distribution whose urdfdom must read the model (--target)
 profiles: [mujoco, gazebo]                # consumer profiles (--profile): what each consumer rejects or changes
 cache: false                              # never store these runs in the lint cache (where it is: not here)
