@@ -444,3 +444,17 @@ def test_a_frame_prefix_adds_the_launch_defaults_never_replaces_them(tmp_path):
     assert ("X018", "urdfcheck.yaml", 5, "info") in found, found
     code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
     assert ("T001", "launch/agv.launch.xml", 32, "error") not in found, found
+
+
+def test_a_declared_localization_file_does_not_hide_the_driver_beside_it(tmp_path):
+    """`localization:` makes a file's node run with the model: a fake EKF file whose base frame is the driver's typo
+    'imu' published that frame (the driver's C020 gone; only the fake file's own was said). Declared from an untrusted
+    config, the model is also linted with the consumers zero config finds beside it."""
+    ws = _example(tmp_path, "contract_sensor_frame_id", SENSOR + "    localization: [fake/ekf.yaml]\n")
+    (ws / "fake").mkdir()
+    (ws / "fake" / "ekf.yaml").write_text("ekf_filter_node:\n  ros__parameters:\n    world_frame: odom\n"
+                                          "    odom_frame: odom\n    base_link_frame: imu\n")
+    code, found = _lint(ws)
+    assert code == 1 and ("C020", "config/agv_driver_ros1.yaml", 9, "warning") in found, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert [c[:3] for c in found if c[0] == "C020"] == [("C020", "fake/ekf.yaml", 5)], found

@@ -121,7 +121,8 @@ def _keep_gate(data: dict, key_loc) -> list[Finding]:
 
 # The keys an untrusted config keeps, and why none of them can hide a finding (issue 36):
 # - `models:` adds to discovery (plan.plan); its consumer files add to those found beside the model (the twin
-#   "consumers found beside it"); `args`/`variants` that replace a xacro default add the "xacro defaults" variant;
+#   "consumers found beside it", also whenever it declares `localization:` files, whose nodes it makes run);
+#   `args`/`variants` that replace a xacro default add the "xacro defaults" variant;
 #   `launch_args` and `frame_prefix` add the "launch defaults" twin, its declared launch files read with their own
 #   defaults and the prefix they give (plan.plan.declared).
 # - `tf_owners` may add a publisher (a conflict: T001..T004), never make a frame published
