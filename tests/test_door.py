@@ -403,6 +403,22 @@ def _refused_tf_owner_files(tmp_path, outside, case: str) -> tuple[Path, str, st
         root = write(tmp_path / "bot", {"package.xml": "<package format='3'><name>bot</name></package>\n",
                                         "urdf/bot.urdf": URDF.format(extra=""), "launch/bringup.launch.xml": launch})
         return _checkout(root), "launch/bringup.launch.xml", "ekf.yaml"
+    if case == "controllers":  # the controller readers refuse the same paths, said the same way
+        import shutil
+
+        example = REPO / "examples" / "broken" / "contract_odom_tf_twice"
+        shutil.copy(example / "config" / "agv_controllers.yaml", outside / "ctrl.yaml")
+        root = tmp_path / "bot"
+        for sub in ("urdf", "launch"):
+            shutil.copytree(example / sub, root / sub)
+        shutil.copy(example / "package.xml", root / "package.xml")
+        launch = root / "launch" / "agv.launch.xml"
+        text = launch.read_text()
+        for name in ("config/agv_controllers.yaml", "config/ekf.yaml"):
+            text = text.replace(f"$(find-pkg-share broken_contract_odom_tf_twice_description)/{name}",
+                                str(outside / "ctrl.yaml") if "controllers" in name else str(_ekf(outside)))
+        launch.write_text(text)
+        return _checkout(root), "launch/agv.launch.xml", "ctrl.yaml"
     if case == "rosparam load":
         ekf = _ekf(outside, "ekf1.yaml", node=None)
         launch = f'''<launch>
@@ -423,7 +439,8 @@ def _refused_tf_owner_files(tmp_path, outside, case: str) -> tuple[Path, str, st
     return _checkout(package(tmp_path, EKF_ODOM + carto)), "launch/bringup.launch.py", "bot.lua"
 
 
-@pytest.mark.parametrize("case", ["parameters", "param from", "rosparam load", "lua absolute", "lua ../.."])
+@pytest.mark.parametrize("case", ["parameters", "param from", "rosparam load", "lua absolute", "lua ../..",
+                                  "controllers"])
 def test_a_refused_tf_owner_file_is_a_finding_at_the_launch_line(tmp_path, outside, case):
     """As the controller readers report a parameter file they may not read (C007), so do the TF-owner readers:
     at the launch line that names it, never silently (its node's frames would be the defaults)."""

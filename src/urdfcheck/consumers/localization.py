@@ -248,7 +248,7 @@ def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | 
                 path = locate(f) if locate is not None else f
                 pf = read(path) if path else None
                 if pf is None:
-                    if not _refused(path or f, f"{owner} {n.name or n.executable}: parameter file", n.loc, refused):
+                    if not refused_file(path or f, f"{owner} {n.name or n.executable}: parameter file", n.loc, refused):
                         notes.append((f"{owner}: parameter file {f} not read; its frames are the defaults", n.loc))
                     continue
                 files.append(pf.path)
@@ -272,7 +272,8 @@ def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | 
     return out, used, notes
 
 
-def _refused(path: str, what: str, where: Location, refused: list | None) -> bool:
+def refused_file(path: str, what: str, where: Location, refused: list | None,
+                 lost: str = "the node's frames cannot be checked") -> bool:
     """Whether the door refuses `path` (then one ConsumerError at `where`, the launch line naming it, goes to
     `refused`). The file is named by its base name only: the launch line says how it was written, and its
     resolved path may be the runner's."""
@@ -285,11 +286,10 @@ def _refused(path: str, what: str, where: Location, refused: list | None) -> boo
         door.confine(path)
         return False
     except door.Refused as e:
-        why = e.why
+        why = e.why.removeprefix("refused: ")
     except (OSError, ValueError):
         return False
-    err = ConsumerError(f"{what} {os.path.basename(os.path.normpath(str(path)))!r} is not read: {why}; the node's "
-                        "frames cannot be checked", where)
+    err = ConsumerError(f"{what} {os.path.basename(os.path.normpath(str(path)))!r} is refused: {why}; {lost}", where)
     if err not in refused:
         refused.append(err)
     return True
@@ -313,7 +313,7 @@ def _ros1_server(info, n, read, locate, used: set, refused: list | None = None) 
             path = (locate(item.file) if locate is not None else item.file) or item.file
             pf = read(path)
             if pf is None:
-                _refused(path, f"{n.package} {name}: rosparam file", item.loc, refused)
+                refused_file(path, f"{n.package} {name}: rosparam file", item.loc, refused)
                 continue
             args = dict(item.subst or ())
             for key, node in pf.nodes.items():
@@ -381,7 +381,7 @@ def _lua_options(n, locate, notes: list, refused: list | None = None) -> dict[st
         return None
     path = os.path.join(folder, base)
     path = (locate(path) if locate is not None else path) or path
-    if _refused(path, f"cartographer {n.name or n.executable}: configuration", n.loc, refused):
+    if refused_file(path, f"cartographer {n.name or n.executable}: configuration", n.loc, refused):
         return None
     return read_lua_options(path, notes, n.loc)
 
