@@ -313,7 +313,7 @@ class Planner:
                 out.append(self.target(Path(m.path), vargs, vname, consumers, settings))
                 out[-1].bags = m.bags
                 out[-1].evidence = (_step("model", str(m.path), "config"),)
-            if not _vouched(cfg) and (_undeclared_consumers(m) or _declares_consumers(m)):
+            if not _vouched(cfg) and (_undeclared_consumers(m) or _declares_localization(m)):
                 # declared consumers add to those found beside the model, never replace them (issue 36): the
                 # package's parameter and launch files the config leaves out are checked as zero config would
                 twin = self.target(Path(m.path), m.variant_args()[0][1], "consumers found beside it", None, settings)
@@ -625,7 +625,7 @@ def _undeclared_consumers(m) -> bool:
     return any(os.path.realpath(p) not in named for p in (*found.params, *found.launch))
 
 
-def _declares_consumers(m) -> bool:
+def _declares_localization(m) -> bool:
     """Does the declared model name localization files? Each counts as a node run with the model, publishing its
     transforms, which zero config grants only to a node a launch file starts: from an untrusted config they add a
     reading, so the model is linted as zero config finds it too (a declared EKF file that publishes a frame does
