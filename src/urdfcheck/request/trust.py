@@ -130,7 +130,10 @@ def _keep_gate(data: dict, key_loc) -> list[Finding]:
 # - `profiles` turns consumer profiles on: a profile's finding goes from info to its rule's severity, and a profile
 #   never removes one (rules/checks/profiles/common.speak); `cache: false` only turns the lint cache off.
 # - `packages` for a package the checkout does not define adds a place to resolve it (refused for its own: below);
-#   `max_elements` below the default tightens.
+#   `max_elements` below the default tightens; `bags` add recordings to check against the model (B rules).
+# Not closed: declared `controllers`/`drivers` files count as run with the model (their odometry TF), which zero
+# config grants only to what a launch file starts; the twin is made only when the package holds files the config
+# leaves out (linting every declared model twice repeats each driver finding in a second wording).
 REP105 = {"map": "map", "odom": "odom", "base": "base_link"}  # request.config.DEFAULT_FRAMES
 
 
