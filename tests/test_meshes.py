@@ -168,6 +168,7 @@ def test_mm_mesh_found_by_the_inertia_alone(tmp_path):
 ])
 def test_mm_mesh_only_when_unambiguous(tmp_path, old, new):
     pkg = _copy(tmp_path, "units_mm_mesh")
+    assert _codes(pkg, "U012") == [("arm.urdf", 25, "warning")]
     _edit(pkg / "urdf" / "arm.urdf", old, new)
     if "sphere" in new:
         _edit(pkg / "urdf" / "arm.urdf", '<mass value="1.0"/>', '<mass value="0"/>')
@@ -177,6 +178,7 @@ def test_mm_mesh_only_when_unambiguous(tmp_path, old, new):
 def test_mm_mesh_small_parts_and_far_ratios_are_not_reported(tmp_path):
     """A mesh under 5 units across as written, or 100x its reference, is not called millimetres."""
     pkg = _copy(tmp_path, "units_mm_mesh")
+    assert _codes(pkg, "U012") == [("arm.urdf", 25, "warning")]
     (pkg / "meshes" / "link1.stl").write_bytes(_binary_stl(_box(0.8, 0.8, 3, (0, 0, 1.5))))
     assert _codes(pkg, "U012") == []
     (pkg / "meshes" / "link1.stl").write_bytes(_binary_stl(_box(8, 8, 30, (0, 0, 15))))
@@ -223,6 +225,7 @@ def test_self_collision_mesh_scale_is_applied(tmp_path):
     """The same link2 mesh at half scale hangs clear of the base."""
     pytest.importorskip("coal")
     pkg = _copy(tmp_path, "self_collision_mesh")
+    assert _codes(pkg, "G006") == [("arm.urdf", 32, "info")]
     _edit(pkg / "urdf" / "arm.urdf", 'meshes/link2.stl"/>', 'meshes/link2.stl" scale="1 1 0.5"/>')
     assert _codes(pkg, "G006") == []
 
@@ -231,6 +234,7 @@ def test_self_collision_concave_mesh_whose_hull_only_reaches_the_neighbour(tmp_p
     """A U-shaped base around link2's foot: the hulls overlap by centimetres, the triangles never meet."""
     pytest.importorskip("coal")
     pkg = _copy(tmp_path, "self_collision_mesh")
+    assert _codes(pkg, "G006") == [("arm.urdf", 32, "info")]
     # link2's foot spans x 0.035..0.085, z 0..0.3 (world); the base: two walls at x < 0.02 and x > 0.1, and a floor
     # below z = -0.02, so its hull holds the foot and its surface stays 15 mm away
     walls = _box(0.12, 0.2, 0.1, (-0.04, 0, 0.05)) + _box(0.1, 0.2, 0.1, (0.15, 0, 0.05)) \
@@ -247,6 +251,7 @@ def test_self_collision_flat_mesh_is_left_out(tmp_path):
     """A flat collision mesh (a plane) has no convex hull: left out (coal's qhull crashed the process on it)."""
     pytest.importorskip("coal")
     pkg = _copy(tmp_path, "self_collision_mesh")
+    assert _codes(pkg, "G006") == [("arm.urdf", 32, "info")]
     plane = [((-0.1, -0.1, 0.05), (0.1, -0.1, 0.05), (0.1, 0.1, 0.05)), ((-0.1, -0.1, 0.05), (0.1, 0.1, 0.05),
                                                                         (-0.1, 0.1, 0.05))]
     (pkg / "meshes" / "base.stl").write_bytes(_binary_stl(plane))

@@ -11,11 +11,13 @@ from urdfcheck.core import meshfile
 
 def reader(model, ctx):
     """`read(geometry) -> Mesh | None` for the model's meshes, resolved as G001 resolves them."""
-    from urdfcheck.rules.checks.geometry import _base_dir, _resolver
+    entry = getattr(getattr(ctx, "expanded", None), "entry", None) or model.source
+    base = Path(entry).parent  # relative mesh names are the model file's neighbours
+    resolver = getattr(ctx, "resolver", None)
+    if resolver is None:
+        from urdfcheck.load.packages import Resolver
 
-    resolver = _resolver(model, ctx) if ctx is not None else None
-    entry = (getattr(getattr(ctx, "expanded", None), "entry", None) if ctx is not None else None) or model.source
-    base = _base_dir(model, ctx) if ctx is not None else Path(entry).parent
+        resolver = Resolver(near=Path(model.source).resolve())
     seen: dict[str, meshfile.Mesh | None] = {}
 
     def read(g):
