@@ -63,7 +63,7 @@ def _bounds(path):
     m = meshfile.read(path)
     assert m is not None, path
     lo, hi = m.bounds()
-    return [round(x, 6) for x in lo + hi], len(m.triangles) // 3
+    return [round(x, 6) for x in lo + hi], len(m.triangles)
 
 
 def test_stl_binary_and_ascii(tmp_path):
@@ -130,6 +130,16 @@ def test_bounded_in_bytes_and_vertices(tmp_path, monkeypatch):
     monkeypatch.setattr(meshfile, "MAX_BYTES", 10_000)
     meshfile._cache.clear()
     assert meshfile.read(tmp_path / "b.stl") is not None
+
+
+def test_faces_are_bounded_too(tmp_path, monkeypatch):
+    (tmp_path / "m.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\n" + "f 1 2 3\n" * 50, encoding="utf-8")
+    monkeypatch.setattr(meshfile, "_cache", {})
+    monkeypatch.setattr(meshfile, "MAX_INDICES", 100)
+    assert meshfile.read(tmp_path / "m.obj") is None
+    (tmp_path / "m.dae").write_text(_DAE.format(unit_name="meter", meter="1", transform="").replace(
+        "<p>0 0 1 0 2 0</p>", "<p>" + "0 0 1 0 2 0 " * 50 + "</p>"), "utf-8")
+    assert meshfile.read(tmp_path / "m.dae") is None
 
 
 def test_a_mesh_linked_out_of_the_run_is_not_read(tmp_path):

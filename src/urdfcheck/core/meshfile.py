@@ -16,34 +16,51 @@ import math
 import os
 import re
 import struct
-from array import array
 
 from urdfcheck.core import door
 
 MAX_BYTES = 32 * 1024**2
-MAX_VERTICES = 500_000
+MAX_VERTICES = 1_500_000  # an STL repeats each vertex per triangle: 500,000 triangles, a 25 MB binary STL
+MAX_INDICES = 6_000_000  # triangle corners (OBJ faces, COLLADA <p>): 2,000,000 triangles
 FORMATS = (".stl", ".obj", ".dae")
-_CACHE_ENTRIES = 32
+_CACHE_POINTS = 4_000_000  # vertices kept between the rules of a run (about 100 MB), oldest dropped first
 
 
 class Mesh:
-    """`points`: flat x, y, z; `triangles`: flat vertex indices, three per triangle (may be empty)."""
+    """`points`: an (N, 3) float array; `triangles`: an (M, 3) array of indices into it (M may be 0);
+    `lo`, `hi`: the corners of the bounding box."""
 
-    __slots__ = ("points", "triangles")
+    __slots__ = ("points", "triangles", "lo", "hi")
 
-    def __init__(self, points: array, triangles: array):
+    def __init__(self, points, triangles):
         self.points = points
         self.triangles = triangles
+        self.lo = tuple(float(x) for x in points.min(axis=0))
+        self.hi = tuple(float(x) for x in points.max(axis=0))
 
     def __len__(self) -> int:
-        return len(self.points) // 3
+        return len(self.points)
 
-    def bounds(self) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
-        p = self.points
-        return ((min(p[0::3]), min(p[1::3]), min(p[2::3])), (max(p[0::3]), max(p[1::3]), max(p[2::3])))
+    def bounds(self) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        return self.lo, self.hi
 
 
 _cache: dict[tuple, Mesh | None] = {}
+
+
+def _mesh(points, triangles=None) -> Mesh | None:
+    """A Mesh of flat coordinates and flat triangle indices, or None: no points, too many, not finite, or
+    triangles that name points not there (then the points alone)."""
+    import numpy as np
+
+    pts = np.asarray(points, dtype=float)
+    if pts.size == 0 or pts.size % 3 or pts.size > 3 * MAX_VERTICES or not np.isfinite(pts).all():
+        return None
+    pts = pts.reshape(-1, 3)
+    tris = np.asarray(triangles if triangles is not None else (), dtype=np.int64)
+    if tris.size % 3 or (tris.size and (tris.min() < 0 or tris.max() >= len(pts))):
+        tris = np.zeros(0, dtype=np.int64)
+    return Mesh(pts, tris.reshape(-1, 3))
 
 
 def read(path) -> Mesh | None:
@@ -70,12 +87,9 @@ def read(path) -> Mesh | None:
         mesh = _PARSERS[ext](data) if len(data) <= MAX_BYTES else None
     except (ValueError, SyntaxError, struct.error, IndexError, OverflowError, MemoryError, RecursionError):
         mesh = None  # lxml's XMLSyntaxError is a SyntaxError
-    if mesh is not None and (not len(mesh) or len(mesh) > MAX_VERTICES
-                             or not all(math.isfinite(x) for x in mesh.points)):
-        mesh = None
-    if len(_cache) >= _CACHE_ENTRIES:
-        _cache.pop(next(iter(_cache)))
     _cache[key] = mesh
+    while len(_cache) > 1 and sum(len(m) for m in _cache.values() if m is not None) > _CACHE_POINTS:
+        _cache.pop(next(iter(_cache)))
     return mesh
 
 
@@ -84,29 +98,30 @@ _ASCII_VERTEX = re.compile(rb"vertex\s+(\S+)\s+(\S+)\s+(\S+)")
 
 
 def _stl(data: bytes) -> Mesh | None:
+    import numpy as np
+
     if len(data) >= 84:
         n = struct.unpack_from("<I", data, 80)[0]
         if len(data) == 84 + 50 * n:  # binary, whatever its header says (many start with "solid")
             if 3 * n > MAX_VERTICES:
                 return None
-            pts = array("d")
-            for rec in struct.iter_unpack("<12fH", data[84:]):
-                pts.extend(rec[3:12])
-            return Mesh(pts, array("l", range(3 * n)))
+            rec = np.dtype([("normal", "<f4", 3), ("v", "<f4", 9), ("attr", "<u2")])
+            return _mesh(np.frombuffer(data, dtype=rec, count=n, offset=84)["v"].ravel(), np.arange(3 * n))
     if not data.lstrip()[:5].lower() == b"solid":
         return None
-    pts = array("d")
+    pts: list[float] = []
     for m in _ASCII_VERTEX.finditer(data):
         pts.extend(float(x) for x in m.groups())
         if len(pts) > 3 * MAX_VERTICES:
             return None
     n = len(pts) // 9
-    return Mesh(pts, array("l", range(3 * n)))
+    return _mesh(pts[:9 * n], range(3 * n))
 
 
 # --- OBJ -------------------------------------------------------------------------------------------------
 def _obj(data: bytes) -> Mesh | None:
-    pts, tris = array("d"), array("l")
+    pts: list[float] = []
+    tris: list[int] = []
     for line in data.split(b"\n"):
         line = line.strip()
         if line.startswith(b"v "):
@@ -123,10 +138,9 @@ def _obj(data: bytes) -> Mesh | None:
                 idx.append(i - 1 if i > 0 else len(pts) // 3 + i)
             for k in range(1, len(idx) - 1):  # a polygon as a fan of triangles
                 tris.extend((idx[0], idx[k], idx[k + 1]))
-    n = len(pts) // 3
-    if any(not 0 <= i < n for i in tris):
-        tris = array("l")  # faces that name vertices not there: the points alone
-    return Mesh(pts, tris)
+            if len(tris) > MAX_INDICES:
+                return None
+    return _mesh(pts, tris)
 
 
 # --- COLLADA ---------------------------------------------------------------------------------------------
@@ -204,7 +218,10 @@ def _geometry(geom) -> tuple[list[float], list[int]] | None:
         p = next((x for x in prim if _local(x.tag) == "p"), None)
         if at is None or p is None:
             continue
-        idx = [int(x) for x in (p.text or "").split()][at::stride]
+        words = (p.text or "").split()
+        if len(tris) + len(words) // stride > MAX_INDICES:
+            raise ValueError("too many triangles")
+        idx = [int(x) for x in words[at::stride]]
         if kind == "triangles":
             tris += idx[: len(idx) - len(idx) % 3]
         else:
@@ -252,26 +269,32 @@ def _dae(data: bytes) -> Mesh | None:
                 walk(node, eye, 0)
     if not scenes:
         placed = [(gid, eye) for gid in geoms]
-    pts, tris = array("d"), array("l")
-    read_geoms: dict[str, tuple] = {}
+    import numpy as np
+
+    parts: list = []
+    tris: list = []
+    count = 0
+    read_geoms: dict[str, tuple | None] = {}
     for gid, m in placed:
         if gid not in geoms:
             continue
         if gid not in read_geoms:
-            read_geoms[gid] = _geometry(geoms[gid]) or ([], [])
-        gp, gt = read_geoms[gid]
-        base = len(pts) // 3
-        if len(pts) // 3 + len(gp) // 3 > MAX_VERTICES:
+            got = _geometry(geoms[gid])
+            read_geoms[gid] = (np.asarray(got[0], dtype=float).reshape(-1, 3), got[1]) if got else None
+        entry = read_geoms[gid]
+        if entry is None:
+            continue
+        gp, gt = entry
+        if count + len(gp) > MAX_VERTICES:
             return None
-        for k in range(0, len(gp), 3):
-            x, y, z = gp[k], gp[k + 1], gp[k + 2]
-            pts.extend((unit * (m[0][0] * x + m[0][1] * y + m[0][2] * z + m[0][3]),
-                        unit * (m[1][0] * x + m[1][1] * y + m[1][2] * z + m[1][3]),
-                        unit * (m[2][0] * x + m[2][1] * y + m[2][2] * z + m[2][3])))
-        n = len(gp) // 3
-        if all(0 <= i < n for i in gt):  # indices past the source: this geometry's points alone
-            tris.extend(base + i for i in gt)
-    return Mesh(pts, tris) if len(pts) else None
+        rot, move = np.asarray(m, dtype=float)[:3, :3], np.asarray(m, dtype=float)[:3, 3]
+        parts.append(unit * (gp @ rot.T + move))
+        if gt and min(gt) >= 0 and max(gt) < len(gp):  # indices past the source: this geometry's points alone
+            tris.append(np.asarray(gt, dtype=np.int64) + count)
+        count += len(gp)
+    if not parts:
+        return None
+    return _mesh(np.concatenate(parts).ravel(), np.concatenate(tris) if tris else None)
 
 
 _PARSERS = {".stl": _stl, ".obj": _obj, ".dae": _dae}

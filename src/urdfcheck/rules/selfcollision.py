@@ -194,14 +194,13 @@ def _mesh_box(g, read):
 
 def _coal_mesh(coal, np, mesh, scale):
     """(convex hull, triangles as a BVH or None) of a mesh, from its vertices: coal never opens the file."""
-    pts = np.frombuffer(mesh.points, dtype=float).reshape(-1, 3) * np.array(scale, dtype=float)
-    tris = np.frombuffer(mesh.triangles, dtype=np.int64 if mesh.triangles.itemsize == 8 else np.int32)
+    pts = mesh.points * np.array(scale, dtype=float)
     surface = None
-    if len(tris) >= 3:
+    if len(mesh.triangles):
         surface = coal.BVHModelOBBRSS()
-        surface.beginModel(len(tris) // 3, len(pts))
+        surface.beginModel(len(mesh.triangles), len(pts))
         surface.addVertices(pts)
-        surface.addTriangles(tris.reshape(-1, 3).astype(np.int64))
+        surface.addTriangles(mesh.triangles)
         surface.endModel()
     unique = np.unique(pts, axis=0)  # an STL repeats each vertex once per triangle
     if len(unique) < 4:
