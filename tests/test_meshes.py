@@ -266,3 +266,34 @@ def test_self_collision_flat_mesh_is_left_out(tmp_path):
                                                                         (-0.1, 0.1, 0.05))]
     (pkg / "meshes" / "base.stl").write_bytes(_binary_stl(plane))
     assert _codes(pkg, "G006") == []
+
+
+def test_self_collision_collada_with_another_up_axis_is_left_out(tmp_path):
+    """The base as COLLADA: Z_UP is placed as written and found; Y_UP is left out (loaders disagree on turning it)."""
+    pytest.importorskip("coal")
+    pkg = _copy(tmp_path, "self_collision_mesh")
+    tris = _box(0.2, 0.2, 0.1, (0, 0, 0.05))
+    corners = sorted({p for t in tris for p in t})
+    index = {p: i for i, p in enumerate(corners)}
+    flat = " ".join(f"{x:g} {y:g} {z:g}" for x, y, z in corners)
+    p = " ".join(f"{index[a]} 0 {index[b]} 0 {index[c]} 0" for a, b, c in tris)
+    dae = _DAE.format(unit_name="meter", meter="1", transform="").replace(
+        '<float_array id="g-arr" count="9">0 0 0 100 0 0 0 200 0</float_array>',
+        f'<float_array id="g-arr" count="{3 * len(corners)}">{flat}</float_array>').replace(
+        '<triangles count="1">', f'<triangles count="{len(tris)}">').replace("<p>0 0 1 0 2 0</p>", f"<p>{p}</p>")
+    (pkg / "meshes" / "base.dae").write_text(dae, encoding="utf-8")
+    _edit(pkg / "urdf" / "arm.urdf", "meshes/base.stl", "meshes/base.dae")
+    assert _codes(pkg, "G006") == [("arm.urdf", 32, "info")]
+    _edit(pkg / "meshes" / "base.dae", "<up_axis>Z_UP</up_axis>", "<up_axis>Y_UP</up_axis>")
+    assert _codes(pkg, "G006") == []
+
+
+def test_mm_mesh_placeholder_inertia_is_no_reference(tmp_path):
+    """Three equal moments (a placeholder, usually) give no size: with only that, no finding."""
+    pkg = _copy(tmp_path, "units_mm_mesh")
+    assert _codes(pkg, "U012") == [("arm.urdf", 25, "warning")]
+    _edit(pkg / "urdf" / "arm.urdf", '<geometry><cylinder radius="0.04" length="0.3"/></geometry>',
+          '<geometry><mesh filename="package://mm_arm_description/meshes/link1.stl"/></geometry>')
+    _edit(pkg / "urdf" / "arm.urdf", 'ixx="0.0079" ixy="0" ixz="0" iyy="0.0079" iyz="0" izz="0.0008"',
+          'ixx="0.0057" ixy="0" ixz="0" iyy="0.0057" iyz="0" izz="0.0057"')
+    assert _codes(pkg, "U012") == []

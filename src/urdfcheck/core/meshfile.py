@@ -28,13 +28,15 @@ _CACHE_POINTS = 4_000_000  # vertices kept between the rules of a run (about 100
 
 class Mesh:
     """`points`: an (N, 3) float array; `triangles`: an (M, 3) array of indices into it (M may be 0);
-    `lo`, `hi`: the corners of the bounding box."""
+    `lo`, `hi`: the corners of the bounding box; `up`: COLLADA's <up_axis> when it is not Z_UP (loaders
+    disagree on whether to turn such a mesh: its size holds, its orientation is uncertain), else ""."""
 
-    __slots__ = ("points", "triangles", "lo", "hi")
+    __slots__ = ("points", "triangles", "lo", "hi", "up")
 
     def __init__(self, points, triangles):
         self.points = points
         self.triangles = triangles
+        self.up = ""
         self.lo = tuple(float(x) for x in points.min(axis=0))
         self.hi = tuple(float(x) for x in points.max(axis=0))
 
@@ -247,6 +249,8 @@ def _dae(data: bytes) -> Mesh | None:
             unit = float(c.get("meter"))
     if not (math.isfinite(unit) and unit > 0):
         return None
+    up = next((c.text or "" for c in (asset if asset is not None else ()) if _local(c.tag) == "up_axis"), "")
+    up = up.strip() if up.strip() not in ("", "Z_UP") else ""
     geoms = {g.get("id"): g for g in root.iter() if _local(g.tag) == "geometry"}
     placed: list[tuple[str, list]] = []  # (geometry id, 4x4 world matrix)
 
@@ -294,7 +298,10 @@ def _dae(data: bytes) -> Mesh | None:
         count += len(gp)
     if not parts:
         return None
-    return _mesh(np.concatenate(parts).ravel(), np.concatenate(tris) if tris else None)
+    mesh = _mesh(np.concatenate(parts).ravel(), np.concatenate(tris) if tris else None)
+    if mesh is not None:
+        mesh.up = up[:16]
+    return mesh
 
 
 _PARSERS = {".stl": _stl, ".obj": _obj, ".dae": _dae}

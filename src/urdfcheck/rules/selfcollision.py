@@ -18,7 +18,8 @@ Meshes: the file's vertices and triangles come from core.meshfile (through the d
 scaled by the <mesh> scale. Coal measures penetration depth only between convex shapes, so the depth is that of
 the mesh's convex hull; and the pair is reported only when the mesh's triangles themselves (a BVH, what MoveIt's
 FCL and Gazebo test) touch the other shape, so a concave part whose hull, not its surface, reaches a neighbour is
-not. A mesh not read (missing, another format, too large) is left out.
+not. A mesh not read (missing, another format, too large) is left out, and so is a COLLADA mesh whose up axis is
+not Z_UP (whether a loader turns it differs between assimp versions).
 """
 from __future__ import annotations
 
@@ -180,8 +181,8 @@ def _mesh_box(g, read):
     """(half extents, centre of the bounds in the mesh frame, Mesh, scale) of a collision mesh read and scaled,
     or None (not read, or absurd after its scale)."""
     mesh = read(g)
-    if mesh is None:
-        return None
+    if mesh is None or mesh.up:
+        return None  # a COLLADA mesh with another up axis: where its parts lie depends on the loader
     scale = tuple(float(x) for x in (g.scale or (1.0, 1.0, 1.0)))
     lo, hi = mesh.bounds()
     a = [lo[k] * scale[k] for k in range(3)]

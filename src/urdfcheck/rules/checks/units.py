@@ -70,6 +70,8 @@ def _inertia_diagonal(inertial) -> float | None:
     if inertial is None or not inertial.mass or inertial.mass <= 0 or inertial.inertia is None:
         return None
     ixx, _, _, iyy, _, izz = inertial.inertia
+    if ixx == iyy == izz:
+        return None  # equal moments: a placeholder far more often than a solid cube or sphere, no size to trust
     trace = ixx + iyy + izz
     if not (math.isfinite(trace) and trace > 0 and math.isfinite(inertial.mass)):
         return None
