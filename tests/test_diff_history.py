@@ -169,6 +169,56 @@ def test_linorobot2_caster_mass_and_a_copied_macro(tmp_path):
     assert masses == {(0.1, 0.01)}
 
 
+def test_linorobot2_wheel_separation_the_gazebo_plugin_is_told(tmp_path):
+    """cecce05 "updated properties" (2wd): a larger base (0.17 x 0.17 -> 0.24 x 0.22), the wheels from x=0.0415,
+    y=+-0.1 to x=0, y=+-0.13, a front caster switched on, the laser 120 mm forward. The Gazebo diff drive plugin
+    is told `wheel_separation` = 2 x wheel_pos_y: 0.2 -> 0.26, which a reviewer must see next to the wheels."""
+    _, models = diff_at(tmp_path, LINO, "cecce05")
+    got = changed(models)
+    assert set(got) == {"2wd.urdf.xacro"}
+    fields, moved = got["2wd.urdf.xacro"]
+    plugin = "Gazebo plugin libgazebo_ros_diff_drive.so (differential_drive_controller) wheel_separation"
+    assert fields == {("joint", j, "origin.xyz") for j in ("left_wheel_joint", "right_wheel_joint",
+                                                           "rear_caster_wheel_joint", "laser_to_base_link")} | {
+        ("link", "base_link", f) for f in ("inertia", "visual[#0].geometry", "collision[#0].geometry")} | {
+        ("contract", plugin, "")}
+    assert moved == {"left_wheel_link", "right_wheel_link", "rear_caster_wheel_link", "laser"}
+    for m in (m for m in models if m["status"] == "changed"):
+        assert m["links"]["added"] == ["front_caster_wheel_link"]
+        assert m["joints"]["added"] == ["front_caster_wheel_joint"]
+        assert [(c["old"], c["new"]) for c in m["changes"] if c["name"] == plugin] == [(0.2, 0.26)]
+        base = [c for c in m["changes"] if c["field"] == "visual[#0].geometry"]
+        assert base[0]["old"] == ["box", [0.17, 0.17, 0.003]] and base[0]["new"] == ["box", [0.24, 0.22, 0.003]]
+
+
+def test_linorobot2_planar_move_stops_broadcasting_odom(tmp_path):
+    """dcc558b "fixed omni drive controller": the mecanum robot's planar_move plugin gets ROS 2 parameter names
+    and `publish_odom_tf false` (the EKF owns odom -> base_footprint): the plugin's odometry transform, on by
+    default before, is switched off. Nothing else changes, in any robot."""
+    code, models = diff_at(tmp_path, LINO, "dcc558b")
+    assert changed(models) == {"mecanum.urdf.xacro": (
+        {("contract", "Gazebo plugin libgazebo_ros_planar_move.so (object_controller) odom tf odom -> base_footprint",
+          "")}, set())}
+    assert {(c["old"], c["new"]) for m in models for c in m["changes"]} == {("on", "off")}
+
+
+def test_linorobot2_casters_made_optional_in_the_gazebo_launch_variants(tmp_path):
+    """0a7eb82 "expose adding of caster wheels on 2wd property": the commented-out front caster is now behind a
+    property that is true, and the drive wheels move from x=0.0415 to x=-0.0415. The robot is deployed only by
+    gazebo.launch.py, once per `model` choice: the 2wd variant changes, the 4wd one does not."""
+    _, models = diff_at(tmp_path, LINO, "0a7eb82")
+    assert {m["variant"] for m in models} == {f"linorobot2_gazebo/launch/gazebo.launch.py [model={r}.urdf.xacro]"
+                                              for r in ("2wd", "4wd")}
+    got = changed(models)
+    assert got == {"2wd.urdf.xacro": ({("joint", "left_wheel_joint", "origin.xyz"),
+                                       ("joint", "right_wheel_joint", "origin.xyz")},
+                                      {"left_wheel_link", "right_wheel_link"})}
+    m = next(m for m in models if m["status"] == "changed")
+    assert m["links"]["added"] == ["front_caster_wheel_link"] and m["joints"]["added"] == ["front_caster_wheel_joint"]
+    assert {(c["name"], c["old"][0], c["new"][0]) for c in m["changes"]} == {
+        ("left_wheel_joint", 0.0415, -0.0415), ("right_wheel_joint", 0.0415, -0.0415)}
+
+
 @pytest.mark.parametrize("commit", ["b934e9f", "91ca638", "63fe5ae", "550153d", "e4fef1d"])
 def test_linorobot2_no_model_change(tmp_path, commit):
     """b934e9f spacing in xacro files; 91ca638 a laser node dropped from sensors.launch.py; 63fe5ae use_sim_time
