@@ -33,7 +33,7 @@ REPOS = {
                     "linorobot2_gazebo/launch/*", "linorobot2_base/config/*"],
         "commits": {c: [] for c in ("1ac1d5c", "46347df", "b5480cf", "06a0362", "a6d9e72", "c25f22e", "84ae70e",
                                     "185ad8f", "9e8be8e", "b934e9f", "63fe5ae", "550153d", "e4fef1d", "cecce05",
-                                    "dcc558b", "0a7eb82")}
+                                    "dcc558b", "0a7eb82", "1d4dd82")}
         | {"91ca638": []},
     },
     "ros2_control_demos": {
