@@ -51,7 +51,7 @@ REPOS = {
         "mirror": "UniversalRobots+Universal_Robots_ROS2_Description",
         "url": "https://github.com/UniversalRobots/Universal_Robots_ROS2_Description", "license": "BSD-3-Clause",
         "include": ["package.xml", "urdf/*", "config/*", "launch/*"],
-        "commits": ["dcb7db0", "60e6974"],
+        "commits": ["42e44a2", "7299dcb", "dcb7db0", "60e6974"],
     },
 }
 

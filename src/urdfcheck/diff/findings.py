@@ -108,8 +108,28 @@ def key(f: Finding, root: str) -> tuple[str, str, str, str]:
     run had)."""
     from urdfcheck.finish import baseline
 
-    return (f.code, baseline.portable_path(str(f.location.file), root), baseline.normalise_message(f.message),
+    message = _mesh_named(f.message) if f.code == "G001" else f.message
+    return (f.code, baseline.portable_path(str(f.location.file), root), baseline.normalise_message(message),
             baseline.context(f))
+
+
+_MESH = lazyre.compile(r"^mesh '([^']+)'")
+
+
+def _mesh_named(message: str) -> str:
+    """G001 quotes the mesh as the model writes it, an absolute `file://` path shown relative to the working
+    directory: one missing mesh written `package://ur_description/m.dae` in the base and
+    `file://$(find ur_description)/m.dae` in the change is the same finding. Named as diff compares meshes."""
+    m = _MESH.match(message)
+    if m is None:
+        return message
+    uri = m.group(1)
+    if "://" in uri and not uri.startswith("file://"):
+        return message
+    from urdfcheck.diff.compare import mesh_name
+
+    path = uri[len("file://"):] if uri.startswith("file://") else uri
+    return f"mesh {mesh_name(os.path.abspath(path), None)!r}" + message[m.end():]
 
 
 def places(f: Finding, root: str) -> tuple[tuple[str, str], ...]:
