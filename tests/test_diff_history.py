@@ -18,7 +18,6 @@ import tarfile
 from pathlib import Path
 
 import pytest
-
 from gitrepo import git
 
 SRC = str(Path(__file__).resolve().parents[1] / "src")
@@ -296,7 +295,8 @@ def test_ur_absolute_mesh_paths_whitespace_edit(tmp_path):
 
 
 # 60e6974, read per robot type: config/<type>/joint_limits.yaml lowers or raises max_effort (ur3e: shoulder_pan,
-# shoulder_lift and the wrists; ur10e and ur16e: the wrists; ur20 and ur30: all six joints), and physical_parameters.yaml changes masses only for ur20 (wrist_3) and ur30 (upper_arm, forearm, wrist_3)
+# shoulder_lift and the wrists; ur10e and ur16e: the wrists; ur20 and ur30: all six joints), and
+# physical_parameters.yaml changes masses only for ur20 (wrist_3) and ur30 (upper_arm, forearm, wrist_3)
 EFFORT = {"ur3": set(), "ur5": set(), "ur5e": set(), "ur10": set(),
           "ur3e": {"shoulder_pan_joint", "shoulder_lift_joint", "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"},
           "ur10e": {"wrist_1_joint", "wrist_2_joint", "wrist_3_joint"},

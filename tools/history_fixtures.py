@@ -7,18 +7,19 @@ meshes, images, docs, C++ or tests) are taken at the commit's parent ("old") and
 stored once per content, named by their upstream git blob id, in tests/fixtures/history/<repo>/files.tar.xz
 (the many near-identical versions of a file compress to a tenth of their size), and
 <repo>/<commit>.txt lists `old <TAB> blob <TAB> path` for every file of the parent, then `new` for each file the
-commit adds or changes and `gone <TAB> - <TAB> path` for each it deletes. Files keep no name of their own in the fixture tree so
-that nothing here is a package, a launch file or a Python module to colcon, pytest, ruff or urdfcheck itself; the
-test rebuilds the two revisions as a throwaway git repository. Only repositories whose licence permits
-redistribution are listed; each keeps its LICENSE and a SOURCES.md naming the upstream repository and commits.
+commit adds or changes and `gone <TAB> - <TAB> path` for each it deletes. Files keep no name of their own in the
+fixture tree so that nothing here is a package, a launch file or a Python module to colcon, pytest, ruff or
+urdfcheck itself; the test rebuilds the two revisions as a throwaway git repository. Only repositories whose
+licence permits redistribution are listed; each keeps its LICENSE and a SOURCES.md naming the upstream repository
+and commits.
 """
 from __future__ import annotations
 
 import fnmatch
 import io
 import subprocess
-import tarfile
 import sys
+import tarfile
 from pathlib import Path
 
 OUT = Path(__file__).resolve().parents[1] / "tests" / "fixtures" / "history"
@@ -104,7 +105,8 @@ def main(mirrors: Path) -> None:
         (dest / "SOURCES.md").write_text(
             f"# {name}\n\nFiles of {spec['url']} (licence {spec['license']}, copied in LICENSE), unchanged, at the "
             "commits below and their parents, for tests/test_diff_history.py. `files.tar.xz` holds each file once, "
-            "named by its upstream git blob id (the test checks each name against the content); `<commit>.txt` lists the parent's files (`old`, blob, upstream path), then "
+            "named by its upstream git blob id (the test checks each name against the content); `<commit>.txt` "
+            "lists the parent's files (`old`, blob, upstream path), then "
             "what the commit adds or changes (`new`) and deletes (`gone`). Made by tools/history_fixtures.py.\n\n"
             "| commit | full id | date and subject |\n| --- | --- | --- |\n" + "".join(rows))
 
