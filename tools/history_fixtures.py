@@ -30,12 +30,14 @@ SKIP = ("*.stl", "*.STL", "*.dae", "*.obj", "*.png", "*.jpg", "*.gif", "*.pgm", 
 REPOS = {
     "linorobot2": {
         "mirror": "linorobot+linorobot2", "url": "https://github.com/linorobot/linorobot2", "license": "Apache-2.0",
+        "note": "Every package.xml declares `<license>Apache 2.0</license>` from the first commit (65ea1a1, "
+                "2021-08-04) on; the LICENSE file at the root came on 2021-09-23 (95063e8), after some of the "
+                "commits below.",
         "include": ["*/package.xml", "linorobot2_description/*", "linorobot2_bringup/launch/*",
                     "linorobot2_gazebo/launch/*", "linorobot2_base/config/*"],
-        "commits": {c: [] for c in ("1ac1d5c", "46347df", "b5480cf", "06a0362", "a6d9e72", "c25f22e", "84ae70e",
-                                    "185ad8f", "9e8be8e", "b934e9f", "63fe5ae", "550153d", "e4fef1d", "cecce05",
-                                    "dcc558b", "0a7eb82", "1d4dd82")}
-        | {"91ca638": []},
+        "commits": ["1ac1d5c", "46347df", "b5480cf", "06a0362", "1d4dd82", "a6d9e72", "c25f22e", "84ae70e",
+                    "185ad8f", "9e8be8e", "b934e9f", "91ca638", "63fe5ae", "550153d", "e4fef1d", "cecce05", "dcc558b",
+                    "0a7eb82"],
     },
     "ros2_control_demos": {
         "mirror": "ros-controls+ros2_control_demos", "url": "https://github.com/ros-controls/ros2_control_demos",
@@ -108,7 +110,8 @@ def main(mirrors: Path) -> None:
             "named by its upstream git blob id (the test checks each name against the content); `<commit>.txt` "
             "lists the parent's files (`old`, blob, upstream path), then "
             "what the commit adds or changes (`new`) and deletes (`gone`). Made by tools/history_fixtures.py.\n\n"
-            "| commit | full id | date and subject |\n| --- | --- | --- |\n" + "".join(rows))
+            + (f"{spec['note']}\n\n" if spec.get("note") else "")
+            + "| commit | full id | date and subject |\n| --- | --- | --- |\n" + "".join(rows))
 
 
 if __name__ == "__main__":
