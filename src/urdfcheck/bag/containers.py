@@ -465,6 +465,10 @@ def sqlite_messages(path: str, want, facts: dict, runner: bool, inflater: Inflat
             real = door.admit(path, limit=RECORDING_BYTES, runner=runner)
             conn = sqlite3.connect(f"file:{quote(real)}?mode=ro&immutable=1", uri=True, check_same_thread=False)
         else:
+            if image[18:20] == b"\x02\x02":
+                # rosbag2 writes its databases in WAL mode, which sqlite cannot open from memory: the copy in
+                # memory says "rollback journal" (the file was closed, so its WAL was folded in before compression)
+                image = image[:18] + b"\x01\x01" + image[20:]
             conn = sqlite3.connect(":memory:")
             conn.deserialize(image)
     except sqlite3.Error as e:

@@ -414,6 +414,11 @@ def _parts(path: str, runner: bool, facts: dict) -> list[_Part]:
         if os.path.isabs(name) or ".." in name.replace("\\", "/").split("/"):
             raise containers.ContainerError(f"metadata.yaml names a file outside its folder: {name[:100]!r}")
         full = os.path.join(folder, name)
+        head, _sep, rest = name.replace("\\", "/").partition("/")
+        if rest and not os.path.lexists(full) and head == os.path.basename(os.path.abspath(folder)):
+            # rosbag2 before metadata version 4 named each file with the bag's folder in front (its reader
+            # resolves those from the parent folder): the same file inside this folder
+            full = os.path.join(folder, rest)
         if not os.path.lexists(full):
             raise containers.ContainerError(f"{name[:100]!r}, named in metadata.yaml, is missing")
         compressed = "zstd" if name.endswith(".zstd") else ""
