@@ -246,6 +246,69 @@ def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                 f.seek(dl, 1)
 
 
+# --- many messages at once ------------------------------------------------------------------------------
+class Block:
+    """The wanted messages of part of one inflated chunk, as arrays (what a reader yields with `blocks=True`):
+    `a` the chunk (uint8), `conn` their channel or connection ids, `time` receive times (int64), `lo`/`hi` where
+    each payload starts and ends in `a`, `chans` id -> (topic, type, callerid, cdr). `tuples()` gives them as
+    the message-by-message reader does."""
+
+    __slots__ = ("a", "buf", "conn", "time", "lo", "hi", "chans")
+
+    def __init__(self, a, buf, conn, time, lo, hi, chans):
+        self.a, self.buf, self.conn, self.time, self.lo, self.hi, self.chans = a, buf, conn, time, lo, hi, chans
+
+    def __len__(self) -> int:
+        return len(self.lo)
+
+    def tuples(self):
+        mv = memoryview(self.buf)
+        chans = self.chans
+        for c, t, lo, hi in zip(self.conn.tolist(), self.time.tolist(), self.lo.tolist(), self.hi.tolist()):
+            topic, typ, caller, cdr = chans[c]
+            yield topic, typ, t, mv[lo:hi], caller, cdr
+
+
+def rows(a, at, width: int):
+    """The `width` bytes at each offset `at` of the uint8 array `a` as rows (n, width): one copy of each, no index
+    matrix. Every row must lie inside `a`."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    return sliding_window_view(a, width)[at]
+
+
+def chain(pos, nxt, end: int):
+    """The records of a chunk found at once: `pos` (sorted) are where a record may start, `nxt` where the record
+    starting there would end. Returns the indices into `pos` of the records met walking from offset 0 (each
+    record's end the next one's start) when that walk ends exactly at `end`, else None (a record starts where no
+    candidate is: the caller walks the chunk itself). The walk is made by pointer doubling: log2(n) numpy steps,
+    not one Python step a record."""
+    import numpy as np
+
+    n = len(pos)
+    if not n or pos[0] != 0:
+        return None
+    done, broken = n, n + 1
+    at = np.searchsorted(pos, nxt)
+    hit = at < n
+    hit[hit] = pos[at[hit]] == nxt[hit]
+    step = np.where(hit, at, np.where(nxt == end, done, broken))
+    step = np.concatenate([step, [done, broken]]).astype(np.intp)
+    levels = [step]
+    while (1 << len(levels)) < n + 2:
+        step = step[step]
+        levels.append(step)
+    on = np.zeros(n + 2, dtype=bool)
+    on[0] = True
+    got = np.zeros(1, dtype=np.intp)
+    for step in reversed(levels):
+        on[step[got]] = True
+        got = np.flatnonzero(on)
+    if on[broken] or not on[done]:
+        return None
+    return got[:-1]
+
+
 # --- MCAP --------------------------------------------------------------------------------------------------
 class _Buf:
     __slots__ = ("b", "p")
@@ -286,7 +349,28 @@ def _mcap_inner(buf):
         pos += 9 + n
 
 
-def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater, stream=None):
+def _mcap_starts(a):
+    """Where each record of an inflated MCAP chunk starts and ends (int64 arrays), found with numpy (`chain`);
+    None: the chunk is walked record by record. A record starts with its opcode (in a chunk: 3, 4 or 5) and its
+    length (u64)."""
+    import numpy as np
+
+    end = len(a)
+    if end < 9:
+        return None
+    pos = np.flatnonzero((a[:end - 8] >= 3) & (a[:end - 8] <= 5))
+    size = rows(a, pos + 1, 8).view("<u8")[:, 0]
+    nxt = pos + 9 + np.minimum(size, end).astype(np.int64)
+    got = chain(pos, nxt, end)
+    if got is None:
+        return None
+    return pos[got], nxt[got]
+
+
+def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater, stream=None,
+                  blocks: bool = False):
+    """`blocks`: the messages of a chunk come as Block (several per chunk, between its schema and channel
+    records), the chunk's records found with numpy."""
     unpack_from = struct.unpack_from
     schemas: dict[int, str] = {}
     channels: dict[int, tuple] = {}  # id -> (topic, type, wanted, cdr)
@@ -356,6 +440,15 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                     inner = inflater.inflate(comp, bytes(data), size, "an MCAP chunk")
                 except InflateError as e:
                     raise ContainerError(str(e)) from None
+                if blocks and len(inner) >= 9:
+                    import numpy as np
+
+                    a = np.frombuffer(inner, dtype=np.uint8)
+                    found = _mcap_starts(a)
+                    if found is not None:
+                        _in_time()
+                        yield from _mcap_blocks(a, inner, found, channels, facts, record)
+                        continue
                 # the records of the chunk, as _mcap_inner and record() read them, message records inline (most)
                 mv = memoryview(inner)
                 pos, end = 0, len(inner)
@@ -391,6 +484,45 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                     yield got
             else:  # header, indexes, attachments, metadata, statistics, summary: skipped, not read
                 _skip(f, n)
+
+
+def _mcap_blocks(a, inner, found, channels, facts, record):
+    """The records of one chunk in order: schema and channel records through `record`, each run of message
+    records between them as one Block of its wanted messages."""
+    import numpy as np
+
+    starts, ends = found
+    ops = a[starts]
+    size = ends - starts - 9
+    plain = (ops == 5) & (size >= 22)
+    cut = np.flatnonzero(~plain).tolist()
+    mv = memoryview(inner)
+    lo = 0
+    for stop in cut + [len(starts)]:
+        if stop > lo:
+            st = starts[lo:stop]
+            cids = rows(a, st + 9, 2).view("<u2")[:, 0].astype(np.int64)
+            times = rows(a, st + 15, 8).view("<u8")[:, 0].astype(np.int64)
+            ids = np.unique(cids).tolist()
+            if any(i not in channels for i in ids):  # record() says which, after the messages before it
+                for p, q in zip(st.tolist(), ends[lo:stop].tolist()):
+                    got = record(5, mv[p + 9:q])
+                    if got is not None:
+                        yield got
+            else:
+                if "start" not in facts:
+                    facts["start"] = int(times[0])
+                wanted = [i for i in ids if channels[i][2]]
+                if wanted:
+                    keep = np.isin(cids, wanted) if len(wanted) < len(ids) else slice(None)
+                    chans = {i: (channels[i][0], channels[i][1], "", channels[i][3]) for i in wanted}
+                    yield Block(a, inner, cids[keep], times[keep], st[keep] + 31, ends[lo:stop][keep], chans)
+        if stop < len(starts):
+            p, q = int(starts[stop]), int(ends[stop])
+            got = record(int(ops[stop]), mv[p + 9:q])
+            if got is not None:
+                yield got
+        lo = stop + 1
 
 
 def _skip(f, n: int) -> None:

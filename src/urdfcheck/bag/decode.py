@@ -230,7 +230,7 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
 # stamp and the numbers is not of the layout and is read on its own (`joint_state`).
 class JsLayout:
     __slots__ = ("cdr", "e", "length", "head", "lo", "hi", "fixed", "stamp_off", "pos", "vel", "eff", "words",
-                 "names", "blob")
+                 "names", "blob", "_keep")
 
     def matches(self, buf) -> bool:
         # (bytes() first: comparing a memoryview is item by item, a copy and memcmp is faster)
@@ -294,8 +294,14 @@ def js_batch(lay: JsLayout, payloads):
     """(stamps int64 (n,), position (n, k), velocity (n, kv), effort (n, ke)) of messages of one layout."""
     import numpy as np
 
-    n = len(payloads)
-    rows = np.frombuffer(b"".join(payloads), dtype=np.uint8).reshape(n, lay.length)
+    return js_rows(lay, np.frombuffer(b"".join(payloads), dtype=np.uint8).reshape(len(payloads), lay.length))
+
+
+def js_rows(lay: JsLayout, rows):
+    """`js_batch` of messages given as the rows of a uint8 array (n, lay.length)."""
+    import numpy as np
+
+    n = len(rows)
     e = lay.e
     s = lay.stamp_off
     if lay.cdr:
@@ -313,6 +319,23 @@ def js_batch(lay: JsLayout, payloads):
     return stamps, doubles(*lay.pos), doubles(*lay.vel), doubles(*lay.eff)
 
 
+def js_keep(lay: JsLayout):
+    """(offsets, bytes): every byte a message of this layout shares with it (all but the stamp and the numbers),
+    to compare many messages at once (`JsLayout.matches` for each)."""
+    import numpy as np
+
+    got = getattr(lay, "_keep", None)
+    if got is None:
+        idx = list(range(4)) if lay.cdr else []
+        idx.extend(range(lay.lo, lay.hi))
+        for at, word in lay.words:
+            idx.extend(range(at, at + len(word)))
+        keep = np.array(idx, dtype=np.intp)
+        raw = (lay.head if lay.cdr else b"") + lay.fixed + b"".join(w for _at, w in lay.words)
+        got = lay._keep = (keep, np.frombuffer(raw, dtype=np.uint8))
+    return got
+
+
 def remember_names(lay: JsLayout) -> None:
     """The next `joint_state` of these names hands back the layout's tuple (the checks compare by identity)."""
     _last_names[:] = [lay.blob, lay.names]
@@ -324,6 +347,18 @@ def remember_names(lay: JsLayout) -> None:
 # byte is the same is read with numpy (`TfLayout.read`), any other on its own (`tf_message`).
 class TfLayout:
     __slots__ = ("cdr", "e", "length", "keep", "keep_bytes", "sec", "nsec", "vals", "edges", "np")
+
+    def rows(self, a):
+        """`read` of many messages of this layout at once, the rows of a uint8 array (n, length): (stamps (n, E),
+        values (n, E, 7))."""
+        np = self.np
+        e = self.e
+        n = len(a)
+        c = np.ascontiguousarray
+        sec = c(a[:, self.sec]).view((e + "i4") if self.cdr else "<u4").astype(np.int64)
+        nsec = c(a[:, self.nsec]).view(e + "u4").astype(np.int64)
+        vals = c(a[:, self.vals]).view(e + "f8").astype(np.float64, copy=False).reshape(n, -1, 7)
+        return sec * NS + nsec, vals
 
     def read(self, buf):
         """(stamps int64 (E,), values float64 (E, 7)) when `buf` has this layout, else None."""

@@ -131,7 +131,7 @@ class JointStateChecks:
         cat = np.concatenate
         P = cat([b.position for b in batches])[j:]
         S = cat([b.stamps for b in batches])[j:]
-        T = np.array([t for b in batches for t in b.times][j:], dtype=np.int64)
+        T = cat([np.asarray(b.times, dtype=np.int64) for b in batches])[j:]
         self.count += n - j
         self._steady_ranges(P, j, msg)
         self._steady_stamps(S, j, msg, names, caller)

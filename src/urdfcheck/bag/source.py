@@ -79,7 +79,7 @@ class JointStateBatch:
 
     def message(self, j: int) -> Message:
         """The j-th message, as the message-by-message reader gives it."""
-        return Message(self.topic, self.index + j, self.times[j], "joint_state", JointStateMsg(
+        return Message(self.topic, self.index + j, int(self.times[j]), "joint_state", JointStateMsg(
             self.names, tuple(self.position[j].tolist()), tuple(self.velocity[j].tolist()),
             tuple(self.effort[j].tolist()), int(self.stamps[j])), self.callerid, self.start)
 
@@ -104,6 +104,30 @@ class FastEdges:
     def __iter__(self):
         for (p, c), st, v in zip(self.layout.edges, self.stamps.tolist(), self.values.tolist()):
             yield Edge(p, c, tuple(v[:3]), tuple(v[3:]), st)
+
+
+class TfRun:
+    """TF messages of one topic, publisher and layout among a JointStateBatch, decoded together: message i was
+    recorded after the batch's message at[i] - 1; `stamps` (n, E), `values` (n, E, 7). Iterating gives
+    (j, Message) as a batch's list of TF messages does."""
+
+    __slots__ = ("topic", "callerid", "layout", "index", "at", "times", "stamps", "values", "start", "kind")
+
+    def __init__(self, topic, callerid, layout, index, at, times, stamps, values, start):
+        self.topic, self.callerid, self.layout, self.index, self.at = topic, callerid, layout, index, at
+        self.times, self.stamps, self.values, self.start = times, stamps, values, start
+        self.kind = "tf_static" if topic.endswith("tf_static") else "tf"
+
+    def __len__(self) -> int:
+        return len(self.at)
+
+    def message(self, i: int) -> Message:
+        return Message(self.topic, self.index + i, int(self.times[i]), self.kind,
+                       FastEdges(self.layout, self.stamps[i], self.values[i]), self.callerid, self.start)
+
+    def __iter__(self):
+        for i, j in enumerate(self.at.tolist()):
+            yield j, self.message(i)
 
 
 MAX_BATCH = 4096  # messages decoded together: memory stays flat whatever the recording's length
@@ -186,9 +210,62 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
         decode.remember_names(lay)
         yield JointStateBatch(topic, index, times, lay.names, stamps, pos, vel, eff, caller, start, tfs)
 
-    try:
+    def items():
+        """The containers' messages, a Block as runs the fast path takes (a marker) or message by message."""
         for part in parts:
-            for topic, msgtype, t, payload, caller, cdr in part.messages(want, inflater):
+            for item in part.messages(want, inflater, blocks=batches):
+                if type(item) is containers.Block:
+                    for piece, fast in _runs(item, layouts, tf_layouts, chosen, joint_topic):
+                        if fast:
+                            yield None, "", 0, piece, "", False
+                        else:
+                            yield from piece.tuples()
+                else:
+                    yield item
+
+    def fast(piece):
+        """JointStateBatch(es) of a run of a Block whose every message fits its topic's layout (_runs)."""
+        nonlocal n, start
+        import numpy as np
+
+        blk, js, tfi, lay, tl = piece
+        a = blk.a
+        topic, _typ, caller, _cdr = blk.chans[int(blk.conn[js[0]])]
+        if not n:
+            start = facts.get("start", int(blk.time[min(js[0], tfi[0]) if len(tfi) else js[0]]))
+        n += len(js) + len(tfi)
+        cap = min(MAX_BATCH, max(1, BATCH_BYTES // lay.length))
+        if len(tfi):
+            ttopic, _t, tcaller, _c = blk.chans[int(blk.conn[tfi[0]])]
+            tf_at = np.searchsorted(js, tfi)  # how many joint states were recorded before each
+        for p in range(0, len(js), cap):
+            sel = js[p:p + cap]
+            stamps, pos, vel, eff = decode.js_rows(lay, containers.rows(a, blk.lo[sel], lay.length))
+            i = counters.get(topic, 0)
+            counters[topic] = i + len(sel)
+            tfs = ()
+            if len(tfi):
+                last = p + cap >= len(js)
+                take = (tf_at > p) & (tf_at <= p + cap) if p else tf_at <= p + cap
+                if last:
+                    take = tf_at > p if p else np.ones(len(tfi), dtype=bool)
+                mine = tfi[take]
+                if len(mine):
+                    ti = counters.get(ttopic, 0)
+                    counters[ttopic] = ti + len(mine)
+                    st, vals = tl.rows(containers.rows(a, blk.lo[mine], tl.length))
+                    tfs = TfRun(ttopic, tcaller, tl, ti, tf_at[take] - p, blk.time[mine], st, vals, start)
+            yield JointStateBatch(topic, i, blk.time[sel], lay.names, stamps, pos, vel, eff, caller, start, tfs)
+        decode.remember_names(lay)
+
+    try:
+        for topic, msgtype, t, payload, caller, cdr in items():
+            if True:
+                if topic is None:
+                    if run:
+                        yield from flush()
+                    yield from fast(payload)
+                    continue
                 h = hot[0]
                 if h is not None and topic == h[0] and caller == h[1] and cdr == h[2] and len(h[4]) < h[6] and \
                         h[3].matches(payload) and payload[0] != 0x28:  # (0x28: perhaps zstd, below)
@@ -277,6 +354,100 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
         others.extend(sorted(late - {keep}))
 
 
+MIN_RUN = 16  # messages: a shorter run of fitting messages is read message by message
+
+
+def _runs(blk, layouts, tf_layouts, chosen, joint_topic):
+    """The Block in order as (piece, fast) pairs: `fast` runs (of one JointState topic and publisher in one layout,
+    and at most one TF topic in one layout, each message checked byte for byte against its layout) as (block, the
+    JointState indices, the TF indices, layout, TF layout); everything else as a smaller Block read message by
+    message (a layout that changes, other publishers, compressed messages)."""
+    import numpy as np
+
+    from urdfcheck.bag import containers, decode
+
+    def slow():
+        return [(blk, False)]
+
+    if chosen is None and joint_topic is None:
+        return slow()
+    js_ids, tf_ids = [], []
+    for cid, (topic, typ, _caller, _cdr) in blk.chans.items():
+        kind = decode.kind_of(typ)
+        (js_ids if kind == "joint_state" else tf_ids).append(cid)
+    if len(js_ids) != 1 or len(tf_ids) > 1:
+        return slow()
+    a, conn = blk.a, blk.conn
+    length = blk.hi - blk.lo
+    is_js = conn == js_ids[0]
+    js = np.flatnonzero(is_js)
+    tfi = np.flatnonzero(~is_js)
+    if len(js) < MIN_RUN:
+        return slow()
+    topic, _typ, caller, cdr = blk.chans[js_ids[0]]
+    key = (topic, caller, cdr)
+    mv = memoryview(blk.buf)
+    try:
+        lay = layouts.get(key)
+        first = mv[int(blk.lo[js[0]]):int(blk.hi[js[0]])]
+        if lay is None or not lay.matches(first):
+            lay = decode.js_layout(first, cdr)
+        tl = None
+        if len(tfi):
+            ttopic, _t, tcaller, tcdr = blk.chans[tf_ids[0]]
+            tfirst = mv[int(blk.lo[tfi[0]]):int(blk.hi[tfi[0]])]
+            if len(tfirst) > TF_LAYOUT_BYTES:
+                return slow()
+            known = tf_layouts.get((ttopic, tcaller, tcdr)) or []
+            tl = next((t for t in known if t.read(tfirst) is not None), None) or decode.tf_layout(tfirst, tcdr)
+    except decode.DecodeError:
+        return slow()
+    zstd = np.frombuffer(containers.ZSTD_MAGIC, dtype=np.uint8)
+    fits = np.zeros(len(conn), dtype=bool)
+    keep, want = decode.js_keep(lay)
+    ok = length[js] == lay.length
+    sel = js[ok]
+    got = containers.rows(a, blk.lo[sel], lay.length)
+    ok[ok] = (got[:, keep] == want).all(axis=1) & ~(got[:, :4] == zstd).all(axis=1)
+    fits[js] = ok
+    if len(tfi):
+        ok = length[tfi] == tl.length
+        sel = tfi[ok]
+        got = containers.rows(a, blk.lo[sel], tl.length)
+        ok[ok] = (got[:, tl.keep] == np.frombuffer(tl.keep_bytes, dtype=np.uint8)).all(axis=1) & \
+            ~(got[:, :4] == zstd).all(axis=1)
+        fits[tfi] = ok
+    if fits.all():
+        edges = [0, len(fits)]
+    else:
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], fits.astype(np.int8), [0]]))).tolist()
+    out = []
+    done = 0
+
+    def part(i, j):
+        return containers.Block(a, blk.buf, conn[i:j], blk.time[i:j], blk.lo[i:j], blk.hi[i:j], blk.chans)
+
+    for i, j in zip(edges[0::2], edges[1::2]):
+        js_run = js[(js >= i) & (js < j)]
+        if j - i < MIN_RUN or len(js_run) < MIN_RUN:
+            continue
+        if i > done:
+            out.append((part(done, i), False))
+        out.append(((blk, js_run, tfi[(tfi >= i) & (tfi < j)], lay, tl), True))
+        done = j
+    if not out:
+        return slow()
+    if done < len(conn):
+        out.append((part(done, len(conn)), False))
+    layouts[key] = lay
+    if tl is not None:
+        known = tf_layouts.setdefault((ttopic, tcaller, tcdr), [])
+        if tl not in known:
+            known.insert(0, tl)
+            del known[4:]
+    return out
+
+
 def _why(e: Exception) -> str:
     from urdfcheck.core import door
 
@@ -323,7 +494,7 @@ class _Part:
             pass
         return facts.get("topics", {})
 
-    def messages(self, want, inflater, facts=None):
+    def messages(self, want, inflater, facts=None, blocks=False):
         from urdfcheck.bag import containers
         from urdfcheck.bag.inflate import Inflater
         from urdfcheck.core import door
@@ -337,7 +508,7 @@ class _Part:
             if self.compressed:
                 raw = door.open_stream(self.path, limit=containers.RECORDING_BYTES, runner=self.runner)
                 stream = containers.InflatingStream(raw, inflater, "a compressed MCAP file")
-            return containers.mcap_messages(self.path, want, facts, self.runner, inflater, stream)
+            return containers.mcap_messages(self.path, want, facts, self.runner, inflater, stream, blocks)
         image = None
         if self.compressed:
             raw = door.read_bytes(self.path, limit=MAX_SQLITE_IMAGE, runner=self.runner)
