@@ -163,8 +163,114 @@ def _quick(raw: bytes):
     return unpack_from("<I", conn)[0], sec * 1_000_000_000 + nsec, raw, toff
 
 
-def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater):
+def _ros1_candidates(a, shapes):
+    """Where a message record of a known header length may start in a chunk, and where it would end."""
+    import numpy as np
+
+    end = len(a)
+    pos = []
+    for hl in shapes:
+        b = hl.to_bytes(4, "little")
+        p = np.flatnonzero(a[:max(end - 3, 0)] == b[0])
+        for k in (1, 2, 3):
+            p = p[a[p + k] == b[k]]
+        pos.append(p[p + 8 + hl <= end])
+    pos = np.sort(np.concatenate(pos)) if pos else np.zeros(0, dtype=np.intp)
+    hl = rows(a, pos, 4).view("<u4")[:, 0].astype(np.int64) if len(pos) else np.zeros(0, dtype=np.int64)
+    dl = rows(a, pos + 4 + hl, 4).view("<u4")[:, 0].astype(np.int64) if len(pos) else hl
+    return pos, pos + 8 + hl + dl, hl
+
+
+def _ros1_blocks(a, inner, shapes, conns, facts, single):
+    """The records of one inflated ROS 1 chunk in order: runs of message records whose headers have a known shape
+    (every byte but the time's the same as a message read before) as Blocks, found with numpy (`chain`); any
+    other record through `single(pos)` -> (item or None, next pos), which learns new shapes."""
+    import numpy as np
+
+    end = len(a)
+    pos = 0
+    cand = None
+    while pos < end:
+        if cand is None and shapes:
+            cand = _ros1_candidates(a, shapes)
+            cand_hls = set(shapes)
+        i = int(np.searchsorted(cand[0], pos)) if cand is not None else 0
+        if cand is None or i >= len(cand[0]) or cand[0][i] != pos:
+            n = len(shapes)
+            got, pos = single(pos)
+            if got is not None:
+                yield got
+            if len(shapes) != n:
+                cand = None
+            continue
+        idx, stop = chain(cand[0], cand[1], i)
+        bad = None
+        if stop > end:  # the last runs past the chunk: single() says so
+            bad = int(cand[0][idx[-1]])
+            idx = idx[:-1]
+        st, ends, hl = cand[0][idx], cand[1][idx], cand[2][idx]
+        conn = np.full(len(st), -1, dtype=np.int64)
+        toffs = np.zeros(len(st), dtype=np.int64)
+        for h, forms in shapes.items():
+            mine = np.flatnonzero(hl == h)
+            if not len(mine):
+                continue
+            head = rows(a, st[mine] + 4, h)
+            for toff, pre, post, c in forms:
+                hit = (conn[mine] < 0) & (head[:, :toff] == np.frombuffer(pre, dtype=np.uint8)).all(axis=1) & \
+                    (head[:, toff + 8:] == np.frombuffer(post, dtype=np.uint8)).all(axis=1)
+                conn[mine[hit]] = c
+                toffs[mine[hit]] = toff
+        known = conn >= 0
+        if len(st):
+            ids = np.unique(conn[known]).tolist()
+            if any(c not in conns for c in ids):
+                known[:] = False  # single() says which connection is missing, in order
+        # runs of known shapes as Blocks, each other record alone
+        k = 0
+        learnt = False
+        while k < len(st):
+            if not known[k]:
+                forms = sum(len(f) for f in shapes.values())
+                got, _stop = single(int(st[k]))
+                if got is not None:
+                    yield got
+                k += 1
+                if sum(len(f) for f in shapes.values()) != forms:  # a new shape: the rest matched again
+                    learnt = True
+                    break
+                continue
+            j = k + int(np.argmin(known[k:])) if not known[k:].all() else len(st)
+            sl = slice(k, j)
+            t = rows(a, st[sl] + 4 + toffs[sl], 8).view("<u4").astype(np.int64)
+            times = t[:, 0] * 1_000_000_000 + t[:, 1]
+            if "start" not in facts:
+                facts["start"] = int(times[0])
+            cs = conn[sl]
+            ids = np.unique(cs).tolist()
+            wanted = [c for c in ids if conns[c][3]]
+            if wanted:
+                keep = np.isin(cs, wanted) if len(wanted) < len(ids) else slice(None)
+                chans = {c: (conns[c][0], conns[c][1], conns[c][2], False) for c in wanted}
+                yield Block(a, inner, cs[keep], times[keep], (st[sl] + 8 + hl[sl])[keep], ends[sl][keep], chans)
+            k = j
+        if learnt:
+            pos = int(ends[k - 1])
+            if set(shapes) != cand_hls:
+                cand = None
+            continue
+        if bad is not None:
+            got, pos = single(bad)
+            if got is not None:
+                yield got
+        else:
+            pos = stop
+
+
+def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater, blocks: bool = False):
+    """`blocks`: the messages of a chunk come as Blocks, found with numpy (`_ros1_blocks`)."""
     facts["ros"] = 1
+    shapes: dict[int, list] = {}  # message header length -> (time offset, bytes before, bytes after, connection)
     conns: dict[int, tuple] = {}  # id -> (topic, type, callerid, wanted)
     topics = facts.setdefault("topics", {})
 
@@ -217,6 +323,42 @@ def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                     inner = inflater.inflate(comp, _exact(f, dl), _u32(fields.get("size", b"")), "a ROS 1 chunk")
                 except InflateError as e:
                     raise ContainerError(str(e)) from None
+                if blocks:
+                    import numpy as np
+
+                    def single(pos, inner=inner):
+                        # one record, as _ros1_inner and the loop below read it
+                        end = len(inner)
+                        if pos + 4 > end:
+                            raise ContainerError("a chunk ends in the middle of a record")
+                        (hl,) = struct.unpack_from("<I", inner, pos)
+                        if pos + 4 + hl + 4 > end:
+                            raise ContainerError("a chunk record runs past its chunk")
+                        header = inner[pos + 4:pos + 4 + hl]
+                        (dl,) = struct.unpack_from("<I", inner, pos + 4 + hl)
+                        start = pos + 8 + hl
+                        if start + dl > end:
+                            raise ContainerError("a chunk record runs past its chunk")
+                        data = memoryview(inner)[start:start + dl]
+                        quick = _quick(header)
+                        fi = _fields(header)
+                        if quick is not None:
+                            forms = shapes.setdefault(hl, [])
+                            toff = quick[3]
+                            form = (toff, header[:toff], header[toff + 8:], quick[0])
+                            if len(forms) < 16 and len(shapes) < 64 and form not in forms:
+                                forms.append(form)
+                        iop = fi.get("op", b"")
+                        got = None
+                        if iop == b"\x07":
+                            connection(fi, data)
+                        elif iop == b"\x02":
+                            got = message(fi, data)
+                        return got, start + dl
+
+                    yield from _ros1_blocks(np.frombuffer(inner, dtype=np.uint8), inner, shapes, conns, facts,
+                                            single)
+                    continue
                 for fi, data in _ros1_inner(inner):
                     if type(fi) is tuple:  # a message record, its header read in short (_quick)
                         c = conns.get(fi[0])
@@ -277,36 +419,32 @@ def rows(a, at, width: int):
     return sliding_window_view(a, width)[at]
 
 
-def chain(pos, nxt, end: int):
+def chain(pos, nxt, first: int = 0):
     """The records of a chunk found at once: `pos` (sorted) are where a record may start, `nxt` where the record
-    starting there would end. Returns the indices into `pos` of the records met walking from offset 0 (each
-    record's end the next one's start) when that walk ends exactly at `end`, else None (a record starts where no
-    candidate is: the caller walks the chunk itself). The walk is made by pointer doubling: log2(n) numpy steps,
-    not one Python step a record."""
+    starting there would end. Returns (the indices into `pos` of the records met walking from pos[first], each
+    record's end the next one's start, where the walk leaves the candidates: the chunk's end, or a record no
+    candidate stands for, which the caller reads itself). The walk is made by pointer doubling: log2(n) numpy
+    steps, not one Python step a record."""
     import numpy as np
 
     n = len(pos)
-    if not n or pos[0] != 0:
-        return None
-    done, broken = n, n + 1
+    out = n
     at = np.searchsorted(pos, nxt)
     hit = at < n
     hit[hit] = pos[at[hit]] == nxt[hit]
-    step = np.where(hit, at, np.where(nxt == end, done, broken))
-    step = np.concatenate([step, [done, broken]]).astype(np.intp)
+    step = np.concatenate([np.where(hit, at, out), [out]]).astype(np.intp)
     levels = [step]
-    while (1 << len(levels)) < n + 2:
+    while (1 << len(levels)) < n + 1:
         step = step[step]
         levels.append(step)
-    on = np.zeros(n + 2, dtype=bool)
-    on[0] = True
-    got = np.zeros(1, dtype=np.intp)
+    on = np.zeros(n + 1, dtype=bool)
+    on[first] = True
+    got = np.array([first], dtype=np.intp)
     for step in reversed(levels):
         on[step[got]] = True
         got = np.flatnonzero(on)
-    if on[broken] or not on[done]:
-        return None
-    return got[:-1]
+    got = got[:-1] if on[out] else got
+    return got, int(nxt[got[-1]])
 
 
 # --- MCAP --------------------------------------------------------------------------------------------------
@@ -359,10 +497,12 @@ def _mcap_starts(a):
     if end < 9:
         return None
     pos = np.flatnonzero((a[:end - 8] >= 3) & (a[:end - 8] <= 5))
+    if not len(pos) or pos[0] != 0:
+        return None
     size = rows(a, pos + 1, 8).view("<u8")[:, 0]
     nxt = pos + 9 + np.minimum(size, end).astype(np.int64)
-    got = chain(pos, nxt, end)
-    if got is None:
+    got, stop = chain(pos, nxt)
+    if stop != end:
         return None
     return pos[got], nxt[got]
 

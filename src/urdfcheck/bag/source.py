@@ -502,7 +502,7 @@ class _Part:
         facts = self.facts if facts is None else facts
         inflater = inflater or Inflater()
         if self.fmt == "ros1":
-            return containers.ros1_messages(self.path, want, facts, self.runner, inflater)
+            return containers.ros1_messages(self.path, want, facts, self.runner, inflater, blocks)
         if self.fmt == "mcap":
             stream = None
             if self.compressed:

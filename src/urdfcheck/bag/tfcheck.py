@@ -200,15 +200,21 @@ class TfChecks:
             if not (Sm == st[:, None]).all() or len(np.unique(st)) != len(st):
                 return False
             r = np.minimum(np.searchsorted(u, st), n - 1)
-            if not (u[r] == st).all():
-                return False
+            inb = u[r] == st
             row = order[r]
-            if not ((row < run.at) & (run.at - row <= self.KEEP_STATES // 2)).all():
+            half = self.KEEP_STATES // 2
+            if not (~inb | ((row < run.at) & (run.at - row <= half))).all():
                 return False
+            P = b.position[row]
+            for i in np.flatnonzero(~inb).tolist():  # its joint state came in an earlier batch, still kept
+                ent = states.get(int(st[i]))
+                if type(ent) is not tuple or len(ent) != 3 or ent[0] is not names or run.at[i] > half:
+                    return False
+                P[i] = _row(ent)
             cols = plan.columns(names)
             if cols is None:
                 return False
-            Q = b.position[row][:, cols]
+            Q = P[:, cols]
             if not np.isfinite(Q).all():
                 return False
             if self._lv_plan is not plan:
@@ -241,7 +247,7 @@ class TfChecks:
         if not ok.all():
             for i in np.flatnonzero(~ok.all(axis=1)).tolist():
                 tm = run.message(i)
-                pos = dict(zip(names, b.position[row[i]].tolist()))
+                pos = dict(zip(names, P[i].tolist()))
                 for c in np.flatnonzero(~ok[i]).tolist():
                     self._compare(tm, tm.data.edge(int(plan.mov[c])), plan.mkeys[c], plan.msegs[c], pos)
         return True
