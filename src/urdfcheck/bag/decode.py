@@ -141,27 +141,32 @@ def joint_state(buf, cdr: bool):
     return stamp, names, c.doubles(), c.doubles(), c.doubles()
 
 
+def _text(buf, pos: int, end: int, base: int, cdr: bool, u32):
+    """The string at `pos` (as `_Cursor.string` reads it) and where it ends."""
+    if cdr:
+        off = (pos - base) & 3
+        if off:
+            pos += 4 - off
+    if pos + 4 > end:
+        raise DecodeError("the message is shorter than its fields say")
+    k = u32(buf, pos)[0]
+    pos += 4
+    if pos + k > end:
+        raise DecodeError("the message is shorter than its fields say")
+    raw = bytes(buf[pos:pos + k])
+    if cdr and raw[-1:] == b"\0":
+        raw = raw[:-1]
+    return raw.decode("utf-8", "replace"), pos + k
+
+
 def _strings(c: _Cursor, n: int) -> tuple:
     """n strings, as `_Cursor.string` reads them, in one loop (a JointState of a PR2 names 50 joints)."""
     buf, pos, end, base, cdr = c.buf, c.pos, c.end, c.base, c.cdr
     u32 = _U32[c.e].unpack_from
     out = []
     for _ in range(n):
-        if cdr:
-            off = (pos - base) & 3
-            if off:
-                pos += 4 - off
-        if pos + 4 > end:
-            raise DecodeError("the message is shorter than its fields say")
-        k = u32(buf, pos)[0]
-        pos += 4
-        if pos + k > end:
-            raise DecodeError("the message is shorter than its fields say")
-        raw = bytes(buf[pos:pos + k])
-        pos += k
-        if cdr and raw[-1:] == b"\0":
-            raw = raw[:-1]
-        out.append(raw.decode("utf-8", "replace"))
+        text, pos = _text(buf, pos, end, base, cdr, u32)
+        out.append(text)
     c.pos = pos
     return tuple(out)
 
@@ -176,23 +181,6 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
     seven = _SEVEN[e].unpack_from
     time1 = _TIME1.unpack_from
     out = []
-
-    def text(pos):
-        if cdr:
-            off = (pos - base) & 3
-            if off:
-                pos += 4 - off
-        if pos + 4 > end:
-            raise DecodeError("the message is shorter than its fields say")
-        k = u32(buf, pos)[0]
-        pos += 4
-        if pos + k > end:
-            raise DecodeError("the message is shorter than its fields say")
-        raw = bytes(buf[pos:pos + k])
-        if cdr and raw[-1:] == b"\0":
-            raw = raw[:-1]
-        return raw.decode("utf-8", "replace"), pos + k
-
     for _ in range(n):
         if cdr:
             off = (pos - base) & 3
@@ -208,8 +196,8 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
             _seq, sec, nsec = time1(buf, pos)
             stamp = sec * NS + nsec
             pos += 12
-        parent, pos = text(pos)
-        child, pos = text(pos)
+        parent, pos = _text(buf, pos, end, base, cdr, u32)
+        child, pos = _text(buf, pos, end, base, cdr, u32)
         if cdr:
             off = (pos - base) & 7
             if off:

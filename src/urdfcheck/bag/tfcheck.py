@@ -233,15 +233,7 @@ class TfChecks:
         V = run.values[:, plan.mov]
         plan.last_s, plan.last_v = Sm[-1], V[-1]
         plan.had[:] = True
-        t, rot = plan.expected(Q, np)
-        dt = t - V[..., :3]
-        qr = V[..., 3:]
-        with np.errstate(all="ignore"):
-            dt2 = (dt * dt).sum(axis=-1)
-            dot = (rot * qr).sum(axis=-1)
-            n1 = (rot * rot).sum(axis=-1)
-            n2 = (qr * qr).sum(axis=-1)
-            ok = (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4)
+        ok = self._close(plan, Q, V, np)
         plan.ok_counts += ok.sum(axis=0)
         self.replayed += int(ok.sum())
         if not ok.all():
@@ -343,15 +335,8 @@ class TfChecks:
             if len(self._jobs) >= 256:
                 self._run_jobs()
             return
-        t, r = plan.expected(q, np)
-        dt = t - V[:, :3]
-        dt2 = (dt * dt).sum(axis=1)
-        qr = V[:, 3:]
-        dot = (r * qr).sum(axis=1)
-        n1 = (r * r).sum(axis=1)
-        n2 = (qr * qr).sum(axis=1)
         with np.errstate(all="ignore"):
-            ok = (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4) & plan.plain & np.isfinite(q)
+            ok = self._close(plan, q, V, np) & plan.plain & np.isfinite(q)
         okl = ok.tolist()
         plan.ok_counts += ok
         self.replayed += okl.count(True)
@@ -378,15 +363,7 @@ class TfChecks:
             plan = jobs[idx[0]][1]
             Q = np.stack([jobs[i][2] for i in idx])
             V = np.stack([jobs[i][3] for i in idx])
-            t, r = plan.expected(Q, np)
-            dt = t - V[..., :3]
-            qr = V[..., 3:]
-            with np.errstate(all="ignore"):
-                dt2 = (dt * dt).sum(axis=-1)
-                dot = (r * qr).sum(axis=-1)
-                n1 = (r * r).sum(axis=-1)
-                n2 = (qr * qr).sum(axis=-1)
-                ok = (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4)
+            ok = self._close(plan, Q, V, np)
             plan.ok_counts += ok.sum(axis=0)
             self.replayed += int(ok.sum())
             if not ok.all():
@@ -397,6 +374,20 @@ class TfChecks:
             pos = dict(zip(ent[0], _row(ent).tolist()))
             for c in bad[i]:
                 self._compare(m, m.data.edge(int(plan.mov[c])), plan.mkeys[c], plan.msegs[c], pos)
+
+    def _close(self, plan, Q, V, np):
+        """Which recorded transforms V (..., E, 7) are clearly within tolerance of what the publisher gives at
+        joint values Q (..., E): half the tolerance in translation, a quarter of it in angle (numpy's first look;
+        the rest goes through `_compare`)."""
+        t, r = plan.expected(Q, np)
+        dt = t - V[..., :3]
+        qr = V[..., 3:]
+        with np.errstate(all="ignore"):
+            dt2 = (dt * dt).sum(axis=-1)
+            dot = (r * qr).sum(axis=-1)
+            n1 = (r * r).sum(axis=-1)
+            n2 = (qr * qr).sum(axis=-1)
+            return (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4)
 
     def _own(self, plan, np) -> None:
         """`plan` keeps the last values of its edges in arrays; whoever kept them before writes them back."""
