@@ -496,7 +496,12 @@ def _mcap_starts(a):
     end = len(a)
     if end < 9:
         return None
-    pos = np.flatnonzero((a[:end - 8] >= 3) & (a[:end - 8] <= 5))
+    head = a[:end - 8]
+    pos = np.flatnonzero((head >= 3) & (head <= 5))
+    # (a record inside a chunk of at most MAX_CHUNK bytes: the length's high bytes are zero, which few other
+    # bytes of 3 to 5 are followed by)
+    for k in (8, 7, 6, 5):
+        pos = pos[a[pos + k] == 0]
     if not len(pos) or pos[0] != 0:
         return None
     size = rows(a, pos + 1, 8).view("<u8")[:, 0]
