@@ -390,3 +390,32 @@ def test_layout_changes_inside_a_chunk(fmt, tmp_path, monkeypatch):
     assert True in batched  # (a batch and its /tf at once, where no plan of the layout is new)
     assert found == _findings(model, bag, monkeypatch, False)
     assert {c for c, _s, _m in found} >= {"B001", "B013"}
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+def test_damaged_chunks_read_whole_find_what_message_by_message_finds(fmt, tmp_path, monkeypatch):
+    """A byte changed inside a chunk (a length, a header, a name, a value): the chunk read whole (numpy) and
+    record by record give the same findings, the same B014 after the same count of messages included."""
+    import random
+
+    from urdfcheck.load import loader
+
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text(ROBOT)
+    model = loader.load_model(str(urdf), {})
+    clean = write(tmp_path / "run", fmt, _events(3000, {}))
+    if clean.is_dir():
+        clean = next(clean.glob("*.mcap"))
+    data = clean.read_bytes()
+    rng = random.Random(39)
+    codes = set()
+    for k in range(16):
+        at = rng.randrange(len(data) // 4, len(data) * 3 // 4)
+        bad = bytearray(data)
+        bad[at] ^= rng.choice((0x01, 0x10, 0x80, 0xFF))
+        path = tmp_path / f"bad{k}{clean.suffix}"
+        path.write_bytes(bytes(bad))
+        fast = _findings(model, path, monkeypatch, True)
+        assert fast == _findings(model, path, monkeypatch, False), at
+        codes.update(c for c, _s, _m in fast)
+    assert codes  # some changes are found

@@ -190,7 +190,11 @@ def _ros1_blocks(a, inner, shapes, conns, facts, single):
     end = len(a)
     pos = 0
     cand = None
+    ticks = 0
     while pos < end:
+        ticks += 1
+        if not ticks & 1023:  # a chunk of millions of odd records: the run's budget holds inside it too
+            _in_time()
         if cand is None and shapes:
             cand = _ros1_candidates(a, shapes)
             cand_hls = set(shapes)
@@ -231,6 +235,9 @@ def _ros1_blocks(a, inner, shapes, conns, facts, single):
         learnt = False
         while k < len(st):
             if not known[k]:
+                ticks += 1
+                if not ticks & 1023:
+                    _in_time()
                 forms = sum(len(f) for f in shapes.values())
                 got, _stop = single(int(st[k]))
                 if got is not None:
@@ -643,7 +650,9 @@ def _mcap_blocks(a, inner, found, channels, facts, record):
     cut = np.flatnonzero(~plain).tolist()
     mv = memoryview(inner)
     lo = 0
-    for stop in cut + [len(starts)]:
+    for ticks, stop in enumerate(cut + [len(starts)], 1):
+        if not ticks & 1023:  # a chunk of millions of schema records: the run's budget holds inside it too
+            _in_time()
         if stop > lo:
             st = starts[lo:stop]
             cids = rows(a, st + 9, 2).view("<u2")[:, 0].astype(np.int64)
