@@ -12,6 +12,12 @@ without being decoded. Chunks inflate within `inflate.Inflater`'s bounds; nothin
 - rosbag2 sqlite3 (`.db3`): opened read-only and immutable, `trusted_schema` off, views, virtual tables and
   generated columns where the messages are read are refused, blobs capped, and a progress handler stops it at
   the run's deadline.
+
+With `blocks=True` the MCAP and ROS 1 readers read an inflated chunk whole (issue 39: per-message Python was the
+floor): where every record may start is found with numpy, the records actually met walking the chunk by pointer
+doubling (`chain`), and the wanted messages between two other records come as one `Block` of arrays. Whatever
+numpy cannot vouch for (a chunk whose walk leaves the candidates, a header of a shape not seen before, a channel
+not declared yet) is read record by record, as without `blocks`, errors and all.
 """
 from __future__ import annotations
 
