@@ -510,7 +510,7 @@ def _mcap_starts(a):
     if end < 9:
         return None
     head = a[:end - 8]
-    pos = np.flatnonzero((head >= 3) & (head <= 5))
+    pos = np.flatnonzero(np.subtract(head, 3, dtype=np.uint8) < 3)  # opcodes 3, 4, 5 (uint8 wraps below 3)
     # (a record inside a chunk of at most MAX_CHUNK bytes: the length's high bytes are zero, which few other
     # bytes of 3 to 5 are followed by)
     for k in (8, 7, 6, 5):
