@@ -215,8 +215,8 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
         for part in parts:
             for item in part.messages(want, inflater, blocks=batches):
                 if type(item) is containers.Block:
-                    for piece, fast in _runs(item, layouts, tf_layouts, chosen, joint_topic):
-                        if fast:
+                    for piece, whole in _runs(item, layouts, tf_layouts, chosen, joint_topic):
+                        if whole:
                             yield None, "", 0, piece, "", False
                         else:
                             yield from piece.tuples()
@@ -244,11 +244,13 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
             i = counters.get(topic, 0)
             counters[topic] = i + len(sel)
             tfs = ()
-            if len(tfi):
-                last = p + cap >= len(js)
-                take = (tf_at > p) & (tf_at <= p + cap) if p else tf_at <= p + cap
-                if last:
-                    take = tf_at > p if p else np.ones(len(tfi), dtype=bool)
+            if len(tfi):  # the TF messages after this batch's first joint state (all, for the first) and up to
+                # the next batch's first (all, for the last)
+                take = np.ones(len(tfi), dtype=bool)
+                if p:
+                    take &= tf_at > p
+                if p + cap < len(js):
+                    take &= tf_at <= p + cap
                 mine = tfi[take]
                 if len(mine):
                     ti = counters.get(ttopic, 0)
@@ -260,89 +262,88 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
 
     try:
         for topic, msgtype, t, payload, caller, cdr in items():
-            if True:
-                if topic is None:
-                    if run:
-                        yield from flush()
-                    yield from fast(payload)
-                    continue
-                h = hot[0]
-                if h is not None and topic == h[0] and caller == h[1] and cdr == h[2] and len(h[4]) < h[6] and \
-                        h[3].matches(payload) and payload[0] != 0x28:  # (0x28: perhaps zstd, below)
-                    # the next message of the run: what the lines below do for it, in short
-                    h[4].append(t)
-                    h[5].append(bytes(payload))
-                    counters[topic] += 1
-                    n += 1
-                    continue
-                kind = decode.kind_of(msgtype)
-                if kind == "joint_state" and chosen is None and joint_topic is None:
-                    late.add(topic)  # not indexed: the first JointState topic, or /joint_states once seen
-                    if topic != "/joint_states" and ("/joint_states" in late or len(late) > 1):
-                        continue
-                if payload[:4] == containers.ZSTD_MAGIC:  # rosbag2 "message" compression
-                    payload = inflater.inflate("zstd", bytes(payload), None, "a compressed message")
-                i = counters.get(topic, 0)
-                counters[topic] = i + 1
-                if not n:
-                    start = facts.get("start", t)
+            if topic is None:
+                if run:
+                    yield from flush()
+                yield from fast(payload)
+                continue
+            h = hot[0]
+            if h is not None and topic == h[0] and caller == h[1] and cdr == h[2] and len(h[4]) < h[6] and \
+                    h[3].matches(payload) and payload[0] != 0x28:  # (0x28: perhaps zstd, below)
+                # the next message of the run: what the lines below do for it, in short
+                h[4].append(t)
+                h[5].append(bytes(payload))
+                counters[topic] += 1
                 n += 1
-                if batches and kind == "joint_state":
-                    if run and run[1] == topic and run[2] == caller and run[0].cdr == cdr and \
-                            len(run[4]) < MAX_BATCH and len(run[4]) * run[0].length < BATCH_BYTES and \
-                            run[0].matches(payload):
-                        run[4].append(t)
-                        run[5].append(bytes(payload))  # (a copy: a view would keep its whole chunk alive)
-                        continue
-                    if run:
-                        yield from flush()
-                    key = (topic, caller, cdr)
-                    lay = layouts.get(key)
-                    if lay is None or not lay.matches(payload):
-                        lay = decode.js_layout(payload, cdr)
-                        if len(layouts) > 64:
-                            layouts.clear()
-                        layouts[key] = lay
-                    run[:] = [lay, topic, caller, i, [t], [bytes(payload)], [], 0]
-                    cap = min(MAX_BATCH, max(1, BATCH_BYTES // lay.length))
-                    hot[0] = (topic, caller, cdr, lay, run[4], run[5], cap)
+                continue
+            kind = decode.kind_of(msgtype)
+            if kind == "joint_state" and chosen is None and joint_topic is None:
+                late.add(topic)  # not indexed: the first JointState topic, or /joint_states once seen
+                if topic != "/joint_states" and ("/joint_states" in late or len(late) > 1):
                     continue
-                if run and kind == "joint_state":
+            if payload[:4] == containers.ZSTD_MAGIC:  # rosbag2 "message" compression
+                payload = inflater.inflate("zstd", bytes(payload), None, "a compressed message")
+            i = counters.get(topic, 0)
+            counters[topic] = i + 1
+            if not n:
+                start = facts.get("start", t)
+            n += 1
+            if batches and kind == "joint_state":
+                if run and run[1] == topic and run[2] == caller and run[0].cdr == cdr and \
+                        len(run[4]) < MAX_BATCH and len(run[4]) * run[0].length < BATCH_BYTES and \
+                        run[0].matches(payload):
+                    run[4].append(t)
+                    run[5].append(bytes(payload))  # (a copy: a view would keep its whole chunk alive)
+                    continue
+                if run:
                     yield from flush()
-                if kind == "joint_state":
-                    st, names, pos, vel, eff = decode.joint_state(payload, cdr)
-                    yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
-                elif batches and len(payload) <= TF_LAYOUT_BYTES:
-                    key = (topic, caller, cdr)
-                    known = tf_layouts.setdefault(key, [])
-                    got = None
-                    for lay in known:
-                        got = lay.read(payload)
-                        if got is not None:
-                            break
-                    if got is None:
-                        lay = decode.tf_layout(payload, cdr)
-                        got = lay.read(payload)
-                        known.insert(0, lay)
-                        del known[4:]
-                        if len(tf_layouts) > 64:
-                            tf_layouts.clear()
-                    m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf",
-                                FastEdges(lay, *got), caller, start)
-                else:
-                    edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
-                    m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
-                                start)
-                if kind == "joint_state":
-                    continue
-                if not run:
-                    yield m
-                    continue
-                # among a run of joint states: rides along with them (the run goes on after it)
-                run[6].append((len(run[4]), m))
-                run[7] += len(payload)
-                if len(run[6]) >= MAX_BATCH or run[7] >= BATCH_BYTES:
-                    yield from flush()
+                key = (topic, caller, cdr)
+                lay = layouts.get(key)
+                if lay is None or not lay.matches(payload):
+                    lay = decode.js_layout(payload, cdr)
+                    if len(layouts) > 64:
+                        layouts.clear()
+                    layouts[key] = lay
+                run[:] = [lay, topic, caller, i, [t], [bytes(payload)], [], 0]
+                cap = min(MAX_BATCH, max(1, BATCH_BYTES // lay.length))
+                hot[0] = (topic, caller, cdr, lay, run[4], run[5], cap)
+                continue
+            if run and kind == "joint_state":
+                yield from flush()
+            if kind == "joint_state":
+                st, names, pos, vel, eff = decode.joint_state(payload, cdr)
+                yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
+            elif batches and len(payload) <= TF_LAYOUT_BYTES:
+                key = (topic, caller, cdr)
+                known = tf_layouts.setdefault(key, [])
+                got = None
+                for lay in known:
+                    got = lay.read(payload)
+                    if got is not None:
+                        break
+                if got is None:
+                    lay = decode.tf_layout(payload, cdr)
+                    got = lay.read(payload)
+                    known.insert(0, lay)
+                    del known[4:]
+                    if len(tf_layouts) > 64:
+                        tf_layouts.clear()
+                m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf",
+                            FastEdges(lay, *got), caller, start)
+            else:
+                edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
+                m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
+                            start)
+            if kind == "joint_state":
+                continue
+            if not run:
+                yield m
+                continue
+            # among a run of joint states: rides along with them (the run goes on after it)
+            run[6].append((len(run[4]), m))
+            run[7] += len(payload)
+            if len(run[6]) >= MAX_BATCH or run[7] >= BATCH_BYTES:
+                yield from flush()
         if run:
             yield from flush()
     except (containers.ContainerError, decode.DecodeError, InflateError, OSError) as e:
