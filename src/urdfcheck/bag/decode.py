@@ -218,7 +218,7 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
 # stamp and the numbers is not of the layout and is read on its own (`joint_state`).
 class JsLayout:
     __slots__ = ("cdr", "e", "length", "head", "lo", "hi", "fixed", "stamp_off", "pos", "vel", "eff", "words",
-                 "names", "blob", "_keep")
+                 "names", "blob", "_mask")
 
     def matches(self, buf) -> bool:
         # (bytes() first: comparing a memoryview is item by item, a copy and memcmp is faster)
@@ -307,21 +307,28 @@ def js_rows(lay: JsLayout, rows):
     return stamps, doubles(*lay.pos), doubles(*lay.vel), doubles(*lay.eff)
 
 
-def js_keep(lay: JsLayout):
-    """(offsets, bytes): every byte a message of this layout shares with it (all but the stamp and the numbers),
-    to compare many messages at once (`JsLayout.matches` for each)."""
+def fits(lay, rows):
+    """Which rows (uint8 (n, lay.length)) are messages of this layout (JsLayout or TfLayout): every byte but the
+    stamps and the numbers the same (`JsLayout.matches`, `TfLayout.read` for each), compared whole rows at once."""
     import numpy as np
 
-    got = getattr(lay, "_keep", None)
+    got = getattr(lay, "_mask", None)
     if got is None:
-        idx = list(range(4)) if lay.cdr else []
-        idx.extend(range(lay.lo, lay.hi))
-        for at, word in lay.words:
-            idx.extend(range(at, at + len(word)))
-        keep = np.array(idx, dtype=np.intp)
-        raw = (lay.head if lay.cdr else b"") + lay.fixed + b"".join(w for _at, w in lay.words)
-        got = lay._keep = (keep, np.frombuffer(raw, dtype=np.uint8))
-    return got
+        if isinstance(lay, JsLayout):
+            idx = list(range(4)) if lay.cdr else []
+            idx.extend(range(lay.lo, lay.hi))
+            for at, word in lay.words:
+                idx.extend(range(at, at + len(word)))
+            raw = (lay.head if lay.cdr else b"") + lay.fixed + b"".join(w for _at, w in lay.words)
+        else:
+            idx, raw = lay.keep, lay.keep_bytes
+        like = np.zeros(lay.length, dtype=np.uint8)
+        like[idx] = np.frombuffer(raw, dtype=np.uint8)
+        free = np.ones(lay.length, dtype=bool)
+        free[idx] = False
+        got = lay._mask = (like, free)
+    like, free = got
+    return ((rows == like) | free).all(axis=1)
 
 
 def remember_names(lay: JsLayout) -> None:
@@ -334,7 +341,7 @@ def remember_names(lay: JsLayout) -> None:
 # seven numbers of each transform change. The layout is read once (`tf_layout`); a message whose every other
 # byte is the same is read with numpy (`TfLayout.read`), any other on its own (`tf_message`).
 class TfLayout:
-    __slots__ = ("cdr", "e", "length", "keep", "keep_bytes", "sec", "nsec", "vals", "edges", "np")
+    __slots__ = ("cdr", "e", "length", "keep", "keep_bytes", "sec", "nsec", "vals", "edges", "np", "_mask")
 
     def rows(self, a):
         """`read` of many messages of this layout at once, the rows of a uint8 array (n, length): (stamps (n, E),

@@ -405,19 +405,13 @@ def _runs(blk, layouts, tf_layouts, chosen, joint_topic):
         return slow()
     zstd = np.frombuffer(containers.ZSTD_MAGIC, dtype=np.uint8)
     fits = np.zeros(len(conn), dtype=bool)
-    keep, want = decode.js_keep(lay)
-    ok = length[js] == lay.length
-    sel = js[ok]
-    got = containers.rows(a, blk.lo[sel], lay.length)
-    ok[ok] = (got[:, keep] == want).all(axis=1) & ~(got[:, :4] == zstd).all(axis=1)
-    fits[js] = ok
-    if len(tfi):
-        ok = length[tfi] == tl.length
-        sel = tfi[ok]
-        got = containers.rows(a, blk.lo[sel], tl.length)
-        ok[ok] = (got[:, tl.keep] == np.frombuffer(tl.keep_bytes, dtype=np.uint8)).all(axis=1) & \
-            ~(got[:, :4] == zstd).all(axis=1)
-        fits[tfi] = ok
+    for which, layout in ((js, lay), (tfi, tl)):
+        if not len(which):
+            continue
+        ok = length[which] == layout.length
+        got = containers.rows(a, blk.lo[which[ok]], layout.length)
+        ok[ok] = decode.fits(layout, got) & ~(got[:, :4] == zstd).all(axis=1)
+        fits[which] = ok
     if fits.all():
         edges = [0, len(fits)]
     else:
