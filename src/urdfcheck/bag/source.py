@@ -373,7 +373,7 @@ def _runs(blk, layouts, tf_layouts, chosen, joint_topic):
     if chosen is None and joint_topic is None:
         return slow()
     js_ids, tf_ids = [], []
-    for cid, (topic, typ, _caller, _cdr) in blk.chans.items():
+    for cid, (_topic, typ, _caller, _cdr) in blk.chans.items():
         kind = decode.kind_of(typ)
         (js_ids if kind == "joint_state" else tf_ids).append(cid)
     if len(js_ids) != 1 or len(tf_ids) > 1:
