@@ -8,9 +8,10 @@ model reads its own package's parameter files: `xacro.load_yaml`, the consumers 
 stands for its scope. A file nothing reads is an info line.
 
 From a monorepo root (a workspace of many repositories) the workspace is not planned whole: only the launch files
-that can reach the file are read (those naming its package or its file name, and the launch files that name
-those, until nothing new), with the workspace's packages resolvable, plus the models of its own package. A
-workspace with a urdfcheck config is planned whole (a config may declare what reads the file).
+that can reach the file are read (those naming its package or its file name, the launch files that name those,
+and the launch files naming a model file (.urdf, .xacro) that names any of them: a Gazebo plugin's <parameters>,
+until nothing new), with the workspace's packages resolvable, plus the models of its own package. A workspace
+with a urdfcheck config is planned whole (a config may declare what reads the file).
 """
 from __future__ import annotations
 
@@ -78,12 +79,21 @@ def _candidates(planner, ws: str, path: str, pkg, settings) -> list:
     name = package_name(pkg / "package.xml")
     if name:
         words.add(name.encode())
-    texts = _texts(planner, ws)
+    texts, models = _texts(planner, ws), _listing(planner, ws)[2]
     chosen = {p for p in texts if _below(p, str(pkg))}  # the own package's launch files, whatever they name
     words.update(os.path.basename(p).encode() for p in chosen)
+    reached: set[str] = set()
     grew = True
     while grew:  # the launch files naming a chosen one (an include), until nothing new
         grew = False
+        # a model file naming a word reads it (a Gazebo plugin's <parameters>, an include, an argument's default):
+        # the launch files naming that model deploy a reader (turtlebot4's launch file names its model, whose
+        # include of create3.urdf.xacro names create3's control.yaml)
+        for p, text in models.items():
+            if p not in reached and (text is None or any(w in text for w in words)):
+                reached.add(p)
+                words.add(os.path.basename(p).encode())
+                grew = True
         for p, text in texts.items():
             if p not in chosen and (text is None or any(w in text for w in words)):
                 chosen.add(p)
@@ -105,22 +115,29 @@ def _texts(planner, ws: str) -> dict:
     return _listing(planner, ws)[0]
 
 
-def _listing(planner, ws: str) -> tuple[dict, bool]:
-    """One pass over `ws` (as the deployment finder lists it): its launch files with their bytes, and whether a
-    urdfcheck config sits anywhere in it."""
+def _listing(planner, ws: str) -> tuple[dict, bool, dict]:
+    """One pass over `ws` (as the deployment finder lists it): its launch files with their bytes, whether a
+    urdfcheck config sits anywhere in it, and its model files (.urdf, .xacro) with their bytes."""
     memo = planner.__dict__.setdefault("_dependents_listing", {})
     if ws not in memo:
+        from urdfcheck.core import door
         from urdfcheck.load.discover import _walk
         from urdfcheck.plan.deployments import _is_launch
         from urdfcheck.request.config import PYPROJECT, _pyproject_has_table
 
-        texts, config = {}, False
+        # every plan of `ws` makes it a root of the run (its Resolver names it as the workspace): the name search
+        # reads what that plan reads. Before, a launch file of a sibling repository was refused here, kept as "may
+        # name the file" and planned: from a corpus root, 77 launch files for one SRDF macro.
+        door.add_root(ws)
+        texts, models, config = {}, {}, False
         for folder, name in _walk(os.path.abspath(ws), 20_000):  # plan.deployments.launch_files' walk
             if _is_launch(name):
                 texts[os.path.join(folder, name)] = None
+            elif name.lower().endswith((".urdf", ".xacro")):
+                models[os.path.join(folder, name)] = None
             elif name in CONFIG_NAMES or (name == PYPROJECT and _pyproject_has_table(Path(folder, name))):
                 config = True
-        memo[ws] = ({p: _head(p) for p in texts}, config)
+        memo[ws] = ({p: _head(p) for p in texts}, config, {p: _head(p) for p in models})
     return memo[ws]
 
 
