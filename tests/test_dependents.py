@@ -66,6 +66,12 @@ def mono(tmp_path) -> Path:
     (other / "launch" / "slam.launch.xml").write_text(
         '<launch><node pkg="cartographer_ros" exec="cartographer_node" name="c" args="-configuration_directory '
         '$(find-pkg-share other_bringup)/config -configuration_basename slam.lua"/></launch>\n')
+    # a launch file of the same name as repoA's, included by name in its own package (a generic name names that
+    # package's file)
+    (other / "launch" / "bringup.launch.xml").write_text(
+        '<launch><node pkg="joy" exec="joy_node" name="joy"/></launch>\n')
+    (other / "launch" / "all.launch.xml").write_text(
+        '<launch><include file="$(find-pkg-share other_bringup)/launch/bringup.launch.xml"/></launch>\n')
     shutil.copytree(REPO / "examples" / "broken" / "joint_limits", tmp_path / "repoB" / "joint_limits")
     # repoC: a robot whose model (through an include) loads repoA's shared controller file in its Gazebo plugin; its
     # launch file names neither that file nor its package (turtlebot4 reading create3's control.yaml)
@@ -181,7 +187,8 @@ def test_a_guarded_run_plans_only_the_launch_files_that_can_reach_the_file(mono,
     """As the command line runs it (the door guarding the checkout around the file): a sibling repository's launch
     files that name nothing of the file are not planned. Before, the name search could not read them (outside the
     run's roots until the plan made the folder a root) and kept each as "may name it": from the 22-repository
-    corpus, 77 launch files planned for one SRDF macro."""
+    corpus, 77 launch files planned for one SRDF macro. Nor one that includes a file of the same name in its own
+    package (repoB's all.launch.xml includes its own bringup.launch.xml)."""
     from urdfcheck.core import door
     from urdfcheck.core.checkout import run_roots
 
