@@ -475,7 +475,8 @@ class Planner:
                     if not robots:  # a computed, legacy or commented include: the robots that include its includer
                         robots = [t for t in self.robots_including(by, str(pkg or folder), settings)
                                   if os.path.realpath(t.path) != real]
-                        robots = robots or [t for t in self.workspace_targets(_ws(self.here, by, pkg or folder))
+                        ws = self.library_ws(by, str(pkg or folder))
+                        robots = robots or [t for t in self.workspace_targets(ws)
                                             if os.path.realpath(t.path) == os.path.realpath(by)]
                 maybe = {os.path.realpath(x) for x in (*found.probes, *found.included)}
                 if not robots and os.path.realpath(path) in maybe:  # named: never skipped when it may be a robot
@@ -499,13 +500,9 @@ class Planner:
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
         """The targets of the library's workspace whose model includes it (literal includes, read as text)."""
-        from urdfcheck.core.checkout import run_roots
         from urdfcheck.load.packages import included_files
 
-        # the checkout around the library (where the door lets the run read), never a folder above it: the working
-        # directory may hold the runner's other files
-        here = os.path.abspath(self.here)
-        ws = next((r for r in run_roots((library,), cwd=here) if _below(library, r)), os.path.abspath(pkg))
+        ws = self.library_ws(library, pkg)
         real, out = os.path.realpath(library), []
         for t in self.workspace_targets(ws):
             key = (os.path.realpath(t.path), tuple(sorted(t.packages.items())))
@@ -514,6 +511,16 @@ class Planner:
             if real in self._closures[key] and os.path.realpath(t.path) != real:
                 out.append(t)
         return out
+
+    def library_ws(self, library: str, pkg: str) -> str:
+        """Where the robots including a library are looked for: the checkout around it (where the door lets the run
+        read), never a folder above it (the working directory may hold the runner's other files), so the same from
+        a folder of repositories as from the repository's root."""
+        from urdfcheck.core.checkout import run_roots
+
+        here = os.path.abspath(self.here)
+        ws = next((r for r in run_roots((library,), cwd=here) if _below(library, r)), os.path.abspath(pkg))
+        return _unskipped(ws, os.path.dirname(os.path.abspath(library)))
 
     def workspace_targets(self, ws: str) -> list[Target]:
         """The targets of a workspace folder as `urdfcheck lint` run there plans them (once per run)."""
@@ -561,9 +568,25 @@ def _packages(root: str, model: str, settings: Settings) -> dict:
     return {**workspace_map(root, near=model), **dict(settings.packages)}
 
 
-def _ws(here: str, path: str, pkg) -> str:
-    here = os.path.abspath(here)
-    return here if _below(path, here) else os.path.abspath(str(pkg))
+def _unskipped(ws: str, folder: str) -> str:
+    """`ws`, or the deepest folder between it and `folder` (the library's) that a walk from `ws` skips (a
+    COLCON_IGNORE, a hidden folder: core.walk): the library was named, so the robots beside it are planned as if
+    that folder had been named (this repository's examples/ holds COLCON_IGNORE; from its root, a macro file of
+    examples/agv had "no robot that includes it")."""
+    from urdfcheck.core import walk
+
+    ws, d = os.path.abspath(ws), os.path.abspath(folder)
+    if not _below(d, ws):
+        return ws
+    while d != ws:
+        try:
+            entries = list(os.scandir(d))
+        except OSError:
+            entries = []
+        if os.path.basename(d).startswith(".") or walk.skipped(d, entries):
+            return d
+        d = os.path.dirname(d)
+    return ws
 
 
 def _step(what: str, subject: str, how: str, confirm: str = ""):
