@@ -76,11 +76,29 @@ class Result(Record):
         bad = self.unchecked()
         if bad:
             n = len({str(t.path) for t in bad})
-            return f"{n} model{'s' if n != 1 else ''} not checked (did not load)"
+            return f"{n} model{'s' if n != 1 else ''} not checked (did not load): {self._why_unchecked(bad)}"
         if not [t for t in self.targets if not t.library]:
             n = self.libraries
             return "no robot found" + (f": {n} xacro librar{'y' if n == 1 else 'ies'}" if n else "")
         return None
+
+    def _why_unchecked(self, bad: list[Target], most: int = 3) -> str:
+        """Why the models did not load and how to make them checkable (from the first load finding of each),
+        grouped by reason: an unchecked robot never passes, so the line says what to do about it."""
+        index = {id(t): i for i, t in enumerate(self.targets)}
+        groups: dict[str, list[str]] = {}
+        for t in bad:
+            i = index.get(id(t))
+            found = self.by_target[i] if i is not None and i < len(self.by_target) else []
+            why = next((_how_to_load(f) for f in found if f.code.startswith("X")), "see its findings")
+            names = groups.setdefault(why, [])
+            if shown(str(t.path)) not in names:
+                names.append(shown(str(t.path)))
+        parts = []
+        for why, names in groups.items():
+            more = f", {len(names) - most} more" if len(names) > most else ""
+            parts.append(f"{', '.join(names[:most])}{more} ({why})")
+        return "; ".join(parts)
 
     def worst(self) -> Severity | None:
         return max((f.severity for f in self.findings), default=None)
@@ -99,6 +117,21 @@ class Result(Record):
                 key = (f.code, f.location)
                 levels[key] = min(levels.get(key, level), level)
         return any(f.severity >= levels.get((f.code, f.location), self.fail_on) for f in self.findings)
+
+
+def _how_to_load(f: Finding) -> str:
+    """One load finding as the reason a model was not checked, with what makes it checkable."""
+    import re
+
+    m = re.search(r"package '([\w.-]+)' not found", f.message) if f.code == "X013" else None
+    if m is not None:
+        return (f"package '{m.group(1)}' is not in the checkout: pass --package {m.group(1)}=PATH, or lint the "
+                "workspace that holds it")
+    m = re.match(r"xacro argument '([^']+)' has no default", f.message) if f.code == "X010" else None
+    if m is not None:
+        return (f"xacro argument '{m.group(1)}' has no default: pass --arg {m.group(1)}:=..., or lint the launch "
+                "file that runs it")
+    return f"{f.code} at {f.location}"
 
 
 def run(request: LintRequest, *, retain: list | None = None, targets: list[Target] | None = None) -> Result:
