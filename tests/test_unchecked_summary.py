@@ -47,3 +47,31 @@ def test_a_required_argument_is_named_with_the_flag_that_sets_it(tmp_path):
     assert "All checks passed" not in out
     assert last.startswith("Not a pass: 1 model not checked (did not load): bot_description/urdf/bot.urdf.xacro "
                            "(xacro argument 'prefix' has no default: pass --arg prefix:=..."), last
+
+
+def test_a_run_red_only_for_missing_meshes_says_so_and_how_to_fetch_them(tmp_path):
+    _package(tmp_path, """<?xml version="1.0"?>
+<robot name="bot">
+  <link name="base_link">
+    <visual><geometry><mesh filename="package://bot_description/meshes/base.stl"/></geometry></visual>
+  </link>
+</robot>
+""")
+    code, out, _ = run_cli(["lint", "--no-config", "--no-cache"], cwd=tmp_path)
+    assert code == 1 and "G001" in out
+    assert out.strip().splitlines()[-1].startswith("Only missing meshes fail this run (G001): fetch the mesh files")
+
+
+def test_a_run_with_other_errors_does_not_blame_the_meshes(tmp_path):
+    _package(tmp_path, """<?xml version="1.0"?>
+<robot name="bot">
+  <link name="base_link">
+    <visual><geometry><mesh filename="package://bot_description/meshes/base.stl"/></geometry></visual>
+  </link>
+  <joint name="j" type="revolute"><parent link="base_link"/><child link="arm"/><axis xyz="0 0 1"/>
+    <limit lower="1" upper="-1" effort="1" velocity="1"/></joint>
+  <link name="arm"/>
+</robot>
+""")
+    code, out, _ = run_cli(["lint", "--no-config", "--no-cache"], cwd=tmp_path)
+    assert code == 1 and "J003" in out and "Only missing meshes" not in out
