@@ -25,6 +25,9 @@ HOW = {
     "referenced": (True, "named by a reference (a plugin's <parameters>, an include, a $(find) or package:// path)"),
     "complete": (True, "a whole robot that no other file includes"),
     "only": (True, "the only model of its package"),
+    # the file named on the command line is a fragment its robot includes only under these argument values: the
+    # variant that reaches it is how that file is used (plan.plan.Planner.reaching, load.reach)
+    "reaching": (True, "the argument values under which the robot includes the file named on the command line"),
     "overlap": (False, "paired by the joint names it shares with the model"),
     "package": (False, "paired only because it lies in the same package"),
     "probe": (False, "a file that may be a fragment of another model"),

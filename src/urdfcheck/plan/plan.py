@@ -474,10 +474,43 @@ class Planner:
                     self.infos.append(f"{shown(str(path))}: a xacro library that no robot of "
                                       "its workspace includes: not linted alone")
                 self.included.append(str(path))  # the run checks that one of them did read it
-                return robots
+                return robots + self.reaching(path, robots)
             if _robot_file(path):  # a robot named by itself (the per-file hook): its variants too
                 return _mark(self.variants(path, settings), "named")
         return _mark([self.target(path, {}, "", None, settings)], "named")
+
+    def reaching(self, fragment: Path, robots: list[Target]) -> list[Target]:
+        """A fragment named on the command line that its robots include only under a xacro argument other than the
+        one they are linted with (`<xacro:if value="$(arg use_arm)">`, default false; a literal comparison): one
+        more target per robot file, with the values that make the include happen, named by them (load.reach). A
+        condition urdfcheck does not decide is said as an info line."""
+        from urdfcheck.load.reach import _same, reaching
+
+        out, done = [], set()
+        for t in robots:
+            entry = os.path.realpath(t.path)
+            if entry in done:
+                continue
+            done.add(entry)
+            mine = [r for r in robots if os.path.realpath(r.path) == entry]
+            r = reaching(str(t.path), str(fragment), lambda n, pk=t.packages: pk.get(n))
+            if r is None:
+                continue
+            if r.undecided:
+                self.infos.append(f"{shown(str(fragment))}: {shown(str(t.path))} includes it only when "
+                                  f"{r.undecided}, a condition urdfcheck does not decide: not linted through it "
+                                  "(pass the arguments that include it with --arg NAME:=VALUE)")
+                continue
+            if not r.args or any(all(k in m.args and _same(str(m.args[k]), v) for k, v in r.args.items())
+                                 for m in mine):
+                continue  # the defaults, a launch file's or the runner's arguments already include it
+            given = ",".join(f"{k}={v}" for k, v in r.args.items())
+            v = self.target(Path(t.path), {**t.args, **r.args}, f"{given} (includes {fragment.name})", None,
+                            t.settings, dict(t.packages))
+            v.evidence = (_step("variant", f"{shown(str(t.path))} with {given}", "reaching",
+                                f"lint {shown(str(t.path))} with --arg for a deployment that uses it"),)
+            out.append(v)
+        return out
 
     def probe(self, path: Path, settings: Settings, root: str | None = None) -> Target:
         """A file that may be a library: expanded with its defaults; a library when the expansion has no link."""
