@@ -48,7 +48,7 @@ def test_a_misspelt_model_path_is_an_error_at_the_launch_line(tmp_path):
     assert f["severity"] == "error" and code == 1
     assert f["location"]["file"] == "my_robot/launch/display.launch" and f["location"]["line"] == 2
     assert "my_robot/urdf/robott.urdf.xacro, which does not exist" in f["message"]
-    assert "did you mean my_robot/urdf/robot.urdf.xacro?" in f["message"]
+    assert "(did you mean my_robot/urdf/robot.urdf.xacro?)" in f["message"]
     assert [(s["how"], s["evidence"]) for s in f["evidence"]] == [("launched", True)]
     assert not _by_code(report, "C021")
 

@@ -63,9 +63,10 @@ def _missing(d, loc, sel, shown) -> Finding:
     variant = f" [{d.variant}]" if d.variant else ""
     code = _source_line(loc)
     near = _nearest_model(d.missing, path)
+    # the suggestion before the source line: a report may shorten a long message from its end
     msg = (f"{launch}{variant} gives robot_state_publisher the model file {path}, which does not exist"
-           + (f" (`{code}`)" if code else "") + ": the launch fails here (xacro or the file read stops with no "
-           "such file), so nothing of this deployment starts" + (f"; did you mean {shown(near)}?" if near else ""))
+           + (f" (did you mean {shown(near)}?)" if near else "") + ": the launch fails here, so nothing of this "
+           "deployment starts" + (f" (`{code}`)" if code else ""))
     where = loc._replace(file=shown(loc.file)) if loc is not None else Location(launch)
     f = Finding(MISSING, sel.severity_of(MISSING, Severity.ERROR), clean_text(msg, 1000), where, name=MISSING_NAME,
                 model=launch, variant=d.variant)
