@@ -87,13 +87,15 @@ class Result(Record):
         grouped by reason: an unchecked robot never passes, so the line says what to do about it."""
         index = {id(t): i for i, t in enumerate(self.targets)}
         groups: dict[str, list[str]] = {}
+        named: set[str] = set()
         for t in bad:
+            if str(t.path) in named:  # another variant of a model already named: its first reason is enough
+                continue
+            named.add(str(t.path))
             i = index.get(id(t))
             found = self.by_target[i] if i is not None and i < len(self.by_target) else []
             why = next((_how_to_load(f) for f in found if f.code.startswith("X")), "see its findings")
-            names = groups.setdefault(why, [])
-            if shown(str(t.path)) not in names:
-                names.append(shown(str(t.path)))
+            groups.setdefault(why, []).append(shown(str(t.path)))
         parts = []
         for why, names in groups.items():
             more = f", {len(names) - most} more" if len(names) > most else ""
