@@ -121,3 +121,22 @@ def test_a_launch_argument_value_other_than_the_default_is_an_info(tmp_path):
     assert f["severity"] == "info" and "robot_v2.urdf.xacro" in f["message"]
     assert [s["how"] for s in f["evidence"] if not s["evidence"]] == ["choice"]
     assert code == 0
+
+
+def test_a_missing_textfile_is_an_error_too(tmp_path):
+    # ROS 1 `<param textfile=...>`: robot_description read as is
+    _package(tmp_path, ROS1.format(pkg="my_robot", file="robot_v1.urdf").replace(
+        'command="$(find xacro)/xacro ', 'textfile="'))
+    code, report = lint_json([], cwd=tmp_path)
+    (f,) = _by_code(report, "C025")
+    assert f["severity"] == "error" and code == 1 and "robot_v1.urdf, which does not exist" in f["message"]
+
+
+def test_a_file_of_that_name_elsewhere_in_the_package_may_be_installed_there(tmp_path):
+    # install(FILES models/robot.urdf DESTINATION share/my_robot/urdf), or setup.py's data_files
+    pkg = _package(tmp_path, ROS1.format(pkg="my_robot", file="robot.urdf").replace(
+        'command="$(find xacro)/xacro ', 'textfile="'))
+    (pkg / "models").mkdir()
+    (pkg / "models" / "robot.urdf").write_text('<robot name="r"><link name="base_link"/></robot>\n')
+    code, report = lint_json([], cwd=tmp_path)
+    assert not _by_code(report, "C025")

@@ -306,7 +306,7 @@ class _Workspace:
             return ""
         pkg = next((str(d) for dirs in self.packages.values() for d in dirs
                     if path.startswith(str(d).rstrip(os.sep) + os.sep)), "")
-        if not pkg or not _below_root(pkg, self.root) or _built(pkg, path):
+        if not pkg or not _below_root(pkg, self.root) or _built(pkg, path) or _elsewhere(pkg, path):
             return ""
         return pkg
 
@@ -381,6 +381,15 @@ class _Workspace:
 
 def _below_root(path: str, root: str) -> bool:
     return path == root or path.startswith(root.rstrip(os.sep) + os.sep)
+
+
+def _elsewhere(pkg: str, path: str) -> bool:
+    """A file of that name somewhere else in the package: the build may install it where the launch file looks
+    (`install(FILES models/robot.urdf DESTINATION share/pkg/urdf)`, setup.py's data_files)."""
+    from urdfcheck.core.walk import folders
+
+    name = os.path.basename(path)
+    return any(e.name == name for _d, entries in folders(pkg, max_dirs=2000) for e in entries)
 
 
 def _built(pkg: str, path: str) -> bool:
