@@ -121,3 +121,13 @@ def test_reaching_through_an_intermediate_file_collects_both_conditions(tmp_path
     assert r.args == {"sim": "true", "tool": "gripper"} and not r.undecided
     assert [os.path.basename(f) for f, _ in r.via] == ["robot.urdf.xacro", "sim.xacro"]
     assert none is None
+
+
+def test_a_package_run_lints_a_macro_file_its_robot_includes_only_under_another_value(tmp_path):
+    # zero config on the package: the robot with its defaults never includes arm.xacro, a macro file that was then
+    # never checked at all ("All checks passed")
+    _package(tmp_path, _robot("${'$(arg arm)' == 'small'}", '<xacro:arg name="arm" default="none"/>'))
+    code, report = lint_json([], cwd=tmp_path)
+    (f,) = _j003(report)
+    assert code == 1 and f["severity"] == "error" and f["variant"] == "arm=small (includes arm.xacro)"
+    assert "reaching" not in [s["how"] for s in f["evidence"]]  # nobody named the fragment
