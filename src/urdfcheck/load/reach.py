@@ -13,7 +13,6 @@ macro parameter, an expression) is not decided: `Reach.undecided` names it, and 
 from __future__ import annotations
 
 import os
-import re
 
 from urdfcheck.core import lazyre
 from urdfcheck.core.records import Record
