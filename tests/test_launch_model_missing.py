@@ -140,3 +140,49 @@ def test_a_file_of_that_name_elsewhere_in_the_package_may_be_installed_there(tmp
     (pkg / "models" / "robot.urdf").write_text('<robot name="r"><link name="base_link"/></robot>\n')
     code, report = lint_json([], cwd=tmp_path)
     assert not _by_code(report, "C025")
+
+
+DISPLAY = """from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import Command, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    default = PathJoinSubstitution([FindPackageShare('my_robot'), 'urdf', 'old_robot.urdf.xacro'])
+    return LaunchDescription([
+        DeclareLaunchArgument('model', default_value=default),
+        Node(package='robot_state_publisher', executable='robot_state_publisher',
+             parameters=[{'robot_description': Command(['xacro ', LaunchConfiguration('model')])}]),
+    ])
+"""
+BRINGUP = """from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription
+from launch.conditions import IfCondition
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    display = PathJoinSubstitution([FindPackageShare('my_robot'), 'launch', 'display.launch.py'])
+    model = PathJoinSubstitution([FindPackageShare('my_robot'), 'urdf', 'robot.urdf.xacro'])
+    return LaunchDescription([
+        DeclareLaunchArgument('rviz', default_value='false'),
+        IncludeLaunchDescription(PythonLaunchDescriptionSource(display),
+                                 condition=IfCondition(LaunchConfiguration('rviz')),
+                                 launch_arguments={'model': model}.items()),
+    ])
+"""
+
+
+def test_a_launch_file_another_one_includes_with_its_own_model_is_an_info(tmp_path):
+    # bringup.launch.py includes display.launch.py (under a condition: not followed to it) and passes it `model`:
+    # the default that does not exist may never be used
+    pkg = _package(tmp_path, DISPLAY, launch_name="display.launch.py")
+    (pkg / "launch" / "bringup.launch.py").write_text(BRINGUP)
+    code, report = lint_json([], cwd=tmp_path)
+    (f,) = _by_code(report, "C025")
+    assert f["severity"] == "info" and code == 0
+    assert [s["how"] for s in f["evidence"] if not s["evidence"]] == ["included"]

@@ -73,6 +73,8 @@ def _missing(d, loc, sel, shown) -> Finding:
     if d.variant:  # a choice or a flipped boolean launch argument (a literal path: no "model=" file match)
         step = Step("deployment", f"{launch}{variant}", "choice", "name the arguments that value needs under "
                     "models: in urdfcheck.yaml")
+    elif getattr(d, "included_elsewhere", False):  # its includer (not followed) may pass another model path
+        step = Step("deployment", launch, "included", "lint the launch file that includes it")
     else:
         step = Step("deployment", launch, "launched")
     return engine.on_evidence([f], (step,))[0]
