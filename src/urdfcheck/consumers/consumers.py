@@ -212,7 +212,8 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     out = Consumers(origin="config")
     if config is not None:
         out.frames = {**DEFAULT_FRAMES, **dict(config.frames)}
-        out.tf_owners = claims_from_owners(dict(config.tf_owners), dict(config.tf_owner_locs), Location(config.path))
+        out.tf_owners = claims_from_owners(dict(config.tf_owners), dict(config.tf_owner_locs), Location(config.path),
+                                           _owner_source(config))
     out.frame_prefix = mc.frame_prefix
     pfs = [pf for pf in (r.params(p, out.errors) for p in mc.controllers) if pf is not None]
     out.controllers = read_controllers(pfs)
@@ -354,8 +355,16 @@ def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None
         owners = dict(getattr(config, "tf_owners", {}) or {})
         if owners and not c.tf_owners:
             c.tf_owners = claims_from_owners(owners, dict(getattr(config, "tf_owner_locs", {}) or {}),
-                                             Location(getattr(config, "path", "<config>")))
+                                             Location(getattr(config, "path", "<config>")), _owner_source(config))
     return c
+
+
+def _owner_source(config) -> str:
+    """The claims' source of the config's `tf_owners`: a config the runner did not vouch for declares publishers
+    that may conflict, never publish (consumers.graph.UNTRUSTED; issue 36)."""
+    from urdfcheck.consumers.graph import UNTRUSTED
+
+    return "config" if getattr(config, "vouched", True) else UNTRUSTED
 
 
 def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace: str | None = None) -> None:
@@ -363,7 +372,8 @@ def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace
     parameters over the files each node is given), then those of parameter files no such node has read.
     Discovered launch files of a package are often alternatives (sim/real): their nodes count only when one
     launch file starts them all."""
-    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace)
+    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace,
+                                                  refused=out.errors)  # C007 at the launch line, as controllers
     starters = {n.loc.file for n in nodes}
     if out.origin == "discovered" and len(starters) > 1:
         out.notes.append((f"TF-owning nodes are started by {len(starters)} launch files of the package, which may "

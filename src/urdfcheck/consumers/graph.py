@@ -186,16 +186,41 @@ def parse_edge(text: str) -> tuple[str, str] | None:
     return None
 
 
+# the source of a `tf_owners` declaration in a config the runner did not vouch for (found in the checkout, or named
+# without --trust-config; issue 36). It may add a publisher, and so a conflict (T001..T004), never make a frame
+# published that nothing read publishes: T005, C020 and C024 judge the graph without it (`vouched_claims`).
+UNTRUSTED = "config (untrusted)"
+DECLARED = ("config", UNTRUSTED)
+
+
 def claims_from_owners(owners: Mapping[str, str], locs: Mapping[str, Location] | None = None,
-                       default_loc: Location | None = None) -> list[TFClaim]:
+                       default_loc: Location | None = None, source: str = "config") -> list[TFClaim]:
     out = []
     for edge_text, owner in owners.items():
         e = parse_edge(edge_text)
         if e is None:
             continue
         loc = (locs or {}).get(edge_text) or default_loc or Location("<config>")
-        out.append(TFClaim(e[0], e[1], str(owner), DYNAMIC, loc, "config"))
+        out.append(TFClaim(e[0], e[1], str(owner), DYNAMIC, loc, source))
     return out
+
+
+def vouched_claims(g: TFGraph) -> TFGraph:
+    """`g` without the declarations of a config the runner did not vouch for: what may count as published."""
+    if not any(c.source == UNTRUSTED for c in g.claims):
+        return g
+    return TFGraph([c for c in g.claims if c.source != UNTRUSTED])
+
+
+def untrusted_hint(g: TFGraph, frames) -> str:
+    """What to say when a frame is published only by an untrusted config's declaration."""
+    said = [c for c in g.claims if c.source == UNTRUSTED and ({c.parent, c.child} & set(frames))]
+    if not said:
+        return ""
+    c = said[0]
+    return (f"; the config's tf_owners declares {c.parent} -> {c.child} ({c.owner}, {c.loc.shown()}), which counts "
+            "only in a config the runner names with --config FILE --trust-config (or --config-from REV): one found "
+            "in the checkout may add a publisher, never publish a frame")
 
 
 def declared_matches(owner: str, claim: TFClaim) -> bool:
@@ -214,7 +239,7 @@ def add_declared(g: TFGraph, declared: Iterable[TFClaim]) -> TFGraph:
     already seen on the same edge is that publisher, not a second one."""
     for c in declared:
         edge = (norm(c.parent), norm(c.child))
-        if any(x.edge == edge and x.source != "config" and declared_matches(c.owner, x) for x in g.claims):
+        if any(x.edge == edge and x.source not in DECLARED and declared_matches(c.owner, x) for x in g.claims):
             continue
         g.add(c)
     return g

@@ -143,6 +143,23 @@ class Deployment(Record):
             if c.name not in started and "joint_state" not in (c.type or ""):
                 c.idle = True
 
+    def _refused_controller_files(self, out) -> None:
+        """A controller_manager parameter file the door refuses (an absolute path or `../..` out of the checkout,
+        a link out of it): C007 at the launch line that names it, as for a TF owner's file (issue 36), not a note
+        that the workspace has no such file."""
+        from urdfcheck.consumers.localization import refused_file
+
+        several = len({s.namespace for li in self.infos for s in li.state_publishers}) > 1
+        for info in self.infos:
+            for n in info.nodes:
+                if n.package != "controller_manager" or n.executable not in _CONTROLLER_EXES:
+                    continue
+                if several and n.namespace != self.namespace:
+                    continue
+                for f in n.param_files:
+                    refused_file(f, f"controller_manager {n.name or n.executable}: parameter file", n.loc, out.errors,
+                                 "its controllers are not checked")
+
     def consumers(self):
         """The contract checks' view of this deployment (read on each call; cheap, files are small)."""
         from urdfcheck.consumers.consumers import Consumers, _Reader, tf_owners
@@ -150,6 +167,7 @@ class Deployment(Record):
 
         out = Consumers(origin="deployment")
         r = _Reader()
+        self._refused_controller_files(out)
         pfs = [pf for pf in (r.params(p, out.errors) for p in self.controller_files) if pf is not None]
         out.controllers = read_controllers(pfs, spawner_types(self.infos))  # types set in launch files too
         out.notes.extend(out.controllers.notes)

@@ -16,6 +16,7 @@ from urdfcheck.consumers.common import as_bool
 from urdfcheck.consumers.consumers import Consumers, consumers_near
 from urdfcheck.consumers.controllers import JSB, JSC
 from urdfcheck.consumers.graph import (
+    UNTRUSTED,
     PublisherInfo,
     TFGraph,
     add_declared,
@@ -29,6 +30,8 @@ from urdfcheck.consumers.graph import (
     not_one_tree,
     prefix_collisions,
     static_and_dynamic,
+    untrusted_hint,
+    vouched_claims,
 )
 from urdfcheck.core import lazyre
 from urdfcheck.core.evidence import Step
@@ -635,9 +638,10 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
         name = str(v.value).strip().lstrip("/")
         if not name or _unresolved(name) or name in links or (name, v.loc) in seen:
             continue
-        # a frame somebody else publishes is in the tree; the user's own odometry claim does not count
+        # a frame somebody else publishes is in the tree; the user's own odometry claim does not count, nor an
+        # untrusted config's declaration (consumers.graph.UNTRUSTED)
         others = {f for cl in g.claims if cl.owner != owner and not cl.owner.endswith(owner)
-                  for f in (cl.parent, cl.child)}
+                  and cl.source != UNTRUSTED for f in (cl.parent, cl.child)}
         if name in others:
             continue
         seen.add((name, v.loc))
@@ -645,7 +649,7 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
         # a near miss of a frame that exists is evidence of a typo; without one, the claim is that nothing
         # publishes the frame, which holds only where the whole deployment was understood (issue 20)
         yield Problem(f"{who} uses frame {name!r}, which is neither a link of the model nor published by "
-                      f"anything else{hint}", at=v.loc, data={"frame": name},
+                      f"anything else{hint}{untrusted_hint(g, (name,))}", at=v.loc, data={"frame": name},
                       severity=_WARNING() if owner in inferred else None, absent=None if hint else "publish it")
 
 
@@ -820,8 +824,10 @@ def tf_not_one_tree(model, ctx):
     g = _graph(model, c)
     if not _has_consumer_claims(g) or len(model.roots) > 1:
         return  # several roots in the model itself: S001
-    for p in not_one_tree(g, c.frames):
-        got = _as_problem(p)
+    # an untrusted config's declared owners do not join the trees (consumers.graph.vouched_claims)
+    plain = vouched_claims(g)
+    for p in not_one_tree(plain, c.frames):
+        got = _as_problem(p, hint=untrusted_hint(g, plain.frames) if not not_one_tree(g, c.frames) else "")
         got.absent = "publish the transform that joins them"
         yield got
 

@@ -51,6 +51,7 @@ def _tail(path: str) -> str:
 
 def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
     from urdfcheck.consumers.consumers import _Reader
+    from urdfcheck.consumers.graph import vouched_claims
     from urdfcheck.consumers.navigation import nav_frames
     from urdfcheck.rules.contracts.impl import _graph, _suggest_frame, _unresolved, consumers
 
@@ -64,7 +65,7 @@ def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
         return
     prefix = c.rsp_prefix
     links = {prefix + n for n in model.links}
-    g = _graph(model, c)
+    g = vouched_claims(_graph(model, c))  # an untrusted config's declared owners publish nothing (issue 36)
     published = {f for cl in g.claims for f in (cl.parent, cl.child)}
     owners: dict[str, set] = {}  # frame -> owners of the claims naming it
     for cl in g.claims:
