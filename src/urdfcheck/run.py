@@ -76,11 +76,31 @@ class Result(Record):
         bad = self.unchecked()
         if bad:
             n = len({str(t.path) for t in bad})
-            return f"{n} model{'s' if n != 1 else ''} not checked (did not load)"
+            return f"{n} model{'s' if n != 1 else ''} not checked (did not load): {self._why_unchecked(bad)}"
         if not [t for t in self.targets if not t.library]:
             n = self.libraries
             return "no robot found" + (f": {n} xacro librar{'y' if n == 1 else 'ies'}" if n else "")
         return None
+
+    def _why_unchecked(self, bad: list[Target], most: int = 3) -> str:
+        """Why the models did not load and how to make them checkable (from the first load finding of each),
+        grouped by reason: an unchecked robot never passes, so the line says what to do about it."""
+        index = {id(t): i for i, t in enumerate(self.targets)}
+        groups: dict[str, list[str]] = {}
+        named: set[str] = set()
+        for t in bad:
+            if str(t.path) in named:  # another variant of a model already named: its first reason is enough
+                continue
+            named.add(str(t.path))
+            i = index.get(id(t))
+            found = self.by_target[i] if i is not None and i < len(self.by_target) else []
+            why = next((_how_to_load(f) for f in found if f.code.startswith("X")), "see its findings")
+            groups.setdefault(why, []).append(shown(str(t.path)))
+        parts = []
+        for why, names in groups.items():
+            more = f", {len(names) - most} more" if len(names) > most else ""
+            parts.append(f"{', '.join(names[:most])}{more} ({why})")
+        return "; ".join(parts)
 
     def worst(self) -> Severity | None:
         return max((f.severity for f in self.findings), default=None)
@@ -99,6 +119,21 @@ class Result(Record):
                 key = (f.code, f.location)
                 levels[key] = min(levels.get(key, level), level)
         return any(f.severity >= levels.get((f.code, f.location), self.fail_on) for f in self.findings)
+
+
+def _how_to_load(f: Finding) -> str:
+    """One load finding as the reason a model was not checked, with what makes it checkable."""
+    import re
+
+    m = re.search(r"package '([\w.-]+)' not found", f.message) if f.code == "X013" else None
+    if m is not None:
+        return (f"package '{m.group(1)}' is not in the checkout: pass --package {m.group(1)}=PATH, or lint the "
+                "workspace that holds it")
+    m = re.match(r"xacro argument '([^']+)' has no default", f.message) if f.code == "X010" else None
+    if m is not None:
+        return (f"xacro argument '{m.group(1)}' has no default: pass --arg {m.group(1)}:=..., or lint the launch "
+                "file that runs it")
+    return f"{f.code} at {f.location}"
 
 
 def run(request: LintRequest, *, retain: list | None = None, targets: list[Target] | None = None) -> Result:
@@ -143,7 +178,8 @@ def _run(request: LintRequest, retain, targets) -> Result:
     if request.bags:
         _attach_bags(targets, request.bags, request.joint_states)
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
-    result = _unread_libraries(result, getattr(targets, "included", ()), retain, request)
+    result = _unread_libraries(result, getattr(targets, "included", ()), retain, request,
+                               getattr(targets, "library_files", ()))
     _drop_libraries(result)
     result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
     result.root = request.root
@@ -345,12 +381,14 @@ def _not_understood(result: Result, deployments, request: LintRequest) -> None:
         result.findings = sorted([*result.findings, *extra], key=Finding.sort_key)
 
 
-def _unread_libraries(result: Result, included, retain, request: LintRequest) -> Result:
+def _unread_libraries(result: Result, included, retain, request: LintRequest, libraries=()) -> Result:
     """Files taken for included libraries that no model of the run read (the include was commented out,
     conditional, or in a file that is no robot): expanded now as probes, so that a robot is never hidden by
     another file claiming to include it."""
     from urdfcheck.plan.robots import missed
 
+    # macro libraries no model read too: a robot may include them only under a non-default argument
+    result = _reaching(result, missed([*included, *libraries], result.read), retain, request)
     unread = missed(included, result.read)
     if not unread:
         return result
@@ -363,6 +401,35 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
         t.probe = True
         t.includers = ("?",)  # found when it fails (plan.robots.includers_of)
         extra.append(t)
+    with progress.after(len(result.targets)):
+        more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    merged = Result(_dedupe(result.raw() + more.raw()), result.targets + more.targets,
+                    {**result.models, **more.models}, result.by_target + more.by_target)
+    merged.read = set(result.read) | set(more.read)
+    return merged
+
+
+def _reaching(result: Result, unread: list[str], retain, request: LintRequest) -> Result:
+    """Included files that no model read because their robot includes them only under a non-default xacro argument
+    (a boolean, or a literal comparison: plan.plan.reaching_targets): each linted through the variant of the robots
+    of its package that includes it, before any is probed alone (a probe of a macro file is no check of it)."""
+    from urdfcheck.load.packages import enclosing_package
+    from urdfcheck.plan.plan import reaching_targets
+
+    if not unread:
+        return result
+    robots = [t for t in result.targets if not t.probe and not t.library]
+    extra: list[Target] = []
+    infos: list[str] = []
+    for path in unread:
+        pkg = enclosing_package(Path(os.path.abspath(path)).parent)
+        if pkg is None:
+            continue
+        near = [t for t in robots if enclosing_package(Path(os.path.abspath(t.path)).parent) == pkg]
+        extra.extend(v for v in reaching_targets(path, near, infos) if not any(
+            os.path.realpath(v.path) == os.path.realpath(x.path) and v.args == x.args for x in extra))
+    if not extra:
+        return result
     with progress.after(len(result.targets)):
         more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
     merged = Result(_dedupe(result.raw() + more.raw()), result.targets + more.targets,
