@@ -14,10 +14,9 @@ from __future__ import annotations
 
 import math
 import os
-import re
 import struct
 
-from urdfcheck.core import door
+from urdfcheck.core import door, lazyre
 
 MAX_BYTES = 32 * 1024**2
 MAX_VERTICES = 1_500_000  # an STL repeats each vertex per triangle: 500,000 triangles, a 25 MB binary STL
@@ -96,7 +95,7 @@ def read(path) -> Mesh | None:
 
 
 # --- STL -------------------------------------------------------------------------------------------------
-_ASCII_VERTEX = re.compile(rb"vertex\s+(\S+)\s+(\S+)\s+(\S+)")
+_ASCII_VERTEX = lazyre.compile(rb"vertex\s+(\S+)\s+(\S+)\s+(\S+)")
 
 
 def _stl(data: bytes) -> Mesh | None:
