@@ -644,7 +644,7 @@ def _warm_up(targets: list[Target], config) -> None:
     rulebook.catalogue()
     if config is not None or any(t.settings is not None and t.settings.config is not None for t in targets) \
             or any(t._contracts is not None for t in targets) or _in_package(targets[0].path):
-        from urdfcheck.rules.contracts import impl as rules_impl  # noqa: F401
+        from urdfcheck.rules.checks import claims, contracts, navframes, tf  # noqa: F401
 
 
 def _in_package(path) -> bool:

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from urdfcheck.consumers.common import ConsumerError
 from urdfcheck.consumers.controllers import ControllerSet, Driver, read_controllers, read_driver
-from urdfcheck.consumers.graph import TFClaim, claims_from_owners
+from urdfcheck.consumers.tfclaims import TFClaim, claims_from_owners
 from urdfcheck.consumers.launch.xml import LaunchInfo, read_launch
 from urdfcheck.consumers.localization import LocalizationNode, localization_from_launch, localization_from_params
 from urdfcheck.consumers.openworld import names_a_joint as _names_a_joint
@@ -356,6 +356,20 @@ def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None
             c.tf_owners = claims_from_owners(owners, dict(getattr(config, "tf_owner_locs", {}) or {}),
                                              Location(getattr(config, "path", "<config>")))
     return c
+
+
+def consumers_of(model, ctx) -> Consumers:
+    """The consumers the planner gave this target (`plan.plan.Target.consumers`). A context made by hand
+    without them (tests, scripts calling the engine directly) gets those beside the model, computed here
+    each time and never written back: a check context is not changed by the checks."""
+    c = getattr(ctx, "contracts", None)
+    if isinstance(c, Consumers):
+        return c
+    exp = getattr(ctx, "expanded", None)
+    resolver = getattr(exp, "resolver", None)
+    packages = {k: str(v) for k, v in getattr(resolver, "explicit", {}).items()} if resolver is not None else {}
+    return consumers_near(getattr(exp, "entry", None) or model.source, model, packages=packages,
+                          config=getattr(ctx, "config", None))
 
 
 def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace: str | None = None) -> None:

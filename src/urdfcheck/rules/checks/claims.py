@@ -76,7 +76,7 @@ def _claims(ctrl) -> dict[str, object]:
 
 def interface_claimed_twice(model, ctx) -> Iterator[Problem]:
     """Two controllers one launch file spawns active claim the same command interface."""
-    from urdfcheck.rules.contracts.impl import consumers
+    from urdfcheck.consumers.consumers import consumers_of as consumers
 
     c = consumers(model, ctx)
     if not len(c.controllers) or not c.launch:
@@ -110,7 +110,7 @@ def interface_claimed_twice(model, ctx) -> Iterator[Problem]:
 
 def chained_reference_missing(model, ctx) -> Iterator[Problem]:
     """A chained controller names a reference interface the controller it follows does not export."""
-    from urdfcheck.rules.contracts.impl import consumers
+    from urdfcheck.consumers.consumers import consumers_of as consumers
 
     c = consumers(model, ctx)
     if not len(c.controllers):

@@ -52,7 +52,9 @@ def _tail(path: str) -> str:
 def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
     from urdfcheck.consumers.consumers import _Reader
     from urdfcheck.consumers.navigation import nav_frames
-    from urdfcheck.rules.contracts.impl import _graph, _suggest_frame, _unresolved, consumers
+    from urdfcheck.consumers.consumers import consumers_of as consumers
+    from urdfcheck.rules.checks.contracts import _suggest_frame, _unresolved
+    from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 
     c = consumers(model, ctx)
     paths, launched = _files(c)
