@@ -635,23 +635,16 @@ def _over_memory(exp) -> Finding:
 def _warm_up(targets: list[Target], config) -> None:
     """What the run needs after loading (model builders, rule modules, the catalogue, the contract readers
     when there can be consumers), done while the first expansions run in their workers, not after them."""
+    from urdfcheck.consumers.reach import in_package
     from urdfcheck.model import build  # noqa: F401
     from urdfcheck.rules import catalogue as rulebook
 
     if not targets:
         return
-    rulebook.load_checks()
+    consumers = config is not None or any(t.settings is not None and t.settings.config is not None for t in targets) \
+        or any(t._contracts is not None for t in targets) or in_package(targets[0].path)
+    rulebook.load_checks(consumers=consumers)  # the consumer rules' modules import their readers
     rulebook.catalogue()
-    if config is not None or any(t.settings is not None and t.settings.config is not None for t in targets) \
-            or any(t._contracts is not None for t in targets) or _in_package(targets[0].path):
-        from urdfcheck.rules.checks import claims, contracts, navframes, tf  # noqa: F401
-
-
-def _in_package(path) -> bool:
-    from urdfcheck.load.packages import enclosing_package
-
-    # the folder the path names, not where a symlink points: nothing outside the tree is looked at
-    return enclosing_package(Path(os.path.abspath(path)).parent) is not None
 
 
 def _dedupe(findings: list[Finding]) -> list[Finding]:

@@ -15,11 +15,11 @@ from pathlib import Path
 
 from urdfcheck.consumers.common import ConsumerError
 from urdfcheck.consumers.controllers import ControllerSet, Driver, read_controllers, read_driver
-from urdfcheck.consumers.tfclaims import TFClaim, claims_from_owners
 from urdfcheck.consumers.launch.xml import LaunchInfo, read_launch
 from urdfcheck.consumers.localization import LocalizationNode, localization_from_launch, localization_from_params
 from urdfcheck.consumers.openworld import names_a_joint as _names_a_joint
 from urdfcheck.consumers.params import ParamFile, read_params
+from urdfcheck.consumers.tfclaims import TFClaim, claims_from_owners
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 

@@ -132,7 +132,7 @@ class Deployment(Record):
 
     def _idle(self, out) -> None:
         """Mark the controllers this deployment configures but does not spawn, when its spawners were all read
-        (every argument literal or resolved): what names them rests on a guess (rules.contracts, issue 37)."""
+        (every argument literal or resolved): what names them rests on a guess (rules.checks.contracts, issue 37)."""
         if not self.spawned or any(getattr(li, "unread_spawners", False) for li in self.infos):
             return
         started = {n.strip("/").split("/")[-1] for n, _ in self.spawned}

@@ -91,8 +91,11 @@ def run_checks(model, ctx: Context) -> list[Finding]:
 
 
 def _run_checks(model, ctx: Context) -> list[Finding]:
+    from urdfcheck.consumers.reach import may_have_consumers
+
     cat = rulebook.catalogue()
-    checks = rulebook.load_checks()
+    consumers = may_have_consumers(model, ctx)
+    checks = rulebook.load_checks(consumers=consumers or bool(model.ros2_control))
     out: list[Finding] = []
     done = set()
     for code in sorted(checks):
@@ -105,6 +108,8 @@ def _run_checks(model, ctx: Context) -> list[Finding]:
             continue
         try:
             ctx.options = rulebook.options_for(fn.codes, ctx.selection.options, cat)
+            if not _can_run(fn, model, consumers):
+                continue
             for p in fn(model, ctx) or ():
                 f = _finding(p, fn, model, ctx, cat)
                 if f is not None:
@@ -115,6 +120,14 @@ def _run_checks(model, ctx: Context) -> list[Finding]:
                                    clean_text(f"rule {'/'.join(fn.codes)} crashed: {type(e).__name__}: {e}"),
                                    model.loc, name="rule-crashed"))
     return out
+
+
+def _can_run(fn, model, consumers: bool) -> bool:
+    """What the check `needs` (`rules.catalogue.check`) is there: the model's consumers, or its <ros2_control>."""
+    needs = getattr(fn, "needs", "model")
+    if needs == "consumers":
+        return consumers
+    return needs != "ros2_control" or bool(model.ros2_control)
 
 
 def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:

@@ -18,6 +18,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.rules.catalogue import check
 
 _SPAWNER_EXES = ("spawner", "spawner.py")
 _VALUE_FLAGS = frozenset((
@@ -74,6 +75,7 @@ def _claims(ctrl) -> dict[str, object]:
     return out
 
 
+@check("C022", needs="consumers")
 def interface_claimed_twice(model, ctx) -> Iterator[Problem]:
     """Two controllers one launch file spawns active claim the same command interface."""
     from urdfcheck.consumers.consumers import consumers_of as consumers
@@ -108,6 +110,7 @@ def interface_claimed_twice(model, ctx) -> Iterator[Problem]:
                     data={"controllers": [other, ctrl.name], "interfaces": ifaces})
 
 
+@check("C023", needs="consumers")
 def chained_reference_missing(model, ctx) -> Iterator[Problem]:
     """A chained controller names a reference interface the controller it follows does not export."""
     from urdfcheck.consumers.consumers import consumers_of as consumers

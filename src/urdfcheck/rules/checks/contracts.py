@@ -1,4 +1,8 @@
-"""Contract (C) and TF-ownership (T) checks (implementations; registered lazily by `rules.checks.contracts`).
+"""C rules: what a model's consumers (controllers, drivers, launch files) say about it, against the model.
+
+Ordinary `@check` rules with `needs="consumers"`: the engine imports this module, and the readers behind it, only
+for a model that can have consumers (`consumers.reach`); C004 and C006 read nothing but the model's
+<ros2_control> blocks (`needs="ros2_control"`).
 
 The consumers come from `ctx.contracts` (a `consumers.consumers.Consumers`), which the planner gives every
 target (`plan.plan`): a config's declared consumers, a launch file's deployment, or, with zero config,
@@ -19,7 +23,9 @@ from urdfcheck.consumers.controllers import JSB, JSC
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
+from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
+from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
 from urdfcheck.rules.contracts.wheels import check_drive
 
 _UNRESOLVED = lazyre.compile(r"\$\(|\$\{")
@@ -109,16 +115,6 @@ def _idle(owner) -> tuple:
                  "or name its model in urdfcheck.yaml"),)
 
 
-def _dedupe_locs(locs, at=None) -> tuple:
-    out: dict[str, Location] = {}
-    for loc in locs:
-        loc = getattr(loc, "loc", loc)
-        if loc is None or (at is not None and str(loc) == str(at)):
-            continue
-        out.setdefault(str(loc), loc)
-    return tuple(out.values())
-
-
 def _owner_desc(owner_kind: str, owner) -> str:
     if owner_kind == "controller":
         return f"controller {owner.name}"
@@ -126,6 +122,7 @@ def _owner_desc(owner_kind: str, owner) -> str:
 
 
 # --- C001 / C002: joint names ----------------------------------------------------------------------------
+@check("C001", needs="consumers")
 def unknown_joint(model, ctx) -> Iterator[Problem]:
     """A controller or driver names a joint the model does not have."""
     c = consumers(model, ctx)
@@ -151,6 +148,7 @@ def unknown_joint(model, ctx) -> Iterator[Problem]:
                       rests_on=_idle(owner))
 
 
+@check("C002", needs="consumers")
 def joint_not_movable(model, ctx) -> Iterator[Problem]:
     """A controller or driver commands a fixed (or floating/planar) joint."""
     c = consumers(model, ctx)
@@ -205,6 +203,7 @@ def _gazebo_state_joints(model) -> tuple[bool, set[str]]:
     return all_cov, named
 
 
+@check("C003", needs="consumers")
 def joint_without_state_source(model, ctx) -> Iterator[Problem]:
     """A movable joint nothing publishes a state for, in a deployment we know something about."""
     c = consumers(model, ctx)
@@ -353,6 +352,7 @@ def _consumer_anchor(c: Consumers) -> Location | None:
 
 
 # --- C004..C006: <ros2_control> ----------------------------------------------------------------------------
+@check("C004", needs="ros2_control")
 def ros2_control_joint_invalid(model, ctx) -> Iterator[Problem]:
     """A <ros2_control> <joint> that is not a movable joint of the model, or declared twice."""
     seen: dict[tuple, tuple] = {}
@@ -389,6 +389,7 @@ def ros2_control_joint_invalid(model, ctx) -> Iterator[Problem]:
                         seen[key] = (r.name, i)
 
 
+@check("C005", needs="consumers")
 def missing_interface(model, ctx) -> Iterator[Problem]:
     """A ROS 2 controller needs a command/state interface the <ros2_control> block does not offer."""
     blocks = [r for r in model.ros2_control if not r.in_gazebo]
@@ -430,6 +431,7 @@ def _list(names) -> str:
     return ", ".join(sorted(names)) if names else "none"
 
 
+@check("C006", needs="ros2_control")
 def ros2_control_in_gazebo(model, ctx) -> Iterator[Problem]:
     for r in model.ros2_control:
         if r.in_gazebo:
@@ -439,6 +441,7 @@ def ros2_control_in_gazebo(model, ctx) -> Iterator[Problem]:
 
 
 # --- C007: unreadable consumers --------------------------------------------------------------------------
+@check("C007", needs="consumers")
 def unreadable_consumer(model, ctx) -> Iterator[Problem]:
     c = consumers(model, ctx)
     for e in c.errors:
@@ -527,30 +530,37 @@ def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
                               severity=_WARNING() if drive.owner in inferred else p.severity, rests_on=p.rests_on)
 
 
+@check("C010", needs="consumers")
 def wheel_separation_mismatch(model, ctx):
     yield from _wheel_problems(model, ctx, "C010")
 
 
+@check("C011", needs="consumers")
 def wheel_radius_mismatch(model, ctx):
     yield from _wheel_problems(model, ctx, "C011")
 
 
+@check("C012", needs="consumers")
 def wheel_axes_not_parallel(model, ctx):
     yield from _wheel_problems(model, ctx, "C012")
 
 
+@check("C013", needs="consumers")
 def unequal_wheel_count(model, ctx):
     yield from _wheel_problems(model, ctx, "C013")
 
 
+@check("C014", needs="consumers")
 def wheel_sides_swapped(model, ctx):
     yield from _wheel_problems(model, ctx, "C014")
 
 
+@check("C015", needs="consumers")
 def wheel_direction_reversed(model, ctx):
     yield from _wheel_problems(model, ctx, "C015")
 
 
+@check("C016", needs="consumers")
 def drive_geometry_mismatch(model, ctx) -> Iterator[Problem]:
     """C016: wheelbase (steering controllers, tricycle) and mecanum lx + ly against the model."""
     from urdfcheck.rules.contracts.drives import geometry_problems
@@ -567,6 +577,7 @@ def drive_geometry_mismatch(model, ctx) -> Iterator[Problem]:
 
 
 # --- C017: <ros2_control> sensors and GPIOs ------------------------------------------------------------------
+@check("C017", needs="consumers")
 def unknown_hardware_component(model, ctx) -> Iterator[Problem]:
     """A controller names a <ros2_control> sensor or GPIO (sensor_name, gpios, ft_sensor.name) the model's
     <ros2_control> blocks do not declare."""
@@ -596,6 +607,7 @@ def unknown_hardware_component(model, ctx) -> Iterator[Problem]:
 
 
 # --- C020: frame ids -----------------------------------------------------------------------------------
+@check("C020", needs="consumers")
 def unknown_frame(model, ctx) -> Iterator[Problem]:
     """A driver, controller or localization node uses a frame id that is not in the TF tree."""
     c = consumers(model, ctx)

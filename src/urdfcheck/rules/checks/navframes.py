@@ -12,6 +12,7 @@ import os
 from collections.abc import Iterator
 
 from urdfcheck.core.findings import Problem, Severity
+from urdfcheck.rules.catalogue import check
 
 _REP105 = ("map", "odom", "earth")
 _OWN_EDGE_OF = {"amcl": "odom_frame_id", "slam_toolbox": "odom_frame"}
@@ -49,10 +50,11 @@ def _tail(path: str) -> str:
     return "/".join(path.replace(os.sep, "/").split("/")[-2:])
 
 
+@check("C024", needs="consumers")
 def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
     from urdfcheck.consumers.consumers import _Reader
-    from urdfcheck.consumers.navigation import nav_frames
     from urdfcheck.consumers.consumers import consumers_of as consumers
+    from urdfcheck.consumers.navigation import nav_frames
     from urdfcheck.rules.checks.contracts import _suggest_frame, _unresolved
     from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 

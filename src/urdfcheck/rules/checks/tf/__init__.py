@@ -9,7 +9,7 @@ from urdfcheck.core import lazyre
 from urdfcheck.core.evidence import Step
 from urdfcheck.core.findings import Problem
 from urdfcheck.core.paths import shown
-from urdfcheck.rules.checks.contracts import _dedupe_locs
+from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.tf.graph import (
     PublisherInfo,
     TFGraph,
@@ -21,6 +21,7 @@ from urdfcheck.rules.checks.tf.graph import (
     static_and_dynamic,
 )
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
+from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
 
 
 # --- T001..T006: TF ownership ------------------------------------------------------------------------------
@@ -74,6 +75,7 @@ def _apart(p, model, c: Consumers) -> bool:
     return not (c.origin in ("deployment", "config") and launch_starts_sim(c.launch))
 
 
+@check("T001", needs="consumers")
 def duplicate_tf_owner(model, ctx):
     said = set()
     for p in _tf_problems(model, ctx, duplicate_owners):
@@ -123,11 +125,13 @@ def _unlaunched_duplicates(model, c: Consumers, said: set):
         yield got
 
 
+@check("T002", needs="consumers")
 def static_and_dynamic_tf(model, ctx):
     for p in _tf_problems(model, ctx, static_and_dynamic):
         yield _as_problem(p)
 
 
+@check("T003", needs="consumers")
 def tf_multiple_parents(model, ctx):
     c = consumers(model, ctx)
     for p in _tf_problems(model, ctx, multiple_parents):
@@ -142,12 +146,14 @@ def tf_multiple_parents(model, ctx):
         yield _as_problem(p, hint=hint)
 
 
+@check("T004", needs="consumers")
 def tf_cycle(model, ctx):
     for p in _tf_problems(model, ctx, cycles):
         if not all(cl.source == "model" for cl in p.claims):  # the model's own cycle is S005
             yield _as_problem(p)
 
 
+@check("T005", needs="consumers")
 def tf_not_one_tree(model, ctx):
     c = consumers(model, ctx)
     g = _graph(model, c)
@@ -159,6 +165,7 @@ def tf_not_one_tree(model, ctx):
         yield got
 
 
+@check("T006", needs="consumers")
 def frame_prefix_collision(model, ctx):
     c = consumers(model, ctx)
     groups = [c.launch] if c.origin == "config" else [[li] for li in c.launch]  # discovered: per file

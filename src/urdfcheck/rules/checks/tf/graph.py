@@ -144,6 +144,17 @@ def deployment_graph(model, c) -> TFGraph:
     return g
 
 
+def distinct_locations(locs, at=None) -> tuple:
+    """Each location (or part with a .loc) once, in order, leaving out `at`: a finding's related places."""
+    out: dict[str, Location] = {}
+    for loc in locs:
+        loc = getattr(loc, "loc", loc)
+        if loc is None or (at is not None and str(loc) == str(at)):
+            continue
+        out.setdefault(str(loc), loc)
+    return tuple(out.values())
+
+
 # --- analyses ----------------------------------------------------------------------------------------
 def _who(c: TFClaim) -> str:
     return f"{c.owner} ({c.kind}, {c.loc.shown()})"
