@@ -70,3 +70,15 @@ def test_the_scaffold_makes_a_contract_rule_like_any_other(tmp_path):
     assert '@check("J099")\ndef joint_thing' in (checks / "joints.py").read_text()
     for name in ("joints.py", "contracts.py", "tf/__init__.py"):
         compile((checks / name).read_text(), name, "exec")
+
+
+def test_every_check_is_typed():
+    """Each registered check says `(model: Model, ctx: Context) -> Iterator[Problem]` (or Iterable): mypy checks
+    its body (tests/test_types.py)."""
+    import inspect
+
+    for code, fn in rulebook.load_checks().items():
+        sig = inspect.signature(fn)
+        params = [str(p.annotation) for p in sig.parameters.values()]
+        assert params == ["Model", "Context"], (code, fn.__name__, params)
+        assert str(sig.return_annotation) in ("Iterator[Problem]", "Iterable[Problem]"), (code, fn.__name__)

@@ -2,8 +2,9 @@
 
 Writes the catalogue entry `rules/J013.yaml` (every required field; its failing example does not fail yet, so
 tests/test_catalogue.py stays red until the rule and its examples are written), appends a typed check function
-that yields nothing to `src/urdfcheck/rules/checks/<module>.py` (or `<module>/__init__.py`), and regenerates what is generated from the
-catalogue: rules/index.json and details.json, docs/rules.md and the rule table of docs/design.md. Refuses to
+that yields nothing to `src/urdfcheck/rules/checks/<module>.py` (or `<module>/__init__.py`), and regenerates what
+is generated from the catalogue: rules/index.json and details.json, docs/rules.md and the rule table of
+docs/design.md. Refuses to
 overwrite an existing entry or a registered code.
 """
 from __future__ import annotations
@@ -79,7 +80,7 @@ def _with_types(text: str) -> str:
     import ast
 
     tree = ast.parse(text)
-    last = max((n.end_lineno for n in tree.body if isinstance(n, (ast.Import, ast.ImportFrom))), default=0)
+    last = max((n.end_lineno or 0 for n in tree.body if isinstance(n, (ast.Import, ast.ImportFrom))), default=0)
     lines = text.splitlines(keepends=True)
     return "".join(lines[:last]) + TYPES + "".join(lines[last:])
 

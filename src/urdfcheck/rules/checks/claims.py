@@ -16,9 +16,14 @@ joints) that a launch file starts one at a time, so declaring is never running.
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _SPAWNER_EXES = ("spawner", "spawner.py")
 _VALUE_FLAGS = frozenset((
@@ -76,7 +81,7 @@ def _claims(ctrl) -> dict[str, object]:
 
 
 @check("C022", needs="consumers")
-def interface_claimed_twice(model, ctx) -> Iterator[Problem]:
+def interface_claimed_twice(model: Model, ctx: Context) -> Iterator[Problem]:
     """Two controllers one launch file spawns active claim the same command interface."""
     from urdfcheck.consumers.consumers import consumers_of as consumers
 
@@ -111,7 +116,7 @@ def interface_claimed_twice(model, ctx) -> Iterator[Problem]:
 
 
 @check("C023", needs="consumers")
-def chained_reference_missing(model, ctx) -> Iterator[Problem]:
+def chained_reference_missing(model: Model, ctx: Context) -> Iterator[Problem]:
     """A chained controller names a reference interface the controller it follows does not export."""
     from urdfcheck.consumers.consumers import consumers_of as consumers
 

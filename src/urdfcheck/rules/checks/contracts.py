@@ -15,6 +15,7 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 from urdfcheck.consumers.common import as_bool
 from urdfcheck.consumers.consumers import Consumers
@@ -27,6 +28,10 @@ from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
 from urdfcheck.rules.contracts.wheels import check_drive
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _UNRESOLVED = lazyre.compile(r"\$\(|\$\{")
 
@@ -123,7 +128,7 @@ def _owner_desc(owner_kind: str, owner) -> str:
 
 # --- C001 / C002: joint names ----------------------------------------------------------------------------
 @check("C001", needs="consumers")
-def unknown_joint(model, ctx) -> Iterator[Problem]:
+def unknown_joint(model: Model, ctx: Context) -> Iterator[Problem]:
     """A controller or driver names a joint the model does not have."""
     c = consumers(model, ctx)
     seen = set()
@@ -149,10 +154,10 @@ def unknown_joint(model, ctx) -> Iterator[Problem]:
 
 
 @check("C002", needs="consumers")
-def joint_not_movable(model, ctx) -> Iterator[Problem]:
+def joint_not_movable(model: Model, ctx: Context) -> Iterator[Problem]:
     """A controller or driver commands a fixed (or floating/planar) joint."""
     c = consumers(model, ctx)
-    seen = set()
+    seen: set = set()
     for ctrl in c.controllers:
         if ctrl.kind in (JSB, JSC):
             continue
@@ -204,7 +209,7 @@ def _gazebo_state_joints(model) -> tuple[bool, set[str]]:
 
 
 @check("C003", needs="consumers")
-def joint_without_state_source(model, ctx) -> Iterator[Problem]:
+def joint_without_state_source(model: Model, ctx: Context) -> Iterator[Problem]:
     """A movable joint nothing publishes a state for, in a deployment we know something about."""
     c = consumers(model, ctx)
     bringup = any(li.state_publishers for li in c.launch)  # a launch file that brings the robot up
@@ -353,7 +358,7 @@ def _consumer_anchor(c: Consumers) -> Location | None:
 
 # --- C004..C006: <ros2_control> ----------------------------------------------------------------------------
 @check("C004", needs="ros2_control")
-def ros2_control_joint_invalid(model, ctx) -> Iterator[Problem]:
+def ros2_control_joint_invalid(model: Model, ctx: Context) -> Iterator[Problem]:
     """A <ros2_control> <joint> that is not a movable joint of the model, or declared twice."""
     seen: dict[tuple, tuple] = {}
     for r in model.ros2_control:
@@ -390,7 +395,7 @@ def ros2_control_joint_invalid(model, ctx) -> Iterator[Problem]:
 
 
 @check("C005", needs="consumers")
-def missing_interface(model, ctx) -> Iterator[Problem]:
+def missing_interface(model: Model, ctx: Context) -> Iterator[Problem]:
     """A ROS 2 controller needs a command/state interface the <ros2_control> block does not offer."""
     blocks = [r for r in model.ros2_control if not r.in_gazebo]
     if not blocks:
@@ -432,7 +437,7 @@ def _list(names) -> str:
 
 
 @check("C006", needs="ros2_control")
-def ros2_control_in_gazebo(model, ctx) -> Iterator[Problem]:
+def ros2_control_in_gazebo(model: Model, ctx: Context) -> Iterator[Problem]:
     for r in model.ros2_control:
         if r.in_gazebo:
             yield Problem(f"<ros2_control name={r.name!r}> is written inside <gazebo>, where neither the "
@@ -442,7 +447,7 @@ def ros2_control_in_gazebo(model, ctx) -> Iterator[Problem]:
 
 # --- C007: unreadable consumers --------------------------------------------------------------------------
 @check("C007", needs="consumers")
-def unreadable_consumer(model, ctx) -> Iterator[Problem]:
+def unreadable_consumer(model: Model, ctx: Context) -> Iterator[Problem]:
     c = consumers(model, ctx)
     for e in c.errors:
         yield Problem(e.message, at=e.location)
@@ -531,37 +536,37 @@ def _wheel_problems(model, ctx, code: str) -> Iterator[Problem]:
 
 
 @check("C010", needs="consumers")
-def wheel_separation_mismatch(model, ctx):
+def wheel_separation_mismatch(model: Model, ctx: Context) -> Iterator[Problem]:
     yield from _wheel_problems(model, ctx, "C010")
 
 
 @check("C011", needs="consumers")
-def wheel_radius_mismatch(model, ctx):
+def wheel_radius_mismatch(model: Model, ctx: Context) -> Iterator[Problem]:
     yield from _wheel_problems(model, ctx, "C011")
 
 
 @check("C012", needs="consumers")
-def wheel_axes_not_parallel(model, ctx):
+def wheel_axes_not_parallel(model: Model, ctx: Context) -> Iterator[Problem]:
     yield from _wheel_problems(model, ctx, "C012")
 
 
 @check("C013", needs="consumers")
-def unequal_wheel_count(model, ctx):
+def unequal_wheel_count(model: Model, ctx: Context) -> Iterator[Problem]:
     yield from _wheel_problems(model, ctx, "C013")
 
 
 @check("C014", needs="consumers")
-def wheel_sides_swapped(model, ctx):
+def wheel_sides_swapped(model: Model, ctx: Context) -> Iterator[Problem]:
     yield from _wheel_problems(model, ctx, "C014")
 
 
 @check("C015", needs="consumers")
-def wheel_direction_reversed(model, ctx):
+def wheel_direction_reversed(model: Model, ctx: Context) -> Iterator[Problem]:
     yield from _wheel_problems(model, ctx, "C015")
 
 
 @check("C016", needs="consumers")
-def drive_geometry_mismatch(model, ctx) -> Iterator[Problem]:
+def drive_geometry_mismatch(model: Model, ctx: Context) -> Iterator[Problem]:
     """C016: wheelbase (steering controllers, tricycle) and mecanum lx + ly against the model."""
     from urdfcheck.rules.contracts.drives import geometry_problems
 
@@ -578,7 +583,7 @@ def drive_geometry_mismatch(model, ctx) -> Iterator[Problem]:
 
 # --- C017: <ros2_control> sensors and GPIOs ------------------------------------------------------------------
 @check("C017", needs="consumers")
-def unknown_hardware_component(model, ctx) -> Iterator[Problem]:
+def unknown_hardware_component(model: Model, ctx: Context) -> Iterator[Problem]:
     """A controller names a <ros2_control> sensor or GPIO (sensor_name, gpios, ft_sensor.name) the model's
     <ros2_control> blocks do not declare."""
     blocks = [r for r in model.ros2_control if not r.in_gazebo]
@@ -608,7 +613,7 @@ def unknown_hardware_component(model, ctx) -> Iterator[Problem]:
 
 # --- C020: frame ids -----------------------------------------------------------------------------------
 @check("C020", needs="consumers")
-def unknown_frame(model, ctx) -> Iterator[Problem]:
+def unknown_frame(model: Model, ctx: Context) -> Iterator[Problem]:
     """A driver, controller or localization node uses a frame id that is not in the TF tree."""
     c = consumers(model, ctx)
     if not (len(c.controllers) or c.drivers or c.localization):
@@ -616,7 +621,7 @@ def unknown_frame(model, ctx) -> Iterator[Problem]:
     g = _graph(model, c)
     prefix = c.rsp_prefix
     links = {prefix + n for n in model.links}
-    items = []
+    items: list = []
     for ctrl in c.controllers:
         items.extend((v, f"controller {ctrl.name}", ctrl.name) for v in ctrl.frames)
     for d in c.drivers:

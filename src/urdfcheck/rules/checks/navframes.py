@@ -10,9 +10,14 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _REP105 = ("map", "odom", "earth")
 _OWN_EDGE_OF = {"amcl": "odom_frame_id", "slam_toolbox": "odom_frame"}
@@ -51,7 +56,7 @@ def _tail(path: str) -> str:
 
 
 @check("C024", needs="consumers")
-def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
+def navigation_frame_unknown(model: Model, ctx: Context) -> Iterator[Problem]:
     from urdfcheck.consumers.consumers import _Reader
     from urdfcheck.consumers.consumers import consumers_of as consumers
     from urdfcheck.consumers.navigation import nav_frames

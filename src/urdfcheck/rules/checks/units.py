@@ -3,9 +3,16 @@ an rpy component or a revolute limit of exactly 90, 180, 270 or 360 (either sign
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 DEGREE_VALUES = (90.0, 180.0, 270.0, 360.0)
 
@@ -25,7 +32,7 @@ def _origins(model):
 
 
 @check("U011")
-def angle_in_degrees(model, ctx):
+def angle_in_degrees(model: Model, ctx: Context) -> Iterator[Problem]:
     for what, pose in _origins(model):
         if pose is None or pose.quat is not None or not any(_degrees(a) for a in pose.rpy):
             continue
@@ -37,7 +44,7 @@ def angle_in_degrees(model, ctx):
         lim = j.limit
         if j.type != "revolute" or lim is None or not (_degrees(lim.lower) or _degrees(lim.upper)):
             continue
-        vals = [f"{k}={v:g} ({math.radians(v):.6g} rad)" for k, v in (("lower", lim.lower), ("upper", lim.upper))
-                if _degrees(v)]
+        vals = [f"{k}={v:g} ({math.radians(v):.6g} rad)"  # type: ignore[arg-type]  # _degrees(v): v is a number
+                for k, v in (("lower", lim.lower), ("upper", lim.upper)) if _degrees(v)]
         yield Problem(f"revolute joint {j.name!r}: the <limit> {' and '.join(vals)} looks like degrees; URDF "
                       "limits are in radians", at=lim.loc, related=(j,))

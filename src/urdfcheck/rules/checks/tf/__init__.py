@@ -2,6 +2,8 @@
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from urdfcheck.consumers.consumers import Consumers
 from urdfcheck.consumers.consumers import consumers_of as consumers
 from urdfcheck.consumers.tfclaims import claims_from_localization, claims_from_odom
@@ -22,6 +24,12 @@ from urdfcheck.rules.checks.tf.graph import (
 )
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 
 # --- T001..T006: TF ownership ------------------------------------------------------------------------------
@@ -76,7 +84,7 @@ def _apart(p, model, c: Consumers) -> bool:
 
 
 @check("T001", needs="consumers")
-def duplicate_tf_owner(model, ctx):
+def duplicate_tf_owner(model: Model, ctx: Context) -> Iterator[Problem]:
     said = set()
     for p in _tf_problems(model, ctx, duplicate_owners):
         said.add(p.frames)
@@ -126,13 +134,13 @@ def _unlaunched_duplicates(model, c: Consumers, said: set):
 
 
 @check("T002", needs="consumers")
-def static_and_dynamic_tf(model, ctx):
+def static_and_dynamic_tf(model: Model, ctx: Context) -> Iterator[Problem]:
     for p in _tf_problems(model, ctx, static_and_dynamic):
         yield _as_problem(p)
 
 
 @check("T003", needs="consumers")
-def tf_multiple_parents(model, ctx):
+def tf_multiple_parents(model: Model, ctx: Context) -> Iterator[Problem]:
     c = consumers(model, ctx)
     for p in _tf_problems(model, ctx, multiple_parents):
         hint = ""
@@ -147,14 +155,14 @@ def tf_multiple_parents(model, ctx):
 
 
 @check("T004", needs="consumers")
-def tf_cycle(model, ctx):
+def tf_cycle(model: Model, ctx: Context) -> Iterator[Problem]:
     for p in _tf_problems(model, ctx, cycles):
         if not all(cl.source == "model" for cl in p.claims):  # the model's own cycle is S005
             yield _as_problem(p)
 
 
 @check("T005", needs="consumers")
-def tf_not_one_tree(model, ctx):
+def tf_not_one_tree(model: Model, ctx: Context) -> Iterator[Problem]:
     c = consumers(model, ctx)
     g = _graph(model, c)
     if not _has_consumer_claims(g) or len(model.roots) > 1:
@@ -166,7 +174,7 @@ def tf_not_one_tree(model, ctx):
 
 
 @check("T006", needs="consumers")
-def frame_prefix_collision(model, ctx):
+def frame_prefix_collision(model: Model, ctx: Context) -> Iterator[Problem]:
     c = consumers(model, ctx)
     groups = [c.launch] if c.origin == "config" else [[li] for li in c.launch]  # discovered: per file
     for group in groups:
