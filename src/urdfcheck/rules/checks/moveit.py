@@ -65,6 +65,7 @@ def _changed_args(ctx) -> dict:
 
     try:
         defaults = {**{k: v for k, v in (getattr(exp, "declared_args", None) or {}).items() if v is not None},
+                    # (type: ignore below) inside the try: no expansion, no defaults
                     **defaulted_args(exp.entry, None)}  # type: ignore[union-attr]
     except Exception:  # noqa: BLE001 - defaults not told: every argument counts as changed
         defaults = {}
@@ -302,6 +303,7 @@ def moveit_controllers(model: Model, ctx: Context) -> Iterator[Problem]:
                     yield Problem(f"MoveIt controller {name!r} names joint {n.name!r}, which the ros2_control "
                                   f"controller {name!r} does not command: it refuses MoveIt's trajectories",
                                   at=n.loc,
+                                  # (type: ignore below) same has a loc (getattr)
                                   related=(same.loc,) if getattr(same, "loc", None) else (),  # type: ignore[union-attr]
                                   code="M014", rests_on=why)
                 elif n.name not in grouped and n.name not in controlled and cfg.srdf.groups:

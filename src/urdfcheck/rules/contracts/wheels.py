@@ -310,6 +310,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
         # ROS 1 controller measures itself (urdf_distance) and what the sides are judged by
         tl = _mean([w.centre or w.position for w in lefts])
         tr = _mean([w.centre or w.position for w in rights])
+        # (type: ignore below) ref: a wheel of the pair
         rep.measured_separation = abs(_dot(_sub(tl, tr), ref.axis))  # type: ignore[union-attr]
         rep.urdf_distance = G.norm(d)
         lateral = d[1]
@@ -360,6 +361,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
             else:
                 bad = sep if base_sep is None else drive.separation_multiplier
                 what = "wheel_separation" if base_sep is None else "wheel_separation_multiplier"
+                # (type: ignore below) one of the two is set here
                 rep.notes.append((f"{what} {bad.value!r} is not a number", bad.loc))  # type: ignore[union-attr]
         elif abs(expected - rep.measured_separation) > tolerance:
             how = (f"{drive.separation_key} {number_text(sep)}" if sep is not None else drive.separation_key)
@@ -418,6 +420,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                 f"wheel link {w.link} ({_fmt(w.radius)} m); the {w.side} wheel radius multiplier {_fmt(slip)} is a "
                 f"declared correction: the controller converts {w.side} wheel rotation to and from ground speed "
                 f"with {_fmt(slip)} x {_fmt(base_r)} = {_fmt(base_r * slip)} m",
+                # (type: ignore below) set when a multiplier was read
                 mult_v.loc, (w.shape_loc or w.joint_loc, rad_v.loc), Severity.INFO, data))  # type: ignore[union-attr]
             continue
         if abs(expected - w.radius) > tolerance:
@@ -435,6 +438,7 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                 f"{drive.owner}: {drive.radius_key} {number_text(rad_v)} m, but wheel link {w.link} ({w.use.joint}) "
                 f"has a {w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m{largest} (difference "
                 f"{_fmt(abs(expected - w.radius))} m, tolerance {_fmt(tolerance)} m)",
+                # (type: ignore below) set when a radius was read
                 rad_v.loc, (w.shape_loc or w.joint_loc,), None, data, steps))  # type: ignore[union-attr]
     return rep
 

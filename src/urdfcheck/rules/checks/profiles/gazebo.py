@@ -108,6 +108,7 @@ def gazebo_refuses(model: Model, ctx: Context) -> Iterator[Problem]:
                   "so sdformat's URDF converter drops it with everything below it (parser_urdf.cc CreateSDF: \"has "
                   "no inertia, not modeled in sdf\") and the model has no link left; give the root an <inertial>, "
                   "or attach it by a fixed joint to a link that has one (it is then lumped into that link's mass)",
+                  # (type: ignore below) the root of a tree model has a name
                   model.links[first] if first in model.links else model,  # type: ignore[index]
                   quiet=not dynamic(model))  # no <inertial> anywhere: kinematic by intent (a tutorial, MoveIt's)
         if p is not None:

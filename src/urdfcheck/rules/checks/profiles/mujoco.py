@@ -62,7 +62,7 @@ def _part(link) -> tuple[float, float] | None:
     got = [_geom_mass(shape.geometry) for shape in link.collisions]
     if any(g is None for g in got):
         return None
-    mass = sum(g[0] for g in got)  # type: ignore[index, misc]
+    mass = sum(g[0] for g in got)  # type: ignore[index, misc]  # no None in got (tested above)
     if len(got) == 1:
         return got[0]
     return mass, mass  # several shapes: apart, they add moments (parallel axes); one alone decides otherwise
@@ -106,12 +106,15 @@ def massless_moving_body(model: Model, ctx: Context) -> Iterator[Problem]:
         parts = [(n, _part(model.links[n])) for n in links if n in model.links]
         if any(p is None for _, p in parts):
             continue  # a mesh's volume decides: the consumers command measures it
+        # (type: ignore below) no None in parts (tested above)
         massive = [(n, p) for n, p in parts if p[0] >= MJMINVAL]  # type: ignore[index]
-        mass = sum(p[0] for _, p in massive)  # type: ignore[index, misc]
+        mass = sum(p[0] for _, p in massive)  # type: ignore[index, misc]  # no None in parts (tested above)
+        # (type: ignore below) no None in parts (tested above)
         if mass >= MJMINVAL and (len(massive) > 1 or massive[0][1][1] >= MJMINVAL):  # type: ignore[index]
             continue
         explicit = any(model.links[n].inertial is not None for n in links)
         what = (f"mass {mass:.3g} kg" if mass < MJMINVAL else
+                # (type: ignore below) no None in parts (tested above)
                 f"smallest principal moment {massive[0][1][1]:.3g} kg·m²")  # type: ignore[index]
         fused = f" (with fused links {names([n for n in links if n != body])})" if len(links) > 1 else ""
         source = ("from its <inertial>" if explicit else
@@ -254,6 +257,7 @@ def joint_refused(model: Model, ctx: Context) -> Iterator[Problem]:
     group = fixed_groups(model)
     top = set(model.roots) | {"world"}
     for j in model.joint_list:
+        # (type: ignore below) a floating joint has a parent
         if j.type == "floating" and group.get(j.parent, j.parent) not in top:  # type: ignore[arg-type, operator]
             p = speak(ctx, ("mujoco",),
                       f"MuJoCo refuses the model: floating joint '{j.name}' hangs below a moving body, and MuJoCo "
