@@ -1,5 +1,5 @@
-"""Whether a model can have consumers: the one test, asked by the engine (which loads the contract and TF rules
-only then) and by the run's warm-up (which imports them ahead).
+"""Whether a model can have consumers: the one test, asked by the planner's target (which looks for them only then),
+the engine (which loads the contract and TF rules only then) and the run's warm-up (which imports them ahead).
 
 A model can have consumers when the planner gave it some (`plan.plan.Target.consumers`), when a config is in
 force, or when it sits in a ROS package (zero config looks for them beside it: `consumers.consumers.consumers_near`).
@@ -7,16 +7,14 @@ A lone URDF outside any package, linted without a config, has none, and its run 
 """
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 
 def in_package(path) -> bool:
-    """A package.xml in the folder `path` names or above it (the folder it names, not where a symlink points:
-    nothing outside the tree is looked at)."""
+    """A package.xml in the folder of `path` (symlinks resolved, as the model is read) or above it."""
     from urdfcheck.load.packages import enclosing_package
 
-    return enclosing_package(Path(os.path.abspath(path)).parent) is not None
+    return enclosing_package(Path(path).resolve()) is not None
 
 
 def may_have_consumers(model, ctx) -> bool:
