@@ -162,6 +162,15 @@ def test_garbage_and_fifo_recordings_are_findings(tmp_path):
     assert code == 1 and [f["code"] for f in report["findings"]] == ["B014"]
 
 
+@pytest.mark.parametrize("first", [b"\x02", b"\x01\x00\x00\x00\x00\x00\x00\x00\x00\x02\x14" + bytes(7)])
+def test_garbage_that_starts_like_a_footer_is_a_finding(first, tmp_path):
+    """Random bytes after the magic once began with the footer's opcode (1 in 256 of the garbage test's runs), and
+    the reader took it for the end of an empty recording: "nothing was checked" instead of unreadable."""
+    (tmp_path / "junk.mcap").write_bytes(b"\x89MCAP0\r\n" + first + bytes(range(256)) * 4)
+    code, report = _lint(tmp_path, ARM, tmp_path / "junk.mcap")
+    assert code == 1 and [f["code"] for f in report["findings"]] == ["B014"]
+
+
 def test_no_topics_is_said_not_passed(tmp_path):
     bag = write(tmp_path / "rec", "mcap", [("tf", 1.0, [CAMERA], "/tf_other")])
     code, report = _lint(tmp_path, ARM, bag)

@@ -100,7 +100,8 @@ def test_full_config(tmp_path):
 
 def test_full_config_found_in_the_checkout_adds_never_hides(tmp_path):
     """Issue 19 and 36: allow_env is the runner's to give, a lower limit stays; what lowers the gate is an X018
-    error at its key and ignored (ignore; fail_on: error; J down to info; a C010 tolerance above the default),
+    error at its key and ignored (ignore; fail_on: error; J down to info; a C010 tolerance above the default; a
+    renamed REP-105 frame),
     what tightens stays (F002 up to warning, fewer accepted F002 names); args replacing defaults add the
     defaults variant (tests/test_gate.py)."""
     root = make_pkg(tmp_path / "agv")
@@ -112,7 +113,8 @@ def test_full_config_found_in_the_checkout_adds_never_hides(tmp_path):
     assert "C010" not in cfg.rules and dict(cfg.rules["F002"]) == {"expected": ["base_link", "base_footprint"]}
     notes = [(f.code, f.severity, f.location.line) for f in cfg.notes]
     assert notes == [("X018", Severity.WARNING, 28), ("X018", Severity.ERROR, 23), ("X018", Severity.ERROR, 25),
-                     ("X018", Severity.ERROR, 24), ("X018", Severity.ERROR, 26)]
+                     ("X018", Severity.ERROR, 24), ("X018", Severity.ERROR, 26), ("X018", Severity.ERROR, 19)]
+    assert dict(cfg.frames) == {"map": "map", "odom": "odom", "base": "base_link"}  # base_footprint: refused
     # name: agv and the camera variant are the xacro defaults: no variant is added
     assert [n for n, _ in cfg.models[0].variant_args()] == ["camera", "no_camera"]
 
@@ -164,9 +166,12 @@ controllers = ["config/ctrl.yaml"]
     cfg = load_config(tmp_path / "pyproject.toml")
     # a select narrower than ALL is the runner's to give (issue 36): refused at its line; fail_on info tightens
     assert cfg.select is None and cfg.fail_on == Severity.INFO
-    assert [(f.code, f.severity, f.location.line) for f in cfg.notes] == [("X018", Severity.ERROR, 5)]
-    assert load_config(tmp_path / "pyproject.toml", trusted=True).select == ("S", "J002")
-    assert cfg.frames["base"] == "base_footprint"
+    # so is renaming a REP-105 frame, said at its table
+    assert [(f.code, f.severity, f.location.line) for f in cfg.notes] == [("X018", Severity.ERROR, 5),
+                                                                           ("X018", Severity.ERROR, 8)]
+    trusted = load_config(tmp_path / "pyproject.toml", trusted=True)
+    assert trusted.select == ("S", "J002") and trusted.frames["base"] == "base_footprint"
+    assert cfg.frames["base"] == "base_link"
     assert cfg.models[0].path == str(tmp_path / "urdf" / "plain.urdf")
 
 

@@ -14,6 +14,8 @@ from urdfcheck.consumers.tfclaims import (  # noqa: E402
     claims_from_owners,
     parse_edge,
 )
+from urdfcheck.core.findings import Location  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
 from urdfcheck.rules.checks.tf.graph import (  # noqa: E402
     PublisherInfo,
     TFGraph,
@@ -25,8 +27,6 @@ from urdfcheck.rules.checks.tf.graph import (  # noqa: E402
     prefix_collisions,
     static_and_dynamic,
 )
-from urdfcheck.core.findings import Location  # noqa: E402
-from urdfcheck.model.build import model_from_string  # noqa: E402
 
 MODEL = """<robot name="r">
   <link name="base_link"/><link name="wheel"/><link name="laser"/><link name="float"/><link name="slider"/>

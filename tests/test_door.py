@@ -351,3 +351,106 @@ def test_a_linked_entry_or_key_folder_is_not_read(tmp_path, outside):
     with pytest.raises(OSError):
         cachefile.write(str(tmp_path / "linked"), "b.json", b"{}")
     assert [p.name for p in outside.iterdir()] == ["e.json"]
+
+
+def test_the_xacro_worker_forked_before_the_guard_reads_through_it(tmp_path, outside):
+    """The spare worker (cli.cache.fork_early, cli.main) is forked before the run enters its door: the job it is
+    handed inside the run reads under the run's guard, as a worker forked then would."""
+    from urdfcheck.core import worker
+    from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, XACRO_TIMEOUT, worker_limits
+
+    secret = outside / "parts.xacro"
+    secret.write_text(f"<robot><link name='{LEAK}'/></robot>\n")
+    root = _checkout(tmp_path / "ws")
+    limits = worker_limits(False, [], XACRO_TIMEOUT)
+    worker.drop_spares()
+    worker.keep_spare(SPARE, limits, SPARE_PRELOAD)  # as the console does, before any guard
+    try:
+        with door.guarded([str(root)]):
+            job = worker.take_spare(SPARE, limits)
+            assert job is not None
+            job.send("urdfcheck.core.door:read_text", str(secret))
+            got = job.result()
+    finally:
+        worker.drop_spares()
+    assert isinstance(got, worker.Failure), got
+    assert "outside the checkout" in got.message and LEAK not in got.message
+    # the same job outside any run reads the file (the API and tests read what they name)
+    worker.keep_spare(SPARE, limits, SPARE_PRELOAD)
+    try:
+        job = worker.take_spare(SPARE, limits)
+        job.send("urdfcheck.core.door:read_text", str(secret))
+        assert LEAK in job.result()
+    finally:
+        worker.drop_spares()
+
+
+def _refused_tf_owner_files(tmp_path, outside, case: str) -> tuple[Path, str, str]:
+    """(checkout, launch file, the file's base name) of a TF-owning node whose file the door refuses."""
+    if case in ("parameters", "param from"):
+        ekf = _ekf(outside)
+        if case == "parameters":
+            node = f'''        Node(package="robot_localization", executable="ekf_node", name="ekf_second",
+             parameters=["{ekf}"]),
+'''
+            return _checkout(package(tmp_path, EKF_ODOM + node)), "launch/bringup.launch.py", "ekf.yaml"
+        launch = f'''<launch>
+  <node pkg="robot_state_publisher" exec="robot_state_publisher"><param name="robot_description"
+    value="$(command 'cat $(find-pkg-share bot)/urdf/bot.urdf')"/></node>
+  <node pkg="robot_localization" exec="ekf_node" name="ekf_second"><param from="{ekf}"/></node>
+</launch>
+'''
+        root = write(tmp_path / "bot", {"package.xml": "<package format='3'><name>bot</name></package>\n",
+                                        "urdf/bot.urdf": URDF.format(extra=""), "launch/bringup.launch.xml": launch})
+        return _checkout(root), "launch/bringup.launch.xml", "ekf.yaml"
+    if case == "controllers":  # the controller readers refuse the same paths, said the same way
+        import shutil
+
+        example = REPO / "examples" / "broken" / "contract_odom_tf_twice"
+        shutil.copy(example / "config" / "agv_controllers.yaml", outside / "ctrl.yaml")
+        root = tmp_path / "bot"
+        for sub in ("urdf", "launch"):
+            shutil.copytree(example / sub, root / sub)
+        shutil.copy(example / "package.xml", root / "package.xml")
+        launch = root / "launch" / "agv.launch.xml"
+        text = launch.read_text()
+        for name in ("config/agv_controllers.yaml", "config/ekf.yaml"):
+            text = text.replace(f"$(find-pkg-share broken_contract_odom_tf_twice_description)/{name}",
+                                str(outside / "ctrl.yaml") if "controllers" in name else str(_ekf(outside)))
+        launch.write_text(text)
+        return _checkout(root), "launch/agv.launch.xml", "ctrl.yaml"
+    if case == "rosparam load":
+        ekf = _ekf(outside, "ekf1.yaml", node=None)
+        launch = f'''<launch>
+  <param name="robot_description" textfile="$(find bot)/urdf/bot.urdf"/>
+  <node pkg="robot_state_publisher" type="robot_state_publisher" name="rsp"/>
+  <node pkg="robot_localization" type="ekf_localization_node" name="ekf_second">
+    <rosparam command="load" file="{ekf}"/>
+  </node>
+</launch>
+'''
+        return _checkout(ros1_package(tmp_path, launch)), None, "ekf1.yaml"
+    lua = LUA.replace("{published}", "base_link").replace("{provide}", "true")
+    (outside / "bot.lua").write_text(lua.replace('odom_frame = "odom"', f'odom_frame = "{LEAK}"'))
+    folder = str(outside) if case == "lua absolute" else os.path.relpath(outside, tmp_path / "bot" / "launch")
+    carto = f'''        Node(package="cartographer_ros", executable="cartographer_node",
+             arguments=["-configuration_directory", "{folder}", "-configuration_basename", "bot.lua"]),
+'''
+    return _checkout(package(tmp_path, EKF_ODOM + carto)), "launch/bringup.launch.py", "bot.lua"
+
+
+@pytest.mark.parametrize("case", ["parameters", "param from", "rosparam load", "lua absolute", "lua ../..",
+                                  "controllers"])
+def test_a_refused_tf_owner_file_is_a_finding_at_the_launch_line(tmp_path, outside, case):
+    """As the controller readers report a parameter file they may not read (C007), so do the TF-owner readers:
+    at the launch line that names it, never silently (its node's frames would be the defaults)."""
+    root, launch, name = _refused_tf_owner_files(tmp_path, outside, case)
+    code, out, err = run_cli(["lint", "--format", "json", "--no-config", "--no-cache"], cwd=root)
+    assert code == 1, err
+    _no_leak(out + err, outside)
+    c007 = [f for f in json.loads(out)["findings"] if f["code"] == "C007" and name in f["message"]]
+    assert c007 and all(f["severity"] != "info" for f in c007), json.loads(out)["findings"]
+    files = {f["location"]["file"] for f in c007}
+    assert all(f.endswith((".launch.py", ".launch.xml", ".launch")) for f in files), files
+    if launch is not None:
+        assert files == {launch}, files

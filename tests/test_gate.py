@@ -279,3 +279,182 @@ def test_declared_consumers_add_to_those_found_beside_the_model(tmp_path):
     assert code == 1 and ("C010", "config/agv_driver_ros1.yaml", 7, "warning") in found, found
     code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
     assert code == 0 and found == [], found
+
+
+# --- the other keys an unvouched config sets: each either only adds, or is refused at its key ---------------------
+def _example(tmp_path, name: str, config: str):
+    """A checkout holding examples/broken/<name>, its urdfcheck.yaml replaced by `config`."""
+    import shutil
+
+    from conftest import REPO
+
+    ws = tmp_path / "ws"
+    shutil.copytree(REPO / "examples" / "broken" / name, ws)
+    (ws / ".git").mkdir()
+    (ws / "urdfcheck.yaml").write_text(config)
+    return ws
+
+
+SENSOR = """models:
+  - path: urdf/agv.urdf
+    controllers: [config/agv_controllers.yaml]
+    drivers:
+      - file: config/agv_driver_ros1.yaml
+        name: agv_base_driver
+        joints: [left_wheel_joint, right_wheel_joint]
+        left_wheels: [left_wheel_joint]
+        right_wheels: [right_wheel_joint]
+        wheel_separation: wheel_separation
+        wheel_radius: wheel_radius
+        frames: [imu_frame_id, laser_frame_id]
+        odom_tf: publish_odom_tf
+    launch: [launch/agv.launch.xml]
+"""
+SENSOR_C020 = ("C020", "config/agv_driver_ros1.yaml", 9, "error")  # frame 'imu', the link is imu_link
+
+
+def test_tf_owners_cannot_publish_a_frame_nobody_publishes(tmp_path):
+    """`tf_owners` declares a publisher urdfcheck cannot read: from a config the runner did not vouch for it may add
+    a second publisher (a conflict), never make a frame "published" that nothing publishes."""
+    ws = _example(tmp_path, "contract_sensor_frame_id", SENSOR + 'tf_owners: {"base_link->imu": imu_driver}\n')
+    code, found = _lint(ws)
+    assert code == 1 and SENSOR_C020 in found, found
+    _, out, _ = run_cli(["lint", "--format", "json"], cwd=ws)
+    said = [f["message"] for f in json.loads(out)["findings"] if f["code"] == "C020"]
+    assert any("tf_owners" in m and "--trust-config" in m for m in said), said
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert code == 0 and found == [], found
+
+
+def test_tf_owners_cannot_join_two_trees(tmp_path):
+    """T005: the seed with its controller's odometry TF turned off; its config still declares the controller as the
+    owner of odom -> base_link, which joined the two trees. Untrusted, the declaration publishes nothing."""
+    import shutil
+
+    from conftest import REPO
+
+    ws = tmp_path / "agv"
+    shutil.copytree(REPO / "examples" / "agv", ws)
+    (ws / ".git").mkdir()
+    ctl = ws / "config" / "agv_controllers.yaml"
+    ctl.write_text(ctl.read_text().replace("enable_odom_tf: true", "enable_odom_tf: false"))
+    code, found = _lint(ws, "--no-config")
+    t005 = sorted({c for c in found if c[0] == "T005"})
+    assert t005 and code == 1, found  # what zero config says
+    code, found = _lint(ws)
+    assert code == 1 and t005 == sorted({c for c in found if c[0] == "T005"}), found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert not [c for c in found if c[0] == "T005"], found
+
+
+def test_tf_owners_that_name_the_publishers_read_add_nothing(tmp_path):
+    """The seed's declarations (examples/agv) document the publishers the files start: no finding, no refusal."""
+    import shutil
+
+    from conftest import REPO
+
+    ws = tmp_path / "agv"
+    shutil.copytree(REPO / "examples" / "agv", ws)
+    (ws / ".git").mkdir()
+    code, found = _lint(ws)
+    assert code == 0 and found == [], found
+
+
+def test_frames_that_rename_the_rep105_frames_are_refused(tmp_path):
+    """`frames:` renames map/odom/base for the F and T rules: renaming `map` took a link named map out of F001."""
+    ws = _ws(tmp_path, "frames: {map: world, odom: odom}\n")
+    (ws / "bot" / "urdf" / "broken.urdf").write_text(
+        '<robot name="r">\n  <link name="base_link"/>\n  <link name="map"/>\n'
+        '  <joint name="j" type="fixed">\n    <parent link="map"/>\n    <child link="base_link"/>\n  </joint>\n'
+        '</robot>\n')
+    code, found = _lint(ws, "--no-config")
+    f001 = [c for c in found if c[0] == "F001"]
+    assert f001 and code == 1, found
+    code, found = _lint(ws)
+    assert code == 1 and [c for c in found if c[0] == "F001"] == f001, found
+    assert _x018(found) == [("urdfcheck.yaml", 1)], found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert not [c for c in found if c[0] == "F001"] and not _x018(found), found
+    (ws / "urdfcheck.yaml").write_text("frames: {map: map, odom: odom, base: base_link}\n")  # the defaults: fine
+    code, found = _lint(ws)
+    assert not _x018(found) and [c for c in found if c[0] == "F001"] == f001, found
+
+
+def test_a_target_is_the_runners(tmp_path):
+    """`target: rolling` made urdfdom 6 judge the model: a URDF 1.1 quaternion origin that Humble's urdfdom refuses
+    passed (U007)."""
+    ws = _ws(tmp_path, "target: rolling\n")
+    (ws / "bot" / "urdf" / "broken.urdf").write_text(
+        '<robot name="r" version="1.1">\n  <link name="base_link"/>\n  <link name="arm"/>\n'
+        '  <joint name="j" type="fixed">\n    <origin xyz="0 0 0.1" quat_xyzw="0 0 0.7071068 0.7071068"/>\n'
+        '    <parent link="base_link"/>\n    <child link="arm"/>\n  </joint>\n</robot>\n')
+    code, found = _lint(ws, "--no-config")
+    u007 = [c for c in found if c[0] == "U007"]
+    assert u007 and code == 1, found
+    code, found = _lint(ws)
+    assert code == 1 and [c for c in found if c[0] == "U007"] == u007, found
+    assert _x018(found) == [("urdfcheck.yaml", 1)], found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert code == 0 and found == [], found
+    code, found = _lint(ws, "--no-config", "--target", "rolling")  # the runner's flag
+    assert code == 0 and found == [], found
+
+
+def test_profiles_only_add_checks(tmp_path):
+    """`profiles:` turns consumer profiles on: a profile's finding goes from info to its severity, and nothing it
+    does removes a finding (rules/checks/profiles/common.speak), so an untrusted config may set it."""
+    ws = _ws(tmp_path, "profiles: [mujoco, pybullet]\n")
+    code, plain = _lint(ws, "--no-config")
+    code, found = _lint(ws)
+    assert code == 1 and not _x018(found), found
+    assert {c[:3] for c in plain} <= {c[:3] for c in found}, (plain, found)
+
+
+def test_launch_args_add_the_launch_defaults_never_replace_them(tmp_path):
+    """The EKF beside the drive controller (both publish odom -> base_link, T001) runs unless `use_ekf` is false:
+    the config's `launch_args: {use_ekf: false}` read the launch file without it, and every file of the package
+    was declared, so nothing else read it with its default."""
+    import re
+
+    ws = _example(tmp_path, "contract_odom_tf_twice",
+                  "models:\n  - path: urdf/agv.urdf\n    controllers: [config/agv_controllers.yaml]\n"
+                  "    launch: [launch/agv.launch.xml]\n    launch_args: {use_ekf: 'false'}\n")
+    (ws / "config" / "ekf.yaml").unlink()
+    launch = ws / "launch" / "agv.launch.xml"
+    text = launch.read_text().replace("<launch>\n", '<launch>\n  <arg name="use_ekf" default="true"/>\n', 1)
+    text = text.replace('name="ekf_filter_node" output="screen">', 'name="ekf_filter_node" output="screen" '
+                        'if="$(var use_ekf)">')
+    launch.write_text(re.sub(r'<param from="[^"]*ekf.yaml"/>', '<param name="world_frame" value="odom"/>\n'
+                             '    <param name="base_link_frame" value="base_link"/>', text))
+    code, found = _lint(ws)
+    assert code == 1 and ("T001", "config/agv_controllers.yaml", 27, "error") in found, found
+    assert ("X018", "urdfcheck.yaml", 5, "info") in found, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert code == 0 and found == [], found
+
+
+def test_a_frame_prefix_adds_the_launch_defaults_never_replaces_them(tmp_path):
+    """A static_transform_publisher in the launch file publishes base_link -> laser_link, which the model publishes
+    too (T001); `frame_prefix: r/` renamed the model's frames away from it."""
+    ws = _example(tmp_path, "contract_static_tf_duplicate",
+                  "models:\n  - path: urdf/agv.urdf\n    controllers: [config/agv_controllers.yaml]\n"
+                  "    launch: [launch/agv.launch.xml]\n    frame_prefix: r/\n")
+    code, found = _lint(ws)
+    assert code == 1 and ("T001", "launch/agv.launch.xml", 32, "error") in found, found
+    assert ("X018", "urdfcheck.yaml", 5, "info") in found, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert ("T001", "launch/agv.launch.xml", 32, "error") not in found, found
+
+
+def test_a_declared_localization_file_does_not_hide_the_driver_beside_it(tmp_path):
+    """`localization:` makes a file's node run with the model: a fake EKF file whose base frame is the driver's typo
+    'imu' published that frame (the driver's C020 gone; only the fake file's own was said). Declared from an untrusted
+    config, the model is also linted with the consumers zero config finds beside it."""
+    ws = _example(tmp_path, "contract_sensor_frame_id", SENSOR + "    localization: [fake/ekf.yaml]\n")
+    (ws / "fake").mkdir()
+    (ws / "fake" / "ekf.yaml").write_text("ekf_filter_node:\n  ros__parameters:\n    world_frame: odom\n"
+                                          "    odom_frame: odom\n    base_link_frame: imu\n")
+    code, found = _lint(ws)
+    assert code == 1 and ("C020", "config/agv_driver_ros1.yaml", 9, "warning") in found, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert [c[:3] for c in found if c[0] == "C020"] == [("C020", "fake/ekf.yaml", 5)], found

@@ -77,6 +77,106 @@ def test_claimed_twice_different_interfaces_do_not_conflict(tmp_path):
     assert _codes(pkg, "C022") == []
 
 
+# --- C022 across included launch files ---------------------------------------------------------------------------
+def test_claimed_twice_through_an_include_twin(tmp_path):
+    """The admittance spawner in an included file: found there; spawned inactive, the pair is clean."""
+    pkg = _copy(tmp_path, "ros2control_claimed_included")
+    assert _codes(pkg, "C022") == [("admittance.launch.xml", 3, "error")]
+    _edit(pkg / "launch" / "admittance.launch.xml", 'args="admittance_controller"',
+          'args="admittance_controller --inactive"')
+    code, report = lint_json([str(pkg)])
+    assert (code, report["findings"]) == (0, [])
+
+
+@pytest.mark.parametrize("include", [
+    # under a condition: an alternative
+    '<arg name="admittance" default="false"/>\n  <include file="INC" if="$(var admittance)"/>',
+    # in another namespace: another controller_manager
+    '<group>\n    <push-ros-namespace namespace="right"/>\n    <include file="INC"/>\n  </group>',
+    # an argument the included file reads, given a value other than its default
+    '<include file="INC"><arg name="stage" value="admittance_controller"/></include>',
+])
+def test_claimed_twice_includes_not_followed(tmp_path, include):
+    pkg = _copy(tmp_path, "ros2control_claimed_included")
+    assert _codes(pkg, "C022") == [("admittance.launch.xml", 3, "error")]
+    inc = "$(find-pkg-share included_arm_description)/launch/admittance.launch.xml"
+    _edit(pkg / "launch" / "arm.launch.xml", f'<include file="{inc}"/>', include.replace("INC", inc))
+    if "stage" in include:
+        _edit(pkg / "launch" / "admittance.launch.xml", "<launch>",
+              '<launch>\n  <arg name="stage" default="none_controller"/>')
+        _edit(pkg / "launch" / "admittance.launch.xml", 'args="admittance_controller"', 'args="$(var stage)"')
+    assert _codes(pkg, "C022") == []
+
+
+def test_claimed_twice_through_a_python_include(tmp_path):
+    pkg = _copy(tmp_path, "ros2control_claimed_included")
+    (pkg / "launch" / "admittance.launch.xml").unlink()
+    (pkg / "launch" / "admittance.launch.py").write_text(
+        "from launch import LaunchDescription\nfrom launch_ros.actions import Node\n\n\n"
+        "def generate_launch_description():\n    return LaunchDescription([\n"
+        "        Node(package='controller_manager', executable='spawner', arguments=['admittance_controller']),\n"
+        "    ])\n", encoding="utf-8")
+    (pkg / "launch" / "arm.launch.xml").unlink()
+    (pkg / "launch" / "arm.launch.py").write_text(
+        "import os\n\nfrom ament_index_python.packages import get_package_share_directory\n"
+        "from launch import LaunchDescription\nfrom launch.actions import IncludeLaunchDescription\n"
+        "from launch.launch_description_sources import PythonLaunchDescriptionSource\n"
+        "from launch_ros.actions import Node\n\n\n"
+        "def generate_launch_description():\n"
+        "    share = get_package_share_directory('included_arm_description')\n"
+        "    with open(os.path.join(share, 'urdf', 'arm.urdf')) as f:\n        description = f.read()\n"
+        "    return LaunchDescription([\n"
+        "        Node(package='robot_state_publisher', executable='robot_state_publisher',\n"
+        "             parameters=[{'robot_description': description}]),\n"
+        "        Node(package='controller_manager', executable='ros2_control_node',\n"
+        "             parameters=[os.path.join(share, 'config', 'controllers.yaml')]),\n"
+        "        Node(package='controller_manager', executable='spawner', arguments=['arm_controller']),\n"
+        "        IncludeLaunchDescription(PythonLaunchDescriptionSource(\n"
+        "            os.path.join(share, 'launch', 'admittance.launch.py'))),\n"
+        "    ])\n", encoding="utf-8")
+    assert _codes(pkg, "C022") == [("admittance.launch.py", 7, "error")]
+
+
+# --- C022 in ROS 1 -------------------------------------------------------------------------------------------------
+def test_claimed_twice_ros1_twin(tmp_path):
+    pkg = _copy(tmp_path, "ros1_claimed_twice")
+    assert _codes(pkg, "C022") == [("arm.launch", 6, "error")]
+    _edit(pkg / "launch" / "arm.launch", 'args="joint_group_position_controller"',
+          'args="--stopped joint_group_position_controller"')
+    code, report = lint_json([str(pkg)])
+    assert (code, report["findings"]) == (0, [])
+
+
+def test_claimed_twice_ros1_one_spawner_and_other_interfaces(tmp_path):
+    """One spawner starting both is the same conflict; a velocity controller on the same joints claims another
+    interface (a robot's RobotHW may allow that) and is not reported."""
+    pkg = _copy(tmp_path, "ros1_claimed_twice")
+    launch = pkg / "launch" / "arm.launch"
+    _edit(launch, 'args="joint_state_controller arm_controller"',
+          'args="joint_state_controller arm_controller joint_group_position_controller"')
+    _edit(launch, '  <node name="group_spawner" pkg="controller_manager" type="spawner" '
+          'args="joint_group_position_controller"/>\n', '')
+    assert _codes(pkg, "C022") == [("arm.launch", 5, "error")]
+    _edit(pkg / "config" / "controllers.yaml", "position_controllers/JointGroupPositionController",
+          "velocity_controllers/JointGroupVelocityController")
+    assert _codes(pkg, "C022") == []
+
+
+def test_claimed_twice_ros1_included_spawner(tmp_path):
+    pkg = _copy(tmp_path, "ros1_claimed_twice")
+    launch = pkg / "launch" / "arm.launch"
+    _edit(launch, '  <node name="group_spawner" pkg="controller_manager" type="spawner" '
+          'args="joint_group_position_controller"/>\n',
+          '  <include file="$(find ros1_arm_description)/launch/group.launch"/>\n')
+    (pkg / "launch" / "group.launch").write_text(
+        '<launch>\n  <node name="group_spawner" pkg="controller_manager" type="spawner" '
+        'args="joint_group_position_controller"/>\n</launch>\n', encoding="utf-8")
+    assert _codes(pkg, "C022") == [("group.launch", 2, "error")]
+    _edit(launch, '<include file="$(find ros1_arm_description)/launch/group.launch"/>',
+          '<include ns="left" file="$(find ros1_arm_description)/launch/group.launch"/>')
+    assert _codes(pkg, "C022") == []
+
+
 def test_chained_reference_twin(tmp_path):
     pkg = _copy(tmp_path, "ros2control_chained_reference")
     assert _codes(pkg, "C023") == [("controllers.yaml", 16, "error")]

@@ -530,9 +530,14 @@ def test_target_config_key(tmp_path):
         pytest.skip("no target setting yet")
     (tmp_path / "r.urdf").write_text(MODEL)
     (tmp_path / "urdfcheck.yaml").write_text("target: jazzy\n")
-    code, out, err = run_cli(["lint", "--format", "json", str(tmp_path / "r.urdf")], cwd=tmp_path)
+    code, out, err = run_cli(["lint", "--format", "json", "--config", "urdfcheck.yaml", "--trust-config",
+                              str(tmp_path / "r.urdf")], cwd=tmp_path)
     assert code == 1, err
     assert [f["code"] for f in json.loads(out)["findings"]] == ["U007"]
+    # found in the checkout, the target is the runner's to choose (issue 36): refused at its line
+    code, out, err = run_cli(["lint", "--format", "json", str(tmp_path / "r.urdf")], cwd=tmp_path)
+    assert code == 1, err
+    assert [(f["code"], f["severity"]) for f in json.loads(out)["findings"]] == [("X018", "error")]
 
 
 @needs_urdfdom6

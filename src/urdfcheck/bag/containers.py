@@ -341,7 +341,14 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                 _in_time()
             if op == 0x00 or op == 0xFF:  # reserved opcodes: not MCAP (a file of zeros)
                 raise ContainerError(f"an MCAP record with the invalid opcode {op:#04x}")
-            if op == 0x02:  # footer: the end
+            if ticks == 1 and op != 0x01:  # the specification's first record; garbage after the magic is not one
+                raise ContainerError("an MCAP file whose first record is not its header")
+            if op == 0x02:  # footer: the end, when the closing magic follows it (else the footer is garbage)
+                if n != 20:
+                    raise ContainerError("an MCAP footer of the wrong length")
+                _skip(f, n)
+                if f.read(9) != MCAP_MAGIC:
+                    raise ContainerError("the MCAP footer is not followed by the closing magic (truncated or corrupt)")
                 return
             if op == 0x06:  # chunk
                 if n > MAX_CHUNK:

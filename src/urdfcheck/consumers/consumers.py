@@ -225,7 +225,8 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     out = Consumers(origin="config")
     if config is not None:
         out.frames = {**DEFAULT_FRAMES, **dict(config.frames)}
-        out.tf_owners = claims_from_owners(dict(config.tf_owners), dict(config.tf_owner_locs), Location(config.path))
+        out.tf_owners = claims_from_owners(dict(config.tf_owners), dict(config.tf_owner_locs), Location(config.path),
+                                           _owner_source(config))
     out.frame_prefix = mc.frame_prefix
     pfs = _parsed(r, mc.controllers, out.errors)
     _controllers(out, pfs)
@@ -260,6 +261,7 @@ def deployment_consumers(dep) -> Consumers:
 
     out = Consumers(origin="deployment")
     r = _Reader()
+    _refused_controller_files(dep, out)
     pfs = _parsed(r, dep.controller_files, out.errors)
     _controllers(out, pfs, spawner_types(dep.infos))  # types set in launch files too
     _spawned_broadcasters(dep, out)
@@ -287,6 +289,25 @@ def deployment_consumers(dep) -> Consumers:
     out.plugin_files = tuple(dep.plugin_files)
     out.workspace = dep.workspace
     return out
+
+
+def _refused_controller_files(dep, out) -> None:
+    """A controller_manager parameter file the door refuses (an absolute path or `../..` out of the checkout,
+    a link out of it): C007 at the launch line that names it, as for a TF owner's file (issue 36), not a note
+    that the workspace has no such file."""
+    from urdfcheck.consumers.controllers import CONTROLLER_EXES
+    from urdfcheck.consumers.localization import refused_file
+
+    several = len({s.namespace for li in dep.infos for s in li.state_publishers}) > 1
+    for info in dep.infos:
+        for n in info.nodes:
+            if n.package != "controller_manager" or n.executable not in CONTROLLER_EXES:
+                continue
+            if several and n.namespace != dep.namespace:
+                continue
+            for f in n.param_files:
+                refused_file(f, f"controller_manager {n.name or n.executable}: parameter file", n.loc, out.errors,
+                             "its controllers are not checked")
 
 
 def _spawned_broadcasters(dep, out) -> None:
@@ -440,7 +461,7 @@ def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None
         owners = dict(getattr(config, "tf_owners", {}) or {})
         if owners and not c.tf_owners:
             c.tf_owners = claims_from_owners(owners, dict(getattr(config, "tf_owner_locs", {}) or {}),
-                                             Location(getattr(config, "path", "<config>")))
+                                             Location(getattr(config, "path", "<config>")), _owner_source(config))
     return c
 
 
@@ -458,12 +479,21 @@ def consumers_of(model, ctx) -> Consumers:
                           config=getattr(ctx, "config", None))
 
 
+def _owner_source(config) -> str:
+    """The claims' source of the config's `tf_owners`: a config the runner did not vouch for declares publishers
+    that may conflict, never publish (consumers.tfclaims.UNTRUSTED; issue 36)."""
+    from urdfcheck.consumers.tfclaims import UNTRUSTED
+
+    return "config" if getattr(config, "vouched", True) else UNTRUSTED
+
+
 def tf_owners(out: Consumers, pfs: list, reader: _Reader, locate=None, namespace: str | None = None) -> None:
     """The localization, SLAM and driver nodes that broadcast transforms: those the launch files start (inline
     parameters over the files each node is given), then those of parameter files no such node has read.
     Discovered launch files of a package are often alternatives (sim/real): their nodes count only when one
     launch file starts them all."""
-    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace)
+    nodes, used, notes = localization_from_launch(out.launch, lambda f: reader.params(f, []), locate, namespace,
+                                                  refused=out.errors)  # C007 at the launch line, as controllers
     starters = {n.loc.file for n in nodes}
     if out.origin == "discovered" and len(starters) > 1:
         out.notes.append((f"TF-owning nodes are started by {len(starters)} launch files of the package, which may "

@@ -227,10 +227,12 @@ def _matching(pf: ParamFile, node_name: str, executable: str) -> list[tuple[str,
 
 def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | None],
                              locate: Callable[[str], str | None] | None = None, namespace: str | None = None,
-                             ) -> tuple[list[LocalizationNode], set, list]:
+                             refused: list | None = None) -> tuple[list[LocalizationNode], set, list]:
     """TF-owning nodes started by the launch files `infos` (in `namespace` when given): (nodes, (file, node
     key) pairs read for them, notes). `read(path)` reads a parameter file (None: unreadable); `locate` maps a
-    path to a workspace file."""
+    path to a workspace file. A file the door refuses (outside the run's roots: an absolute path, `../..`, a link
+    out of the checkout) is a `ConsumerError` at the launch line that names it, appended to `refused` (C007, as
+    the controller readers report the same refusal); without `refused`, a note."""
     out: list[LocalizationNode] = []
     used: set = set()
     notes: list = []
@@ -246,17 +248,18 @@ def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | 
                 path = locate(f) if locate is not None else f
                 pf = read(path) if path else None
                 if pf is None:
-                    notes.append((f"{owner}: parameter file {f} not read; its frames are the defaults", n.loc))
+                    if not refused_file(path or f, f"{owner} {n.name or n.executable}: parameter file", n.loc, refused):
+                        notes.append((f"{owner}: parameter file {f} not read; its frames are the defaults", n.loc))
                     continue
                 files.append(pf.path)
                 for key, node in _matching(pf, n.name, n.executable):
                     used.add((os.path.realpath(pf.path), key))
                     given.update(_substituted(node.params, n, f))
             if ros1:
-                given.update(_ros1_server(info, n, read, locate, used))
+                given.update(_ros1_server(info, n, read, locate, used, refused))
             given.update({k: v for k, v in n.params.items() if v.value is not None and not k.startswith("\x00")})
             if owners()[owner].get("lua"):
-                got = _lua_options(n, locate, notes)
+                got = _lua_options(n, locate, notes, refused)
                 if got is None:
                     continue
                 given.update(got)
@@ -269,7 +272,30 @@ def localization_from_launch(infos: Iterable, read: Callable[[str], ParamFile | 
     return out, used, notes
 
 
-def _ros1_server(info, n, read, locate, used: set) -> dict[str, Value]:
+def refused_file(path: str, what: str, where: Location, refused: list | None,
+                 lost: str = "the node's frames cannot be checked") -> bool:
+    """Whether the door refuses `path` (then one ConsumerError at `where`, the launch line naming it, goes to
+    `refused`). The file is named by its base name only: the launch line says how it was written, and its
+    resolved path may be the runner's."""
+    if refused is None or not path:
+        return False
+    from urdfcheck.consumers.common import ConsumerError
+    from urdfcheck.core import door
+
+    try:
+        door.confine(path)
+        return False
+    except door.Refused as e:
+        why = e.why.removeprefix("refused: ")
+    except (OSError, ValueError):
+        return False
+    err = ConsumerError(f"{what} {os.path.basename(os.path.normpath(str(path)))!r} is refused: {why}; {lost}", where)
+    if err not in refused:
+        refused.append(err)
+    return True
+
+
+def _ros1_server(info, n, read, locate, used: set, refused: list | None = None) -> dict[str, Value]:
     """A ROS 1 node's private parameters written outside it, in document order: `<rosparam command="load"
     file=... ns=...>` (with `subst_value="true"` its `$(arg ...)` substituted) and `<param name="node/x">`."""
     from urdfcheck.consumers.launch.info import ParamSet, RosparamLoad
@@ -287,6 +313,7 @@ def _ros1_server(info, n, read, locate, used: set) -> dict[str, Value]:
             path = (locate(item.file) if locate is not None else item.file) or item.file
             pf = read(path)
             if pf is None:
+                refused_file(path, f"{n.package} {name}: rosparam file", item.loc, refused)
                 continue
             args = dict(item.subst or ())
             for key, node in pf.nodes.items():
@@ -345,7 +372,7 @@ def _arg_after(args, flag: str) -> str | None:
     return None
 
 
-def _lua_options(n, locate, notes: list) -> dict[str, Value] | None:
+def _lua_options(n, locate, notes: list, refused: list | None = None) -> dict[str, Value] | None:
     """The top-level `options = {...}` keys of the .lua file a cartographer_node is given (None: not found)."""
     folder = _arg_after(n.args, "-configuration_directory")
     base = _arg_after(n.args, "-configuration_basename")
@@ -354,6 +381,8 @@ def _lua_options(n, locate, notes: list) -> dict[str, Value] | None:
         return None
     path = os.path.join(folder, base)
     path = (locate(path) if locate is not None else path) or path
+    if refused_file(path, f"cartographer {n.name or n.executable}: configuration", n.loc, refused):
+        return None
     return read_lua_options(path, notes, n.loc)
 
 

@@ -110,13 +110,20 @@ def parse_edge(text: str) -> tuple[str, str] | None:
     return None
 
 
+# the source of a `tf_owners` declaration in a config the runner did not vouch for (found in the checkout, or named
+# without --trust-config; issue 36). It may add a publisher, and so a conflict (T001..T004), never make a frame
+# published that nothing read publishes: T005, C020 and C024 judge the graph without it (`vouched_claims`).
+UNTRUSTED = "config (untrusted)"
+DECLARED = ("config", UNTRUSTED)
+
+
 def claims_from_owners(owners: Mapping[str, str], locs: Mapping[str, Location] | None = None,
-                       default_loc: Location | None = None) -> list[TFClaim]:
+                       default_loc: Location | None = None, source: str = "config") -> list[TFClaim]:
     out = []
     for edge_text, owner in owners.items():
         e = parse_edge(edge_text)
         if e is None:
             continue
         loc = (locs or {}).get(edge_text) or default_loc or Location("<config>")
-        out.append(TFClaim(e[0], e[1], str(owner), DYNAMIC, loc, "config"))
+        out.append(TFClaim(e[0], e[1], str(owner), DYNAMIC, loc, source))
     return out

@@ -308,3 +308,21 @@ def roots() -> tuple[str, ...]:
     run that lints it later (the pytest plugin plans at collection and lints at the first item)."""
     run = _current()
     return tuple(run.roots) if run is not None else ()
+
+
+def carried() -> tuple | None:
+    """The guard of the run in progress as plain data (roots, unconfined, bytes left), for a child forked before
+    the run was guarded (a spare worker, core.worker): it enters it with `enter_carried`. None outside a run."""
+    run = _current()
+    if run is None:
+        return None
+    return tuple(run.roots), bool(run.unconfined), max(0, run.budget.total - run.budget.used)
+
+
+def enter_carried(state) -> None:
+    """In a child forked before the run was guarded: from here on, every read is guarded as in the parent (its
+    roots, whether the runner lowered the guard, the bytes the run had left when the job was sent)."""
+    roots, unconfined, left = state
+    run = _Run(roots, RunBytes(left))
+    run.unconfined = bool(unconfined)
+    _state.run = run

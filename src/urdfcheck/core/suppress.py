@@ -158,11 +158,9 @@ def scan_yaml_comments(text: str) -> list[tuple[int, int, tuple[str, ...], int]]
 _YAML_CACHE: dict = {}
 
 
-def yaml_suppressions(file: str) -> list[Suppression]:
-    """Suppressions written in the YAML file `file` (a finding's `Location.file`), read once and cached.
-
-    An unreadable file has none. The cache key includes mtime and size, so an edited file is re-read.
-    """
+def _cached(cache: dict, file: str, scan) -> list[Suppression]:
+    """`scan(data)`'s suppressions of `file`, read once per (path, mtime, size): an edited file is read again.
+    An unreadable file, or one `scan` cannot read, suppresses nothing."""
     import os
 
     try:
@@ -170,19 +168,24 @@ def yaml_suppressions(file: str) -> list[Suppression]:
     except OSError:
         return []
     key = (file, st.st_mtime_ns, st.st_size)
-    hit = _YAML_CACHE.get(key)
+    hit = cache.get(key)
     if hit is None:
         try:
             from urdfcheck.core import door
 
-            text = door.read_bytes(file, limit=16 * 1024 * 1024)[:16 * 1024 * 1024].decode("utf-8", "replace")
-        except OSError:
-            text = ""
-        hit = [Suppression(file, a, b, c, d) for a, b, c, d in scan_yaml_comments(text)]
-        if len(_YAML_CACHE) > 256:
-            _YAML_CACHE.clear()
-        _YAML_CACHE[key] = hit
+            found = scan(door.read_bytes(file, limit=16 * 1024 * 1024)[:16 * 1024 * 1024])
+        except Exception:  # noqa: BLE001 - see above
+            found = []
+        hit = [Suppression(file, a, b, c, d) for a, b, c, d in found]
+        if len(cache) > 256:
+            cache.clear()
+        cache[key] = hit
     return hit
+
+
+def yaml_suppressions(file: str) -> list[Suppression]:
+    """Suppressions written in the YAML file `file` (a finding's `Location.file`)."""
+    return _cached(_YAML_CACHE, file, lambda data: scan_yaml_comments(data.decode("utf-8", "replace")))
 
 
 def is_yaml(file: str) -> bool:
@@ -205,26 +208,8 @@ def is_srdf(file: str) -> bool:
 
 
 def srdf_suppressions(file: str) -> list[Suppression]:
-    """Suppressions written as XML comments in the SRDF `file` (a finding's `Location.file`). An unreadable or
-    malformed file has none."""
-    import os
+    """Suppressions written as XML comments in the SRDF `file` (a finding's `Location.file`). A malformed file has
+    none."""
+    from urdfcheck.core import xmlfront
 
-    try:
-        st = os.stat(file)
-    except OSError:
-        return []
-    key = (file, st.st_mtime_ns, st.st_size)
-    hit = _SRDF_CACHE.get(key)
-    if hit is None:
-        hit = []
-        try:
-            from urdfcheck.core import door, xmlfront
-
-            root, _ = xmlfront.parse(door.read_bytes(file, limit=16 * 1024 * 1024))
-            hit = [Suppression(file, a, b, c, d) for a, b, c, d in scan_comments(root)]
-        except Exception:  # noqa: BLE001 - a file that cannot be read or parsed suppresses nothing
-            hit = []
-        if len(_SRDF_CACHE) > 256:
-            _SRDF_CACHE.clear()
-        _SRDF_CACHE[key] = hit
-    return hit
+    return _cached(_SRDF_CACHE, file, lambda data: scan_comments(xmlfront.parse(data)[0]))

@@ -270,7 +270,12 @@ def _child(fn, lim: Limits, call, preload, prog_w, efd_w, capture, go_r, job_fil
         if not os.read(go_r, 1):  # cancelled before a job arrived
             os._exit(0)
         job_file.seek(0)
-        args, kwargs = pickle.load(job_file), {}
+        guard, args = pickle.load(job_file)
+        kwargs = {}
+        if guard is not None:
+            from urdfcheck.core import door
+
+            door.enter_carried(guard)
     else:
         args, kwargs = call
     if prog_w is not None:
@@ -387,7 +392,11 @@ class Job:
     def send(self, *args) -> None:
         """Hand a prepared child its arguments; its clock starts now."""
         assert self.job_file is not None and self.go_fd is not None, "send: the child was not prepared"
-        pickle.dump(args, self.job_file, protocol=pickle.HIGHEST_PROTOCOL)
+        # a prepared child was forked before the run entered its door (cli.cache.fork_early, cli.main): the guard
+        # of the run in progress goes with the job, so the child reads as a worker forked now would (issue 36)
+        door = sys.modules.get("urdfcheck.core.door")
+        guard = door.carried() if door is not None else None
+        pickle.dump((guard, args), self.job_file, protocol=pickle.HIGHEST_PROTOCOL)
         self.job_file.flush()
         try:
             os.write(self.go_fd, b"1")

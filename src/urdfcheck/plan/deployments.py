@@ -33,7 +33,6 @@ MAX_VARIANTS = 24  # launch-argument assignments tried per root launch file
 MAX_MODEL_FILES = 8  # files one model path chosen at launch time may match
 MAX_TREE_FILES = 60
 MAX_DEPTH = 8
-_CONTROLLER_EXES = ("ros2_control_node", "spawner", "spawner.py", "controller_manager")
 
 
 def _show(path: str) -> str:
@@ -483,12 +482,14 @@ def _beside(ws: _Workspace, infos, namespace: str | None):
         elif got not in files:
             files.append(got)
 
+    from urdfcheck.consumers.controllers import CONTROLLER_EXES
+
     for info in infos:
         spawner_locs = set()
         for n in info.nodes:
             if namespace is not None and n.namespace != namespace:
                 continue
-            if n.package == "controller_manager" and n.executable in _CONTROLLER_EXES:
+            if n.package == "controller_manager" and n.executable in CONTROLLER_EXES:
                 spawner_locs.add(n.loc)
                 for f in n.param_files:
                     add(ctrl, f, n.loc)

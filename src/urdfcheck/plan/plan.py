@@ -313,11 +313,21 @@ class Planner:
                 out.append(self.target(Path(m.path), vargs, vname, consumers, settings))
                 out[-1].bags = m.bags
                 out[-1].evidence = (_step("model", str(m.path), "config"),)
-            if not _vouched(cfg) and _undeclared_consumers(m):
+            if not _vouched(cfg) and (_undeclared_consumers(m) or _declares_localization(m)):
                 # declared consumers add to those found beside the model, never replace them (issue 36): the
                 # package's parameter and launch files the config leaves out are checked as zero config would
                 twin = self.target(Path(m.path), m.variant_args()[0][1], "consumers found beside it", None, settings)
                 twin.twin = True
+                twin.evidence = (_step("model", str(m.path), "config"),)
+                out.append(twin)
+            if not _vouched(cfg) and (m.launch_args or m.frame_prefix):
+                # launch arguments and a frame prefix choose what the declared launch files run and which frames
+                # the model publishes: from an untrusted config they add a reading, never replace the one the
+                # launch files give by themselves (issue 36): the same files, their own defaults and prefix
+                plain = m.launch_defaults()
+                twin = self.target(Path(m.path), m.variant_args()[0][1], "launch defaults",
+                                   Later(lambda m=plain: _consumers(m, cfg, dict(settings.packages))), settings)
+                twin.twin = "launch defaults"
                 twin.evidence = (_step("model", str(m.path), "config"),)
                 out.append(twin)
         for raw in rest:
@@ -613,6 +623,14 @@ def _undeclared_consumers(m) -> bool:
     named = {os.path.realpath(p) for p in (*m.controllers, *m.launch, *m.localization, *(d.file for d in m.drivers))}
     found = discover(str(pkg))
     return any(os.path.realpath(p) not in named for p in (*found.params, *found.launch))
+
+
+def _declares_localization(m) -> bool:
+    """Does the declared model name localization files? Each counts as a node run with the model, publishing its
+    transforms, which zero config grants only to a node a launch file starts: from an untrusted config they add a
+    reading, so the model is linted as zero config finds it too (a declared EKF file that publishes a frame does
+    not hide the driver that uses it unpublished; issue 36)."""
+    return bool(m.localization)
 
 
 def _vouched(cfg) -> bool:

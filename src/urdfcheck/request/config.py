@@ -43,7 +43,10 @@ trusted: false                            # stock xacro evaluation (only for you
 allow_env: [HOME]                         # environment variables $(env)/$(optenv) may read
 max_elements: 20000                       # xacro elements one expansion may evaluate (--max-elements)
 # trusted, allow_env and max_elements above the default count only in a config named with
-# --config FILE --trust-config; elsewhere they are an X018 finding and ignored (request/trust.py)
+# --config FILE --trust-config; elsewhere they are an X018 finding and ignored (request/trust.py), as are the keys
+# that lower the gate: ignore, a narrower select, lower severities, fail_on above warning, looser rule options,
+# packages remapping the checkout's own package, frames renaming a REP-105 frame, target. There, tf_owners may add a
+# publisher but never publish a frame, and launch_args/frame_prefix add the launch files' own defaults (a variant)
 target: humble                            # ROS distribution whose urdfdom must read the model (--target)
 profiles: [mujoco, gazebo]                # consumer profiles (--profile): what each consumer rejects or changes
 cache: false                              # never store these runs in the lint cache (where it is: not here)
@@ -118,6 +121,11 @@ class ModelConfig(FrozenRecord):
         d["bags"] = bags  # recordings checked against this model (urdfcheck.bag)
         # xacro args whose default an untrusted config replaces: the defaults are linted too (issue 36)
         d["defaults"] = _ro({}) if defaults is None else defaults
+
+    def launch_defaults(self) -> ModelConfig:
+        """This model with its launch files read as they are: no `launch_args`, no `frame_prefix` (the launch
+        defaults twin of a config the runner did not trust; plan.plan)."""
+        return ModelConfig(**{**{f: getattr(self, f) for f in self._fields}, "launch_args": None, "frame_prefix": ""})
 
     def variant_args(self) -> list[tuple[str, dict]]:
         """(variant name, xacro args) pairs: one ("", args) when there are no variants."""
@@ -466,6 +474,9 @@ def load_config(path: str | os.PathLike, trusted: bool = False, root: str | None
         if replaced and any(n == "xacro defaults" for n, _ in models[-1].variant_args()):
             key = "args" if m.get("args") else "variants"
             notes += (trust.defaults_kept(str(m["path"]), replaced, key_loc("models", i, key)),)
+        if not trusted and (models[-1].launch_args or models[-1].frame_prefix):
+            key = "launch_args" if models[-1].launch_args else "frame_prefix"
+            notes += (trust.launch_defaults_kept(str(m["path"]), key, key_loc("models", i, key)),)
     packages = {str(k): resolve(v, "packages", k, kind="folder") for k, v in (data.get("packages") or {}).items()}
     for k, p in packages.items():
         if not os.path.isdir(p):

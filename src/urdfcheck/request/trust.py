@@ -9,9 +9,11 @@ a nested sub/urdfcheck.yaml) that asks for one gets an X018 finding at the key, 
 
 The same holds for the gate itself (issue 36): such a config adds, never hides. `ignore`, a `select` narrower
 than ALL, a `severity` below a rule's default, a `fail_on` above warning, a rule option that loosens its check,
-`packages` pointing a package the checkout defines elsewhere: each an X018 error at the key, and ignored. Its
-`models` add to discovery (plan.plan), and `args` that replace a xacro default add the defaults variant
-(request.config). A config named with `--config FILE` alone is as untrusted as one found.
+`packages` pointing a package the checkout defines elsewhere, `frames` renaming a REP-105 frame, a `target`
+distribution: each an X018 error at the key, and ignored. Its `models` add to discovery (plan.plan), `args` that
+replace a xacro default add the defaults variant (request.config), `launch_args` and `frame_prefix` add the launch
+defaults twin, and `tf_owners` may add a publisher, never publish a frame (see the list below `_keep_gate`).
+A config named with `--config FILE` alone is as untrusted as one found.
 
     screen(data, path, key_loc, trusted) -> [Finding]   # drops what an untrusted config may not say
     tightens(code, option, value) -> bool               # may an untrusted config set this rule option?
@@ -102,7 +104,37 @@ def _keep_gate(data: dict, key_loc) -> list[Finding]:
                                  key_loc("rules", code, name)))
         if not opts:
             del data["rules"][code]
+    frames = data.get("frames") if isinstance(data.get("frames"), dict) else {}
+    for role in [r for r, v in frames.items() if str(v) != REP105.get(str(r), str(v))]:
+        v = frames.pop(role)
+        out.append(_gate(f"'frames: {role}: {str(v)[:80]}' would rename the REP-105 {role} frame "
+                         f"({REP105[str(role)]}) that F001, the T rules and C024 judge by; {GATE_HOW}",
+                         key_loc("frames", role)))
+    target = data.get("target")
+    if target:
+        del data["target"]
+        out.append(_gate(f"'target: {str(target)[:40]}' would choose the ROS distribution whose urdfdom (U007) and "
+                         f"SDFormat (the gazebo profile) judge the model; the target is assumed from the workspace "
+                         f"instead; {GATE_HOW}", key_loc("target")))
     return out
+
+
+# The keys an untrusted config keeps, and why none of them can hide a finding (issue 36):
+# - `models:` adds to discovery (plan.plan); its consumer files add to those found beside the model (the twin
+#   "consumers found beside it", also whenever it declares `localization:` files, whose nodes it makes run);
+#   `args`/`variants` that replace a xacro default add the "xacro defaults" variant;
+#   `launch_args` and `frame_prefix` add the "launch defaults" twin, its declared launch files read with their own
+#   defaults and the prefix they give (plan.plan.declared).
+# - `tf_owners` may add a publisher (a conflict: T001..T004), never make a frame published
+#   (consumers.tfclaims.UNTRUSTED: T005, C020 and C024 judge the graph without it).
+# - `profiles` turns consumer profiles on: a profile's finding goes from info to its rule's severity, and a profile
+#   never removes one (rules/checks/profiles/common.speak); `cache: false` only turns the lint cache off.
+# - `packages` for a package the checkout does not define adds a place to resolve it (refused for its own: below);
+#   `max_elements` below the default tightens; `bags` add recordings to check against the model (B rules).
+# Not closed: declared `controllers`/`drivers` files count as run with the model (their odometry TF), which zero
+# config grants only to what a launch file starts; the twin is made only when the package holds files the config
+# leaves out (linting every declared model twice repeats each driver finding in a second wording).
+REP105 = {"map": "map", "odom": "odom", "base": "base_link"}  # request.config.DEFAULT_FRAMES
 
 
 def _parse(v) -> Severity | None:
@@ -175,6 +207,13 @@ def defaults_kept(model: str, names, loc: Location) -> Finding:
     return Finding("X018", Severity.INFO, f"the args of {model} replace the default of {', '.join(sorted(names))[:200]}"
                    " in a config the runner did not trust: the model is linted with its defaults too (variant "
                    "'xacro defaults')", loc, name="untrusted-config")
+
+
+def launch_defaults_kept(model: str, key: str, loc: Location) -> Finding:
+    """A note, not a refusal: the model's launch files are read with their own defaults too."""
+    return Finding("X018", Severity.INFO, f"'{key}' of {model}, in a config the runner did not trust, changes what its "
+                   "launch files run or which frames the model publishes: the model is linted with the launch files' "
+                   "own defaults and frame prefix too (variant 'launch defaults')", loc, name="untrusted-config")
 
 
 _ROOTS: dict[str, str] = {}

@@ -5,7 +5,7 @@ spawn. The shapes are tested with coal (hpp-fcl, the library Pinocchio and MoveI
 only here and only for pairs whose bounding boxes (a pure-Python separating-axis test) interpenetrate by more than
 `depth`, so a model without such a pair never loads it: without coal installed the rule says nothing.
 
-What is compared: boxes, cylinders, spheres and capsules (meshes are not loaded), every link at the pose of
+What is compared: boxes, cylinders, spheres, capsules and meshes, every link at the pose of
 `Robot.world_poses` (all joints at zero, mimic offsets ignored); a pair with a joint between them whose limits
 exclude zero is left out (that pose is never reached). Pairs MoveIt's setup assistant calls adjacent are
 left out, as `collision_detection::AllowedCollisionMatrix` defaults do: links joined by a joint, and links held
@@ -13,6 +13,13 @@ together by fixed joints (they never move relative to each other; Gazebo lumps t
 SRDF of the same robot (its `<robot name>`, in the model's package or a sibling `*moveit*` package) already
 disables. Only penetration deeper than `depth` (5 mm by default) is reported: primitives that touch or overlap
 by a rounding error are how links are drawn flush against each other.
+
+Meshes: the file's vertices and triangles come from core.meshfile (through the door; coal never opens a file),
+scaled by the <mesh> scale. Coal measures penetration depth only between convex shapes, so the depth is that of
+the mesh's convex hull; and the pair is reported only when the mesh's triangles themselves (a BVH, what MoveIt's
+FCL and Gazebo test) touch the other shape, so a concave part whose hull, not its surface, reaches a neighbour is
+not. A mesh not read (missing, another format, too large) is left out, and so is a COLLADA mesh whose up axis is
+not Z_UP (whether a loader turns it differs between assimp versions).
 """
 from __future__ import annotations
 
@@ -170,6 +177,59 @@ def _raw_half_extents(g) -> tuple[float, ...] | None:
     return None
 
 
+def _mesh_box(g, read):
+    """(half extents, centre of the bounds in the mesh frame, Mesh, scale) of a collision mesh read and scaled,
+    or None (not read, or absurd after its scale)."""
+    mesh = read(g)
+    if mesh is None or mesh.up:
+        return None  # a COLLADA mesh with another up axis: where its parts lie depends on the loader
+    scale = tuple(float(x) for x in (g.scale or (1.0, 1.0, 1.0)))
+    lo, hi = mesh.bounds()
+    a = [lo[k] * scale[k] for k in range(3)]
+    b = [hi[k] * scale[k] for k in range(3)]
+    half = tuple(max(abs(b[k] - a[k]) / 2, 1e-6) for k in range(3))
+    if not all(h < _HUGE for h in half):
+        return None
+    return half, tuple((a[k] + b[k]) / 2 for k in range(3)), mesh, scale
+
+
+def _coal_mesh(coal, np, mesh, scale):
+    """(convex hull, triangles as a BVH or None) of a mesh, from its vertices: coal never opens the file."""
+    pts = mesh.points * np.array(scale, dtype=float)
+    surface = None
+    if len(mesh.triangles):
+        surface = coal.BVHModelOBBRSS()
+        surface.beginModel(len(mesh.triangles), len(pts))
+        surface.addVertices(pts)
+        surface.addTriangles(mesh.triangles)
+        surface.endModel()
+    unique = np.unique(pts, axis=0)  # an STL repeats each vertex once per triangle
+    if len(unique) < 4:
+        return None, surface
+    spread = np.linalg.svd(unique - unique.mean(axis=0), compute_uv=False)
+    if not spread[2] > 1e-6 * spread[0]:
+        return None, surface  # flat or a line: coal's qhull call crashes the process on such a set
+    cloud = coal.BVHModelOBBRSS()
+    cloud.beginModel(0, len(unique))
+    cloud.addVertices(unique)
+    cloud.endModel()
+    try:
+        # its result says whether every point is a hull vertex (the mesh was convex), not whether it worked
+        cloud.buildConvexHull(False, "Qt")
+        hull = cloud.convex
+    except Exception:  # noqa: BLE001 (qhull refuses flat or degenerate point sets: no hull, no test)
+        hull = None
+    return (hull if hull is not None and hull.num_points >= 4 else None), surface
+
+
+def _surfaces_meet(coal, fa, ta, fb, tb) -> bool:
+    """The triangles of a mesh touch the other shape (what MoveIt's FCL and Gazebo test); a mesh read without
+    triangles is judged by its hull alone."""
+    if fa is None or fb is None:
+        return True
+    return bool(coal.collide(fa, ta, fb, tb, coal.CollisionRequest(), coal.CollisionResult()))
+
+
 def _obb_overlap(a, b) -> float:
     """How far two oriented boxes (centre, 3 unit axes, half extents) interpenetrate along the separating axes
     (the 15 of the separating axis theorem): 0 when apart. Each box holds its shape, so the shapes
@@ -194,22 +254,35 @@ def _obb_overlap(a, b) -> float:
     return least
 
 
-def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
+def self_collisions(model, entry: str, depth: float, read=None) -> Iterator[Problem]:
+    """`read(geometry) -> core.meshfile.Mesh | None` reads collision meshes (rules.meshes.reader); without it
+    meshes are left out."""
     from urdfcheck.core.geometry import compose, origin_matrix
 
     poses = model.world_poses()
     boxes = []  # (link, Shape, 4x4 pose, oriented box)
+    meshes: dict[int, tuple] = {}  # id(Shape) -> (Mesh, scale) of a collision mesh read
     for link in model.link_list:
         if link.name not in poses:
             continue
         for s in link.collisions:
-            half = _half_extents(s.geometry) if s.geometry is not None else None
+            g = s.geometry
+            offset = (0.0, 0.0, 0.0)
+            if g is not None and g.kind == "mesh":
+                got = _mesh_box(g, read) if read is not None else None
+                if got is None:
+                    continue
+                half, offset, mesh, scale = got
+                meshes[id(s)] = (mesh, scale)
+            else:
+                half = _half_extents(g) if g is not None else None
             if half is None:
                 continue
             m = compose(poses[link.name], origin_matrix(s.origin))
             if not _finite(m):
                 continue
-            centre = (m[0][3], m[1][3], m[2][3])
+            # the box that holds a mesh is centred on its vertices' bounds, not on the mesh's origin
+            centre = tuple(m[i][3] + sum(m[i][k] * offset[k] for k in range(3)) for i in range(3))
             axes = tuple((m[0][k], m[1][k], m[2][k]) for k in range(3))
             boxes.append((link, s, m, (centre, axes, half)))
     if len({link.name for link, *_ in boxes}) < 2:
@@ -248,15 +321,24 @@ def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
         return
     req = coal.CollisionRequest(coal.CollisionRequestFlag.CONTACT, 1)
 
+    built: dict[int, tuple] = {}
+
     def placed(s, m):
-        got = _shape(coal, s.geometry)
+        """(shape for the depth, shape whose contact decides, transform): a primitive twice; a mesh's convex
+        hull (coal's penetration depth needs a convex shape), and its triangles (a BVH) when it has them."""
+        if id(s) in meshes:
+            if id(s) not in built:
+                built[id(s)] = _coal_mesh(coal, np, *meshes[id(s)])
+            hull, surface = built[id(s)]
+        else:
+            hull = surface = _shape(coal, s.geometry)
         rot = np.array([row[:3] for row in m[:3]], dtype=float)
-        return got, coal.Transform3s(rot, np.array([m[0][3], m[1][3], m[2][3]], dtype=float))
+        return hull, surface, coal.Transform3s(rot, np.array([m[0][3], m[1][3], m[2][3]], dtype=float))
 
     hits: dict[frozenset, tuple] = {}
     for la, sa, ma, lb, sb, mb in candidates:
-        ga, ta = placed(sa, ma)
-        gb, tb = placed(sb, mb)
+        ga, fa, ta = placed(sa, ma)
+        gb, fb, tb = placed(sb, mb)
         if ga is None or gb is None:
             continue
         res = coal.CollisionResult()
@@ -265,6 +347,8 @@ def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
         pen = max((abs(c.penetration_depth) for c in res.getContacts()), default=0.0)
         if pen <= depth:
             continue
+        if (fa is not ga or fb is not gb) and not _surfaces_meet(coal, fa, ta, fb, tb):
+            continue  # the hulls overlap, the meshes themselves do not (a concave part around the other)
         key = frozenset((la.name, lb.name))
         if key not in hits or pen > hits[key][0]:
             hits[key] = (pen, la, sa, lb, sb)
@@ -283,8 +367,9 @@ def self_collisions(model, entry: str, depth: float) -> Iterator[Problem]:
         entry_text = f'<disable_collisions link1="{la.name}" link2="{lb.name}" reason="Default"/>'
         where = (f"; {shown(srdf)} describes this robot and does not disable the pair: MoveIt reports the start "
                  f"state in collision" if srdf else "")
+        hull = ("; meshes measured by their convex hulls" if id(sa) in meshes or id(sb) in meshes else "")
         yield Problem(f"links {la.name!r} and {lb.name!r} interpenetrate by {pen * 1000:.0f} mm at the zero "
-                      f"configuration (collision geometry){where}; an SRDF needs {entry_text}, or move the shapes "
-                      f"apart", at=sb, related=(sa,), severity=Severity.WARNING if srdf else None,
+                      f"configuration (collision geometry{hull}){where}; an SRDF needs {entry_text}, or move the "
+                      f"shapes apart", at=sb, related=(sa,), severity=Severity.WARNING if srdf else None,
                       data={"links": [la.name, lb.name], "depth": round(pen, 6),
                             "disable_collisions": entry_text})

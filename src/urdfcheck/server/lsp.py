@@ -133,25 +133,25 @@ def _progress_begin(ls: UrdfcheckServer, token: str, unit: str) -> bool:
     return True
 
 
+async def _touched(ls: UrdfcheckServer, uri: str, delay: float) -> None:
+    path = _sync(ls, uri)
+    if path:
+        await _lint_later(ls, path, delay)
+
+
 @server.feature(types.TEXT_DOCUMENT_DID_OPEN)
 async def did_open(ls: UrdfcheckServer, params: types.DidOpenTextDocumentParams):
-    path = _sync(ls, params.text_document.uri)
-    if path:
-        await _lint_later(ls, path, 0)
+    await _touched(ls, params.text_document.uri, 0)
 
 
 @server.feature(types.TEXT_DOCUMENT_DID_CHANGE)
 async def did_change(ls: UrdfcheckServer, params: types.DidChangeTextDocumentParams):
-    path = _sync(ls, params.text_document.uri)
-    if path:
-        await _lint_later(ls, path, DEBOUNCE)
+    await _touched(ls, params.text_document.uri, DEBOUNCE)  # typing: wait for a pause
 
 
 @server.feature(types.TEXT_DOCUMENT_DID_SAVE)
 async def did_save(ls: UrdfcheckServer, params: types.DidSaveTextDocumentParams):
-    path = _sync(ls, params.text_document.uri)
-    if path:
-        await _lint_later(ls, path, 0)
+    await _touched(ls, params.text_document.uri, 0)
 
 
 @server.feature(types.TEXT_DOCUMENT_DID_CLOSE)

@@ -161,6 +161,7 @@ class Include(TupleRecord):
     condition: str | None = None
     package: str | None = None  # file not known: the package it is in, when named (not in the workspace)
     name: str = ""  # file not known: its base name, when literal
+    namespace: str = ""  # the namespace pushed around it ("" or "/": none; "?" when not literal)
 
 
 class LaunchInfo(Record):

@@ -692,9 +692,9 @@ def _flatten(d: dict, prefix: str = ""):
             yield prefix + k, v
 
 
-def include_calls(r: PyLaunch) -> list[tuple]:
+def include_calls(r: PyLaunch, with_calls: bool = False) -> list[tuple]:
     """(file or None, location, arguments passed, undecided condition, package and base name of a file not
-    known) per IncludeLaunchDescription."""
+    known) per IncludeLaunchDescription; `with_calls`: and the call itself, last."""
     out = []
     inherited = r.configs()
     for call in r.calls("IncludeLaunchDescription"):
@@ -724,7 +724,7 @@ def include_calls(r: PyLaunch) -> list[tuple]:
                 given_text = text_of(v)
                 passed[k] = None if UNKNOWN in given_text else given_text
         out.append((file, r.loc(call), passed, cond, _named_package(r, source) if file is None else None,
-                    os.path.basename(t.replace(UNKNOWN, "")) if file is None else ""))
+                    os.path.basename(t.replace(UNKNOWN, "")) if file is None else "", *((call,) if with_calls else ())))
     return out
 
 
@@ -767,7 +767,8 @@ def inactive_include_files(path: str, tree: ast.AST, find_package) -> list[str]:
 
 
 def namespaces(r: PyLaunch) -> dict[int, str]:
-    """id(Node call) -> namespace pushed by an enclosing GroupAction([PushRosNamespace(...), ...])."""
+    """id(Node or IncludeLaunchDescription call) -> namespace pushed by an enclosing
+    GroupAction([PushRosNamespace(...), ...])."""
     out: dict[int, str] = {}
     for g in r.calls("GroupAction"):
         acts = g.args[0] if g.args else r._kw(g).get("actions")
@@ -784,7 +785,7 @@ def namespaces(r: PyLaunch) -> dict[int, str]:
         if not ns:
             continue
         for n in ast.walk(acts_v):
-            if isinstance(n, ast.Call) and _callee(n) == "Node":
+            if isinstance(n, ast.Call) and _callee(n) in ("Node", "IncludeLaunchDescription"):
                 out[id(n)] = "/" + "/".join(x for x in (ns, out.get(id(n), "").strip("/")) if x)
     return out
 
@@ -807,8 +808,9 @@ def read(path: str, tree: ast.AST, args: Mapping[str, str | None] | None,
                 _read_node(r, info, call, pushed)
             finally:
                 r.bindings = {}
-    for file, loc, passed, cond, package, name in include_calls(r):
-        info.includes.append(Include(file, loc, passed, cond, package, name))
+    for file, loc, passed, cond, package, name, call in include_calls(r, with_calls=True):
+        info.includes.append(Include(file, loc, passed, cond, package, name,
+                                     namespace=pushed.get(id(call), "").strip("/")))
     info.consulted = set(r.consulted)  # the launch arguments this reading depended on
     return info
 

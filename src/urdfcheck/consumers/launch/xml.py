@@ -358,8 +358,13 @@ class _XmlReader:
                         # <arg name="x" default="..."/> in an include passes its default like a value
                         v, aok = self.attr(a, "value" if a.get("value") is not None else "default")
                         passed[a.get("name")] = v if aok else None
+                ins = ns
+                if el.get("ns"):  # ROS 1: <include ns="...">
+                    v, nok = self.subst(el.get("ns"))
+                    ins = _join_ns(ns, v if nok else "?")
                 self.info.includes.append(Include(f if ok else None, self.loc(el), passed, c,
-                                                  *(_outside(el.get("file")) if not ok else (None, ""))))
+                                                  *(_outside(el.get("file")) if not ok else (None, "")),
+                                                  namespace=ins.strip("/")))
             elif tag == "rosparam":
                 if (el.get("command") or "load") == "load" and el.get("file"):
                     f, ok = self.attr(el, "file")
@@ -696,7 +701,8 @@ class _YamlReader:
                     if isinstance(a, dict) and a.get("name"):
                         v, aok = self.s(a.get("value"))
                         passed[str(a["name"])] = v if aok else None
-                self.info.includes.append(Include(f if ok else None, self.doc.loc(*p), passed, c))
+                self.info.includes.append(Include(f if ok else None, self.doc.loc(*p), passed, c,
+                                                  namespace=ns.strip("/")))
             elif tag == "node":
                 self.node(body, p, ns, c)
 

@@ -16,7 +16,7 @@ joints) that a launch file starts one at a time, so declaring is never running.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check
@@ -38,43 +38,102 @@ _NOT_ACTIVE = frozenset(("--inactive", "--stopped", "--load-only", "--load_only"
 _PER_JOINT_REFERENCES = frozenset(("admittance_controller/AdmittanceController", "pid_controller/PidController"))
 
 
-def _spawn_groups(c) -> Iterator[tuple[object, list]]:
-    """(launch info, [(controller name, spawner node), ...]) of the controllers each launch file spawns active,
-    per controller manager (a spawner's `-c` and namespace)."""
+def _spawns(li) -> list[tuple[int, str, object]]:
+    """(line, controller name, spawner node) of the controllers one launch file's own spawners start active.
+    ROS 2 `spawner` (`spawner.py` before Humble) and ROS 1 `spawner` (and `controller_manager spawn NAMES`)."""
+    out = []
+    for node in li.nodes:
+        if node.package != "controller_manager":
+            continue
+        toks = list(node.args or ())
+        if node.executable == "controller_manager" and toks[:1] == ["spawn"]:
+            toks = toks[1:]  # ROS 1: `rosrun controller_manager controller_manager spawn a b`
+        elif node.executable not in _SPAWNER_EXES:
+            continue
+        if node.condition or not toks or any("\x00" in a for a in toks):
+            continue  # alternatives behind a launch argument, or names not literal
+        if any(t in _NOT_ACTIVE for t in toks):
+            continue
+        i = 0
+        while i < len(toks):
+            t = toks[i]
+            if t in _VALUE_FLAGS:
+                i += 2
+                continue
+            if not t.startswith("-") and ":=" not in t:  # ROS 1 remappings (__name:=x) are no controller
+                out.append((node.loc.line or 0, t, node))
+            i += 1
+    return out
+
+
+def _manager(node) -> str:
+    toks = list(node.args or ())
+    for i, t in enumerate(toks[:-1]):
+        if t in ("-c", "--controller-manager"):
+            return toks[i + 1]
+    return ""
+
+
+def _followed(inc, included) -> bool:
+    """An include whose spawners run with the including file's: its file literal and read, under no undecided
+    condition, no namespace pushed around it (another controller_manager, another robot), and no argument
+    passed that differs from the default the included file was read with (its spawners could name others)."""
+    if inc.file is None or inc.condition is not None or included is None:
+        return False
+    if getattr(inc, "namespace", "").strip("/"):
+        return False
+    for name, decl in included.declared.items():
+        if name in inc.args and inc.args[name] != decl.default:
+            return False
+    return True
+
+
+MAX_INCLUDE_DEPTH = 8
+
+
+def _spawn_groups(c) -> Iterator[tuple[Any, list]]:
+    """(launch info, [(controller name, spawner node, include locations), ...]) of the controllers each launch
+    file spawns active, its own spawners and those of the launch files it includes (followed as `_followed`
+    says), per controller manager (a spawner's `-c` and namespace)."""
+    import os
+
+    by_path: dict[str, object] = {}
+    for li in c.launch:
+        by_path.setdefault(os.path.realpath(li.path), li)
+
+    def members(li, via: tuple, stack: frozenset) -> list:
+        entries = [(line, 0, [(name, node, via)]) for line, name, node in _spawns(li)]
+        if len(stack) <= MAX_INCLUDE_DEPTH:
+            for inc in li.includes:
+                real = os.path.realpath(inc.file) if inc.file else ""
+                included = by_path.get(real)
+                if real in stack or not _followed(inc, included):
+                    continue
+                entries.append((inc.loc.line or 0, 1, members(included, (*via, inc.loc), stack | {real})))
+        return [m for _, _, ms in sorted(entries, key=lambda e: (e[0], e[1])) for m in ms]
+
     for li in c.launch:
         groups: dict[tuple, list] = {}
-        for node in li.nodes:
-            if node.package != "controller_manager" or node.executable not in _SPAWNER_EXES:
-                continue
-            if node.condition or not node.args or any("\x00" in a for a in node.args):
-                continue  # alternatives behind a launch argument, or names not literal
-            toks = list(node.args)
-            if any(t in _NOT_ACTIVE for t in toks):
-                continue
-            manager, names, i = "", [], 0
-            while i < len(toks):
-                t = toks[i]
-                if t in _VALUE_FLAGS:
-                    if t in ("-c", "--controller-manager") and i + 1 < len(toks):
-                        manager = toks[i + 1]
-                    i += 2
-                    continue
-                if not t.startswith("-"):
-                    names.append(t)
-                i += 1
-            key = (node.namespace or "", manager)
-            groups.setdefault(key, []).extend((n, node) for n in names)
-        for members in groups.values():
-            yield li, members
+        for name, node, via in members(li, (), frozenset({os.path.realpath(li.path)})):
+            groups.setdefault((node.namespace or "", _manager(node)), []).append((name, node, via))
+        for group in groups.values():
+            yield li, group
+
+
+# ROS 1: the controller's package names the hardware interface it claims its joints through (position_controllers/*:
+# PositionJointInterface, ...), whatever it commands (effort_controllers/JointPositionController: effort)
+_ROS1_INTERFACE = {"position_controllers": "position", "velocity_controllers": "velocity",
+                   "effort_controllers": "effort"}
 
 
 def _claims(ctrl) -> dict[str, object]:
     """'joint/interface' -> JointUse of the hardware command interfaces the controller claims."""
     out: dict[str, object] = {}
+    ros1 = _ROS1_INTERFACE.get((ctrl.type or "").partition("/")[0]) if ctrl.ros == 1 else None
     for u in ctrl.joints:
         if u.via:
             continue  # a chained controller claims the references of the one it follows, not the hardware
-        for iface in u.command:
+        for iface in ((ros1,) if ros1 and u.role == "joint" else u.command):
             if iface and "$" not in u.joint:
                 out.setdefault(f"{u.joint}/{iface}", u)
     return out
@@ -82,36 +141,46 @@ def _claims(ctrl) -> dict[str, object]:
 
 @check("C022", needs="consumers")
 def interface_claimed_twice(model: Model, ctx: Context) -> Iterator[Problem]:
-    """Two controllers one launch file spawns active claim the same command interface."""
+    """Two controllers one launch file spawns active, itself or through the files it includes, claim the same
+    command interface."""
     from urdfcheck.consumers.consumers import consumers_of as consumers
+    from urdfcheck.core.paths import shown as shown_path
 
     c = consumers(model, ctx)
     if not len(c.controllers) or not c.launch:
         return
-    for _li, members in _spawn_groups(c):
-        holders: dict[str, tuple] = {}  # interface -> (controller, JointUse, spawner node)
+    done: set[tuple] = set()
+    for li, members in _spawn_groups(c):
+        ros = 1 if li.format == "ros1-xml" else 2
+        holders: dict[str, tuple] = {}  # interface -> (controller, JointUse, spawner node, include locations)
         seen: set[str] = set()
-        for name, node in members:
+        for name, node, via in members:
             ctrl = c.controllers.by_name(name)
-            if ctrl is None or ctrl.ros != 2 or name in seen:
+            if ctrl is None or ctrl.ros != ros or name in seen:
                 continue
             seen.add(name)
             taken: dict[str, list] = {}
             for iface, u in _claims(ctrl).items():
                 first = holders.get(iface)
                 if first is None:
-                    holders[iface] = (ctrl, u, node)
+                    holders[iface] = (ctrl, u, node, via)
                 elif first[0].name != ctrl.name:
                     taken.setdefault(first[0].name, []).append((iface, u, first))
             for other, items in taken.items():
                 ifaces = [i for i, _, _ in items]
                 _, u0, first = items[0]
+                key = (node.loc.file, node.loc.line, first[2].loc.file, first[2].loc.line, other, ctrl.name)
+                if key in done:
+                    continue  # the same pair again, from a file that includes both
+                done.add(key)
                 shown = ", ".join(ifaces[:6]) + (f" and {len(ifaces) - 6} more" if len(ifaces) > 6 else "")
+                where = ("here" if not via and not first[3] else
+                         f"by {shown_path(li.path)} (through the launch files it includes)")
                 yield Problem(
-                    f"controllers {other} and {ctrl.name} are both spawned active here and both claim command "
+                    f"controllers {other} and {ctrl.name} are both spawned active {where} and both claim command "
                     f"interface{'s' if len(ifaces) > 1 else ''} {shown}: controller_manager gives a command "
                     f"interface to one active controller and refuses to activate the other ('Resource conflict')",
-                    at=node.loc, related=(first[2].loc, first[1].loc, u0.loc),
+                    at=node.loc, related=(first[2].loc, first[1].loc, u0.loc, *first[3], *via),
                     data={"controllers": [other, ctrl.name], "interfaces": ifaces})
 
 

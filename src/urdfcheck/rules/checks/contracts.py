@@ -21,12 +21,14 @@ from urdfcheck.consumers.common import as_bool
 from urdfcheck.consumers.consumers import Consumers
 from urdfcheck.consumers.consumers import consumers_of as consumers
 from urdfcheck.consumers.controllers import JSB, JSC
+from urdfcheck.consumers.tfclaims import UNTRUSTED
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
+from urdfcheck.rules.checks.tf.graph import untrusted_hint
 from urdfcheck.rules.contracts.wheels import check_drive
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)
@@ -634,9 +636,10 @@ def unknown_frame(model: Model, ctx: Context) -> Iterator[Problem]:
         name = str(v.value).strip().lstrip("/")
         if not name or _unresolved(name) or name in links or (name, v.loc) in seen:
             continue
-        # a frame somebody else publishes is in the tree; the user's own odometry claim does not count
+        # a frame somebody else publishes is in the tree; the user's own odometry claim does not count, nor an
+        # untrusted config's declaration (consumers.tfclaims.UNTRUSTED)
         others = {f for cl in g.claims if cl.owner != owner and not cl.owner.endswith(owner)
-                  for f in (cl.parent, cl.child)}
+                  and cl.source != UNTRUSTED for f in (cl.parent, cl.child)}
         if name in others:
             continue
         seen.add((name, v.loc))
@@ -644,7 +647,7 @@ def unknown_frame(model: Model, ctx: Context) -> Iterator[Problem]:
         # a near miss of a frame that exists is evidence of a typo; without one, the claim is that nothing
         # publishes the frame, which holds only where the whole deployment was understood (issue 20)
         yield Problem(f"{who} uses frame {name!r}, which is neither a link of the model nor published by "
-                      f"anything else{hint}", at=v.loc, data={"frame": name},
+                      f"anything else{hint}{untrusted_hint(g, (name,))}", at=v.loc, data={"frame": name},
                       severity=_WARNING() if owner in inferred else None, absent=None if hint else "publish it")
 
 

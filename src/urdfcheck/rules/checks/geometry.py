@@ -271,10 +271,12 @@ def missing_geometry(model: Model, ctx: Context) -> Iterator[Problem]:
 # --- G006 ------------------------------------------------------------------------------------------
 @check("G006")
 def self_collision_at_zero(model: Model, ctx: Context) -> Iterator[Problem]:
-    """Collision primitives of two non-adjacent links interpenetrate at the zero configuration (coal, lazily)."""
+    """Collision shapes (primitives, and meshes read through the door) of two non-adjacent links interpenetrate at
+    the zero configuration (coal, lazily)."""
     if sum(1 for link in model.link_list if link.collisions) < 2:
         return
+    from urdfcheck.rules.meshes import reader
     from urdfcheck.rules.selfcollision import self_collisions
 
     entry = getattr(ctx.expanded, "entry", None) or model.source
-    yield from self_collisions(model, str(entry) if entry else "", float(ctx.options["depth"]))
+    yield from self_collisions(model, str(entry) if entry else "", float(ctx.options["depth"]), reader(model, ctx))

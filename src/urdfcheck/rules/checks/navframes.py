@@ -62,6 +62,7 @@ def navigation_frame_unknown(model: Model, ctx: Context) -> Iterator[Problem]:
     from urdfcheck.consumers.navigation import nav_frames
     from urdfcheck.rules.checks.contracts import _suggest_frame, _unresolved
     from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
+    from urdfcheck.rules.checks.tf.graph import vouched_claims
 
     c = consumers(model, ctx)
     paths, launched = _files(c)
@@ -73,7 +74,7 @@ def navigation_frame_unknown(model: Model, ctx: Context) -> Iterator[Problem]:
         return
     prefix = c.rsp_prefix
     links = {prefix + n for n in model.links}
-    g = _graph(model, c)
+    g = vouched_claims(_graph(model, c))  # an untrusted config's declared owners publish nothing (issue 36)
     published = {f for cl in g.claims for f in (cl.parent, cl.child)}
     owners: dict[str, set] = {}  # frame -> owners of the claims naming it
     for cl in g.claims:

@@ -21,6 +21,8 @@ from urdfcheck.rules.checks.tf.graph import (
     not_one_tree,
     prefix_collisions,
     static_and_dynamic,
+    untrusted_hint,
+    vouched_claims,
 )
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
@@ -167,8 +169,10 @@ def tf_not_one_tree(model: Model, ctx: Context) -> Iterator[Problem]:
     g = _graph(model, c)
     if not _has_consumer_claims(g) or len(model.roots) > 1:
         return  # several roots in the model itself: S001
-    for p in not_one_tree(g, c.frames):
-        got = _as_problem(p)
+    # an untrusted config's declared owners do not join the trees (rules.checks.tf.graph.vouched_claims)
+    plain = vouched_claims(g)
+    for p in not_one_tree(plain, c.frames):
+        got = _as_problem(p, hint=untrusted_hint(g, plain.frames) if not not_one_tree(g, c.frames) else "")
         got.absent = "publish the transform that joins them"
         yield got
 

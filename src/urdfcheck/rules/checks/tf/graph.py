@@ -8,8 +8,10 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 
 from urdfcheck.consumers.tfclaims import (
+    DECLARED,
     DYNAMIC,
     STATIC,
+    UNTRUSTED,
     TFClaim,
     claims_from_localization,
     claims_from_model,
@@ -97,6 +99,24 @@ class TFGraph(Record):
         return any(c.parent == f or c.child == f for c in self.claims)
 
 
+def vouched_claims(g: TFGraph) -> TFGraph:
+    """`g` without the declarations of a config the runner did not vouch for: what may count as published."""
+    if not any(c.source == UNTRUSTED for c in g.claims):
+        return g
+    return TFGraph([c for c in g.claims if c.source != UNTRUSTED])
+
+
+def untrusted_hint(g: TFGraph, frames) -> str:
+    """What to say when a frame is published only by an untrusted config's declaration."""
+    said = [c for c in g.claims if c.source == UNTRUSTED and ({c.parent, c.child} & set(frames))]
+    if not said:
+        return ""
+    c = said[0]
+    return (f"; the config's tf_owners declares {c.parent} -> {c.child} ({c.owner}, {c.loc.shown()}), which counts "
+            "only in a config the runner names with --config FILE --trust-config (or --config-from REV): one found "
+            "in the checkout may add a publisher, never publish a frame")
+
+
 def declared_matches(owner: str, claim: TFClaim) -> bool:
     """Does the owner written in the config's `tf_owners` name the publisher of `claim`?
 
@@ -113,7 +133,7 @@ def add_declared(g: TFGraph, declared: Iterable[TFClaim]) -> TFGraph:
     already seen on the same edge is that publisher, not a second one."""
     for c in declared:
         edge = (norm(c.parent), norm(c.child))
-        if any(x.edge == edge and x.source != "config" and declared_matches(c.owner, x) for x in g.claims):
+        if any(x.edge == edge and x.source not in DECLARED and declared_matches(c.owner, x) for x in g.claims):
             continue
         g.add(c)
     return g
