@@ -244,7 +244,8 @@ def lint_argv(argv) -> list:
 def test_action_metadata():
     spec = action()
     assert spec["runs"]["using"] == "composite"
-    assert set(spec["inputs"]) >= {"paths", "fail-on", "sarif", "summary", "args", "extras", "config-from-base"}
+    assert set(spec["inputs"]) >= {"paths", "fail-on", "sarif", "summary", "args", "extras", "config-from-base",
+                                   "diff-base"}
     assert all("description" in v for v in spec["inputs"].values())
     assert spec["inputs"]["fail-on"]["default"] == "warning"  # never the checkout's config
     steps = {s["name"]: s for s in spec["runs"]["steps"]}
@@ -338,9 +339,13 @@ def test_fail_on_is_the_workflows_not_the_checkouts_config(tmp_path, source):
 FORK = "mallory/robot"
 
 
-def pull_request(ws: Path, head_repo: str) -> dict:
+def pull_request(ws: Path, head_repo: str, change=None) -> dict:
+    """Commit the pull request's change (`change(ws)`, else a README edit) and return its event."""
     base = git(ws, "rev-parse", "HEAD")
-    (ws / "README.md").write_text("the pull request's change\n")
+    if change is None:
+        (ws / "README.md").write_text("the pull request's change\n")
+    else:
+        change(ws)
     git(ws, "add", "-A")
     git(ws, "commit", "-qm", "pr")
     return {"pull_request": {"number": 7, "base": {"sha": base, "repo": {"full_name": "owner/robot"}},
@@ -348,28 +353,62 @@ def pull_request(ws: Path, head_repo: str) -> dict:
                                       "repo": {"full_name": head_repo, "fork": head_repo != "owner/robot"}}}}
 
 
-def _has_config_from() -> bool:
-    res = subprocess.run([sys.executable, "-m", "urdfcheck", "lint", "--help"], capture_output=True, text=True,
-                         env={**os.environ, "PYTHONPATH": SRC})
-    return "--config-from" in res.stdout
+def zero_velocity(urdf: str):
+    """A pull request's change that adds one finding (J004 at line 77) to the joint_limits example's two errors."""
+    def change(ws: Path):
+        f = ws / urdf
+        text = f.read_text()
+        assert text.splitlines()[76].strip() == '<limit effort="20.0" velocity="10.0"/>'
+        f.write_text(text.replace('<limit effort="20.0" velocity="10.0"/>', '<limit effort="20.0" velocity="0"/>', 1))
+    return change
 
 
-def test_fork_pull_request_skips_the_upload_and_still_reports(tmp_path, source):
-    ws = workspace_with(tmp_path, "examples/broken/joint_limits")
-    event = pull_request(ws, FORK)
-    ctx, log, summary, argv = run_action(tmp_path, ws, source, event_name="pull_request", event=event,
-                                         upload_fails=True)
+def test_fork_pull_request_from_a_subfolder_reports_what_it_adds(tmp_path, source):
+    """All at once, as issue 38 asks: a pull request from a fork (read-only token), the action run with
+    `working-directory: src/robot/joint_limits`, and the PEP 668 Python of this machine when it has one (the install
+    step makes its own environment). The pull request adds J004 to a package with two old errors and an info: the
+    upload is
+    not tried, the summary names the new finding at its repository path, and the job fails on it alone."""
+    urdf = "src/robot/joint_limits/urdf/agv.urdf"
+    ws = workspace_with(tmp_path, "examples/broken/joint_limits", under="src/robot")
+    event = pull_request(ws, FORK, zero_velocity(urdf))
+    ctx, log, summary, argv = run_action(tmp_path, ws, source, {"working-directory": "src/robot/joint_limits"},
+                                         event_name="pull_request", event=event, upload_fails=True)
     st = status(log)
+    assert st["Install urdfcheck"] == 0
+    assert Path(ctx.steps["install"]["urdfcheck"]).parent.parent == tmp_path / "runner_temp" / "urdfcheck-venv"
     assert st["Upload SARIF to code scanning"] == "skipped"  # a read-only token: not tried
     assert st["urdfcheck result"] == 1 and ctx.steps["lint"]["exit-code"] == "1"
-    assert "J00" in summary
-    lint = next(res for name, _, res in log if name == "urdfcheck lint")
     args = lint_argv(argv)
     base = event["pull_request"]["base"]["sha"]
-    if _has_config_from():
-        assert args[args.index("--config-from") + 1] == base  # the base revision's config, not the fork's
-    else:  # an urdfcheck without the flag (before `lint --config-from` lands): said, not silent
-        assert "has no --config-from" in lint.stdout
+    assert args[args.index("--config-from") + 1] == base  # the base revision's config, not the fork's
+    assert args[args.index("--diff-base") + 1] == base
+    lint = next(res for name, _, res in log if name == "urdfcheck lint")
+    assert set(re.findall(r"^::\w+ file=([^,]+),", lint.stdout, re.M)) == {urdf}  # every finding annotated
+    assert "1 new, 0 fixed, 3 unchanged" in summary  # the two errors and an info were there before
+    new = [ln for ln in summary.splitlines() if ln.startswith("- :new:")]
+    assert len(new) == 1 and "J004" in new[0] and f"{urdf}:77" in new[0], summary
+    assert str(ws) not in summary and str(tmp_path) not in summary
+
+
+def test_a_pull_request_with_only_old_debts_passes_and_says_so(tmp_path, source):
+    """The same package's old findings, a pull request that touches only the README: nothing new, the job
+    passes, and the summary still lists every finding with the tally against the base."""
+    ws = workspace_with(tmp_path, "examples/broken/joint_limits")
+    event = pull_request(ws, FORK)
+    ctx, log, summary, _ = run_action(tmp_path, ws, source, event_name="pull_request", event=event)
+    assert ctx.steps["lint"]["exit-code"] == "0" and status(log)["urdfcheck result"] == 0
+    assert "0 new, 0 fixed, 3 unchanged" in summary and "J003" in summary
+
+
+def test_diff_base_off_gates_a_pull_request_on_every_finding(tmp_path, source):
+    ws = workspace_with(tmp_path, "examples/broken/joint_limits")
+    event = pull_request(ws, FORK)
+    ctx, log, summary, argv = run_action(tmp_path, ws, source, {"diff-base": "false"}, event_name="pull_request",
+                                         event=event)
+    assert "--diff-base" not in lint_argv(argv)
+    assert ctx.steps["lint"]["exit-code"] == "1" and status(log)["urdfcheck result"] == 1
+    assert "unchanged" not in summary
 
 
 def test_a_shallow_pull_request_checkout_gets_the_base_commit_and_its_config(tmp_path, source):
@@ -402,7 +441,7 @@ def test_a_failed_upload_does_not_hide_the_result(tmp_path, source):
     """Same-repository pull request without `security-events: write`: the upload fails, the job still ends with
     urdfcheck's status."""
     ws = workspace_with(tmp_path, "examples/broken/joint_limits")
-    event = pull_request(ws, "owner/robot")
+    event = pull_request(ws, "owner/robot", zero_velocity("src/joint_limits/urdf/agv.urdf"))
     ctx, log, _, _ = run_action(tmp_path, ws, source, {"config-from-base": "false"}, event_name="pull_request",
                                 event=event, upload_fails=True)
     st = status(log)

@@ -287,6 +287,27 @@ def test_controller_parameters_a_contract_reads_are_shown(tmp_path):
     assert "wheel_separation: 0.5 -> 0.45" in text
 
 
+@pytest.mark.skipif(shutil.which("git") is None, reason="git not installed")
+def test_controller_joint_lists_and_frames_are_shown(tmp_path):
+    """The other contract facts issue 38 names: a wheel joint list (the right wheels now two joints, one of them
+    no joint of the model) and the frame the odometry is about."""
+    repo = _repo(tmp_path)
+    f = repo / "agv_description/config/agv_controllers.yaml"
+    edit(f, "right_wheel_names: [right_wheel_joint]", "right_wheel_names: [right_wheel_joint, rear_right_joint]")
+    edit(f, "base_frame_id: base_link", "base_frame_id: base_footprint")
+    data = as_json(cli("--git", "HEAD", "--format", "json", cwd=repo))
+    deployed = [m for m in data["models"] if m["variant"].startswith("agv_description/launch/")]
+    assert deployed
+    for m in deployed:
+        got = {c["name"]: (c["old"], c["new"]) for c in m["changes"]}
+        assert got["controller diff_drive_controller right wheels"] == (["right_wheel_joint"],
+                                                                       ["right_wheel_joint", "rear_right_joint"])
+        assert got["controller diff_drive_controller joints"] == (
+            ["left_wheel_joint", "right_wheel_joint"], ["left_wheel_joint", "rear_right_joint", "right_wheel_joint"])
+        assert "controller diff_drive_controller odom tf odom -> base_footprint" in got
+        assert any(k.endswith(" frames") and "base_footprint" in (v[1] or []) for k, v in got.items()), got
+
+
 def test_per_variant_repeats_are_collapsed(two):
     old, new = two
     edit(new / "urdf/agv.urdf.xacro", 'name="laser_link" parent="base_link" xyz="0.25 0 0.15"',

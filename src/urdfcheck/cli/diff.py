@@ -107,7 +107,8 @@ def _findings(ns, paths):
     except GitError as e:
         raise UsageError(f"--git: {e}") from None
     result = pipeline.run(make_request(paths, **options()))
-    return changes.classify(ns.git, base, result.findings, root)  # its notes: already the diff's
+    # its notes: already the diff's
+    return changes.classify(ns.git, base, result.findings, root, (), changes.unloaded(result, root))
 
 
 def _label(path: str) -> str:

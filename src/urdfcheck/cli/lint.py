@@ -83,7 +83,8 @@ def _run(ns, usage_error) -> int:
                 from urdfcheck.diff import findings as changes
 
                 root, base, notes = against
-                result.changes = changes.classify(ns.diff_base, base, result.findings, root, notes)
+                result.changes = changes.classify(ns.diff_base, base, result.findings, root, notes,
+                                                  changes.unloaded(result, root))
         finally:
             progress.close()
     except UsageError as e:

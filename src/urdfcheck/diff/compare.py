@@ -249,7 +249,7 @@ def compare_targets(key, old_t, new_t, *, seeds: int = SEEDS, roots=(None, None)
     (om, oexp, ot), (nm, nexp, nt) = sides
     pair = compare_models(om, nm, seeds=seeds, roots=roots)
     pair.model, pair.variant = key
-    pair.changes.extend(compare_contracts(_consumers(ot, om, oexp), _consumers(nt, nm, nexp), pair))
+    pair.changes.extend(compare_contracts(_consumers(ot, om, oexp), _consumers(nt, nm, nexp), pair, (om, nm)))
     pair.status = "changed" if (pair.changes or pair.moved or any(pair.links.values())
                                 or any(pair.joints.values())) else "unchanged"
     return pair
@@ -556,10 +556,13 @@ def _cause(model, link: str, changed: set) -> str | None:
 
 
 # --- contracts ----------------------------------------------------------------------------------------------------
-def contract_facts(c) -> dict:
+def contract_facts(c, model=None) -> dict:
     """What a change of the description can break in its consumers: the joints each controller and driver
-    names, and the TF edges others claim (launch files, controllers, drivers, localization, the config)."""
+    names, and the TF edges others claim (launch files, controllers, drivers, localization, the config); and,
+    from the model itself, what its Gazebo plugins are told (consumers.gazebo reads them as the contracts do)."""
     out: dict[str, object] = {}
+    if model is not None:
+        _plugin_facts(out, model)
     if c is None:
         return out
     for ctrl in c.controllers:
@@ -587,7 +590,20 @@ def contract_facts(c) -> dict:
     return out
 
 
-def _reader_facts(out: dict, who: str, r) -> None:
+def _plugin_facts(out: dict, model) -> None:
+    """A Gazebo plugin is a controller or driver written inside the model (a diff drive's wheel separation, the
+    odometry transform it broadcasts, the joint states it publishes): the same facts, keyed by its label."""
+    from urdfcheck.consumers.gazebo import read_plugins
+
+    for o in read_plugins(model):
+        _reader_facts(out, o.label, o, odom=o.odom)
+        if o.drive is not None:
+            out[f"{o.label} wheel tf"] = "on" if o.wheel_tf else "off"
+        if o.state_joints is not None:
+            out[f"{o.label} joint states"] = sorted(o.state_joints) or "all joints"
+
+
+def _reader_facts(out: dict, who: str, r, odom=None) -> None:
     """The parameters of a controller or driver (as consumers.controllers read them) that a contract with the
     model reads: wheel geometry and wheel joints, the odom transform and its switch, the frame ids."""
     from urdfcheck.consumers.controllers import number
@@ -600,7 +616,7 @@ def _reader_facts(out: dict, who: str, r) -> None:
             if drive.radius(side) != number(drive.wheel_radius):
                 out[f"{who} {side} wheel radius"] = _num(drive.radius(side))
             out[f"{who} {side} wheels"] = [u.joint for u in getattr(drive, side)]
-    odom = getattr(r, "odom_tf", None)
+    odom = getattr(r, "odom_tf", None) if odom is None else odom
     if odom is not None:
         out[f"{who} odom tf {odom.parent} -> {odom.child}"] = "on" if odom.enabled else "off"
     frames = sorted({str(v.value) for v in getattr(r, "frames", ()) or () if v is not None})
@@ -608,8 +624,8 @@ def _reader_facts(out: dict, who: str, r) -> None:
         out[f"{who} frames"] = frames
 
 
-def compare_contracts(old_c, new_c, pair: Pair) -> list[dict]:
-    a, b = contract_facts(old_c), contract_facts(new_c)
+def compare_contracts(old_c, new_c, pair: Pair, models=(None, None)) -> list[dict]:
+    a, b = contract_facts(old_c, models[0]), contract_facts(new_c, models[1])
     out = []
     for key in dict.fromkeys([*a, *b]):
         x, y = a.get(key), b.get(key)

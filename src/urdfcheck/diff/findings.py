@@ -6,6 +6,9 @@ message reads as it does in the working tree), and removed. A finding is matched
 to the repository, its message with line numbers taken out and the text of the line it points at; then, for
 what is left, without that text (the element's line was edited, the finding was not). So a finding that only
 moved lines is unchanged; a third identical finding where the base had two is new.
+
+A base finding that is gone because every model it was found in no longer loads is not fixed: it was not looked
+for. It is counted apart (`not_checked`), and the load failure is among the new findings.
 """
 from __future__ import annotations
 
@@ -19,26 +22,31 @@ from urdfcheck.core.records import Record
 class FindingsDiff(Record):
     """rev: the base revision as typed. new: findings of the working tree the base did not have (Finding).
     fixed: findings of the base the working tree no longer has (dicts: code, severity, file, line, message).
-    unchanged: how many are in both. notes: files of the revision that were not read, and why."""
+    unchanged: how many are in both. notes: files of the revision that were not read, and why.
+    not_checked: findings of the base (dicts, as `fixed`) whose models all fail to load in the working tree."""
 
-    _fields = ('rev', 'new', 'fixed', 'unchanged', 'notes')
+    _fields = ('rev', 'new', 'fixed', 'unchanged', 'notes', 'not_checked')
 
-    def __init__(self, rev: str, new: list, fixed: list, unchanged: int, notes=()):
+    def __init__(self, rev: str, new: list, fixed: list, unchanged: int, notes=(), not_checked=()):
         self.rev, self.new, self.fixed, self.unchanged, self.notes = rev, new, fixed, unchanged, list(notes)
+        self.not_checked = list(not_checked)
 
     def as_dict(self) -> dict:
         return {"base": clean_text(self.rev), "new": [_summary(f) for f in self.new], "fixed": list(self.fixed),
-                "unchanged": self.unchanged, "notes": [clean_text(n, 4096) for n in self.notes]}
+                "unchanged": self.unchanged, "not_checked": list(self.not_checked),
+                "notes": [clean_text(n, 4096) for n in self.notes]}
 
     def tally(self) -> str:
+        gone = f", {len(self.not_checked)} not checked (the model no longer loads)" if self.not_checked else ""
         return (f"against {clean_text(self.rev)}: {len(self.new)} new, {len(self.fixed)} fixed, "
-                f"{self.unchanged} unchanged")
+                f"{self.unchanged} unchanged{gone}")
 
     def text_lines(self) -> list[str]:
         out = ["", self.tally()]
         out += [f"  note: {clean_text(n, 4096)}" for n in self.notes]
         out += [f"  NEW   {_line(_summary(f))}" for f in self.new]
         out += [f"  fixed {_line(x)}" for x in self.fixed]
+        out += [f"  not checked {_line(x)}" for x in self.not_checked]
         return out
 
     def markdown_lines(self) -> list[str]:
@@ -51,6 +59,10 @@ class FindingsDiff(Record):
         if self.fixed:
             out += ["**Fixed by this change:**", ""]
             out += [f"- `{_code(x['code'])}` at `{_code(_where(x))}`: {_md(x['message'])}" for x in self.fixed]
+            out.append("")
+        if self.not_checked:
+            out += ["**Not checked in this change** (the model no longer loads; not fixed):", ""]
+            out += [f"- `{_code(x['code'])}` at `{_code(_where(x))}`: {_md(x['message'])}" for x in self.not_checked]
             out.append("")
         out += [f"- note: {_md(n)}" for n in self.notes]
         return out
@@ -96,12 +108,48 @@ def key(f: Finding, root: str) -> tuple[str, str, str, str]:
     run had)."""
     from urdfcheck.finish import baseline
 
-    return (f.code, baseline.portable_path(str(f.location.file), root), baseline.normalise_message(f.message),
+    message = _mesh_named(f.message) if f.code == "G001" else f.message
+    return (f.code, baseline.portable_path(str(f.location.file), root), baseline.normalise_message(message),
             baseline.context(f))
 
 
-def classify(rev: str, base: list[tuple[tuple, dict]], findings: list[Finding], root: str, notes=()) -> FindingsDiff:
-    """`base`: (key, summary) of each base finding; `findings`: the working tree's, keyed against `root`."""
+_MESH = lazyre.compile(r"^mesh '([^']+)'")
+
+
+def _mesh_named(message: str) -> str:
+    """G001 quotes the mesh as the model writes it, an absolute `file://` path shown relative to the working
+    directory: one missing mesh written `package://ur_description/m.dae` in the base and
+    `file://$(find ur_description)/m.dae` in the change is the same finding. Named as diff compares meshes."""
+    m = _MESH.match(message)
+    if m is None:
+        return message
+    uri = m.group(1)
+    if "://" in uri and not uri.startswith("file://"):
+        return message
+    from urdfcheck.diff.compare import mesh_name
+
+    path = uri[len("file://"):] if uri.startswith("file://") else uri
+    return f"mesh {mesh_name(os.path.abspath(path), None)!r}" + message[m.end():]
+
+
+def places(f: Finding, root: str) -> tuple[tuple[str, str], ...]:
+    """The (model relative to `root`, variant) pairs a finding was found in."""
+    from urdfcheck.finish import baseline
+
+    return tuple((baseline.portable_path(p.model, root), p.variant) for p in f.places() if p.model)
+
+
+def unloaded(result, root: str) -> set[tuple[str, str]]:
+    """(model relative to `root`, variant) of each target of a run (run.Result) whose model did not load."""
+    from urdfcheck.finish import baseline
+
+    return {(baseline.portable_path(str(t.path), root), t.variant) for t in result.unchecked()}
+
+
+def classify(rev: str, base: list[tuple[tuple, dict]], findings: list[Finding], root: str, notes=(),
+             unchecked=frozenset()) -> FindingsDiff:
+    """`base`: (key, summary) of each base finding, the summary's "_places" its `places`; `findings`: the working
+    tree's, keyed against `root`; `unchecked`: `unloaded` of the working tree's run."""
     from urdfcheck.finish import baseline
 
     baseline._LINES_CACHE.clear()
@@ -123,9 +171,14 @@ def classify(rev: str, base: list[tuple[tuple, dict]], findings: list[Finding], 
         free = [j for j in loose.get(k[:3], ()) if not taken[j]]
         if free:
             taken[free[0]] = matched[i] = True
-    fixed = [summary for (_, summary), t in zip(base, taken) if not t]
+    fixed, gone = [], []
+    for (_, summary), t in zip(base, taken):
+        where = summary.get("_places") or ()
+        summary = {k: v for k, v in summary.items() if k != "_places"}
+        if not t:
+            (gone if where and all(tuple(w) in unchecked for w in where) else fixed).append(summary)
     new = [f for f, m in zip(findings, matched) if not m]
-    return FindingsDiff(rev, new, fixed, sum(matched), notes)
+    return FindingsDiff(rev, new, fixed, sum(matched), notes, gone)
 
 
 def base_findings(rev: str, paths: list[str], make_request, *, start: str | None = None):
@@ -180,7 +233,8 @@ def base_findings(rev: str, paths: list[str], make_request, *, start: str | None
 
             baseline._LINES_CACHE.clear()
             shown_wt = os.path.relpath(wt, here)
-            out = [(key(f, tree.root), _scrubbed(_summary(f), tree.root, shown_wt)) for f in result.findings]
+            out = [(key(f, tree.root), {**_scrubbed(_summary(f), tree.root, shown_wt),
+                                        "_places": places(f, tree.root)}) for f in result.findings]
         finally:
             os.chdir(here)
         return wt, out, tree.notes
