@@ -47,7 +47,7 @@ JOINTS = ["left_wheel_joint", "right_wheel_joint", "arm_joint", "ghost_joint"]
 
 
 # --- seeds ---------------------------------------------------------------------------------------------------
-def _events(n: int = 6):
+def _events(n: int = 40):  # (more than source.MIN_RUN: chunks read whole take the fast path too)
     ev = [("tf", 0.0, [("base_link", "laser", (0.1, 0.0, 0.2), (0, 0, 0, 1))], "/tf_static")]
     for i in range(n):
         t = 0.1 * (i + 1)

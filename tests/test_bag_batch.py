@@ -243,6 +243,15 @@ def test_batches_find_what_message_by_message_finds(case, fmt, tmp_path, monkeyp
         return real_tf(self, m, plan)
 
     monkeypatch.setattr(tfcheck.TfChecks, "_add_fast", counted_tf)
+    real_batch = tfcheck.TfChecks.batch
+
+    def counted_batch(self, b):  # a batch's /tf messages replayed at once count as by layout too
+        done = real_batch(self, b)
+        if done:
+            by_layout.extend([1] * len(b.tfs))
+        return done
+
+    monkeypatch.setattr(tfcheck.TfChecks, "batch", counted_batch)
     fast = [(f.code, str(f.severity), f.message) for f in check_recording(model, str(bag))]
     assert sum(steady) > 1000 and len(by_layout) > 400  # the numpy paths did run
     whole = source.messages
@@ -298,3 +307,115 @@ def test_real_ros1_recordings_find_the_same_either_way(monkeypatch):
         assert fast == _findings(model, bag, monkeypatch, False), bag.name
         seen.update(c for c, _s, _m in fast)
     assert seen  # the fixtures carry seeded defects
+
+
+def _stream(path, batches: bool) -> list:
+    """Every message source.messages gives, batches taken apart, as plain tuples (bit for bit comparable)."""
+    from urdfcheck.bag import source
+
+    def plain(m):
+        d = m.data
+        if m.kind == "joint_state":
+            data = (d.names, d.position, d.velocity, d.effort, d.stamp_ns)
+        else:
+            data = tuple(tuple(e) for e in d)
+        return repr((m.topic, m.index, m.time_ns, m.kind, m.callerid, m.start, data))
+
+    out = []
+    for m in source.messages(str(path), batches=batches):
+        if m.kind != "joint_state_batch":
+            out.append(plain(m))
+            continue
+        tfs = list(m.tfs)
+        k = 0
+        for j in range(len(m)):
+            while k < len(tfs) and tfs[k][0] == j:
+                out.append(plain(tfs[k][1]))
+                k += 1
+            out.append(plain(m.message(j)))
+        out.extend(plain(tm) for _j, tm in tfs[k:])
+    return out
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+def test_layout_changes_inside_a_chunk(fmt, tmp_path, monkeypatch):
+    """Whole chunks read at once (containers.Block, source._runs, TfChecks.batch): a joint added for one message,
+    then for good, names reordered, /tf edges reordered, all inside chunks: the same messages, bit for bit, and the
+    same findings as message by message."""
+    from urdfcheck.bag import check_recording, source, tfcheck
+    from urdfcheck.load import loader
+
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text(ROBOT)
+    model = loader.load_model(str(urdf), {})
+    events = []
+    t = 1.0
+    for i in range(4000):
+        t += 0.01
+        q = {"shoulder": 0.4 * math.sin(i / 50), "elbow": 0.5 * math.cos(i / 50), "wrist": 0.1}
+        names = ["shoulder", "elbow"]
+        if i == 1200 or 1600 <= i < 2000:
+            names = ["shoulder", "elbow", "wrist"]  # a joint added (once, then for a while)
+        elif 2000 <= i < 2600:
+            names = ["elbow", "shoulder"]  # reordered
+        events.append(("js", t, names, [q[n] for n in names]))
+        s = ("base_link", "upper_arm", (0.0, 0.0, 0.1), (0.0, 0.0, math.sin(q["shoulder"] / 2),
+                                                         math.cos(q["shoulder"] / 2)))
+        e = ("upper_arm", "tool", (0.3, 0.0, 0.0), (0.0, math.sin(q["elbow"] / 2), 0.0, math.cos(q["elbow"] / 2)))
+        if i == 3300:
+            e = ("upper_arm", "tool", (0.302, 0.0, 0.0), e[3])  # another URDF on the robot, once
+        if i % 10 == 0:
+            events.append(("tf", t, [e, s] if 2400 <= i < 3000 else [s, e], "/tf"))
+    bag = write(tmp_path / "run", fmt, events)
+    pieces, batched = [], []
+    runs, batch = source._runs, tfcheck.TfChecks.batch
+
+    def counted_runs(*a):
+        got = runs(*a)
+        pieces.extend(fast for _p, fast in got)
+        return got
+
+    def counted_batch(self, b):
+        done = batch(self, b)
+        batched.append(done)
+        return done
+
+    monkeypatch.setattr(source, "_runs", counted_runs)
+    monkeypatch.setattr(tfcheck.TfChecks, "batch", counted_batch)
+    fast = _stream(bag, True)
+    assert fast == _stream(bag, False)
+    assert len(fast) == len(events)
+    assert pieces.count(True) >= 3 and pieces.count(False) >= 2  # whole runs, and the changed messages alone
+    found = [(f.code, str(f.severity), f.message) for f in check_recording(model, str(bag))]
+    assert True in batched  # (a batch and its /tf at once, where no plan of the layout is new)
+    assert found == _findings(model, bag, monkeypatch, False)
+    assert {c for c, _s, _m in found} >= {"B001", "B013"}
+
+
+@pytest.mark.parametrize("fmt", ["mcap", "ros1"])
+def test_damaged_chunks_read_whole_find_what_message_by_message_finds(fmt, tmp_path, monkeypatch):
+    """A byte changed inside a chunk (a length, a header, a name, a value): the chunk read whole (numpy) and
+    record by record give the same findings, the same B014 after the same count of messages included."""
+    import random
+
+    from urdfcheck.load import loader
+
+    urdf = tmp_path / "arm.urdf"
+    urdf.write_text(ROBOT)
+    model = loader.load_model(str(urdf), {})
+    clean = write(tmp_path / "run", fmt, _events(3000, {}))
+    if clean.is_dir():
+        clean = next(clean.glob("*.mcap"))
+    data = clean.read_bytes()
+    rng = random.Random(39)
+    codes = set()
+    for k in range(16):
+        at = rng.randrange(len(data) // 4, len(data) * 3 // 4)
+        bad = bytearray(data)
+        bad[at] ^= rng.choice((0x01, 0x10, 0x80, 0xFF))
+        path = tmp_path / f"bad{k}{clean.suffix}"
+        path.write_bytes(bytes(bad))
+        fast = _findings(model, path, monkeypatch, True)
+        assert fast == _findings(model, path, monkeypatch, False), at
+        codes.update(c for c, _s, _m in fast)
+    assert codes  # some changes are found

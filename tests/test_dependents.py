@@ -66,7 +66,34 @@ def mono(tmp_path) -> Path:
     (other / "launch" / "slam.launch.xml").write_text(
         '<launch><node pkg="cartographer_ros" exec="cartographer_node" name="c" args="-configuration_directory '
         '$(find-pkg-share other_bringup)/config -configuration_basename slam.lua"/></launch>\n')
+    # a launch file of the same name as repoA's, included by name in its own package (a generic name names that
+    # package's file)
+    (other / "launch" / "bringup.launch.xml").write_text(
+        '<launch><node pkg="joy" exec="joy_node" name="joy"/></launch>\n')
+    (other / "launch" / "all.launch.xml").write_text(
+        '<launch><include file="$(find-pkg-share other_bringup)/launch/bringup.launch.xml"/></launch>\n')
     shutil.copytree(REPO / "examples" / "broken" / "joint_limits", tmp_path / "repoB" / "joint_limits")
+    # repoC: a robot whose model (through an include) loads repoA's shared controller file in its Gazebo plugin; its
+    # launch file names neither that file nor its package (turtlebot4 reading create3's control.yaml)
+    bot = tmp_path / "repoC" / "bot_description"
+    (bot / "urdf").mkdir(parents=True)
+    (bot / "launch").mkdir()
+    (bot / "package.xml").write_text((desc / "package.xml").read_text().replace("agv_description", "bot_description"))
+    (bringup / "config" / "shared_controllers.yaml").write_text(
+        "controller_manager:\n  ros__parameters:\n    update_rate: 50\n")
+    (bot / "urdf" / "bot.urdf.xacro").write_text(
+        '<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <link name="base_link"/>\n'
+        '  <xacro:include filename="$(find bot_description)/urdf/plugin.xacro"/>\n</robot>\n')
+    (bot / "urdf" / "plugin.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">\n  <gazebo>\n'
+        '    <plugin filename="libgz_ros2_control-system.so" name="gz_ros2_control::GazeboSimROS2ControlPlugin">\n'
+        '      <parameters>$(find agv_bringup)/config/shared_controllers.yaml</parameters>\n'
+        '    </plugin>\n  </gazebo>\n</robot>\n')
+    (bot / "launch" / "bot.launch.xml").write_text(
+        '<launch>\n  <node pkg="robot_state_publisher" exec="robot_state_publisher" name="robot_state_publisher">\n'
+        '    <param name="robot_description" type="str"\n'
+        '           value="$(command \'xacro $(find-pkg-share bot_description)/urdf/bot.urdf.xacro\')"/>\n'
+        '  </node>\n</launch>\n')
     return tmp_path
 
 
@@ -141,7 +168,8 @@ def _both(monkeypatch, here: Path, files: list[str]):
 def test_the_same_targets_as_a_plan_of_the_whole_folder(mono, monkeypatch):
     files = ["repoA/agv_bringup/config/controllers.yaml", "repoA/agv_description/config/agv_controllers.yaml",
              "repoA/agv_description/config/carto.lua", "repoA/agv_bringup/launch/controllers.launch.xml",
-             "repoA/agv_bringup/config/slam.lua", "repoA/agv_description/config/agv.srdf"]
+             "repoA/agv_bringup/config/slam.lua", "repoA/agv_description/config/agv.srdf",
+             "repoA/agv_bringup/config/shared_controllers.yaml"]
     fast, whole = _both(monkeypatch, mono, files)
     assert fast == whole and all(fast), [(sorted(a - b), sorted(b - a)) for a, b in zip(fast, whole) if a != b]
 
@@ -153,3 +181,56 @@ def test_the_same_targets_as_a_plan_of_the_whole_corpus(corpus, monkeypatch):
     files = [str(p.relative_to(corpus)) for p in sorted(repo.glob("*/config/*.yaml"))[:6]]
     fast, whole = _both(monkeypatch, corpus, files)
     assert fast == whole and any(fast), [(sorted(a - b), sorted(b - a)) for a, b in zip(fast, whole) if a != b]
+
+
+def test_a_guarded_run_plans_only_the_launch_files_that_can_reach_the_file(mono, monkeypatch):
+    """As the command line runs it (the door guarding the checkout around the file): a sibling repository's launch
+    files that name nothing of the file are not planned. Before, the name search could not read them (outside the
+    run's roots until the plan made the folder a root) and kept each as "may name it": from the 22-repository
+    corpus, 77 launch files planned for one SRDF macro. Nor one that includes a file of the same name in its own
+    package (repoB's all.launch.xml includes its own bringup.launch.xml)."""
+    from urdfcheck.core import door
+    from urdfcheck.core.checkout import run_roots
+
+    monkeypatch.chdir(mono)
+    rel = "repoA/agv_bringup/launch/controllers.launch.xml"
+    planned = []
+    real_find = Planner.find
+
+    def find(self, root, settings, files=None):
+        planned.extend(os.path.relpath(f, mono) for f in files or ())
+        return real_find(self, root, settings, files)
+
+    monkeypatch.setattr(Planner, "find", find)
+    with door.guarded(run_roots([rel], cwd=str(mono))):
+        got = Planner(make_request([rel], use_config=False), str(mono)).path_targets(rel)
+    assert [os.path.relpath(str(t.path), mono) for t in got] == ["repoA/agv_description/urdf/agv.urdf.xacro"]
+    assert not [f for f in planned if f.startswith("repoB")], planned
+
+
+def test_a_macro_file_of_the_examples_gives_their_robots_from_the_repository_and_from_above_it():
+    """The per-file hook on a macro file of examples/agv (whose examples/ folder holds COLCON_IGNORE): the robots
+    including it, the same from this repository's root and from the folder above it. Before, the walk of the
+    repository skipped examples/ and said no robot includes the file."""
+    rel = "examples/agv/urdf/macros/components.xacro"
+    code, own, err = run_cli(["lint", "--no-cache", "--list", rel], cwd=REPO)
+    assert code == 0, err
+    code, top, err = run_cli(["lint", "--no-cache", "--list", f"{REPO.name}/{rel}"], cwd=REPO.parent)
+    assert code == 0, err
+    assert listed(own) == ["2 target(s)", "examples/agv/urdf/agv.urdf.xacro [camera] use_camera:=true  (config "
+                           "examples/agv/urdfcheck.yaml)",
+                           "examples/agv/urdf/agv.urdf.xacro [no_camera] use_camera:=false  (config "
+                           "examples/agv/urdfcheck.yaml)"]
+    assert listed(top, f"{REPO.name}/") == listed(own)
+
+
+def test_a_macro_file_of_a_corpus_repository_gives_the_same_robots_from_the_corpus_root(corpus):
+    repo = corpus / "linorobot+linorobot2"
+    if not repo.is_dir():
+        pytest.skip("linorobot2 is not in the corpus")
+    rel = "linorobot2_description/urdf/mech/wheel.urdf.xacro"
+    code, own, err = run_cli(["lint", "--no-cache", "--list", rel], cwd=repo)
+    assert code == 0, err
+    code, top, err = run_cli(["lint", "--no-cache", "--list", f"{repo.name}/{rel}"], cwd=corpus)
+    assert code == 0, err
+    assert listed(top, f"{repo.name}/") == listed(own) and listed(own)

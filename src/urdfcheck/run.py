@@ -71,7 +71,8 @@ def _run(request: LintRequest, retain, targets) -> Result:
     if request.bags:
         _attach_bags(targets, request.bags, request.joint_states)
     result = lint_targets(targets, retain=retain, budget=request.budget, **request.settings(None).load_options())
-    result = _unread_libraries(result, getattr(targets, "included", ()), retain, request)
+    result = _unread_libraries(result, getattr(targets, "included", ()), retain, request,
+                               getattr(targets, "library_files", ()))
     _drop_libraries(result)
     result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
     result.root = request.root
@@ -238,12 +239,14 @@ def _load_findings(t: Target, exp) -> list[Finding]:
     return [engine.on_evidence([f], (step,) if f.code == "X010" else t.evidence)[0] for f in exp.findings]
 
 
-def _unread_libraries(result: Result, included, retain, request: LintRequest) -> Result:
+def _unread_libraries(result: Result, included, retain, request: LintRequest, libraries=()) -> Result:
     """Files taken for included libraries that no model of the run read (the include was commented out,
     conditional, or in a file that is no robot): expanded now as probes, so that a robot is never hidden by
     another file claiming to include it."""
     from urdfcheck.plan.robots import missed
 
+    # macro libraries no model read too: a robot may include them only under a non-default argument
+    result = _reaching(result, missed([*included, *libraries], result.read), retain, request)
     unread = missed(included, result.read)
     if not unread:
         return result
@@ -256,6 +259,35 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest) ->
         t.probe = True
         t.includers = ("?",)  # found when it fails (plan.robots.includers_of)
         extra.append(t)
+    with progress.after(len(result.targets)):
+        more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
+    merged = Result(dedupe(result.raw() + more.raw()), result.targets + more.targets,
+                    {**result.models, **more.models}, result.by_target + more.by_target)
+    merged.read = set(result.read) | set(more.read)
+    return merged
+
+
+def _reaching(result: Result, unread: list[str], retain, request: LintRequest) -> Result:
+    """Included files that no model read because their robot includes them only under a non-default xacro argument
+    (a boolean, or a literal comparison: plan.plan.reaching_targets): each linted through the variant of the robots
+    of its package that includes it, before any is probed alone (a probe of a macro file is no check of it)."""
+    from urdfcheck.load.packages import enclosing_package
+    from urdfcheck.plan.plan import reaching_targets
+
+    if not unread:
+        return result
+    robots = [t for t in result.targets if not t.probe and not t.library]
+    extra: list[Target] = []
+    infos: list[str] = []
+    for path in unread:
+        pkg = enclosing_package(Path(os.path.abspath(path)).parent)
+        if pkg is None:
+            continue
+        near = [t for t in robots if enclosing_package(Path(os.path.abspath(t.path)).parent) == pkg]
+        extra.extend(v for v in reaching_targets(path, near, infos) if not any(
+            os.path.realpath(v.path) == os.path.realpath(x.path) and v.args == x.args for x in extra))
+    if not extra:
+        return result
     with progress.after(len(result.targets)):
         more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
     merged = Result(dedupe(result.raw() + more.raw()), result.targets + more.targets,

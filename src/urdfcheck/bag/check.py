@@ -94,12 +94,13 @@ every file inside a recording folder is read as the checkout's, whoever named th
                 held.append(m)
                 held_n[0] += k
                 held_n[1] += m.position.nbytes + m.velocity.nbytes + m.effort.nbytes
-                lo = 0
-                for j, tm in m.tfs:  # the replay needs the order of joint states and /tf as recorded
-                    tf.joint_state_batch(m, lo, j)
-                    tf.add(tm)
-                    lo = j
-                tf.joint_state_batch(m, lo, len(m))
+                if not tf.batch(m):
+                    lo = 0
+                    for j, tm in m.tfs:  # the replay needs the order of joint states and /tf as recorded
+                        tf.joint_state_batch(m, lo, j)
+                        tf.add(tm)
+                        lo = j
+                    tf.joint_state_batch(m, lo, len(m))
                 continue
             n += 1
             if budget is not None and not n % 2048 and budget.remaining() <= 0:

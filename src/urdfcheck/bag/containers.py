@@ -12,6 +12,12 @@ without being decoded. Chunks inflate within `inflate.Inflater`'s bounds; nothin
 - rosbag2 sqlite3 (`.db3`): opened read-only and immutable, `trusted_schema` off, views, virtual tables and
   generated columns where the messages are read are refused, blobs capped, and a progress handler stops it at
   the run's deadline.
+
+With `blocks=True` the MCAP and ROS 1 readers read an inflated chunk whole (issue 39: per-message Python was the
+floor): where every record may start is found with numpy, the records actually met walking the chunk by pointer
+doubling (`chain`), and the wanted messages between two other records come as one `Block` of arrays. Whatever
+numpy cannot vouch for (a chunk whose walk leaves the candidates, a header of a shape not seen before, a channel
+not declared yet) is read record by record, as without `blocks`, errors and all.
 """
 from __future__ import annotations
 
@@ -163,8 +169,121 @@ def _quick(raw: bytes):
     return unpack_from("<I", conn)[0], sec * 1_000_000_000 + nsec, raw, toff
 
 
-def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater):
+def _ros1_candidates(a, shapes):
+    """Where a message record of a known header length may start in a chunk, and where it would end."""
+    import numpy as np
+
+    end = len(a)
+    pos = []
+    for hl in shapes:
+        b = hl.to_bytes(4, "little")
+        p = np.flatnonzero(a[:max(end - 3, 0)] == b[0])
+        for k in (1, 2, 3):
+            p = p[a[p + k] == b[k]]
+        pos.append(p[p + 8 + hl <= end])
+    pos = np.sort(np.concatenate(pos)) if pos else np.zeros(0, dtype=np.intp)
+    hl = rows(a, pos, 4).view("<u4")[:, 0].astype(np.int64) if len(pos) else np.zeros(0, dtype=np.int64)
+    dl = rows(a, pos + 4 + hl, 4).view("<u4")[:, 0].astype(np.int64) if len(pos) else hl
+    return pos, pos + 8 + hl + dl, hl
+
+
+def _ros1_blocks(a, inner, shapes, conns, facts, single):
+    """The records of one inflated ROS 1 chunk in order: runs of message records whose headers have a known shape
+    (every byte but the time's the same as a message read before) as Blocks, found with numpy (`chain`); any
+    other record through `single(pos)` -> (item or None, next pos), which learns new shapes."""
+    import numpy as np
+
+    end = len(a)
+    pos = 0
+    cand = None
+    ticks = 0
+    while pos < end:
+        ticks += 1
+        if not ticks & 1023:  # a chunk of millions of odd records: the run's budget holds inside it too
+            _in_time()
+        if cand is None and shapes:
+            cand = _ros1_candidates(a, shapes)
+            cand_hls = set(shapes)
+        i = int(np.searchsorted(cand[0], pos)) if cand is not None else 0
+        if cand is None or i >= len(cand[0]) or cand[0][i] != pos:
+            n = len(shapes)
+            got, pos = single(pos)
+            if got is not None:
+                yield got
+            if len(shapes) != n:
+                cand = None
+            continue
+        idx, stop = chain(cand[0], cand[1], i)
+        bad = None
+        if stop > end:  # the last runs past the chunk: single() says so
+            bad = int(cand[0][idx[-1]])
+            idx = idx[:-1]
+        st, ends, hl = cand[0][idx], cand[1][idx], cand[2][idx]
+        conn = np.full(len(st), -1, dtype=np.int64)
+        toffs = np.zeros(len(st), dtype=np.int64)
+        for h, forms in shapes.items():
+            mine = np.flatnonzero(hl == h)
+            if not len(mine):
+                continue
+            head = rows(a, st[mine] + 4, h)
+            for toff, pre, post, c in forms:
+                hit = (conn[mine] < 0) & (head[:, :toff] == np.frombuffer(pre, dtype=np.uint8)).all(axis=1) & \
+                    (head[:, toff + 8:] == np.frombuffer(post, dtype=np.uint8)).all(axis=1)
+                conn[mine[hit]] = c
+                toffs[mine[hit]] = toff
+        known = conn >= 0
+        if len(st):
+            ids = np.unique(conn[known]).tolist()
+            if any(c not in conns for c in ids):
+                known[:] = False  # single() says which connection is missing, in order
+        # runs of known shapes as Blocks, each other record alone
+        k = 0
+        learnt = False
+        while k < len(st):
+            if not known[k]:
+                ticks += 1
+                if not ticks & 1023:
+                    _in_time()
+                forms = sum(len(f) for f in shapes.values())
+                got, _stop = single(int(st[k]))
+                if got is not None:
+                    yield got
+                k += 1
+                if sum(len(f) for f in shapes.values()) != forms:  # a new shape: the rest matched again
+                    learnt = True
+                    break
+                continue
+            j = k + int(np.argmin(known[k:])) if not known[k:].all() else len(st)
+            sl = slice(k, j)
+            t = rows(a, st[sl] + 4 + toffs[sl], 8).view("<u4").astype(np.int64)
+            times = t[:, 0] * 1_000_000_000 + t[:, 1]
+            if "start" not in facts:
+                facts["start"] = int(times[0])
+            cs = conn[sl]
+            ids = np.unique(cs).tolist()
+            wanted = [c for c in ids if conns[c][3]]
+            if wanted:
+                keep = np.isin(cs, wanted) if len(wanted) < len(ids) else slice(None)
+                chans = {c: (conns[c][0], conns[c][1], conns[c][2], False) for c in wanted}
+                yield Block(a, inner, cs[keep], times[keep], (st[sl] + 8 + hl[sl])[keep], ends[sl][keep], chans)
+            k = j
+        if learnt:
+            pos = int(ends[k - 1])
+            if set(shapes) != cand_hls:
+                cand = None
+            continue
+        if bad is not None:
+            got, pos = single(bad)
+            if got is not None:
+                yield got
+        else:
+            pos = stop
+
+
+def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater, blocks: bool = False):
+    """`blocks`: the messages of a chunk come as Blocks, found with numpy (`_ros1_blocks`)."""
     facts["ros"] = 1
+    shapes: dict[int, list] = {}  # message header length -> (time offset, bytes before, bytes after, connection)
     conns: dict[int, tuple] = {}  # id -> (topic, type, callerid, wanted)
     topics = facts.setdefault("topics", {})
 
@@ -217,6 +336,42 @@ def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                     inner = inflater.inflate(comp, _exact(f, dl), _u32(fields.get("size", b"")), "a ROS 1 chunk")
                 except InflateError as e:
                     raise ContainerError(str(e)) from None
+                if blocks:
+                    import numpy as np
+
+                    def single(pos, inner=inner):
+                        # one record, as _ros1_inner and the loop below read it
+                        end = len(inner)
+                        if pos + 4 > end:
+                            raise ContainerError("a chunk ends in the middle of a record")
+                        (hl,) = struct.unpack_from("<I", inner, pos)
+                        if pos + 4 + hl + 4 > end:
+                            raise ContainerError("a chunk record runs past its chunk")
+                        header = inner[pos + 4:pos + 4 + hl]
+                        (dl,) = struct.unpack_from("<I", inner, pos + 4 + hl)
+                        start = pos + 8 + hl
+                        if start + dl > end:
+                            raise ContainerError("a chunk record runs past its chunk")
+                        data = memoryview(inner)[start:start + dl]
+                        quick = _quick(header)
+                        fi = _fields(header)
+                        if quick is not None:
+                            forms = shapes.setdefault(hl, [])
+                            toff = quick[3]
+                            form = (toff, header[:toff], header[toff + 8:], quick[0])
+                            if len(forms) < 16 and len(shapes) < 64 and form not in forms:
+                                forms.append(form)
+                        iop = fi.get("op", b"")
+                        got = None
+                        if iop == b"\x07":
+                            connection(fi, data)
+                        elif iop == b"\x02":
+                            got = message(fi, data)
+                        return got, start + dl
+
+                    yield from _ros1_blocks(np.frombuffer(inner, dtype=np.uint8), inner, shapes, conns, facts,
+                                            single)
+                    continue
                 for fi, data in _ros1_inner(inner):
                     if type(fi) is tuple:  # a message record, its header read in short (_quick)
                         c = conns.get(fi[0])
@@ -244,6 +399,65 @@ def ros1_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                     yield got
             else:  # bag header (its padding), index data, chunk info: skipped, not read
                 f.seek(dl, 1)
+
+
+# --- many messages at once ------------------------------------------------------------------------------
+class Block:
+    """The wanted messages of part of one inflated chunk, as arrays (what a reader yields with `blocks=True`):
+    `a` the chunk (uint8), `conn` their channel or connection ids, `time` receive times (int64), `lo`/`hi` where
+    each payload starts and ends in `a`, `chans` id -> (topic, type, callerid, cdr). `tuples()` gives them as
+    the message-by-message reader does."""
+
+    __slots__ = ("a", "buf", "conn", "time", "lo", "hi", "chans")
+
+    def __init__(self, a, buf, conn, time, lo, hi, chans):
+        self.a, self.buf, self.conn, self.time, self.lo, self.hi, self.chans = a, buf, conn, time, lo, hi, chans
+
+    def __len__(self) -> int:
+        return len(self.lo)
+
+    def tuples(self):
+        mv = memoryview(self.buf)
+        chans = self.chans
+        for c, t, lo, hi in zip(self.conn.tolist(), self.time.tolist(), self.lo.tolist(), self.hi.tolist()):
+            topic, typ, caller, cdr = chans[c]
+            yield topic, typ, t, mv[lo:hi], caller, cdr
+
+
+def rows(a, at, width: int):
+    """The `width` bytes at each offset `at` of the uint8 array `a` as rows (n, width): one copy of each, no index
+    matrix. Every row must lie inside `a`."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    return sliding_window_view(a, width)[at]
+
+
+def chain(pos, nxt, first: int = 0):
+    """The records of a chunk found at once: `pos` (sorted) are where a record may start, `nxt` where the record
+    starting there would end. Returns (the indices into `pos` of the records met walking from pos[first], each
+    record's end the next one's start, where the walk leaves the candidates: the chunk's end, or a record no
+    candidate stands for, which the caller reads itself). The walk is made by pointer doubling: log2(n) numpy
+    steps, not one Python step a record."""
+    import numpy as np
+
+    n = len(pos)
+    out = n
+    at = np.searchsorted(pos, nxt)
+    hit = at < n
+    hit[hit] = pos[at[hit]] == nxt[hit]
+    step = np.concatenate([np.where(hit, at, out), [out]]).astype(np.intp)
+    levels = [step]
+    while (1 << len(levels)) < n + 1:
+        step = step[step]
+        levels.append(step)
+    on = np.zeros(n + 1, dtype=bool)
+    on[first] = True
+    got = np.array([first], dtype=np.intp)
+    for step in reversed(levels):
+        on[step[got]] = True
+        got = np.flatnonzero(on)
+    got = got[:-1] if on[out] else got
+    return got, int(nxt[got[-1]])
 
 
 # --- MCAP --------------------------------------------------------------------------------------------------
@@ -286,7 +500,35 @@ def _mcap_inner(buf):
         pos += 9 + n
 
 
-def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater, stream=None):
+def _mcap_starts(a):
+    """Where each record of an inflated MCAP chunk starts and ends (int64 arrays), found with numpy (`chain`);
+    None: the chunk is walked record by record. A record starts with its opcode (in a chunk: 3, 4 or 5) and its
+    length (u64)."""
+    import numpy as np
+
+    end = len(a)
+    if end < 9:
+        return None
+    head = a[:end - 8]
+    pos = np.flatnonzero(np.subtract(head, 3, dtype=np.uint8) < 3)  # opcodes 3, 4, 5 (uint8 wraps below 3)
+    # (a record inside a chunk of at most MAX_CHUNK bytes: the length's high bytes are zero, which few other
+    # bytes of 3 to 5 are followed by)
+    for k in (8, 7, 6, 5):
+        pos = pos[a[pos + k] == 0]
+    if not len(pos) or pos[0] != 0:
+        return None
+    size = rows(a, pos + 1, 8).view("<u8")[:, 0]
+    nxt = pos + 9 + np.minimum(size, end).astype(np.int64)
+    got, stop = chain(pos, nxt)
+    if stop != end:
+        return None
+    return pos[got], nxt[got]
+
+
+def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater, stream=None,
+                  blocks: bool = False):
+    """`blocks`: the messages of a chunk come as Block (several per chunk, between its schema and channel
+    records), the chunk's records found with numpy."""
     unpack_from = struct.unpack_from
     schemas: dict[int, str] = {}
     channels: dict[int, tuple] = {}  # id -> (topic, type, wanted, cdr)
@@ -363,6 +605,15 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                     inner = inflater.inflate(comp, bytes(data), size, "an MCAP chunk")
                 except InflateError as e:
                     raise ContainerError(str(e)) from None
+                if blocks and len(inner) >= 9:
+                    import numpy as np
+
+                    a = np.frombuffer(inner, dtype=np.uint8)
+                    found = _mcap_starts(a)
+                    if found is not None:
+                        _in_time()
+                        yield from _mcap_blocks(a, inner, found, channels, facts, record)
+                        continue
                 # the records of the chunk, as _mcap_inner and record() read them, message records inline (most)
                 mv = memoryview(inner)
                 pos, end = 0, len(inner)
@@ -398,6 +649,47 @@ def mcap_messages(path: str, want, facts: dict, runner: bool, inflater: Inflater
                     yield got
             else:  # header, indexes, attachments, metadata, statistics, summary: skipped, not read
                 _skip(f, n)
+
+
+def _mcap_blocks(a, inner, found, channels, facts, record):
+    """The records of one chunk in order: schema and channel records through `record`, each run of message
+    records between them as one Block of its wanted messages."""
+    import numpy as np
+
+    starts, ends = found
+    ops = a[starts]
+    size = ends - starts - 9
+    plain = (ops == 5) & (size >= 22)
+    cut = np.flatnonzero(~plain).tolist()
+    mv = memoryview(inner)
+    lo = 0
+    for ticks, stop in enumerate(cut + [len(starts)], 1):
+        if not ticks & 1023:  # a chunk of millions of schema records: the run's budget holds inside it too
+            _in_time()
+        if stop > lo:
+            st = starts[lo:stop]
+            cids = rows(a, st + 9, 2).view("<u2")[:, 0].astype(np.int64)
+            times = rows(a, st + 15, 8).view("<u8")[:, 0].astype(np.int64)
+            ids = np.unique(cids).tolist()
+            if any(i not in channels for i in ids):  # record() says which, after the messages before it
+                for p, q in zip(st.tolist(), ends[lo:stop].tolist()):
+                    got = record(5, mv[p + 9:q])
+                    if got is not None:
+                        yield got
+            else:
+                if "start" not in facts:
+                    facts["start"] = int(times[0])
+                wanted = [i for i in ids if channels[i][2]]
+                if wanted:
+                    keep = np.isin(cids, wanted) if len(wanted) < len(ids) else slice(None)
+                    chans = {i: (channels[i][0], channels[i][1], "", channels[i][3]) for i in wanted}
+                    yield Block(a, inner, cids[keep], times[keep], st[keep] + 31, ends[lo:stop][keep], chans)
+        if stop < len(starts):
+            p, q = int(starts[stop]), int(ends[stop])
+            got = record(int(ops[stop]), mv[p + 9:q])
+            if got is not None:
+                yield got
+        lo = stop + 1
 
 
 def _skip(f, n: int) -> None:
@@ -472,6 +764,10 @@ def sqlite_messages(path: str, want, facts: dict, runner: bool, inflater: Inflat
             real = door.admit(path, limit=RECORDING_BYTES, runner=runner)
             conn = sqlite3.connect(f"file:{quote(real)}?mode=ro&immutable=1", uri=True, check_same_thread=False)
         else:
+            if image[18:20] == b"\x02\x02":
+                # rosbag2 writes its databases in WAL mode, which sqlite cannot open from memory: the copy in
+                # memory says "rollback journal" (the file was closed, so its WAL was folded in before compression)
+                image = image[:18] + b"\x01\x01" + image[20:]
             conn = sqlite3.connect(":memory:")
             conn.deserialize(image)
     except sqlite3.Error as e:

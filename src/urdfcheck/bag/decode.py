@@ -141,27 +141,32 @@ def joint_state(buf, cdr: bool):
     return stamp, names, c.doubles(), c.doubles(), c.doubles()
 
 
+def _text(buf, pos: int, end: int, base: int, cdr: bool, u32):
+    """The string at `pos` (as `_Cursor.string` reads it) and where it ends."""
+    if cdr:
+        off = (pos - base) & 3
+        if off:
+            pos += 4 - off
+    if pos + 4 > end:
+        raise DecodeError("the message is shorter than its fields say")
+    k = u32(buf, pos)[0]
+    pos += 4
+    if pos + k > end:
+        raise DecodeError("the message is shorter than its fields say")
+    raw = bytes(buf[pos:pos + k])
+    if cdr and raw[-1:] == b"\0":
+        raw = raw[:-1]
+    return raw.decode("utf-8", "replace"), pos + k
+
+
 def _strings(c: _Cursor, n: int) -> tuple:
     """n strings, as `_Cursor.string` reads them, in one loop (a JointState of a PR2 names 50 joints)."""
     buf, pos, end, base, cdr = c.buf, c.pos, c.end, c.base, c.cdr
     u32 = _U32[c.e].unpack_from
     out = []
     for _ in range(n):
-        if cdr:
-            off = (pos - base) & 3
-            if off:
-                pos += 4 - off
-        if pos + 4 > end:
-            raise DecodeError("the message is shorter than its fields say")
-        k = u32(buf, pos)[0]
-        pos += 4
-        if pos + k > end:
-            raise DecodeError("the message is shorter than its fields say")
-        raw = bytes(buf[pos:pos + k])
-        pos += k
-        if cdr and raw[-1:] == b"\0":
-            raw = raw[:-1]
-        out.append(raw.decode("utf-8", "replace"))
+        text, pos = _text(buf, pos, end, base, cdr, u32)
+        out.append(text)
     c.pos = pos
     return tuple(out)
 
@@ -176,23 +181,6 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
     seven = _SEVEN[e].unpack_from
     time1 = _TIME1.unpack_from
     out = []
-
-    def text(pos):
-        if cdr:
-            off = (pos - base) & 3
-            if off:
-                pos += 4 - off
-        if pos + 4 > end:
-            raise DecodeError("the message is shorter than its fields say")
-        k = u32(buf, pos)[0]
-        pos += 4
-        if pos + k > end:
-            raise DecodeError("the message is shorter than its fields say")
-        raw = bytes(buf[pos:pos + k])
-        if cdr and raw[-1:] == b"\0":
-            raw = raw[:-1]
-        return raw.decode("utf-8", "replace"), pos + k
-
     for _ in range(n):
         if cdr:
             off = (pos - base) & 3
@@ -208,8 +196,8 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
             _seq, sec, nsec = time1(buf, pos)
             stamp = sec * NS + nsec
             pos += 12
-        parent, pos = text(pos)
-        child, pos = text(pos)
+        parent, pos = _text(buf, pos, end, base, cdr, u32)
+        child, pos = _text(buf, pos, end, base, cdr, u32)
         if cdr:
             off = (pos - base) & 7
             if off:
@@ -230,7 +218,7 @@ def tf_message(buf, cdr: bool) -> list[tuple]:
 # stamp and the numbers is not of the layout and is read on its own (`joint_state`).
 class JsLayout:
     __slots__ = ("cdr", "e", "length", "head", "lo", "hi", "fixed", "stamp_off", "pos", "vel", "eff", "words",
-                 "names", "blob")
+                 "names", "blob", "_mask")
 
     def matches(self, buf) -> bool:
         # (bytes() first: comparing a memoryview is item by item, a copy and memcmp is faster)
@@ -294,8 +282,14 @@ def js_batch(lay: JsLayout, payloads):
     """(stamps int64 (n,), position (n, k), velocity (n, kv), effort (n, ke)) of messages of one layout."""
     import numpy as np
 
-    n = len(payloads)
-    rows = np.frombuffer(b"".join(payloads), dtype=np.uint8).reshape(n, lay.length)
+    return js_rows(lay, np.frombuffer(b"".join(payloads), dtype=np.uint8).reshape(len(payloads), lay.length))
+
+
+def js_rows(lay: JsLayout, rows):
+    """`js_batch` of messages given as the rows of a uint8 array (n, lay.length)."""
+    import numpy as np
+
+    n = len(rows)
     e = lay.e
     s = lay.stamp_off
     if lay.cdr:
@@ -313,6 +307,30 @@ def js_batch(lay: JsLayout, payloads):
     return stamps, doubles(*lay.pos), doubles(*lay.vel), doubles(*lay.eff)
 
 
+def fits(lay, rows):
+    """Which rows (uint8 (n, lay.length)) are messages of this layout (JsLayout or TfLayout): every byte but the
+    stamps and the numbers the same (`JsLayout.matches`, `TfLayout.read` for each), compared whole rows at once."""
+    import numpy as np
+
+    got = getattr(lay, "_mask", None)
+    if got is None:
+        if isinstance(lay, JsLayout):
+            idx = list(range(4)) if lay.cdr else []
+            idx.extend(range(lay.lo, lay.hi))
+            for at, word in lay.words:
+                idx.extend(range(at, at + len(word)))
+            raw = (lay.head if lay.cdr else b"") + lay.fixed + b"".join(w for _at, w in lay.words)
+        else:
+            idx, raw = lay.keep, lay.keep_bytes
+        like = np.zeros(lay.length, dtype=np.uint8)
+        like[idx] = np.frombuffer(raw, dtype=np.uint8)
+        free = np.ones(lay.length, dtype=bool)
+        free[idx] = False
+        got = lay._mask = (like, free)
+    like, free = got
+    return ((rows == like) | free).all(axis=1)
+
+
 def remember_names(lay: JsLayout) -> None:
     """The next `joint_state` of these names hands back the layout's tuple (the checks compare by identity)."""
     _last_names[:] = [lay.blob, lay.names]
@@ -323,7 +341,19 @@ def remember_names(lay: JsLayout) -> None:
 # seven numbers of each transform change. The layout is read once (`tf_layout`); a message whose every other
 # byte is the same is read with numpy (`TfLayout.read`), any other on its own (`tf_message`).
 class TfLayout:
-    __slots__ = ("cdr", "e", "length", "keep", "keep_bytes", "sec", "nsec", "vals", "edges", "np")
+    __slots__ = ("cdr", "e", "length", "keep", "keep_bytes", "sec", "nsec", "vals", "edges", "np", "_mask")
+
+    def rows(self, a):
+        """`read` of many messages of this layout at once, the rows of a uint8 array (n, length): (stamps (n, E),
+        values (n, E, 7))."""
+        np = self.np
+        e = self.e
+        n = len(a)
+        c = np.ascontiguousarray
+        sec = c(a[:, self.sec]).view((e + "i4") if self.cdr else "<u4").astype(np.int64)
+        nsec = c(a[:, self.nsec]).view(e + "u4").astype(np.int64)
+        vals = c(a[:, self.vals]).view(e + "f8").astype(np.float64, copy=False).reshape(n, -1, 7)
+        return sec * NS + nsec, vals
 
     def read(self, buf):
         """(stamps int64 (E,), values float64 (E, 7)) when `buf` has this layout, else None."""

@@ -131,7 +131,7 @@ class JointStateChecks:
         cat = np.concatenate
         P = cat([b.position for b in batches])[j:]
         S = cat([b.stamps for b in batches])[j:]
-        T = np.array([t for b in batches for t in b.times][j:], dtype=np.int64)
+        T = cat([np.asarray(b.times, dtype=np.int64) for b in batches])[j:]
         self.count += n - j
         self._steady_ranges(P, j, msg)
         self._steady_stamps(S, j, msg, names, caller)
@@ -250,18 +250,13 @@ class JointStateChecks:
                     continue
                 r = ranges[name] = _Range()
             plan.append((k, name, r))
-            q = pos[k]
-            if q - q != 0.0:  # NaN or infinite (faster than math.isfinite on the hot path)
-                rec = self.nonfinite.setdefault(name, [0, m])
-                rec[0] += 1
-                continue
-            if q < r.lo:
-                r.lo, r.lo_msg = q, m
-            if q > r.hi:
-                r.hi, r.hi_msg = q, m
-            if vel is not None:
-                self._unit_sample(name, q, vel[k], stamp, r)
-                self.prev_pos[name] = (stamp, q)
+        self._known(m, pos, plan)
+        if vel is not None:
+            for k, name, r in plan:
+                q = pos[k]
+                if q - q == 0.0:  # (not NaN or infinite)
+                    self._unit_sample(name, q, vel[k], stamp, r)
+                    self.prev_pos[name] = (stamp, q)
         self._plan_names, self._plan = names, plan
         self._ratios_full = all(len(r.ratios) >= self.MAX_RATIOS for _k, _n, r in plan)
 

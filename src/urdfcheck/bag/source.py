@@ -79,7 +79,7 @@ class JointStateBatch:
 
     def message(self, j: int) -> Message:
         """The j-th message, as the message-by-message reader gives it."""
-        return Message(self.topic, self.index + j, self.times[j], "joint_state", JointStateMsg(
+        return Message(self.topic, self.index + j, int(self.times[j]), "joint_state", JointStateMsg(
             self.names, tuple(self.position[j].tolist()), tuple(self.velocity[j].tolist()),
             tuple(self.effort[j].tolist()), int(self.stamps[j])), self.callerid, self.start)
 
@@ -104,6 +104,30 @@ class FastEdges:
     def __iter__(self):
         for (p, c), st, v in zip(self.layout.edges, self.stamps.tolist(), self.values.tolist()):
             yield Edge(p, c, tuple(v[:3]), tuple(v[3:]), st)
+
+
+class TfRun:
+    """TF messages of one topic, publisher and layout among a JointStateBatch, decoded together: message i was
+    recorded after the batch's message at[i] - 1; `stamps` (n, E), `values` (n, E, 7). Iterating gives
+    (j, Message) as a batch's list of TF messages does."""
+
+    __slots__ = ("topic", "callerid", "layout", "index", "at", "times", "stamps", "values", "start", "kind")
+
+    def __init__(self, topic, callerid, layout, index, at, times, stamps, values, start):
+        self.topic, self.callerid, self.layout, self.index, self.at = topic, callerid, layout, index, at
+        self.times, self.stamps, self.values, self.start = times, stamps, values, start
+        self.kind = "tf_static" if topic.endswith("tf_static") else "tf"
+
+    def __len__(self) -> int:
+        return len(self.at)
+
+    def message(self, i: int) -> Message:
+        return Message(self.topic, self.index + i, int(self.times[i]), self.kind,
+                       FastEdges(self.layout, self.stamps[i], self.values[i]), self.callerid, self.start)
+
+    def __iter__(self):
+        for i, j in enumerate(self.at.tolist()):
+            yield j, self.message(i)
 
 
 MAX_BATCH = 4096  # messages decoded together: memory stays flat whatever the recording's length
@@ -186,86 +210,140 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
         decode.remember_names(lay)
         yield JointStateBatch(topic, index, times, lay.names, stamps, pos, vel, eff, caller, start, tfs)
 
-    try:
+    def items():
+        """The containers' messages, a Block as runs the fast path takes (a marker) or message by message."""
         for part in parts:
-            for topic, msgtype, t, payload, caller, cdr in part.messages(want, inflater):
-                h = hot[0]
-                if h is not None and topic == h[0] and caller == h[1] and cdr == h[2] and len(h[4]) < h[6] and \
-                        h[3].matches(payload) and payload[0] != 0x28:  # (0x28: perhaps zstd, below)
-                    # the next message of the run: what the lines below do for it, in short
-                    h[4].append(t)
-                    h[5].append(bytes(payload))
-                    counters[topic] += 1
-                    n += 1
-                    continue
-                kind = decode.kind_of(msgtype)
-                if kind == "joint_state" and chosen is None and joint_topic is None:
-                    late.add(topic)  # not indexed: the first JointState topic, or /joint_states once seen
-                    if topic != "/joint_states" and ("/joint_states" in late or len(late) > 1):
-                        continue
-                if payload[:4] == containers.ZSTD_MAGIC:  # rosbag2 "message" compression
-                    payload = inflater.inflate("zstd", bytes(payload), None, "a compressed message")
-                i = counters.get(topic, 0)
-                counters[topic] = i + 1
-                if not n:
-                    start = facts.get("start", t)
-                n += 1
-                if batches and kind == "joint_state":
-                    if run and run[1] == topic and run[2] == caller and run[0].cdr == cdr and \
-                            len(run[4]) < MAX_BATCH and len(run[4]) * run[0].length < BATCH_BYTES and \
-                            run[0].matches(payload):
-                        run[4].append(t)
-                        run[5].append(bytes(payload))  # (a copy: a view would keep its whole chunk alive)
-                        continue
-                    if run:
-                        yield from flush()
-                    key = (topic, caller, cdr)
-                    lay = layouts.get(key)
-                    if lay is None or not lay.matches(payload):
-                        lay = decode.js_layout(payload, cdr)
-                        if len(layouts) > 64:
-                            layouts.clear()
-                        layouts[key] = lay
-                    run[:] = [lay, topic, caller, i, [t], [bytes(payload)], [], 0]
-                    cap = min(MAX_BATCH, max(1, BATCH_BYTES // lay.length))
-                    hot[0] = (topic, caller, cdr, lay, run[4], run[5], cap)
-                    continue
-                if run and kind == "joint_state":
-                    yield from flush()
-                if kind == "joint_state":
-                    st, names, pos, vel, eff = decode.joint_state(payload, cdr)
-                    yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
-                elif batches and len(payload) <= TF_LAYOUT_BYTES:
-                    key = (topic, caller, cdr)
-                    known = tf_layouts.setdefault(key, [])
-                    got = None
-                    for lay in known:
-                        got = lay.read(payload)
-                        if got is not None:
-                            break
-                    if got is None:
-                        lay = decode.tf_layout(payload, cdr)
-                        got = lay.read(payload)
-                        known.insert(0, lay)
-                        del known[4:]
-                        if len(tf_layouts) > 64:
-                            tf_layouts.clear()
-                    m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf",
-                                FastEdges(lay, *got), caller, start)
+            for item in part.messages(want, inflater, blocks=batches):
+                if type(item) is containers.Block:
+                    for piece, whole in _runs(item, layouts, tf_layouts, chosen, joint_topic):
+                        if whole:
+                            yield None, "", 0, piece, "", False
+                        else:
+                            yield from piece.tuples()
                 else:
-                    edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
-                    m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
-                                start)
-                if kind == "joint_state":
-                    continue
-                if not run:
-                    yield m
-                    continue
-                # among a run of joint states: rides along with them (the run goes on after it)
-                run[6].append((len(run[4]), m))
-                run[7] += len(payload)
-                if len(run[6]) >= MAX_BATCH or run[7] >= BATCH_BYTES:
+                    yield item
+
+    def fast(piece):
+        """JointStateBatch(es) of a run of a Block whose every message fits its topic's layout (_runs)."""
+        nonlocal n, start
+        import numpy as np
+
+        blk, js, tfi, lay, tl = piece
+        a = blk.a
+        topic, _typ, caller, _cdr = blk.chans[int(blk.conn[js[0]])]
+        if not n:
+            start = facts.get("start", int(blk.time[min(js[0], tfi[0]) if len(tfi) else js[0]]))
+        n += len(js) + len(tfi)
+        cap = min(MAX_BATCH, max(1, BATCH_BYTES // lay.length))
+        if len(tfi):
+            ttopic, _t, tcaller, _c = blk.chans[int(blk.conn[tfi[0]])]
+            tf_at = np.searchsorted(js, tfi)  # how many joint states were recorded before each
+        for p in range(0, len(js), cap):
+            sel = js[p:p + cap]
+            stamps, pos, vel, eff = decode.js_rows(lay, containers.rows(a, blk.lo[sel], lay.length))
+            i = counters.get(topic, 0)
+            counters[topic] = i + len(sel)
+            tfs = ()
+            if len(tfi):  # the TF messages after this batch's first joint state (all, for the first) and up to
+                # the next batch's first (all, for the last)
+                take = np.ones(len(tfi), dtype=bool)
+                if p:
+                    take &= tf_at > p
+                if p + cap < len(js):
+                    take &= tf_at <= p + cap
+                mine = tfi[take]
+                if len(mine):
+                    ti = counters.get(ttopic, 0)
+                    counters[ttopic] = ti + len(mine)
+                    st, vals = tl.rows(containers.rows(a, blk.lo[mine], tl.length))
+                    tfs = TfRun(ttopic, tcaller, tl, ti, tf_at[take] - p, blk.time[mine], st, vals, start)
+            yield JointStateBatch(topic, i, blk.time[sel], lay.names, stamps, pos, vel, eff, caller, start, tfs)
+        decode.remember_names(lay)
+
+    try:
+        for topic, msgtype, t, payload, caller, cdr in items():
+            if topic is None:
+                if run:
                     yield from flush()
+                yield from fast(payload)
+                continue
+            h = hot[0]
+            if h is not None and topic == h[0] and caller == h[1] and cdr == h[2] and len(h[4]) < h[6] and \
+                    h[3].matches(payload) and payload[0] != 0x28:  # (0x28: perhaps zstd, below)
+                # the next message of the run: what the lines below do for it, in short
+                h[4].append(t)
+                h[5].append(bytes(payload))
+                counters[topic] += 1
+                n += 1
+                continue
+            kind = decode.kind_of(msgtype)
+            if kind == "joint_state" and chosen is None and joint_topic is None:
+                late.add(topic)  # not indexed: the first JointState topic, or /joint_states once seen
+                if topic != "/joint_states" and ("/joint_states" in late or len(late) > 1):
+                    continue
+            if payload[:4] == containers.ZSTD_MAGIC:  # rosbag2 "message" compression
+                payload = inflater.inflate("zstd", bytes(payload), None, "a compressed message")
+            i = counters.get(topic, 0)
+            counters[topic] = i + 1
+            if not n:
+                start = facts.get("start", t)
+            n += 1
+            if batches and kind == "joint_state":
+                if run and run[1] == topic and run[2] == caller and run[0].cdr == cdr and \
+                        len(run[4]) < MAX_BATCH and len(run[4]) * run[0].length < BATCH_BYTES and \
+                        run[0].matches(payload):
+                    run[4].append(t)
+                    run[5].append(bytes(payload))  # (a copy: a view would keep its whole chunk alive)
+                    continue
+                if run:
+                    yield from flush()
+                key = (topic, caller, cdr)
+                lay = layouts.get(key)
+                if lay is None or not lay.matches(payload):
+                    lay = decode.js_layout(payload, cdr)
+                    if len(layouts) > 64:
+                        layouts.clear()
+                    layouts[key] = lay
+                run[:] = [lay, topic, caller, i, [t], [bytes(payload)], [], 0]
+                cap = min(MAX_BATCH, max(1, BATCH_BYTES // lay.length))
+                hot[0] = (topic, caller, cdr, lay, run[4], run[5], cap)
+                continue
+            if run and kind == "joint_state":
+                yield from flush()
+            if kind == "joint_state":
+                st, names, pos, vel, eff = decode.joint_state(payload, cdr)
+                yield Message(topic, i, t, "joint_state", JointStateMsg(names, pos, vel, eff, st), caller, start)
+            elif batches and len(payload) <= TF_LAYOUT_BYTES:
+                key = (topic, caller, cdr)
+                known = tf_layouts.setdefault(key, [])
+                got = None
+                for lay in known:
+                    got = lay.read(payload)
+                    if got is not None:
+                        break
+                if got is None:
+                    lay = decode.tf_layout(payload, cdr)
+                    got = lay.read(payload)
+                    known.insert(0, lay)
+                    del known[4:]
+                    if len(tf_layouts) > 64:
+                        tf_layouts.clear()
+                m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf",
+                            FastEdges(lay, *got), caller, start)
+            else:
+                edges = tuple(Edge(p, c, tr, rot, st) for p, c, tr, rot, st in decode.tf_message(payload, cdr))
+                m = Message(topic, i, t, "tf_static" if topic.endswith("tf_static") else "tf", edges, caller,
+                            start)
+            if kind == "joint_state":
+                continue
+            if not run:
+                yield m
+                continue
+            # among a run of joint states: rides along with them (the run goes on after it)
+            run[6].append((len(run[4]), m))
+            run[7] += len(payload)
+            if len(run[6]) >= MAX_BATCH or run[7] >= BATCH_BYTES:
+                yield from flush()
         if run:
             yield from flush()
     except (containers.ContainerError, decode.DecodeError, InflateError, OSError) as e:
@@ -275,6 +353,94 @@ def _bag_messages(path, joint_topic, tf_topics, others, facts, runner, batches=F
     if chosen is None and joint_topic is None and len(late) > 1:
         keep = "/joint_states" if "/joint_states" in late else min(late)
         others.extend(sorted(late - {keep}))
+
+
+MIN_RUN = 16  # messages: a shorter run of fitting messages is read message by message
+
+
+def _runs(blk, layouts, tf_layouts, chosen, joint_topic):
+    """The Block in order as (piece, fast) pairs: `fast` runs (of one JointState topic and publisher in one layout,
+    and at most one TF topic in one layout, each message checked byte for byte against its layout) as (block, the
+    JointState indices, the TF indices, layout, TF layout); everything else as a smaller Block read message by
+    message (a layout that changes, other publishers, compressed messages)."""
+    import numpy as np
+
+    from urdfcheck.bag import containers, decode
+
+    def slow():
+        return [(blk, False)]
+
+    if chosen is None and joint_topic is None:
+        return slow()
+    js_ids, tf_ids = [], []
+    for cid, (_topic, typ, _caller, _cdr) in blk.chans.items():
+        kind = decode.kind_of(typ)
+        (js_ids if kind == "joint_state" else tf_ids).append(cid)
+    if len(js_ids) != 1 or len(tf_ids) > 1:
+        return slow()
+    a, conn = blk.a, blk.conn
+    length = blk.hi - blk.lo
+    is_js = conn == js_ids[0]
+    js = np.flatnonzero(is_js)
+    tfi = np.flatnonzero(~is_js)
+    if len(js) < MIN_RUN:
+        return slow()
+    topic, _typ, caller, cdr = blk.chans[js_ids[0]]
+    key = (topic, caller, cdr)
+    mv = memoryview(blk.buf)
+    try:
+        lay = layouts.get(key)
+        first = mv[int(blk.lo[js[0]]):int(blk.hi[js[0]])]
+        if lay is None or not lay.matches(first):
+            lay = decode.js_layout(first, cdr)
+        tl = None
+        if len(tfi):
+            ttopic, _t, tcaller, tcdr = blk.chans[tf_ids[0]]
+            tfirst = mv[int(blk.lo[tfi[0]]):int(blk.hi[tfi[0]])]
+            if len(tfirst) > TF_LAYOUT_BYTES:
+                return slow()
+            known = tf_layouts.get((ttopic, tcaller, tcdr)) or []
+            tl = next((t for t in known if t.read(tfirst) is not None), None) or decode.tf_layout(tfirst, tcdr)
+    except decode.DecodeError:
+        return slow()
+    zstd = np.frombuffer(containers.ZSTD_MAGIC, dtype=np.uint8)
+    fits = np.zeros(len(conn), dtype=bool)
+    for which, layout in ((js, lay), (tfi, tl)):
+        if not len(which):
+            continue
+        ok = length[which] == layout.length
+        got = containers.rows(a, blk.lo[which[ok]], layout.length)
+        ok[ok] = decode.fits(layout, got) & ~(got[:, :4] == zstd).all(axis=1)
+        fits[which] = ok
+    if fits.all():
+        edges = [0, len(fits)]
+    else:
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], fits.astype(np.int8), [0]]))).tolist()
+    out = []
+    done = 0
+
+    def part(i, j):
+        return containers.Block(a, blk.buf, conn[i:j], blk.time[i:j], blk.lo[i:j], blk.hi[i:j], blk.chans)
+
+    for i, j in zip(edges[0::2], edges[1::2]):
+        js_run = js[(js >= i) & (js < j)]
+        if j - i < MIN_RUN or len(js_run) < MIN_RUN:
+            continue
+        if i > done:
+            out.append((part(done, i), False))
+        out.append(((blk, js_run, tfi[(tfi >= i) & (tfi < j)], lay, tl), True))
+        done = j
+    if not out:
+        return slow()
+    if done < len(conn):
+        out.append((part(done, len(conn)), False))
+    layouts[key] = lay
+    if tl is not None:
+        known = tf_layouts.setdefault((ttopic, tcaller, tcdr), [])
+        if tl not in known:
+            known.insert(0, tl)
+            del known[4:]
+    return out
 
 
 def _why(e: Exception) -> str:
@@ -323,7 +489,7 @@ class _Part:
             pass
         return facts.get("topics", {})
 
-    def messages(self, want, inflater, facts=None):
+    def messages(self, want, inflater, facts=None, blocks=False):
         from urdfcheck.bag import containers
         from urdfcheck.bag.inflate import Inflater
         from urdfcheck.core import door
@@ -331,13 +497,13 @@ class _Part:
         facts = self.facts if facts is None else facts
         inflater = inflater or Inflater()
         if self.fmt == "ros1":
-            return containers.ros1_messages(self.path, want, facts, self.runner, inflater)
+            return containers.ros1_messages(self.path, want, facts, self.runner, inflater, blocks)
         if self.fmt == "mcap":
             stream = None
             if self.compressed:
                 raw = door.open_stream(self.path, limit=containers.RECORDING_BYTES, runner=self.runner)
                 stream = containers.InflatingStream(raw, inflater, "a compressed MCAP file")
-            return containers.mcap_messages(self.path, want, facts, self.runner, inflater, stream)
+            return containers.mcap_messages(self.path, want, facts, self.runner, inflater, stream, blocks)
         image = None
         if self.compressed:
             raw = door.read_bytes(self.path, limit=MAX_SQLITE_IMAGE, runner=self.runner)
@@ -414,6 +580,11 @@ def _parts(path: str, runner: bool, facts: dict) -> list[_Part]:
         if os.path.isabs(name) or ".." in name.replace("\\", "/").split("/"):
             raise containers.ContainerError(f"metadata.yaml names a file outside its folder: {name[:100]!r}")
         full = os.path.join(folder, name)
+        head, _sep, rest = name.replace("\\", "/").partition("/")
+        if rest and not os.path.lexists(full) and head == os.path.basename(os.path.abspath(folder)):
+            # rosbag2 before metadata version 4 named each file with the bag's folder in front (its reader
+            # resolves those from the parent folder): the same file inside this folder
+            full = os.path.join(folder, rest)
         if not os.path.lexists(full):
             raise containers.ContainerError(f"{name[:100]!r}, named in metadata.yaml, is missing")
         compressed = "zstd" if name.endswith(".zstd") else ""

@@ -156,7 +156,7 @@ class TfChecks:
             st = stamps[j]
             have = states.get(st)
             if have is None:  # (a copy of the row: a view would keep the whole batch alive)
-                states[st] = (names, P[j].copy(), True)
+                states[st] = (names, P[j].copy(), None)
             else:
                 have = self._positions(st)
                 have.update(zip(names, P[j].tolist()))
@@ -165,6 +165,101 @@ class TfChecks:
                 states.popitem(last=False)
             if st in pending:
                 self._settle(times[j], st)
+
+    def batch(self, b) -> bool:
+        """`joint_state_batch` and `add` for a JointStateBatch and the TF messages riding with it (a TfRun), all
+        at once, when their order cannot change what is found: no transform waits for its JointState, every
+        stamp of the batch is new and once only, each TF message's edges carry one stamp, found among the joint
+        states recorded before it (and still kept), and the message's layout is known (a plan) with only
+        movable edges of the model. False: nothing was done (message by message, as recorded)."""
+        import numpy as np
+
+        from urdfcheck.bag.source import TfRun
+
+        names = b.names
+        run = b.tfs
+        if self.pending or self.pending_stamps or len(names) != b.position.shape[1] or \
+                (len(run) and type(run) is not TfRun):
+            return False
+        S = b.stamps
+        n = len(S)
+        order = np.argsort(S, kind="stable")
+        u = S[order]
+        if n > 1 and (u[1:] == u[:-1]).any():
+            return False
+        states = self.states
+        if states and not states.keys().isdisjoint(S.tolist()):
+            return False
+        if len(run):
+            plan = self._fast.get((id(run.layout), run.callerid))
+            if plan is None or plan.layout is not run.layout or not plan.usable or plan.others or plan.fixed or \
+                    not len(plan.mov) or not plan.all_plain or run.kind != "tf":
+                return False
+            Sm = run.stamps[:, plan.mov]
+            st = Sm[:, 0]
+            if not (Sm == st[:, None]).all() or len(np.unique(st)) != len(st):
+                return False
+            r = np.minimum(np.searchsorted(u, st), n - 1)
+            inb = u[r] == st
+            row = order[r]
+            half = self.KEEP_STATES // 2
+            if not (~inb | ((row < run.at) & (run.at - row <= half))).all():
+                return False
+            P = b.position[row]
+            for i in np.flatnonzero(~inb).tolist():  # its joint state came in an earlier batch, still kept
+                ent = states.get(int(st[i]))
+                if type(ent) is not tuple or len(ent) != 3 or ent[0] is not names or run.at[i] > half:
+                    return False
+                P[i] = _row(ent)
+            cols = plan.columns(names)
+            if cols is None:
+                return False
+            Q = P[:, cols]
+            if not np.isfinite(Q).all():
+                return False
+            if self._lv_plan is not plan:
+                self._own(plan, np)
+            prev = np.concatenate([plan.last_s[None, :], Sm[:-1]])
+            if (prev == Sm).any():  # (two transforms of one stamp: told apart message by message)
+                return False
+        self._insert(b)
+        if not len(run):
+            return True
+        self._run_jobs()  # those put off before, first: mismatches stay in recording order
+        m = len(run)
+        self.count += m
+        self.tf_messages += m
+        plan.seen += m
+        V = run.values[:, plan.mov]
+        plan.last_s, plan.last_v = Sm[-1], V[-1]
+        plan.had[:] = True
+        ok = self._close(plan, Q, V, np)
+        plan.ok_counts += ok.sum(axis=0)
+        self.replayed += int(ok.sum())
+        if not ok.all():
+            for i in np.flatnonzero(~ok.all(axis=1)).tolist():
+                tm = run.message(i)
+                pos = dict(zip(names, P[i].tolist()))
+                for c in np.flatnonzero(~ok[i]).tolist():
+                    self._compare(tm, tm.data.edge(int(plan.mov[c])), plan.mkeys[c], plan.msegs[c], pos)
+        return True
+
+    def _insert(self, b) -> None:
+        """The batch's joint states into `states`, as `joint_state_batch` keeps them (every stamp new): only the
+        last KEEP_STATES can stay."""
+        from itertools import repeat
+
+        states, keep = self.states, self.KEEP_STATES
+        n = len(b.stamps)
+        tail = min(n, keep)
+        excess = len(states) + tail - keep
+        if excess >= len(states):
+            states.clear()
+        else:
+            for _ in range(excess):
+                states.popitem(last=False)
+        rows = b.position[n - tail:].copy()  # (a copy: a view would keep the whole batch alive)
+        states.update(zip(b.stamps[n - tail:].tolist(), zip(repeat(b.names), repeat(rows), range(tail))))
 
     def add(self, m: Message) -> None:
         d = m.data
@@ -234,21 +329,14 @@ class TfChecks:
                 else:
                     self._unmatched(m, key)
             return
-        q = ent[1][cols]
+        q = _row(ent)[cols]
         if np.isfinite(q).all() and plan.all_plain:  # compared later, with other messages' (_run_jobs)
             self._jobs.append((m, plan, q, V, ent))
             if len(self._jobs) >= 256:
                 self._run_jobs()
             return
-        t, r = plan.expected(q, np)
-        dt = t - V[:, :3]
-        dt2 = (dt * dt).sum(axis=1)
-        qr = V[:, 3:]
-        dot = (r * qr).sum(axis=1)
-        n1 = (r * r).sum(axis=1)
-        n2 = (qr * qr).sum(axis=1)
         with np.errstate(all="ignore"):
-            ok = (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4) & plan.plain & np.isfinite(q)
+            ok = self._close(plan, q, V, np) & plan.plain & np.isfinite(q)
         okl = ok.tolist()
         plan.ok_counts += ok
         self.replayed += okl.count(True)
@@ -275,15 +363,7 @@ class TfChecks:
             plan = jobs[idx[0]][1]
             Q = np.stack([jobs[i][2] for i in idx])
             V = np.stack([jobs[i][3] for i in idx])
-            t, r = plan.expected(Q, np)
-            dt = t - V[..., :3]
-            qr = V[..., 3:]
-            with np.errstate(all="ignore"):
-                dt2 = (dt * dt).sum(axis=-1)
-                dot = (r * qr).sum(axis=-1)
-                n1 = (r * r).sum(axis=-1)
-                n2 = (qr * qr).sum(axis=-1)
-                ok = (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4)
+            ok = self._close(plan, Q, V, np)
             plan.ok_counts += ok.sum(axis=0)
             self.replayed += int(ok.sum())
             if not ok.all():
@@ -291,9 +371,23 @@ class TfChecks:
                     bad.setdefault(idx[int(row)], []).append(int(c))
         for i in sorted(bad):
             m, plan, _q, _v, ent = jobs[i]
-            pos = dict(zip(ent[0], ent[1].tolist()))
+            pos = dict(zip(ent[0], _row(ent).tolist()))
             for c in bad[i]:
                 self._compare(m, m.data.edge(int(plan.mov[c])), plan.mkeys[c], plan.msegs[c], pos)
+
+    def _close(self, plan, Q, V, np):
+        """Which recorded transforms V (..., E, 7) are clearly within tolerance of what the publisher gives at
+        joint values Q (..., E): half the tolerance in translation, a quarter of it in angle (numpy's first look;
+        the rest goes through `_compare`)."""
+        t, r = plan.expected(Q, np)
+        dt = t - V[..., :3]
+        qr = V[..., 3:]
+        with np.errstate(all="ignore"):
+            dt2 = (dt * dt).sum(axis=-1)
+            dot = (r * qr).sum(axis=-1)
+            n1 = (r * r).sum(axis=-1)
+            n2 = (qr * qr).sum(axis=-1)
+            return (dt2 <= self._tol2 / 4) & (dot * dot >= n1 * n2 * self._cos4)
 
     def _own(self, plan, np) -> None:
         """`plan` keeps the last values of its edges in arrays; whoever kept them before writes them back."""
@@ -477,8 +571,8 @@ class TfChecks:
     def _positions(self, stamp: int) -> dict | None:
         pos = self.states.get(stamp)
         if isinstance(pos, tuple):
-            if len(pos) == 3:  # (names, a row of a batch's positions, True)
-                pos = self.states[stamp] = dict(zip(pos[0], pos[1].tolist()))
+            if len(pos) == 3:  # (names, a row of a batch's positions, None), or (names, rows, which row)
+                pos = self.states[stamp] = dict(zip(pos[0], _row(pos).tolist()))
             else:
                 pos = self.states[stamp] = dict(zip(*pos))
         return pos
@@ -707,6 +801,11 @@ class _FastPlan:
             rot = np.where(self.prism[:, None], self.q0, rot)
         t = self.t0 + self.d * q[..., None]
         return t, rot
+
+
+def _row(ent):
+    """The positions of a kept batch state: (names, row, None) or (names, rows, which row)."""
+    return ent[1] if ent[2] is None else ent[1][ent[2]]
 
 
 def _dist(a, b) -> float:

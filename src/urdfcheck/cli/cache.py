@@ -395,7 +395,7 @@ def fork_early(argv: list[str]) -> None:
     argv = lint_argv(list(argv))
     if not argv or argv[0] != "lint":
         return
-    trusted, allow_env, timeout, paths = False, [], None, []
+    trusted, allow_env, timeout, paths, config = False, [], None, [], None
     it = iter(argv[1:])
     for a in it:
         if not a.startswith("-") or a == "-":
@@ -406,6 +406,7 @@ def fork_early(argv: list[str]) -> None:
             return
         if name in _FLAGS and not eq:
             trusted = trusted or name == "--trusted"
+            config = "" if name == "--no-config" else config
             continue
         if name not in _VALUED:
             return
@@ -413,6 +414,8 @@ def fork_early(argv: list[str]) -> None:
             value = next(it, None)
             if value is None:
                 return
+        if name == "--config" and config is None:
+            config = value
         if name == "--allow-env":
             allow_env.append(value)
         elif name == "--timeout":
@@ -430,6 +433,8 @@ def fork_early(argv: list[str]) -> None:
     from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, XACRO_TIMEOUT, worker_limits
 
     _both_import()
+    if _reads_yaml_config(config, paths or ["."]):
+        from urdfcheck.core import yamlimport  # noqa: F401 - the config's reader here, xacro's there
 
     worker.keep_spare(SPARE, worker_limits(trusted, allow_env, timeout or XACRO_TIMEOUT), SPARE_PRELOAD)
 
@@ -441,17 +446,43 @@ def _no_worker_expected() -> bool:
     return reuse is not None and reuse.all_expected()
 
 
+def _reads_yaml_config(config: str | None, paths: list[str]) -> bool:
+    """Will this lint read a YAML config (`--config FILE.yaml`, or an urdfcheck.yaml at or above a path)? Then this
+    process imports PyYAML anyway, which the worker always imports (xacro does): imported once, before the fork,
+    instead of on both sides (~6 ms of CPU; issue 38's goal is the CPU of xacro then check_urdf per variant). A
+    run without one keeps PyYAML out of this process (its parameter files are parsed in the worker)."""
+    if config is not None:
+        return config.lower().endswith((".yaml", ".yml"))
+    names = ("urdfcheck.yaml", ".urdfcheck.yaml")  # request.config.CONFIG_NAMES (not imported: start-up)
+    for p in paths:
+        d = os.path.abspath(p)
+        d = d if os.path.isdir(d) else os.path.dirname(d)
+        while True:
+            if any(os.path.isfile(os.path.join(d, n)) for n in names):
+                return True
+            up = os.path.dirname(d)
+            if up == d:
+                break
+            d = up
+    return False
+
+
 def _both_import() -> None:
     """What the worker imports and this process imports later anyway: imported once, before the fork, instead of
     once on each side (~10 ms of CPU on two cores that the expansions need). Only what every xacro lint imports:
-    a module only the worker needs stays out, as this process would wait for it instead of importing the rules."""
+    a module only the worker needs stays out, as this process would wait for it instead of importing the rules.
+
+    ast and glob: the worker always imports them (xacro, the expander), this process for any launch file."""
+    import ast  # noqa: F401 - xacro there, Python launch files here
     import gettext  # noqa: F401 - argparse here, optparse (xacro.cli) there
+    import glob  # noqa: F401 - the expander there, the deployment finder here
     import locale  # noqa: F401 - gettext's first lookup
     import math  # noqa: F401
+    import resource  # noqa: F401 - the worker's limits there, the run's memory budget here
     import weakref  # noqa: F401
 
     from urdfcheck.consumers import params, yamldoc  # noqa: F401
-    from urdfcheck.core import observe, paths, safeio  # noqa: F401
+    from urdfcheck.core import door, observe, paths, safeio  # noqa: F401
     from urdfcheck.load import packages  # noqa: F401
 
 

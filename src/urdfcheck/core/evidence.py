@@ -25,6 +25,9 @@ HOW = {
     "referenced": (True, "named by a reference (a plugin's <parameters>, an include, a $(find) or package:// path)"),
     "complete": (True, "a whole robot that no other file includes"),
     "only": (True, "the only model of its package"),
+    # the file named on the command line is a fragment its robot includes only under these argument values: the
+    # variant that reaches it is how that file is used (plan.plan.Planner.reaching, load.reach)
+    "reaching": (True, "the argument values under which the robot includes the file named on the command line"),
     "overlap": (False, "paired by the joint names it shares with the model"),
     "package": (False, "paired only because it lies in the same package"),
     "probe": (False, "a file that may be a fragment of another model"),
@@ -40,6 +43,9 @@ HOW = {
     "idle": (False, "configured but not spawned by this deployment (another launch-argument choice may start it)"),
     # a launch-argument value other than the default (a variant) whose model reads a file that does not exist
     "choice": (False, "a launch-argument value other than the default, which may need other arguments its users give"),
+    # a launch file that another launch file includes (the include not followed to it): the includer may pass it
+    # other arguments than its defaults (plan.understood: a model path that does not exist)
+    "included": (False, "a launch file that other launch files include, which may pass it other arguments"),
     # a xacro argument a launch file passes from a launch argument without default
     "required": (False, "a launch argument without default, which the launch file's users give"),
     # a package the checkout references but does not hold: the workspace's business (a dependency), unless the

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Finding, Severity
+from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
 from urdfcheck.finish.packages import merge_x013
 
@@ -61,11 +62,31 @@ class Result(Record):
         bad = self.unchecked()
         if bad:
             n = len({str(t.path) for t in bad})
-            return f"{n} model{'s' if n != 1 else ''} not checked (did not load)"
+            return f"{n} model{'s' if n != 1 else ''} not checked (did not load): {self._why_unchecked(bad)}"
         if not [t for t in self.targets if not t.library]:
             n = self.libraries
             return "no robot found" + (f": {n} xacro librar{'y' if n == 1 else 'ies'}" if n else "")
         return None
+
+    def _why_unchecked(self, bad: list[Target], most: int = 3) -> str:
+        """Why the models did not load and how to make them checkable (from the first load finding of each),
+        grouped by reason: an unchecked robot never passes, so the line says what to do about it."""
+        index = {id(t): i for i, t in enumerate(self.targets)}
+        groups: dict[str, list[str]] = {}
+        named: set[str] = set()
+        for t in bad:
+            if str(t.path) in named:  # another variant of a model already named: its first reason is enough
+                continue
+            named.add(str(t.path))
+            i = index.get(id(t))
+            found = self.by_target[i] if i is not None and i < len(self.by_target) else []
+            why = next((_how_to_load(f) for f in found if f.code.startswith("X")), "see its findings")
+            groups.setdefault(why, []).append(shown(str(t.path)))
+        parts = []
+        for why, names in groups.items():
+            more = f", {len(names) - most} more" if len(names) > most else ""
+            parts.append(f"{', '.join(names[:most])}{more} ({why})")
+        return "; ".join(parts)
 
     def worst(self) -> Severity | None:
         return max((f.severity for f in self.findings), default=None)
@@ -84,6 +105,21 @@ class Result(Record):
                 key = (f.code, f.location)
                 levels[key] = min(levels.get(key, level), level)
         return any(f.severity >= levels.get((f.code, f.location), self.fail_on) for f in self.findings)
+
+
+def _how_to_load(f: Finding) -> str:
+    """One load finding as the reason a model was not checked, with what makes it checkable."""
+    import re
+
+    m = re.search(r"package '([\w.-]+)' not found", f.message) if f.code == "X013" else None
+    if m is not None:
+        return (f"package '{m.group(1)}' is not in the checkout: pass --package {m.group(1)}=PATH, or lint the "
+                "workspace that holds it")
+    m = re.match(r"xacro argument '([^']+)' has no default", f.message) if f.code == "X010" else None
+    if m is not None:
+        return (f"xacro argument '{m.group(1)}' has no default: pass --arg {m.group(1)}:=..., or lint the launch "
+                "file that runs it")
+    return f"{f.code} at {f.location}"
 
 
 def dedupe(findings: list[Finding]) -> list[Finding]:

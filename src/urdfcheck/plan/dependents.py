@@ -8,9 +8,10 @@ model reads its own package's parameter files: `xacro.load_yaml`, the consumers 
 stands for its scope. A file nothing reads is an info line.
 
 From a monorepo root (a workspace of many repositories) the workspace is not planned whole: only the launch files
-that can reach the file are read (those naming its package or its file name, and the launch files that name
-those, until nothing new), with the workspace's packages resolvable, plus the models of its own package. A
-workspace with a urdfcheck config is planned whole (a config may declare what reads the file).
+that can reach the file are read (those naming its package or its file name, the launch files that name those,
+and the launch files naming a model file (.urdf, .xacro) that names any of them: a Gazebo plugin's <parameters>,
+until nothing new), with the workspace's packages resolvable, plus the models of its own package. A workspace
+with a urdfcheck config is planned whole (a config may declare what reads the file).
 """
 from __future__ import annotations
 
@@ -72,22 +73,61 @@ def _candidates(planner, ws: str, path: str, pkg, settings) -> list:
     else the deployments of the launch files that can reach it and the own package's models."""
     if pkg is None or _below(ws, str(pkg)) or _listing(planner, ws)[1]:
         return planner.workspace_targets(ws)
-    from urdfcheck.load.packages import package_name
+    from urdfcheck.load.packages import own_package
 
-    words = {os.path.basename(path).encode()}
-    name = package_name(pkg / "package.xml")
-    if name:
-        words.add(name.encode())
-    texts = _texts(planner, ws)
+    texts, models = _texts(planner, ws), _listing(planner, ws)[2]
+    owners: dict[str, tuple] = {}
+
+    def owner(p: str) -> tuple:
+        folder = os.path.dirname(p)
+        if folder not in owners:
+            name, home = own_package(p)
+            owners[folder] = (name.encode() if name else None, str(home) if home is not None else None)
+        return owners[folder]
+
+    # a file's name, as a launch file names it: with its package's name (find-pkg-share, get_package_share_directory)
+    # or from inside that package; a package's name alone is a word of its own (a launch argument handed down an
+    # include carries it). A generic name (bringup.launch.py) in another package names that package's own file:
+    # from a corpus root, linorobot2's joy.yaml planned rosbot's simulation launch files through it.
+    plain: set[bytes] = set()  # found anywhere: package names, names of files outside every package
+    named_in: dict[bytes, set] = {}  # file name -> the (package name, package folder) of the files so named
+
+    def add(p: str) -> None:
+        name, home = owner(p)
+        if home is None:
+            plain.add(os.path.basename(p).encode())
+            return
+        named_in.setdefault(os.path.basename(p).encode(), set()).add((name, home))
+        if name:
+            plain.add(name)
+
+    def names(p: str, text) -> bool:
+        if text is None or any(w in text for w in plain):
+            return True
+        return any(w in text and any(_below(p, home) or (name and name in text) for name, home in where)
+                   for w, where in named_in.items())
+
+    add(path)
     chosen = {p for p in texts if _below(p, str(pkg))}  # the own package's launch files, whatever they name
-    words.update(os.path.basename(p).encode() for p in chosen)
+    for p in chosen:
+        add(p)
+    reached: set[str] = set()
     grew = True
     while grew:  # the launch files naming a chosen one (an include), until nothing new
         grew = False
+        # a model file naming a word reads it (a Gazebo plugin's <parameters>, an include, an argument's default):
+        # the launch files naming that model deploy a reader (turtlebot4's launch file names its model, whose
+        # include of create3.urdf.xacro names create3's control.yaml); an include may be relative, so any mention
+        # of the file name counts here
+        for p, text in models.items():
+            if p not in reached and (text is None or any(w in text for w in (*plain, *named_in))):
+                reached.add(p)
+                add(p)
+                grew = True
         for p, text in texts.items():
-            if p not in chosen and (text is None or any(w in text for w in words)):
+            if p not in chosen and names(p, text):
                 chosen.add(p)
-                words.add(os.path.basename(p).encode())
+                add(p)
                 grew = True
     from urdfcheck.plan.named import Named as _Named
 
@@ -105,22 +145,29 @@ def _texts(planner, ws: str) -> dict:
     return _listing(planner, ws)[0]
 
 
-def _listing(planner, ws: str) -> tuple[dict, bool]:
-    """One pass over `ws` (as the deployment finder lists it): its launch files with their bytes, and whether a
-    urdfcheck config sits anywhere in it."""
+def _listing(planner, ws: str) -> tuple[dict, bool, dict]:
+    """One pass over `ws` (as the deployment finder lists it): its launch files with their bytes, whether a
+    urdfcheck config sits anywhere in it, and its model files (.urdf, .xacro) with their bytes."""
     memo = planner.__dict__.setdefault("_dependents_listing", {})
     if ws not in memo:
+        from urdfcheck.core import door
         from urdfcheck.load.discover import _walk
         from urdfcheck.plan.deployments import _is_launch
         from urdfcheck.request.config import PYPROJECT, _pyproject_has_table
 
-        texts, config = {}, False
+        # every plan of `ws` makes it a root of the run (its Resolver names it as the workspace): the name search
+        # reads what that plan reads. Before, a launch file of a sibling repository was refused here, kept as "may
+        # name the file" and planned: from a corpus root, 77 launch files for one SRDF macro.
+        door.add_root(ws)
+        texts, models, config = {}, {}, False
         for folder, name in _walk(os.path.abspath(ws), 20_000):  # plan.deployments.launch_files' walk
             if _is_launch(name):
                 texts[os.path.join(folder, name)] = None
+            elif name.lower().endswith((".urdf", ".xacro")):
+                models[os.path.join(folder, name)] = None
             elif name in CONFIG_NAMES or (name == PYPROJECT and _pyproject_has_table(Path(folder, name))):
                 config = True
-        memo[ws] = ({p: _head(p) for p in texts}, config)
+        memo[ws] = ({p: _head(p) for p in texts}, config, {p: _head(p) for p in models})
     return memo[ws]
 
 

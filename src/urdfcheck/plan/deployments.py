@@ -64,6 +64,9 @@ class Deployment(Record):
     plugin_files: tuple = ()
     workspace: str | None = None
     included_elsewhere = False
+    # a literal model path into a package of the checkout that names no file (`_Workspace.missing`): the launch
+    # file itself is broken (plan.understood: C025), not merely not understood; the package folder
+    missing: str = ""
 
     def __init__(self, model, how="xacro", args=None, variant="", namespace="/", frame_prefix=None,
                  launch: Location | None = None, rsp: Location | None = None, chain=(), controller_files=(),
@@ -221,6 +224,22 @@ class _Workspace:
                 return None
         return None
 
+    def missing(self, path: str | None) -> str:
+        """The package folder of the checkout that a literal model path points into, when no file is there (nor
+        in the source layout): the launch file fails at this line (issue 37). "" when the path is not literal, lies
+        outside the checkout's packages (a dependency's, the author's machine), or names a URDF the package makes
+        at build time from a xacro file (CMake's xacro macros: the URDF is in the install space only)."""
+        if not path or "\x00" in path or not os.path.isabs(path):
+            return ""
+        path = os.path.normpath(path)
+        if os.path.lexists(path) or not self.inside(path):
+            return ""
+        pkg = next((str(d) for dirs in self.packages.values() for d in dirs
+                    if path.startswith(str(d).rstrip(os.sep) + os.sep)), "")
+        if not pkg or not _below_root(pkg, self.root) or _built(pkg, path) or _elsewhere(pkg, path):
+            return ""
+        return pkg
+
     def match(self, pattern: str) -> list[str]:
         """Model files matching a path with pieces decided at launch time (UNKNOWN), in the source layout too.
         A path that is nothing but launch-time pieces (`robot_xacro_file` with no default), or is relative (to a
@@ -288,6 +307,38 @@ class _Workspace:
             return e
         except (RecursionError, MemoryError, ValueError):
             return ConsumerError("launch file not understood", Location(path))
+
+
+def _below_root(path: str, root: str) -> bool:
+    return path == root or path.startswith(root.rstrip(os.sep) + os.sep)
+
+
+def _elsewhere(pkg: str, path: str) -> bool:
+    """A file of that name somewhere else in the package: the build may install it where the launch file looks
+    (`install(FILES models/robot.urdf DESTINATION share/pkg/urdf)`, setup.py's data_files)."""
+    from urdfcheck.core.walk import folders
+
+    name = os.path.basename(path)
+    return any(e.name == name for _d, entries in folders(pkg, max_dirs=2000) for e in entries)
+
+
+def _built(pkg: str, path: str) -> bool:
+    """A URDF the package generates at build time: its CMakeLists.txt runs xacro and the package holds a xacro
+    file of the same name (`robot.urdf` from `robot.urdf.xacro` or `robot.xacro`)."""
+    from urdfcheck.core import door
+
+    name = os.path.basename(path)
+    stem = name[:-5] if name.endswith(".urdf") else name
+    try:
+        cmake = door.read_bytes(os.path.join(pkg, "CMakeLists.txt"), limit=1024 * 1024)
+    except OSError:
+        return False
+    if b"xacro" not in cmake:
+        return False
+    wanted = {name + ".xacro", stem + ".xacro", stem + ".urdf.xacro"}
+    from urdfcheck.core.walk import folders
+
+    return any(e.name in wanted for _d, entries in folders(pkg, max_dirs=2000) for e in entries)
 
 
 def launch_files(root: str) -> list[str]:
@@ -416,6 +467,7 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
                                                          + (f": {why}" if why else ""), sp.loc)],
                                   **common))
             continue
+        missing = ""
         if UNKNOWN in (ref.path or ""):
             files = ws.match(ref.path)
             picked = [(f, f"model={os.path.basename(f)}") for f in files]
@@ -427,12 +479,14 @@ def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[D
             picked = [(f, "")] if f else []
             if not picked:
                 notes.append((f"model file {_show(ref.path)} not found in the workspace", ref.loc))
+                missing = ws.missing(ref.path)
             elif sdformat(f):
                 notes.append((f"{_show(f)} is an SDFormat model (read through sdformat_urdf), not a URDF: "
                               "not checked", ref.loc))
                 picked = []
         if not picked:
             out.append(Deployment(None, notes=notes, **common))
+            out[-1].missing = missing if UNKNOWN not in (ref.path or "") else ""
             continue
         args, dropped = {}, []
         for k, v in ref.args:

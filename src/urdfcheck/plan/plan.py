@@ -128,6 +128,7 @@ class TargetList(list):
         self.findings = []  # about the plan itself: a config's ignored keys, a file walk cut short (issue 19)
         self.libraries = 0  # xacro libraries seen: "no robot found: N xacro libraries"
         self.included = []  # libraries by inclusion that may hold links (plan.robots.missed)
+        self.library_files = []  # xacro libraries seen (macros only): a robot may include them under an argument
 
 
 class Planner:
@@ -212,6 +213,7 @@ class Planner:
                 got = TargetList(_unique(found), dict.fromkeys(self.infos))
                 got.not_understood = list(self.not_understood)
                 got.findings, got.libraries = self.plan_findings(), len(self.libraries)
+                got.library_files = sorted(self.libraries)
                 got.included = list(dict.fromkeys(self.included))
                 return got
             paths = [self.here]  # the package here (a workspace config above it applies to it, not all of it)
@@ -221,6 +223,7 @@ class Planner:
         got = TargetList(_unique(out), dict.fromkeys(self.infos))
         got.not_understood = list(self.not_understood)
         got.findings, got.libraries = self.plan_findings(), len(self.libraries)
+        got.library_files = sorted(self.libraries)
         got.included = list(dict.fromkeys(self.included))
         return got
 
@@ -475,7 +478,8 @@ class Planner:
                     if not robots:  # a computed, legacy or commented include: the robots that include its includer
                         robots = [t for t in self.robots_including(by, str(pkg or folder), settings)
                                   if os.path.realpath(t.path) != real]
-                        robots = robots or [t for t in self.workspace_targets(_ws(self.here, by, pkg or folder))
+                        ws = self.library_ws(by, str(pkg or folder))
+                        robots = robots or [t for t in self.workspace_targets(ws)
                                             if os.path.realpath(t.path) == os.path.realpath(by)]
                 maybe = {os.path.realpath(x) for x in (*found.probes, *found.included)}
                 if not robots and os.path.realpath(path) in maybe:  # named: never skipped when it may be a robot
@@ -484,10 +488,15 @@ class Planner:
                     self.infos.append(f"{shown(str(path))}: a xacro library that no robot of "
                                       "its workspace includes: not linted alone")
                 self.included.append(str(path))  # the run checks that one of them did read it
-                return robots
+                return robots + self.reaching(path, robots)
             if _robot_file(path):  # a robot named by itself (the per-file hook): its variants too
                 return _mark(self.variants(path, settings), "named")
         return _mark([self.target(path, {}, "", None, settings)], "named")
+
+    def reaching(self, fragment: Path, robots: list[Target]) -> list[Target]:
+        """A fragment named on the command line that its robots include only under a xacro argument other than the
+        one they are linted with: `reaching_targets`, with evidence `reaching` (the runner named the fragment)."""
+        return reaching_targets(fragment, robots, self.infos, named=True)
 
     def probe(self, path: Path, settings: Settings, root: str | None = None) -> Target:
         """A file that may be a library: expanded with its defaults; a library when the expansion has no link."""
@@ -499,13 +508,9 @@ class Planner:
 
     def robots_including(self, library: str, pkg: str, settings: Settings) -> list[Target]:
         """The targets of the library's workspace whose model includes it (literal includes, read as text)."""
-        from urdfcheck.core.checkout import run_roots
         from urdfcheck.load.packages import included_files
 
-        # the checkout around the library (where the door lets the run read), never a folder above it: the working
-        # directory may hold the runner's other files
-        here = os.path.abspath(self.here)
-        ws = next((r for r in run_roots((library,), cwd=here) if _below(library, r)), os.path.abspath(pkg))
+        ws = self.library_ws(library, pkg)
         real, out = os.path.realpath(library), []
         for t in self.workspace_targets(ws):
             key = (os.path.realpath(t.path), tuple(sorted(t.packages.items())))
@@ -514,6 +519,16 @@ class Planner:
             if real in self._closures[key] and os.path.realpath(t.path) != real:
                 out.append(t)
         return out
+
+    def library_ws(self, library: str, pkg: str) -> str:
+        """Where the robots including a library are looked for: the checkout around it (where the door lets the run
+        read), never a folder above it (the working directory may hold the runner's other files), so the same from
+        a folder of repositories as from the repository's root."""
+        from urdfcheck.core.checkout import run_roots
+
+        here = os.path.abspath(self.here)
+        ws = next((r for r in run_roots((library,), cwd=here) if _below(library, r)), os.path.abspath(pkg))
+        return _unskipped(ws, os.path.dirname(os.path.abspath(library)))
 
     def workspace_targets(self, ws: str) -> list[Target]:
         """The targets of a workspace folder as `urdfcheck lint` run there plans them (once per run)."""
@@ -548,6 +563,46 @@ class Planner:
                       dict(settings.packages) if packages is None else packages, settings)
 
 
+def reaching_targets(fragment, robots: list[Target], infos: list, named: bool = False) -> list[Target]:
+    """Robots that include `fragment` only under a xacro argument other than the one they are linted with
+    (`<xacro:if value="$(arg use_arm)">`, default false; a literal comparison): one more target per robot file,
+    with the values that make the include happen, named by them (load.reach). `named`: the runner named the
+    fragment (evidence `reaching`); otherwise the variant is one option of a discovered model, like the automatic
+    boolean variants. A condition urdfcheck does not decide is said as an info line in `infos`."""
+    from urdfcheck.load.reach import _same, reaching
+
+    fragment = Path(fragment)
+    out, done = [], set()
+    for t in robots:
+        entry = os.path.realpath(t.path)
+        if entry in done or not str(t.path).endswith(".xacro"):
+            continue
+        done.add(entry)
+        mine = [r for r in robots if os.path.realpath(r.path) == entry]
+        r = reaching(str(t.path), str(fragment), lambda n, pk=t.packages: pk.get(n))
+        if r is None:
+            continue
+        if r.undecided:
+            infos.append(f"{shown(str(fragment))}: {shown(str(t.path))} includes it only when {r.undecided}, a "
+                         "condition urdfcheck does not decide: not linted through it (pass the arguments that "
+                         "include it with --arg NAME:=VALUE)")
+            continue
+        if not r.args or any(all(k in m.args and _same(str(m.args[k]), v) for k, v in r.args.items()) for m in mine):
+            continue  # the defaults, a launch file's or the runner's arguments already include it
+        given = ",".join(f"{k}={v}" for k, v in r.args.items())
+        v = Target(Path(t.path), {**t.args, **r.args}, f"{given} (includes {fragment.name})", None,
+                   dict(t.packages), t.settings)
+        if named:
+            v.evidence = (_step("variant", f"{shown(str(t.path))} with {given}", "reaching",
+                                f"lint {shown(str(t.path))} with --arg for a deployment that uses it"),)
+        else:
+            # one option alone of a robot that is one by evidence (as the automatic boolean variants)
+            v.evidence = tuple(s for s in t.evidence if s.what == "model") or \
+                (_step("model", str(t.path), "launched" if t.deployment is not None else "complete"),)
+        out.append(v)
+    return out
+
+
 def plan(request: LintRequest, here: str | None = None) -> TargetList:
     """`here`: the folder a request without paths lints, as if run there (default: the working directory)."""
     return Planner(request, here).plan()
@@ -561,9 +616,25 @@ def _packages(root: str, model: str, settings: Settings) -> dict:
     return {**workspace_map(root, near=model), **dict(settings.packages)}
 
 
-def _ws(here: str, path: str, pkg) -> str:
-    here = os.path.abspath(here)
-    return here if _below(path, here) else os.path.abspath(str(pkg))
+def _unskipped(ws: str, folder: str) -> str:
+    """`ws`, or the deepest folder between it and `folder` (the library's) that a walk from `ws` skips (a
+    COLCON_IGNORE, a hidden folder: core.walk): the library was named, so the robots beside it are planned as if
+    that folder had been named (this repository's examples/ holds COLCON_IGNORE; from its root, a macro file of
+    examples/agv had "no robot that includes it")."""
+    from urdfcheck.core import walk
+
+    ws, d = os.path.abspath(ws), os.path.abspath(folder)
+    if not _below(d, ws):
+        return ws
+    while d != ws:
+        try:
+            entries = list(os.scandir(d))
+        except OSError:
+            entries = []
+        if os.path.basename(d).startswith(".") or walk.skipped(d, entries):
+            return d
+        d = os.path.dirname(d)
+    return ws
 
 
 def _step(what: str, subject: str, how: str, confirm: str = ""):

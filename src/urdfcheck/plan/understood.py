@@ -11,12 +11,14 @@ from __future__ import annotations
 from urdfcheck.core.findings import Finding, Location, Severity, clean_text
 
 CODE, NAME = "C021", "deployment-not-understood"
+MISSING, MISSING_NAME = "C025", "launch-model-missing"
 
 
 def findings(deployments, settings, shown) -> list[Finding]:
-    """One C021 per deployment without a model (`Deployment.model` None), under `settings`' selection."""
+    """One C021 per deployment without a model (`Deployment.model` None), under `settings`' selection; a C025
+    instead where the launch file names a model file of the checkout that does not exist (`Deployment.missing`)."""
     sel = settings.selection
-    if not deployments or not sel.enabled(CODE):
+    if not deployments:
         return []
     out, seen = [], set()
     for d in deployments:
@@ -28,6 +30,12 @@ def findings(deployments, settings, shown) -> list[Finding]:
         if key in seen:
             continue
         seen.add(key)
+        if getattr(d, "missing", ""):
+            if sel.enabled(MISSING):
+                out.append(_missing(d, loc, sel, shown))
+            continue
+        if not sel.enabled(CODE):
+            continue
         variant = f" [{d.variant}]" if d.variant else ""
         code = _source_line(loc)
         if code:
@@ -40,6 +48,53 @@ def findings(deployments, settings, shown) -> list[Finding]:
         out.append(Finding(CODE, sel.severity_of(CODE, Severity.INFO), clean_text(msg, 1000), where, name=NAME,
                            model=launch, variant=d.variant))
     return out
+
+
+def _missing(d, loc, sel, shown) -> Finding:
+    """C025: the launch file runs xacro on (or loads) a model file that is not there. It rests on the launch file
+    being a deployment (evidence: it starts robot_state_publisher) run with its defaults; a launch-argument value
+    other than the default may need files its users give (an info, core.evidence `choice`)."""
+    from urdfcheck.core.evidence import Step
+    from urdfcheck.rules import engine
+
+    path = next((m for m, _ in reversed(d.notes) if m.startswith("model file ")), "")
+    path = path[len("model file "):].rsplit(" not found in the workspace", 1)[0]
+    launch = shown(d.launch.file)
+    variant = f" [{d.variant}]" if d.variant else ""
+    code = _source_line(loc)
+    near = _nearest_model(d.missing, path)
+    # the suggestion before the source line: a report may shorten a long message from its end
+    msg = (f"{launch}{variant} gives robot_state_publisher the model file {path}, which does not exist"
+           + (f" (did you mean {shown(near)}?)" if near else "") + ": the launch fails here, so nothing of this "
+           "deployment starts" + (f" (`{code}`)" if code else ""))
+    where = loc._replace(file=shown(loc.file)) if loc is not None else Location(launch)
+    f = Finding(MISSING, sel.severity_of(MISSING, Severity.ERROR), clean_text(msg, 1000), where, name=MISSING_NAME,
+                model=launch, variant=d.variant)
+    if d.variant:  # a choice or a flipped boolean launch argument (a literal path: no "model=" file match)
+        step = Step("deployment", f"{launch}{variant}", "choice", "name the arguments that value needs under "
+                    "models: in urdfcheck.yaml")
+    elif getattr(d, "included_elsewhere", False):  # its includer (not followed) may pass another model path
+        step = Step("deployment", launch, "included", "lint the launch file that includes it")
+    else:
+        step = Step("deployment", launch, "launched")
+    return engine.on_evidence([f], (step,))[0]
+
+
+def _nearest_model(pkg: str, missing: str) -> str:
+    """The model file of the package whose name is closest to the missing one (a misspelling, a renamed file)."""
+    import difflib
+    import os
+
+    from urdfcheck.load.discover import discover
+
+    try:
+        found = discover(pkg)
+    except OSError:
+        return ""
+    files = [*found.models, *found.probes]
+    names = {os.path.basename(str(f)): str(f) for f in files}
+    best = difflib.get_close_matches(os.path.basename(missing), list(names), n=1, cutoff=0.6)
+    return names[best[0]] if best else ""
 
 
 def _construct(d) -> tuple[str, Location | None]:

@@ -62,6 +62,12 @@ def render(result, colour: bool = False, **_) -> str:
                      f"({', '.join(parts)}) in {n_models} model{'s' if n_models != 1 else ''}{deployed}.")
         if why_not:
             lines.append(f"Not a pass: {why_not}.")
+        failing = [f for f in result.findings if f.severity >= getattr(result, "fail_on", Severity.WARNING)]
+        if failing and all(f.code == "G001" for f in failing):
+            # the model itself passed: only the mesh files it names are absent (a checkout without its meshes, Git
+            # LFS not pulled, a package of meshes outside the checkout)
+            lines.append("Only missing meshes fail this run (G001): fetch the mesh files (`git lfs pull`, "
+                         "submodules) or lint where the package that ships them is (--package NAME=PATH).")
     elif why_not:
         lines.append(f"Nothing checked: {why_not}, no findings.")
     elif getattr(result, "baselined", 0):  # the baseline is a file too: what it hides is said (issue 36)

@@ -304,7 +304,9 @@ def _read_pyproject(path: str):
 def _validate(data, path: str, key_loc, val_loc) -> None:
     from urdfcheck.request.schemagate import verdict
 
-    schema = config_schema()
+    # `rules:`'s schema is built from every catalogue entry's options: only when the config has that key (the
+    # schema of a key the data lacks cannot change the verdict nor the error named)
+    schema = config_schema(rules=not isinstance(data, dict) or "rules" in data)
     if verdict(data, schema) is True:  # the usual case: skip importing jsonschema (~60 ms)
         _check_codes(data, key_loc, val_loc)
         return
@@ -336,13 +338,17 @@ def _validate(data, path: str, key_loc, val_loc) -> None:
     raise ConfigError(f"'{key}': {_short_message(err)}", loc)
 
 
-def config_schema() -> dict:
-    """schemas/config.schema.json, with `rules:` built from the options the catalogue entries declare."""
-    from urdfcheck.rules.catalogue import options_schema
-
+def config_schema(rules: bool = True) -> dict:
+    """schemas/config.schema.json, with `rules:` built from the options the catalogue entries declare (`rules`
+    false: any mapping, for data without that key)."""
     with open(SCHEMA_PATH, encoding="utf-8") as f:
         schema = json.load(f)
-    schema["properties"]["rules"] = options_schema()
+    if rules:
+        from urdfcheck.rules.catalogue import options_schema
+
+        schema["properties"]["rules"] = options_schema()
+    else:
+        schema["properties"]["rules"] = {"type": "object"}
     return schema
 
 
