@@ -76,7 +76,7 @@ def test_agv_config_reaches_every_consumer():
     from urdfcheck.consumers.consumers import consumers_for_model
     from urdfcheck.load.loader import load_model
     from urdfcheck.request.config import load_config
-    from urdfcheck.rules.contracts.impl import _graph
+    from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 
     cfg = load_config(AGV / "urdfcheck.yaml")
     assert [Path(m.path).name for m in cfg.models] == ["agv.urdf.xacro", "agv.urdf"]

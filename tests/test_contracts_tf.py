@@ -6,25 +6,27 @@ SRC = Path(__file__).resolve().parent.parent / "src"
 if str(SRC) not in sys.path:  # runnable without an editable install
     sys.path.insert(0, str(SRC))
 
-from urdfcheck.consumers.graph import (  # noqa: E402
+from urdfcheck.consumers.tfclaims import (  # noqa: E402
     DYNAMIC,
     STATIC,
-    PublisherInfo,
     TFClaim,
-    TFGraph,
-    analyze,
     claims_from_model,
     claims_from_owners,
+    parse_edge,
+)
+from urdfcheck.core.findings import Location  # noqa: E402
+from urdfcheck.model.build import model_from_string  # noqa: E402
+from urdfcheck.rules.checks.tf.graph import (  # noqa: E402
+    PublisherInfo,
+    TFGraph,
+    analyze,
     cycles,
     duplicate_owners,
     multiple_parents,
     not_one_tree,
-    parse_edge,
     prefix_collisions,
     static_and_dynamic,
 )
-from urdfcheck.core.findings import Location  # noqa: E402
-from urdfcheck.model.build import model_from_string  # noqa: E402
 
 MODEL = """<robot name="r">
   <link name="base_link"/><link name="wheel"/><link name="laser"/><link name="float"/><link name="slider"/>

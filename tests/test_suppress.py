@@ -7,6 +7,7 @@ from conftest import run_cli
 
 from urdfcheck.core import suppress
 from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.finish.suppressions import finish_target
 from urdfcheck.rules import engine
 
 
@@ -209,7 +210,7 @@ def test_engine_consults_yaml_suppressions(in_tmp):
     path = "config/ctrl.yaml"
     findings = [_f("C001", path, 10), _f("C001", path, 13), _f("C010", path, 12), _f("C012", path, 14),
                 _f("C099", path, 3), _f("C001", "robot.urdf", 10)]
-    kept = engine.finish(findings, engine.Selection(), [], model="robot.urdf")
+    kept = finish_target(findings, engine.Selection(), [], model="robot.urdf")
     assert [(f.code, f.location.line, f.location.file) for f in kept] == [
         ("C001", 13, path), ("C012", 14, path), ("C001", 10, "robot.urdf")]
 

@@ -4,9 +4,8 @@
     load(request, path) -> Loaded    # one model with the settings lint gives it (expand, tree, tf, publish,
                                      # verify, urdfcheck.load / urdfcheck.expand)
 
-finish = suppressions (in the models and in the YAML files the contract checks read, with the bookkeeping
-of unused ones), one finding per problem across variants and models (`finish.collapse`), the baseline,
-and paths shown relative to the request's root.
+What happens after the checks is the finish stage (`finish/`): suppressions, one finding per problem, the
+baseline, one X013 per package, and the `Result` every front end renders.
 """
 from __future__ import annotations
 
@@ -19,121 +18,15 @@ from urdfcheck.core import progress
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
+from urdfcheck.finish.result import Result, dedupe, fragment  # noqa: F401  (Result: imported from here too)
+from urdfcheck.finish.stage import finish_run, not_understood
+from urdfcheck.finish.suppressions import YamlUse, finish_target
 from urdfcheck.load import loader
 from urdfcheck.plan.plan import Later, Target, plan  # noqa: F401  (Later, Target: imported from here too)
 from urdfcheck.request.request import LintRequest, UsageError
 
 if TYPE_CHECKING:  # the rules are imported after the first expansions are sent (`_lint_targets`), not with this module
     from urdfcheck.rules import engine
-
-
-class Result(Record):
-    # models: (entry, variant) -> Model (None when it failed to load)
-    # by_target: the findings of each target (index as in `targets`), before merging across targets; an
-    #   unused suppression in a YAML file belongs to the first target that read the file
-    # fail_on: the level at which the run fails (flags, else the config, else warning)
-    # root: reports show paths relative to this folder ("" = the working directory)
-    _fields = ('findings', 'targets', 'models', 'by_target', 'fail_on', 'root')
-    infos: tuple = ()  # the planner's info lines (a package of xacro libraries only): not findings
-    _finished: tuple = ((), {})  # (each target's findings the baseline kept, the run's X013 per package)
-    libraries: int = 0  # xacro libraries the plan saw (not linted alone)
-    read: set = frozenset()  # the files the expansions read
-    baselined: int = 0  # findings the baseline file hid (said in the text report)
-
-    def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
-                 by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
-        self.findings = findings
-        self.targets = targets
-        self.models = {} if models is None else models
-        self.by_target = [[] for _ in targets] if by_target is None else by_target
-        self.fail_on = fail_on
-        self.root = root
-
-    @property
-    def shares(self) -> list[list[Finding]]:
-        """Each target's findings after the finish (baseline, one X013 per package, one finding per problem):
-        what the pytest plugin's item of that target shows. Computed on first use, once."""
-        if "_shares" not in self.__dict__:
-            kept, merged = self._finished
-            self._shares = [_dedupe(_merge_x013(fs, merged)) for fs in kept]
-        return self._shares
-
-    def raw(self) -> list[Finding]:
-        """Every finding before duplicates were collapsed: what a baseline counts, so that a new call of a
-        macro with a known problem is new."""
-        return [f for fs in self.by_target for f in fs]
-
-    def unchecked(self) -> list[Target]:
-        """The targets whose model did not load: not checked, whatever the selection hid (issue 19). A probe
-        that may be a fragment of another file (its evidence is a guess, core.evidence) is no robot left
-        unchecked: its load findings say why at info, and a package lint never fails on a fragment alone."""
-        return [t for t in self.targets if (str(t.path), t.variant) in self.models
-                and self.models[(str(t.path), t.variant)] is None and not t.library and not _fragment(t)]
-
-    def not_passed(self) -> str | None:
-        """Why a run without findings still is no pass (a report says it instead of "All checks passed"):
-        models that did not load, or no robot at all."""
-        bad = self.unchecked()
-        if bad:
-            n = len({str(t.path) for t in bad})
-            return f"{n} model{'s' if n != 1 else ''} not checked (did not load): {self._why_unchecked(bad)}"
-        if not [t for t in self.targets if not t.library]:
-            n = self.libraries
-            return "no robot found" + (f": {n} xacro librar{'y' if n == 1 else 'ies'}" if n else "")
-        return None
-
-    def _why_unchecked(self, bad: list[Target], most: int = 3) -> str:
-        """Why the models did not load and how to make them checkable (from the first load finding of each),
-        grouped by reason: an unchecked robot never passes, so the line says what to do about it."""
-        index = {id(t): i for i, t in enumerate(self.targets)}
-        groups: dict[str, list[str]] = {}
-        named: set[str] = set()
-        for t in bad:
-            if str(t.path) in named:  # another variant of a model already named: its first reason is enough
-                continue
-            named.add(str(t.path))
-            i = index.get(id(t))
-            found = self.by_target[i] if i is not None and i < len(self.by_target) else []
-            why = next((_how_to_load(f) for f in found if f.code.startswith("X")), "see its findings")
-            groups.setdefault(why, []).append(shown(str(t.path)))
-        parts = []
-        for why, names in groups.items():
-            more = f", {len(names) - most} more" if len(names) > most else ""
-            parts.append(f"{', '.join(names[:most])}{more} ({why})")
-        return "; ".join(parts)
-
-    def worst(self) -> Severity | None:
-        return max((f.severity for f in self.findings), default=None)
-
-    def failed(self, fail_on: Severity | None = None) -> bool:
-        """Any finding at or above `fail_on`; by default the level of the config each finding's model was
-        planned under (a workspace run: each package's own `fail_on`; a flag sets them all)."""
-        if self.unchecked():  # a model that did not load was not checked: never a pass
-            return True
-        if fail_on is not None:
-            return any(f.severity >= fail_on for f in self.findings)
-        levels: dict[tuple, Severity] = {}
-        for t, found in zip(self.targets, self.by_target):
-            level = t.settings.fail_on if t.settings is not None else self.fail_on
-            for f in found:
-                key = (f.code, f.location)
-                levels[key] = min(levels.get(key, level), level)
-        return any(f.severity >= levels.get((f.code, f.location), self.fail_on) for f in self.findings)
-
-
-def _how_to_load(f: Finding) -> str:
-    """One load finding as the reason a model was not checked, with what makes it checkable."""
-    import re
-
-    m = re.search(r"package '([\w.-]+)' not found", f.message) if f.code == "X013" else None
-    if m is not None:
-        return (f"package '{m.group(1)}' is not in the checkout: pass --package {m.group(1)}=PATH, or lint the "
-                "workspace that holds it")
-    m = re.match(r"xacro argument '([^']+)' has no default", f.message) if f.code == "X010" else None
-    if m is not None:
-        return (f"xacro argument '{m.group(1)}' has no default: pass --arg {m.group(1)}:=..., or lint the launch "
-                "file that runs it")
-    return f"{f.code} at {f.location}"
 
 
 def run(request: LintRequest, *, retain: list | None = None, targets: list[Target] | None = None) -> Result:
@@ -172,7 +65,7 @@ def _run(request: LintRequest, retain, targets) -> Result:
         if infos or noted or unread:
             result = Result(noted, [], fail_on=request.fail_on or Severity.WARNING, root=request.root)
             result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
-            _not_understood(result, unread, request)
+            not_understood(result, unread, request)
             return result
         raise UsageError(f"no URDF or xacro model found in {', '.join(request.paths or ['.'])}")
     if request.bags:
@@ -183,28 +76,7 @@ def _run(request: LintRequest, retain, targets) -> Result:
     _drop_libraries(result)
     result.infos, result.libraries = infos, getattr(targets, "libraries", 0)
     result.root = request.root
-    kept = result.by_target
-    if request.baseline:
-        from urdfcheck.finish import baseline
-
-        try:
-            new = {id(f) for f in baseline.filter_new(request.baseline, result.raw())}
-        except (OSError, ValueError) as e:
-            raise UsageError(f"cannot read baseline {request.baseline}: {e}") from None
-        # a baseline is a file that hides findings: the runner names it, but its content may be the pull
-        # request's, so the report says how many it hid (issue 36), never a bare "All checks passed"
-        result.baselined = len(_dedupe([f for fs in kept for f in fs if id(f) not in new]))
-        kept = [[f for f in fs if id(f) in new] for fs in kept]
-        result.findings = _dedupe([f for fs in kept for f in fs])
-    result._finished = (kept, _missing_packages_once(result))
-    _not_understood(result, getattr(targets, "not_understood", ()), request)
-    if request.fail_on is not None:
-        result.fail_on = request.fail_on
-    elif targets[0].settings is not None:
-        result.fail_on = targets[0].settings.fail_on
-    if noted:  # after the baseline: what lowers the guard is never accepted once and for all
-        result.findings = sorted(result.findings + noted, key=Finding.sort_key)
-    return result
+    return finish_run(result, request, targets, noted)
 
 
 def _attach_bags(targets: list[Target], bags: tuple, topic: str | None) -> None:
@@ -341,11 +213,6 @@ def _choice(t: Target, found: list[Finding]) -> list[Finding]:
     return out
 
 
-def _fragment(t: Target) -> bool:
-    """A probe whose load failed only on symbols the files that include it provide (`_load_findings`)."""
-    return bool(t.probe) and getattr(t, "fragment", False)
-
-
 def _load_findings(t: Target, exp) -> list[Finding]:
     """The loader's findings of `t`, through the evidence rule (rules.engine.on_evidence): a probe that another
     file may include and that fails only on a symbol (macro, property, argument) that file provides is a
@@ -372,15 +239,6 @@ def _load_findings(t: Target, exp) -> list[Finding]:
     return [engine.on_evidence([f], (step,) if f.code == "X010" else t.evidence)[0] for f in exp.findings]
 
 
-def _not_understood(result: Result, deployments, request: LintRequest) -> None:
-    """Deployments whose model was not understood: C021 infos (issue 20), beside the targets' findings."""
-    from urdfcheck.plan.understood import findings
-
-    extra = findings(deployments, request.settings(None), shown)
-    if extra:
-        result.findings = sorted([*result.findings, *extra], key=Finding.sort_key)
-
-
 def _unread_libraries(result: Result, included, retain, request: LintRequest, libraries=()) -> Result:
     """Files taken for included libraries that no model of the run read (the include was commented out,
     conditional, or in a file that is no robot): expanded now as probes, so that a robot is never hidden by
@@ -403,7 +261,7 @@ def _unread_libraries(result: Result, included, retain, request: LintRequest, li
         extra.append(t)
     with progress.after(len(result.targets)):
         more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
-    merged = Result(_dedupe(result.raw() + more.raw()), result.targets + more.targets,
+    merged = Result(dedupe(result.raw() + more.raw()), result.targets + more.targets,
                     {**result.models, **more.models}, result.by_target + more.by_target)
     merged.read = set(result.read) | set(more.read)
     return merged
@@ -432,7 +290,7 @@ def _reaching(result: Result, unread: list[str], retain, request: LintRequest) -
         return result
     with progress.after(len(result.targets)):
         more = lint_targets(extra, retain=retain, budget=request.budget, **request.settings(None).load_options())
-    merged = Result(_dedupe(result.raw() + more.raw()), result.targets + more.targets,
+    merged = Result(dedupe(result.raw() + more.raw()), result.targets + more.targets,
                     {**result.models, **more.models}, result.by_target + more.by_target)
     merged.read = set(result.read) | set(more.read)
     return merged
@@ -449,22 +307,6 @@ def _drop_libraries(result: Result) -> None:
     for t in gone:
         if t not in result.targets:
             result.models.pop((str(t.path), t.variant), None)
-
-
-def _merge_x013(found: list[Finding], merged: dict) -> list[Finding]:
-    """A target's findings with its X013 replaced by the run's one X013 per package."""
-    if not merged:
-        return found
-    out, seen = [], set()
-    for f in found:
-        m = _MISSING.search(f.message) if f.code == "X013" else None
-        if m is not None and m.group(1) in merged:
-            if m.group(1) not in seen:
-                seen.add(m.group(1))
-                out.append(merged[m.group(1)])
-        else:
-            out.append(f)
-    return out
 
 
 def lint_target(t: Target, selection: engine.Selection, *, trusted=False, allow_env=(), timeout=loader.XACRO_TIMEOUT,
@@ -517,7 +359,7 @@ def _begin(t: Target, kw: dict, batch: loader.Batch | None = None) -> loader.Pen
     return loader.begin(t.path, t.args, packages=t.packages, batch=batch, stream=not t.probe, **opts)
 
 
-def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse | None = None
+def _check(t: Target, exp, selection: engine.Selection, config, yaml: YamlUse | None = None
            ) -> tuple[list[Finding], object]:
     from urdfcheck.rules import engine
 
@@ -534,36 +376,8 @@ def _check(t: Target, exp, selection: engine.Selection, config, yaml: _YamlUse |
             findings.extend(_bag_findings(model, t, selection, contracts))
         if yaml is not None:
             yaml.read(contracts, selection)
-    return engine.finish(findings, selection, exp.suppressions, model=exp.entry, variant=t.variant,
+    return finish_target(findings, selection, exp.suppressions, model=exp.entry, variant=t.variant,
                          yaml_used=yaml.used if yaml is not None else None), model
-
-
-class _YamlUse:
-    """The YAML files the contract checks read (with the selection they were read under, and the first
-    target that read each), and which of their suppressions hid a finding."""
-
-    def __init__(self):
-        self.files: dict[str, tuple[engine.Selection, int]] = {}
-        self.used: set[tuple[str, int]] = set()
-        self.index = 0  # the target being checked
-
-    def read(self, consumers, selection) -> None:
-        from urdfcheck.core.suppress import is_yaml
-
-        for paths in (getattr(consumers, "files", None) or {}).values():
-            for p in paths:
-                if is_yaml(str(p)):
-                    self.files.setdefault(os.path.abspath(p), (selection, self.index))
-
-    def unused(self) -> list[tuple[int, Finding]]:
-        """(first target that read the file, R002 finding) for each suppression that hid nothing."""
-        from urdfcheck.rules import engine
-
-        out = []
-        for file in sorted(self.files):
-            selection, first = self.files[file]
-            out.extend((first, f) for f in engine.unused_yaml([file], self.used, selection))
-        return out
 
 
 def lint_targets(targets: list[Target], selection: engine.Selection | None = None, *, config=None,
@@ -591,7 +405,7 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     models = {}
     ahead = max(1, min(4, os.cpu_count() or 1))
     pending: dict[int, loader.Pending] = {}
-    yaml = _YamlUse()
+    yaml = YamlUse()
     read: set = set()  # every file an expansion read (display paths): plan.robots.missed
     from urdfcheck.consumers.params import parsed_ahead
     from urdfcheck.plan.robots import has_links
@@ -623,7 +437,7 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
                     t.library = True
                     sel = t.settings.selection if t.settings is not None else selection
                     models[(str(t.path), t.variant)] = None
-                    by_target[i].extend(engine.finish(_load_findings(t, exp), sel, exp.suppressions,
+                    by_target[i].extend(finish_target(_load_findings(t, exp), sel, exp.suppressions,
                                                       model=exp.entry))
                     continue
                 try:
@@ -643,7 +457,7 @@ def _lint_targets(targets: list[Target], selection: engine.Selection | None = No
     for i, f in yaml.unused():
         by_target[i].append(f)
     _combinations(targets, by_target)
-    result = Result(_dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
+    result = Result(dedupe([f for fs in by_target for f in fs]), targets, models, by_target)
     result.read = read
     return result
 
@@ -702,121 +516,16 @@ def _over_memory(exp) -> Finding:
 def _warm_up(targets: list[Target], config) -> None:
     """What the run needs after loading (model builders, rule modules, the catalogue, the contract readers
     when there can be consumers), done while the first expansions run in their workers, not after them."""
+    from urdfcheck.consumers.reach import in_package
     from urdfcheck.model import build  # noqa: F401
     from urdfcheck.rules import catalogue as rulebook
 
     if not targets:
         return
-    rulebook.load_checks()
+    consumers = config is not None or any(t.settings is not None and t.settings.config is not None for t in targets) \
+        or any(t._contracts is not None for t in targets) or in_package(targets[0].path)
+    rulebook.load_checks(consumers=consumers)  # the consumer rules' modules import their readers
     rulebook.catalogue()
-    if config is not None or any(t.settings is not None and t.settings.config is not None for t in targets) \
-            or any(t._contracts is not None for t in targets) or _in_package(targets[0].path):
-        from urdfcheck.rules.contracts import impl as rules_impl  # noqa: F401
-
-
-def _in_package(path) -> bool:
-    from urdfcheck.load.packages import enclosing_package
-
-    # the folder the path names, not where a symlink points: nothing outside the tree is looked at
-    return enclosing_package(Path(os.path.abspath(path)).parent) is not None
-
-
-def _dedupe(findings: list[Finding]) -> list[Finding]:
-    """The same problem seen in several variants or models is reported once, naming where (issue 15)."""
-    if not findings:
-        return []
-    from urdfcheck.finish.collapse import collapse
-
-    return collapse(findings)
-
-
-_MISSING = None
-
-
-def _missing_packages_once(result: Result) -> dict[str, Finding]:
-    """One X013 per package the run cannot resolve, naming every place that references it (the first is the
-    finding's location, the others its related locations), instead of one per model and variant. An
-    expansion stops at its first unknown package; the models that hit one are read as text through their
-    literal includes (`load.packages.missing_packages`), so every missing package is listed in one run."""
-    import re
-
-    global _MISSING
-    _MISSING = _MISSING or re.compile(r"package '([A-Za-z0-9_]+)' not found")
-    if not any(f.code == "X013" for f in result.findings):
-        return {}
-    from urdfcheck.load.packages import Resolver, missing_packages
-
-    template: dict[str, Finding] = {}
-    owners: dict[str, list] = {}  # package -> the targets that stopped at it
-    places: dict[str, list[tuple[str, int]]] = {}
-    variants: dict[str, list] = {}  # package -> the (model, variant) places the loader stopped at it
-    for t, found in zip(result.targets, result.by_target):
-        hits = [f for f in found if f.code == "X013"]
-        if not hits:
-            continue
-        names = {m.group(1) for f in hits if (m := _MISSING.search(f.message))}
-        if not names:
-            continue
-        for n in names:
-            owners.setdefault(n, []).append(t)
-        find = Resolver(dict(t.packages), near=Path(os.path.abspath(t.path))).find
-        missing = missing_packages([str(t.path)], find)
-        for f in hits:
-            m = _MISSING.search(f.message)
-            if m:
-                template.setdefault(m.group(1), f)
-                seen_in = variants.setdefault(m.group(1), [])
-                seen_in.extend(p for p in f.places() if p not in seen_in)
-                missing.setdefault(m.group(1), []).insert(0, (f.location.file, f.location.line or 0))
-        for name, where in missing.items():
-            have = places.setdefault(name, [])
-            known = {(os.path.abspath(f), ln) for f, ln in have}
-            for f, ln in where:
-                if (os.path.abspath(f), ln) not in known:
-                    known.add((os.path.abspath(f), ln))
-                    have.append((shown(f), ln))  # as the loader's findings show paths
-            if name not in template and hits:
-                template[name] = hits[0]
-    if not places:
-        return {}
-    merged = {}
-    for name, where in places.items():
-        base = template[name]
-        first = Location(where[0][0], where[0][1] or None)
-        rest = tuple(Location(f, ln or None) for f, ln in where[1:])
-        n = len(where)
-        msg = (f"package {name!r} not found (pass --package {name}=PATH)"
-               + (f"; referenced in {n} places" if n > 1 else ""))
-        seen_in = variants.get(name, [])
-        merged[name] = _outside(base._replace(message=msg, location=first, related=rest,
-                                              where=tuple(seen_in) if len(seen_in) > 1 else ()),
-                                name, owners.get(name, ()))
-    result.findings = sorted([f for f in result.findings if f.code != "X013"] + list(merged.values()),
-                             key=Finding.sort_key)
-    return merged
-
-
-def _outside(f: Finding, name: str, targets) -> Finding:
-    """The evidence rule for a package not found (issue 37): one the checkout references but does not hold is a
-    dependency the workspace provides (colcon builds the repository beside its dependencies): linted alone, its
-    absence is no defect of the repository, so an info saying how to confirm. It stays an error when the runner
-    named the package (--package, the config's packages:) or when a package of the checkout has a name it
-    nearly matches (a misspelt name: that package never provides it)."""
-    import difflib
-
-    from urdfcheck.core.evidence import Step
-    from urdfcheck.rules import engine
-
-    have: set[str] = set()
-    for t in targets:
-        settings = getattr(t, "settings", None)
-        if settings is not None and name in dict(settings.packages):
-            return f
-        have.update(t.packages)
-    if difflib.get_close_matches(name, sorted(have), n=1, cutoff=0.85):
-        return f
-    step = Step("package", name, "outside", f"pass --package {name}=PATH, or lint from a workspace that holds it")
-    return engine.on_evidence([f], (step,))[0]
 
 
 # --- for tests and scripts ---------------------------------------------------------------------------------

@@ -177,7 +177,7 @@ def _budget():
 def _finding(i: Issue, path: str) -> Finding:
     name = CODES[i.code]
     loc = Location(str(path))
-    if i.severity is not None:  # a severity other than the catalogue's (engine.finish keeps a named one)
+    if i.severity is not None:  # a severity other than the catalogue's (finish.suppressions keeps a named one)
         return Finding(i.code, Severity.parse(i.severity), clean_text(i.message, 2000), loc, name,
                        tuple(i.related))
     return Finding(i.code, _default(i.code), clean_text(i.message, 2000), loc, "", tuple(i.related))

@@ -6,7 +6,8 @@ of flags that take a value (cli/cache.py) and `urdfcheck bag`'s reading of its c
 made from `OPTIONS`. Pure data and plain functions: the cache fast path imports this module before argparse.
 
 Choices are named, not copied: "formats" is report.FORMATS, "targets" model.grammar.TARGETS, "severities"
-core.findings.Severity (`choices`); the config and report schemas' enums are tested against the same lists.
+core.findings.Severity (`choices`); the config and report schemas' enums are written from the same lists
+(`python tools/schemas.py --write`, with core.evidence.HOW for the evidence steps).
 """
 from __future__ import annotations
 

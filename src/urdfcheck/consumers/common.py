@@ -34,6 +34,10 @@ class Value(FrozenRecord):
 
     # items: for a list: the Location of each element
     _fields = ('value', 'loc', 'default', 'items')
+    value: Any
+    loc: Location
+    default: bool
+    items: tuple
 
     def __init__(self, value: Any, loc: Location, default: bool = False, items: tuple = ()):
         d = self.__dict__  # FrozenRecord forbids setattr

@@ -15,11 +15,11 @@ from pathlib import Path
 
 from urdfcheck.consumers.common import ConsumerError
 from urdfcheck.consumers.controllers import ControllerSet, Driver, read_controllers, read_driver
-from urdfcheck.consumers.graph import TFClaim, claims_from_owners
 from urdfcheck.consumers.launch.xml import LaunchInfo, read_launch
 from urdfcheck.consumers.localization import LocalizationNode, localization_from_launch, localization_from_params
 from urdfcheck.consumers.openworld import names_a_joint as _names_a_joint
 from urdfcheck.consumers.params import ParamFile, read_params
+from urdfcheck.consumers.tfclaims import TFClaim, claims_from_owners
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
 
@@ -205,6 +205,19 @@ def _read_launch(paths, out: Consumers, args=None, packages=None, reader: _Reade
         out.notes.extend(apply_launch_params(out.controllers, out.launch, lambda f: r.params(f, []), packages or {}))
 
 
+def _parsed(r: _Reader, paths, errors: list) -> list:
+    """The parameter files among `paths` that parse (what does not is an error of the consumers)."""
+    return [pf for pf in (r.params(p, errors) for p in paths) if pf is not None]
+
+
+def _controllers(out: Consumers, pfs: list, types=None) -> None:
+    """The controllers the parameter files declare (`types`: those a launch file's spawner sets), with their notes."""
+    out.controllers = read_controllers(pfs, types)
+    out.notes.extend(out.controllers.notes)
+    for c in out.controllers:
+        out.notes.extend(c.notes)
+
+
 def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None = None,
                         reader: _Reader | None = None) -> Consumers:
     """Consumers declared in the config for one model (`config.ModelConfig`)."""
@@ -215,18 +228,15 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
         out.tf_owners = claims_from_owners(dict(config.tf_owners), dict(config.tf_owner_locs), Location(config.path),
                                            _owner_source(config))
     out.frame_prefix = mc.frame_prefix
-    pfs = [pf for pf in (r.params(p, out.errors) for p in mc.controllers) if pf is not None]
-    out.controllers = read_controllers(pfs)
-    out.notes.extend(out.controllers.notes)
-    for c in out.controllers:
-        out.notes.extend(c.notes)
+    pfs = _parsed(r, mc.controllers, out.errors)
+    _controllers(out, pfs)
     for d in mc.drivers:
         pf = r.params(d.file, out.errors)
         if pf is None:
             continue
         drv = read_driver(d, [pf])
         out.drivers.append(drv)
-    loc_pfs = [pf for pf in (r.params(p, out.errors) for p in mc.localization) if pf is not None]
+    loc_pfs = _parsed(r, mc.localization, out.errors)
     pk = dict(packages or (config.packages if config is not None else {}))
     _read_launch(mc.launch, out, dict(mc.launch_args), pk, r, follow=True)
     tf_owners(out, loc_pfs, r)
@@ -240,6 +250,102 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     # the config declares the world, but for what its launch files run that was not understood (issue 20)
     out.unknown = launch_unknowns(out, [d.file for d in mc.drivers])
     return out
+
+
+# --- a deployment (plan.deployments) -------------------------------------------------------------------------
+def deployment_consumers(dep) -> Consumers:
+    """The contract checks' view of one deployment (`plan.deployments.Deployment`): read on each call (cheap,
+    files are small)."""
+    from urdfcheck.consumers.controllers import spawner_types
+    from urdfcheck.consumers.openworld import infer_drivers
+
+    out = Consumers(origin="deployment")
+    r = _Reader()
+    _refused_controller_files(dep, out)
+    pfs = _parsed(r, dep.controller_files, out.errors)
+    _controllers(out, pfs, spawner_types(dep.infos))  # types set in launch files too
+    _spawned_broadcasters(dep, out)
+    _idle(dep, out)
+    lpfs = _parsed(r, dep.localization_files, out.errors)
+    out.drivers = infer_drivers(dep.driver_nodes, r)
+    out.launch = list(dep.infos)
+    several = len({s.namespace for li in dep.infos for s in li.state_publishers}) > 1  # each robot its own
+    tf_owners(out, lpfs, r, lambda f: _same_file(f, dep.localization_files), dep.namespace if several else None)
+    out.frame_prefix = dep.frame_prefix or ""
+    out.notes.extend(dep.notes)
+    if len(out.controllers) and any(li.param_sets for li in out.launch):
+        from urdfcheck.consumers.launch.params import apply_launch_params
+
+        out.notes.extend(apply_launch_params(out.controllers, out.launch, lambda f: r.params(f, []), {}))
+    out.files = {"controllers": list(dep.controller_files), "localization": list(dep.localization_files),
+                 "launch": [li.path for li in dep.infos],
+                 "drivers": sorted({f for _, files in dep.driver_nodes for f in files})}
+    # what this deployment's launch files name or load runs with the model (issue 37: evidence)
+    out.pair([f for fs in out.files.values() for f in fs], "launched", dep.model or "")
+    from urdfcheck.consumers.openworld import deployment_unknowns
+
+    out.unknown = deployment_unknowns(dep, out.drivers)
+    out.package_files, out.package_single = list(dep.package_files), dep.package_single
+    out.plugin_files = tuple(dep.plugin_files)
+    out.workspace = dep.workspace
+    return out
+
+
+def _refused_controller_files(dep, out) -> None:
+    """A controller_manager parameter file the door refuses (an absolute path or `../..` out of the checkout,
+    a link out of it): C007 at the launch line that names it, as for a TF owner's file (issue 36), not a note
+    that the workspace has no such file."""
+    from urdfcheck.consumers.controllers import CONTROLLER_EXES
+    from urdfcheck.consumers.localization import refused_file
+
+    several = len({s.namespace for li in dep.infos for s in li.state_publishers}) > 1
+    for info in dep.infos:
+        for n in info.nodes:
+            if n.package != "controller_manager" or n.executable not in CONTROLLER_EXES:
+                continue
+            if several and n.namespace != dep.namespace:
+                continue
+            for f in n.param_files:
+                refused_file(f, f"controller_manager {n.name or n.executable}: parameter file", n.loc, out.errors,
+                             "its controllers are not checked")
+
+
+def _spawned_broadcasters(dep, out) -> None:
+    """A spawned joint_state_broadcaster that no parameter file read here declares (its type is then set
+    where the launch files cannot see: a Gazebo ros2_control plugin's <parameters>) is still a joint
+    state source for every hardware joint: typed from its name, noted as inferred."""
+    from urdfcheck.consumers.controllers import JSB, Controller, finish_controller
+
+    names = {c.name for c in out.controllers}
+    for name, loc in dep.spawned:
+        if name in names or name.split("/")[-1] != "joint_state_broadcaster":
+            continue
+        names.add(name)
+        c = Controller(name=name, node="/" + name, type="joint_state_broadcaster/JointStateBroadcaster",
+                       type_loc=loc, loc=loc, kind=JSB, ros=2, file=loc.file, params={})
+        finish_controller(c, names)
+        out.controllers.controllers[c.node] = c
+        out.notes.append((f"controller {name} is spawned here and taken to be a joint_state_broadcaster "
+                          "(its parameter file is not among the files read)", loc))
+
+
+def _idle(dep, out) -> None:
+    """Mark the controllers this deployment configures but does not spawn, when its spawners were all read
+    (every argument literal or resolved): what names them rests on a guess (rules.checks.contracts, issue 37)."""
+    if not dep.spawned or any(getattr(li, "unread_spawners", False) for li in dep.infos):
+        return
+    started = {n.strip("/").split("/")[-1] for n, _ in dep.spawned}
+    for c in out.controllers:
+        if c.name not in started and "joint_state" not in (c.type or ""):
+            c.idle = True
+
+
+def _same_file(path: str, files) -> str | None:
+    """`path` as read (a source file), or the file of `files` it names in the install layout."""
+    if os.path.isfile(path):
+        return path
+    tail = os.sep.join(path.split(os.sep)[-2:])
+    return next((f for f in files if f.endswith(os.sep + tail)), None)
 
 
 # --- zero-config -----------------------------------------------------------------------------------------
@@ -359,10 +465,24 @@ def consumers_near(entry: str, model=None, *, packages: Mapping[str, str] | None
     return c
 
 
+def consumers_of(model, ctx) -> Consumers:
+    """The consumers the planner gave this target (`plan.plan.Target.consumers`). A context made by hand
+    without them (tests, scripts calling the engine directly) gets those beside the model, computed here
+    each time and never written back: a check context is not changed by the checks."""
+    c = getattr(ctx, "contracts", None)
+    if isinstance(c, Consumers):
+        return c
+    exp = getattr(ctx, "expanded", None)
+    resolver = getattr(exp, "resolver", None)
+    packages = {k: str(v) for k, v in getattr(resolver, "explicit", {}).items()} if resolver is not None else {}
+    return consumers_near(getattr(exp, "entry", None) or model.source, model, packages=packages,
+                          config=getattr(ctx, "config", None))
+
+
 def _owner_source(config) -> str:
     """The claims' source of the config's `tf_owners`: a config the runner did not vouch for declares publishers
-    that may conflict, never publish (consumers.graph.UNTRUSTED; issue 36)."""
-    from urdfcheck.consumers.graph import UNTRUSTED
+    that may conflict, never publish (consumers.tfclaims.UNTRUSTED; issue 36)."""
+    from urdfcheck.consumers.tfclaims import UNTRUSTED
 
     return "config" if getattr(config, "vouched", True) else UNTRUSTED
 

@@ -39,6 +39,8 @@ from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record, TupleRecord
 
 # --- controller kinds --------------------------------------------------------------------------------
+# the controller_manager executables that read controller parameter files (a launch node running one)
+CONTROLLER_EXES = ("ros2_control_node", "spawner", "spawner.py", "controller_manager")
 DIFF_DRIVE = "diff_drive"
 JTC = "joint_trajectory"
 JSB = "joint_state_broadcaster"

@@ -160,7 +160,7 @@ def plugin_drives(model):
 
 
 def plugin_claims(model) -> list:
-    from urdfcheck.consumers.graph import DYNAMIC, TFClaim
+    from urdfcheck.consumers.tfclaims import DYNAMIC, TFClaim
 
     plugins = read_plugins(model)
     out = [TFClaim(o.odom.parent, o.odom.child, o.label, DYNAMIC, o.odom.loc, SOURCE)

@@ -381,3 +381,27 @@ def _show(path: str) -> str:
     from urdfcheck.core.paths import shown as display
 
     return display(path)
+
+
+# --- custom drivers, read by the shape of their keys ---------------------------------------------------------
+def infer_drivers(driver_nodes, reader) -> list:
+    """A `controllers.Driver` per node of no known kind whose parameters (inline, and from the parameter files
+    it is given) have keys shaped like joint names, frame ids or wheel geometry (`openworld.infer_driver`).
+    The meaning is inferred from the key, so the checks report these as warnings (`inferred`)."""
+    out = []
+    for node, files in driver_nodes:
+        name = f"{node.name or node.executable or node.package} (inferred from {node.package})"
+        params: dict = {}
+        for f in files:
+            pf = reader.params(f, [])
+            if pf is None:
+                continue
+            mine = [n for key, n in pf.nodes.items()
+                    if key.rstrip("/").split("/")[-1] in (node.name, node.executable, "**") or len(pf.nodes) == 1]
+            for n in mine:
+                params.update(n.params)
+        params.update({k: v for k, v in node.params.items() if v.value is not None and not k.startswith("\x00")})
+        drv = infer_driver(name, files[0] if files else node.loc.file, node.loc, params)
+        if drv is not None:
+            out.append(drv)
+    return out

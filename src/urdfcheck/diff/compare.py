@@ -571,7 +571,7 @@ def contract_facts(c, model=None) -> dict:
     for d in c.drivers:
         out[f"driver {d.name} joints"] = sorted({u.joint for u in d.joints})
         _reader_facts(out, f"driver {d.name}", d)
-    from urdfcheck.consumers.graph import claims_from_localization, claims_from_odom, claims_from_static_tfs
+    from urdfcheck.consumers.tfclaims import claims_from_localization, claims_from_odom, claims_from_static_tfs
 
     claims = []
     for li in c.launch:

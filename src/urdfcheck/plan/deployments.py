@@ -12,7 +12,7 @@ files that no other file includes are the roots; each root is followed into its 
 passes (packages resolve among the workspace's package.xml files first). A robot_state_publisher that no root
 reaches makes its own file a root. Launch arguments declared with `choices` (and, for a model path chosen at
 launch time, the files that match it) give variants, one deployment each; identical deployments are kept once.
-`Deployment.consumers()` builds the `consumers.consumers.Consumers` the contract (C) and TF (T) checks read.
+`Deployment.consumers()` (`consumers.consumers.deployment_consumers`) builds the `Consumers` the C and T checks read.
 This module only reads launch files: which targets a request lints, deployments included, is decided by
 `plan.plan` alone.
 """
@@ -33,7 +33,6 @@ MAX_VARIANTS = 24  # launch-argument assignments tried per root launch file
 MAX_MODEL_FILES = 8  # files one model path chosen at launch time may match
 MAX_TREE_FILES = 60
 MAX_DEPTH = 8
-_CONTROLLER_EXES = ("ros2_control_node", "spawner", "spawner.py", "controller_manager")
 
 
 def _show(path: str) -> str:
@@ -115,90 +114,11 @@ class Deployment(Record):
         return (self.launch.file if self.launch is not None else None, self.model,
                 tuple(sorted(self.args.items())), self.namespace, self.frame_prefix)
 
-    def _spawned_broadcasters(self, out) -> None:
-        """A spawned joint_state_broadcaster that no parameter file read here declares (its type is then set
-        where the launch files cannot see: a Gazebo ros2_control plugin's <parameters>) is still a joint
-        state source for every hardware joint: typed from its name, noted as inferred."""
-        from urdfcheck.consumers.controllers import JSB, Controller, finish_controller
-
-        names = {c.name for c in out.controllers}
-        for name, loc in self.spawned:
-            if name in names or name.split("/")[-1] != "joint_state_broadcaster":
-                continue
-            names.add(name)
-            c = Controller(name=name, node="/" + name, type="joint_state_broadcaster/JointStateBroadcaster",
-                           type_loc=loc, loc=loc, kind=JSB, ros=2, file=loc.file, params={})
-            finish_controller(c, names)
-            out.controllers.controllers[c.node] = c
-            out.notes.append((f"controller {name} is spawned here and taken to be a joint_state_broadcaster "
-                              "(its parameter file is not among the files read)", loc))
-
-    def _idle(self, out) -> None:
-        """Mark the controllers this deployment configures but does not spawn, when its spawners were all read
-        (every argument literal or resolved): what names them rests on a guess (rules.contracts, issue 37)."""
-        if not self.spawned or any(getattr(li, "unread_spawners", False) for li in self.infos):
-            return
-        started = {n.strip("/").split("/")[-1] for n, _ in self.spawned}
-        for c in out.controllers:
-            if c.name not in started and "joint_state" not in (c.type or ""):
-                c.idle = True
-
-    def _refused_controller_files(self, out) -> None:
-        """A controller_manager parameter file the door refuses (an absolute path or `../..` out of the checkout,
-        a link out of it): C007 at the launch line that names it, as for a TF owner's file (issue 36), not a note
-        that the workspace has no such file."""
-        from urdfcheck.consumers.localization import refused_file
-
-        several = len({s.namespace for li in self.infos for s in li.state_publishers}) > 1
-        for info in self.infos:
-            for n in info.nodes:
-                if n.package != "controller_manager" or n.executable not in _CONTROLLER_EXES:
-                    continue
-                if several and n.namespace != self.namespace:
-                    continue
-                for f in n.param_files:
-                    refused_file(f, f"controller_manager {n.name or n.executable}: parameter file", n.loc, out.errors,
-                                 "its controllers are not checked")
-
     def consumers(self):
-        """The contract checks' view of this deployment (read on each call; cheap, files are small)."""
-        from urdfcheck.consumers.consumers import Consumers, _Reader, tf_owners
-        from urdfcheck.consumers.controllers import read_controllers, spawner_types
+        """The contract checks' view of this deployment (`consumers.consumers.deployment_consumers`)."""
+        from urdfcheck.consumers.consumers import deployment_consumers
 
-        out = Consumers(origin="deployment")
-        r = _Reader()
-        self._refused_controller_files(out)
-        pfs = [pf for pf in (r.params(p, out.errors) for p in self.controller_files) if pf is not None]
-        out.controllers = read_controllers(pfs, spawner_types(self.infos))  # types set in launch files too
-        out.notes.extend(out.controllers.notes)
-        for c in out.controllers:
-            out.notes.extend(c.notes)
-        self._spawned_broadcasters(out)
-        self._idle(out)
-        lpfs = [pf for pf in (r.params(p, out.errors) for p in self.localization_files) if pf is not None]
-        out.drivers = infer_drivers(self.driver_nodes, r)
-        out.launch = list(self.infos)
-        several = len({s.namespace for li in self.infos for s in li.state_publishers}) > 1  # each robot its own
-        tf_owners(out, lpfs, r, lambda f: _same_file(f, self.localization_files), self.namespace if several else None)
-        out.frame_prefix = self.frame_prefix or ""
-        out.notes.extend(self.notes)
-        if len(out.controllers) and any(li.param_sets for li in out.launch):
-            from urdfcheck.consumers.launch.params import apply_launch_params
-
-            out.notes.extend(apply_launch_params(out.controllers, out.launch, lambda f: r.params(f, []), {}))
-        out.files = {"controllers": list(self.controller_files), "localization": list(self.localization_files),
-                     "launch": [li.path for li in self.infos],
-                     "drivers": sorted({f for _, files in self.driver_nodes for f in files})}
-        # what this deployment's launch files name or load runs with the model (issue 37: evidence)
-        out.pair([f for fs in out.files.values() for f in fs], "launched", self.model or "")
-        from urdfcheck.consumers.openworld import deployment_unknowns
-
-        out.unknown = deployment_unknowns(self, out.drivers)
-        out.package_files, out.package_single = list(self.package_files), self.package_single
-        out.plugin_files = tuple(self.plugin_files)
-        out.workspace = self.workspace
-        return out
-
+        return deployment_consumers(self)
 
 def _model_like(path: str) -> bool:
     """A file a launch-time pattern may pick as the robot: a `.urdf`/`.xacro` (the loader says what is wrong
@@ -227,14 +147,6 @@ def sdformat(path: str) -> bool:
 
     tag = _root_tag(_read_head(path))
     return tag is not None and tag.split(":")[-1] == "sdf"
-
-
-def _same_file(path: str, files) -> str | None:
-    """`path` as read (a source file), or the file of `files` it names in the install layout."""
-    if os.path.isfile(path):
-        return path
-    tail = os.sep.join(path.split(os.sep)[-2:])
-    return next((f for f in files if f.endswith(os.sep + tail)), None)
 
 
 # --- the workspace's launch files --------------------------------------------------------------------------
@@ -624,12 +536,14 @@ def _beside(ws: _Workspace, infos, namespace: str | None):
         elif got not in files:
             files.append(got)
 
+    from urdfcheck.consumers.controllers import CONTROLLER_EXES
+
     for info in infos:
         spawner_locs = set()
         for n in info.nodes:
             if namespace is not None and n.namespace != namespace:
                 continue
-            if n.package == "controller_manager" and n.executable in _CONTROLLER_EXES:
+            if n.package == "controller_manager" and n.executable in CONTROLLER_EXES:
                 spawner_locs.add(n.loc)
                 for f in n.param_files:
                     add(ctrl, f, n.loc)
@@ -844,29 +758,3 @@ def _read_back(d: Deployment) -> tuple[dict[str, str], list[tuple[str, str, str]
         return {}, []
     types = {ctl.name: ctl.type or "" for ctl in c.controllers}
     return types, [(n.kind, n.node, n.file if n.file and os.path.isfile(n.file) else "") for n in c.localization]
-
-
-# --- custom drivers, read by the shape of their keys ---------------------------------------------------------
-def infer_drivers(driver_nodes, reader) -> list:
-    """A `controllers.Driver` per node of no known kind whose parameters (inline, and from the parameter files
-    it is given) have keys shaped like joint names, frame ids or wheel geometry (`openworld.infer_driver`).
-    The meaning is inferred from the key, so the checks report these as warnings (`inferred`)."""
-    from urdfcheck.consumers.openworld import infer_driver
-
-    out = []
-    for node, files in driver_nodes:
-        name = f"{node.name or node.executable or node.package} (inferred from {node.package})"
-        params: dict = {}
-        for f in files:
-            pf = reader.params(f, [])
-            if pf is None:
-                continue
-            mine = [n for key, n in pf.nodes.items()
-                    if key.rstrip("/").split("/")[-1] in (node.name, node.executable, "**") or len(pf.nodes) == 1]
-            for n in mine:
-                params.update(n.params)
-        params.update({k: v for k, v in node.params.items() if v.value is not None and not k.startswith("\x00")})
-        drv = infer_driver(name, files[0] if files else node.loc.file, node.loc, params)
-        if drv is not None:
-            out.append(drv)
-    return out

@@ -104,9 +104,9 @@ class Target(Record):
         if c is not None:
             return c.settle(model) if hasattr(c, "settle") else c
         entry = getattr(exp, "entry", None) or getattr(model, "source", None) or str(self.path)
-        from urdfcheck.load.packages import enclosing_package
+        from urdfcheck.consumers.reach import in_package
 
-        if config is None and enclosing_package(Path(entry).resolve()) is None:
+        if config is None and not in_package(entry):
             return None  # (the contract readers are not even imported)
         from urdfcheck.consumers.consumers import consumers_near
 

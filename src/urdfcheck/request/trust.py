@@ -126,7 +126,7 @@ def _keep_gate(data: dict, key_loc) -> list[Finding]:
 #   `launch_args` and `frame_prefix` add the "launch defaults" twin, its declared launch files read with their own
 #   defaults and the prefix they give (plan.plan.declared).
 # - `tf_owners` may add a publisher (a conflict: T001..T004), never make a frame published
-#   (consumers.graph.UNTRUSTED: T005, C020 and C024 judge the graph without it).
+#   (consumers.tfclaims.UNTRUSTED: T005, C020 and C024 judge the graph without it).
 # - `profiles` turns consumer profiles on: a profile's finding goes from info to its rule's severity, and a profile
 #   never removes one (rules/checks/profiles/common.speak); `cache: false` only turns the lint cache off.
 # - `packages` for a package the checkout does not define adds a place to resolve it (refused for its own: below);

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
         """What `@check(codes)` registers: `fn(model, ctx) -> Iterable[Problem] | None`, with its codes."""
 
         codes: tuple[str, ...]
+        needs: str
         __name__: str
 
         def __call__(self, model: Model, ctx) -> Iterable[Problem] | None: ...
@@ -32,16 +33,27 @@ if TYPE_CHECKING:
 CHECKS: dict[str, Check] = {}  # code -> check function (one function may serve several codes)
 # every module of rules/checks, named here so that a run imports them without walking the folder (pkgutil: ~4 ms of
 # imports); tests/test_catalogue.py fails when a module of the folder is missing from the list
-CHECK_MODULES = tuple(f"urdfcheck.rules.checks.{m}" for m in (
-    "contracts", "frames", "geometry", "inertial", "joints", "moveit", "profiles", "references", "structure",
-    "units", "values"))
+MODEL_MODULES = tuple(f"urdfcheck.rules.checks.{m}" for m in (
+    "frames", "geometry", "inertial", "joints", "moveit", "profiles", "references", "structure", "units", "values"))
+# the rules over a model's consumers (contracts C, TF ownership T) and the readers behind them: imported when a
+# model can have consumers or has <ros2_control> blocks (`load_checks(consumers=True)`), never for a lone URDF
+# outside any ROS package linted without a config (this keeps `urdfcheck lint robot.urdf` fast)
+CONSUMER_MODULES = tuple(f"urdfcheck.rules.checks.{m}" for m in ("claims", "contracts", "navframes", "tf"))
+CHECK_MODULES = CONSUMER_MODULES + MODEL_MODULES
+# what a check needs to run (`@check(..., needs=)`): the model alone, consumers it may have, its <ros2_control>
+NEEDS = ("model", "consumers", "ros2_control")
 
 
-def check(*codes: str):
-    """Register `fn(model, ctx) -> Iterable[Problem]` for the given codes."""
+def check(*codes: str, needs: str = "model"):
+    """Register `fn(model, ctx) -> Iterable[Problem]` for the given codes. `needs="consumers"`: the engine runs
+    it only for a model that can have consumers (`consumers.reach`); `needs="ros2_control"`: only for a model
+    with <ros2_control> blocks (a rule that reads nothing but them)."""
+    if needs not in NEEDS:
+        raise ValueError(f"needs must be one of {NEEDS}: {needs!r}")
 
     def deco(fn):  # a function becomes a `Check` here (its codes attached)
         fn.codes = codes
+        fn.needs = needs
         for c in codes:
             if c in CHECKS and CHECKS[c] is not fn:
                 raise RuntimeError(f"rule {c} registered twice ({CHECKS[c].__name__}, {fn.__name__})")
@@ -299,8 +311,10 @@ def _info(data: dict, path: str) -> RuleInfo:
 
 
 @functools.cache
-def load_checks() -> dict[str, Check]:
-    for name in CHECK_MODULES:
+def load_checks(consumers: bool = True) -> dict[str, Check]:
+    """The registered checks, after importing their modules: all of them, or (`consumers=False`) those over the
+    model alone (the consumer rules may be registered already: the engine asks each check what it `needs`)."""
+    for name in (CHECK_MODULES if consumers else MODEL_MODULES):
         importlib.import_module(name)
     return dict(CHECKS)
 

@@ -1,7 +1,8 @@
-"""Run the checks over a model: selection, severities, locations, suppressions.
+"""Run the checks over a model: selection, severities, locations, the evidence rule.
 
 A check only yields Problems pointing at model parts; this module turns them into Findings. A check
-that raises becomes an R001 finding, never a traceback.
+that raises becomes an R001 finding, never a traceback. Suppressions come after, in the finish stage
+(`finish.suppressions`).
 """
 from __future__ import annotations
 
@@ -10,7 +11,6 @@ import os
 from urdfcheck.core import nogc
 from urdfcheck.core.findings import Finding, Location, Problem, Severity, clean_text
 from urdfcheck.core.records import Record
-from urdfcheck.core.suppress import is_srdf, is_yaml, srdf_suppressions, yaml_suppressions
 from urdfcheck.rules import catalogue as rulebook
 
 
@@ -91,8 +91,11 @@ def run_checks(model, ctx: Context) -> list[Finding]:
 
 
 def _run_checks(model, ctx: Context) -> list[Finding]:
+    from urdfcheck.consumers.reach import may_have_consumers
+
     cat = rulebook.catalogue()
-    checks = rulebook.load_checks()
+    consumers = may_have_consumers(model, ctx)
+    checks = rulebook.load_checks(consumers=consumers or bool(model.ros2_control))
     out: list[Finding] = []
     done = set()
     for code in sorted(checks):
@@ -105,6 +108,8 @@ def _run_checks(model, ctx: Context) -> list[Finding]:
             continue
         try:
             ctx.options = rulebook.options_for(fn.codes, ctx.selection.options, cat)
+            if not _can_run(fn, model, consumers):
+                continue
             for p in fn(model, ctx) or ():
                 f = _finding(p, fn, model, ctx, cat)
                 if f is not None:
@@ -115,6 +120,14 @@ def _run_checks(model, ctx: Context) -> list[Finding]:
                                    clean_text(f"rule {'/'.join(fn.codes)} crashed: {type(e).__name__}: {e}"),
                                    model.loc, name="rule-crashed"))
     return out
+
+
+def _can_run(fn, model, consumers: bool) -> bool:
+    """What the check `needs` (`rules.catalogue.check`) is there: the model's consumers, or its <ros2_control>."""
+    needs = getattr(fn, "needs", "model")
+    if needs == "consumers":
+        return consumers
+    return needs != "ros2_control" or bool(model.ros2_control)
 
 
 def _finding(p: Problem, fn, model, ctx: Context, cat) -> Finding | None:
@@ -210,82 +223,3 @@ def on_evidence(findings: list[Finding], steps: tuple) -> list[Finding]:
                            name=f.name or (info.name if info else ""))
         out.append(f._replace(evidence=tuple(steps) + tuple(f.evidence)))
     return out
-
-
-def finish(findings: list[Finding], selection: Selection, suppressions=(), model: str = "",
-           variant: str = "", yaml_used: set | None = None) -> list[Finding]:
-    """Apply selection and severity to load findings too, fill names, drop suppressed, report unused.
-
-    `yaml_used` collects (file, index) of the YAML suppressions that hid a finding: a YAML file serves every
-    model of a package, so only the caller, after the last model, can tell one unused (`unused_yaml`)."""
-    cat = rulebook.catalogue()
-    kept = []
-    used = set()
-    for f in findings:
-        if not selection.enabled(f.code):
-            continue
-        info = cat.get(f.code)
-        sev = selection.severity_of(f.code, f.severity if f.name or not info else info.severity)
-        hit = _suppressed(f, suppressions)
-        if hit is not None:
-            used.add(hit)
-            continue
-        if is_yaml(f.location.file):
-            hit = _suppressed(f, yaml_suppressions(f.location.file))
-            if hit is not None:  # `# urdfcheck: ignore[...]` in the YAML file the finding points into
-                if yaml_used is not None:  # absolute, like the consumer files `unused_yaml` is given
-                    yaml_used.add((os.path.abspath(f.location.file), hit))
-                continue
-        elif is_srdf(f.location.file) and _suppressed(f, srdf_suppressions(f.location.file)) is not None:
-            continue  # `<!-- urdfcheck: ignore[...] -->` in the MoveIt SRDF the finding points into
-        kept.append(Finding(f.code, sev, f.message, _shown(f.location),
-                            f.name or (info.name if info else ""),
-                            tuple(_shown(r) for r in f.related), model or f.model, variant or f.variant,
-                            profile=f.profile, evidence=f.evidence, profiles=f.profiles))
-    if selection.enabled("R002"):
-        for i, s in enumerate(suppressions):
-            if i in used:
-                continue
-            live = [c for c in s.codes if selection.enabled(c)]
-            if not live:
-                continue
-            info = cat.get("R002")
-            kept.append(Finding("R002", selection.severity_of("R002", info.severity if info else Severity.WARNING),
-                                f"unused suppression of {', '.join(live)}", Location(s.file, s.comment_line),
-                                "unused-suppression", (), model, variant))
-    return kept
-
-
-def unused_yaml(files, used: set, selection: Selection) -> list[Finding]:
-    """R002 for each suppression in the YAML `files` (read by the contract checks) that hid nothing."""
-    if not selection.enabled("R002"):
-        return []
-    info = rulebook.catalogue().get("R002")
-    out = []
-    for file in sorted(set(files)):
-        for i, s in enumerate(yaml_suppressions(file)):
-            live = [c for c in s.codes if selection.enabled(c)]
-            if (file, i) in used or not live:
-                continue
-            out.append(Finding("R002", selection.severity_of("R002", info.severity if info else Severity.WARNING),
-                               f"unused suppression of {', '.join(live)}", _shown(Location(file, s.comment_line)),
-                               "unused-suppression"))
-    return out
-
-
-def _shown(loc: Location) -> Location:
-    """Every location the way reports show files (readers of YAML and launch files record absolute paths)."""
-    if not os.path.isabs(loc.file) and not loc.via:
-        return loc
-    return loc.shown()
-
-
-def _suppressed(f: Finding, suppressions) -> int | None:
-    locs = (f.location,) + f.location.via
-    for i, s in enumerate(suppressions):
-        if f.code not in s.codes and "ALL" not in s.codes:
-            continue
-        for loc in locs:
-            if loc.file == s.file and (s.first == 0 or (loc.line is not None and s.first <= loc.line <= s.last)):
-                return i
-    return None

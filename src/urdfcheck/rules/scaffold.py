@@ -2,8 +2,9 @@
 
 Writes the catalogue entry `rules/J013.yaml` (every required field; its failing example does not fail yet, so
 tests/test_catalogue.py stays red until the rule and its examples are written), appends a typed check function
-that yields nothing to `src/urdfcheck/rules/checks/<module>.py`, and regenerates what is generated from the
-catalogue: rules/index.json and details.json, docs/rules.md and the rule table of docs/design.md. Refuses to
+that yields nothing to `src/urdfcheck/rules/checks/<module>.py` (or `<module>/__init__.py`), and regenerates what
+is generated from the catalogue: rules/index.json and details.json, docs/rules.md and the rule table of
+docs/design.md. Refuses to
 overwrite an existing entry or a registered code.
 """
 from __future__ import annotations
@@ -48,9 +49,12 @@ examples:
 #     what: TODO what that source does
 """
 
+# the families whose rules read a model's consumers: their checks run only for a model that can have them
+CONSUMER_FAMILIES = "CT"
+
 CHECK = '''
 
-@check("{code}")
+@check("{code}"{needs})
 def {func}(model: Model, ctx: Context) -> Iterator[Problem]:
     """TODO: yield Problem(message, at=part) for each defect; never compute file or line here."""
     return
@@ -76,7 +80,7 @@ def _with_types(text: str) -> str:
     import ast
 
     tree = ast.parse(text)
-    last = max((n.end_lineno for n in tree.body if isinstance(n, (ast.Import, ast.ImportFrom))), default=0)
+    last = max((n.end_lineno or 0 for n in tree.body if isinstance(n, (ast.Import, ast.ImportFrom))), default=0)
     lines = text.splitlines(keepends=True)
     return "".join(lines[:last]) + TYPES + "".join(lines[last:])
 
@@ -88,6 +92,8 @@ def scaffold(root: Path, code: str, name: str, module: str) -> list[Path]:
         raise ValueError(f"name must be lower-case words joined by '-': {name!r}")
     entry = root / "rules" / f"{code}.yaml"
     checks = root / "src" / "urdfcheck" / "rules" / "checks" / f"{module}.py"
+    if not checks.is_file() and (checks.with_suffix("") / "__init__.py").is_file():  # a package: rules/checks/tf/
+        checks = checks.with_suffix("") / "__init__.py"
     if entry.exists():
         raise ValueError(f"{entry} exists already")
     if not checks.is_file():
@@ -96,7 +102,8 @@ def scaffold(root: Path, code: str, name: str, module: str) -> list[Path]:
     if f'"{code}"' in text:
         raise ValueError(f"{code} is already registered in {checks}")
     entry.write_text(ENTRY.format(code=code, name=name, family=FAMILIES[code[0]]), encoding="utf-8")
-    checks.write_text(_with_types(text).rstrip("\n") + "\n" + CHECK.format(code=code, func=name.replace("-", "_")),
+    checks.write_text(_with_types(text).rstrip("\n") + "\n" + CHECK.format(
+        code=code, func=name.replace("-", "_"), needs=', needs="consumers"' if code[0] in CONSUMER_FAMILIES else ""),
                       encoding="utf-8")
     _sort_imports(checks)
     return [entry, checks] + regenerate(root)

@@ -153,7 +153,7 @@ def srdf_disabled(model, entry: str) -> tuple[set[frozenset], str | None]:
     return pairs, used
 
 
-def _half_extents(g) -> tuple[float, float, float] | None:
+def _half_extents(g) -> tuple[float, ...] | None:
     """Half sizes of the box that holds the primitive, in its own frame (cylinder and capsule along z); None for
     a shape of no size or of an absurd one (1 km: not a robot part, and no number coal should see)."""
     half = _raw_half_extents(g)
@@ -162,7 +162,7 @@ def _half_extents(g) -> tuple[float, float, float] | None:
     return half
 
 
-def _raw_half_extents(g) -> tuple[float, float, float] | None:
+def _raw_half_extents(g) -> tuple[float, ...] | None:
     try:
         if g.kind == "box" and g.size and min(g.size) > 0:
             return tuple(float(x) / 2 for x in g.size)
@@ -357,11 +357,11 @@ def self_collisions(model, entry: str, depth: float, read=None) -> Iterator[Prob
     disabled, srdf = srdf_disabled(model, entry)
     from urdfcheck.core.paths import shown
 
-    def order(kv):
+    def by_place(kv):
         _, la, sa, lb, sb = kv[1]
         return (sb.loc.line, sa.loc.line, la.name, lb.name)
 
-    for key, (pen, la, sa, lb, sb) in sorted(hits.items(), key=order):
+    for key, (pen, la, sa, lb, sb) in sorted(hits.items(), key=by_place):
         if key in disabled:
             continue
         entry_text = f'<disable_collisions link1="{la.name}" link2="{lb.name}" reason="Default"/>'

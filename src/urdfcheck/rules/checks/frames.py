@@ -2,9 +2,16 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check, options_for
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 
 def _frame_setting(frames, key: str):
@@ -56,7 +63,7 @@ def _role(name: str, frames: dict[str, str]) -> str | None:
 
 
 @check("F001")
-def localization_frame_in_urdf(model, ctx):
+def localization_frame_in_urdf(model: Model, ctx: Context) -> Iterator[Problem]:
     frames = localization_frames(ctx)
     for link in model.link_list:
         role = _role(link.name, frames)
@@ -88,7 +95,7 @@ def _matches(name: str, expected) -> bool:
 
 
 @check("F002")
-def unexpected_root_name(model, ctx):
+def unexpected_root_name(model: Model, ctx: Context) -> Iterator[Problem]:
     root = model.root
     if root is None:
         return

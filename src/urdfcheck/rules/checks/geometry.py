@@ -4,10 +4,17 @@ from __future__ import annotations
 import fnmatch
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.core.paths import shown
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _REMOTE = ("http://", "https://", "ftp://")
 _KNOWN_SHAPES = ("box", "cylinder", "sphere", "mesh", "capsule")
@@ -59,7 +66,7 @@ def _case_hint(path: Path, listing: dict) -> str:
 
 
 @check("G001")
-def mesh_not_found(model, ctx):
+def mesh_not_found(model: Model, ctx: Context) -> Iterator[Problem]:
     """One finding per unique mesh URI (at its first use; the other uses are related locations)."""
     ignore = [str(p) for p in ctx.options["ignore"]]
     resolver = _resolver(model, ctx)
@@ -121,7 +128,7 @@ def _mesh_verdict(uri: str, resolver, base: Path, ignore: list[str], listing: di
 # --- G002 ------------------------------------------------------------------------------------------
 
 @check("G002")
-def non_positive_size(model, ctx):
+def non_positive_size(model: Model, ctx: Context) -> Iterator[Problem]:
     for link, shape in _shapes(model):
         g = shape.geometry
         if g is None:
@@ -156,7 +163,7 @@ def non_positive_size(model, ctx):
 # --- G003 ------------------------------------------------------------------------------------------
 
 @check("G003")
-def undefined_material(model, ctx):
+def undefined_material(model: Model, ctx: Context) -> Iterator[Problem]:
     """urdfdom's rule: top-level <material>s are read first; then links in document order, and a visual's
     material name is looked up among the materials known so far. An inline <color>/<texture> registers the
     name; a name-only reference to an unknown material registers an empty (colourless) material under that
@@ -226,7 +233,7 @@ def _rgba_problem(rgba) -> str | None:
 
 
 @check("G004")
-def rgba_out_of_range(model, ctx):
+def rgba_out_of_range(model: Model, ctx: Context) -> Iterator[Problem]:
     for m in model.material_list:
         p = _rgba_problem(m.rgba)
         if p:
@@ -244,7 +251,7 @@ def rgba_out_of_range(model, ctx):
 # --- G005 ------------------------------------------------------------------------------------------
 
 @check("G005")
-def missing_geometry(model, ctx):
+def missing_geometry(model: Model, ctx: Context) -> Iterator[Problem]:
     consequence = ("urdfdom rejects it and stops reading the link, so the link's remaining visuals and "
                    "collisions are lost")
     for link, shape in _shapes(model):
@@ -263,7 +270,7 @@ def missing_geometry(model, ctx):
 
 # --- G006 ------------------------------------------------------------------------------------------
 @check("G006")
-def self_collision_at_zero(model, ctx):
+def self_collision_at_zero(model: Model, ctx: Context) -> Iterator[Problem]:
     """Collision shapes (primitives, and meshes read through the door) of two non-adjacent links interpenetrate at
     the zero configuration (coal, lazily)."""
     if sum(1 for link in model.link_list if link.collisions) < 2:

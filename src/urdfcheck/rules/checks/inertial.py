@@ -7,9 +7,16 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check, options_for
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _UNREADABLE = ("U004", "U005", "U006")
 # thresholds are rule options (rules/I003.yaml, I004.yaml: rtol, atol, min_mass), defaulted by the catalogue
@@ -113,7 +120,7 @@ def _tensors(model, ctx):
 
 
 @check("I001")
-def incomplete_inertial(model, ctx):
+def incomplete_inertial(model: Model, ctx: Context) -> Iterator[Problem]:
     for link, inertial in _inertials(model):
         missing = []
         if inertial.mass_loc is None:
@@ -131,7 +138,7 @@ def incomplete_inertial(model, ctx):
 
 
 @check("I002")
-def non_positive_mass(model, ctx):
+def non_positive_mass(model: Model, ctx: Context) -> Iterator[Problem]:
     for link, inertial in _inertials(model):
         m = inertial.mass
         if m is None:
@@ -162,7 +169,7 @@ def non_positive_mass(model, ctx):
 
 
 @check("I003")
-def inertia_not_positive_definite(model, ctx):
+def inertia_not_positive_definite(model: Model, ctx: Context) -> Iterator[Problem]:
     rtol = float(ctx.options["rtol"])
     allow_singular = bool(ctx.options["allow_singular"])
     for link, inertial, moments, atol in _tensors(model, ctx):
@@ -188,7 +195,7 @@ def inertia_not_positive_definite(model, ctx):
 
 
 @check("I004")
-def inertia_triangle_inequality(model, ctx):
+def inertia_triangle_inequality(model: Model, ctx: Context) -> Iterator[Problem]:
     rtol = float(ctx.options["rtol"])
     i003_rtol = float(options_for(("I003",), ctx.selection.options)["rtol"])  # what I003 reports, skipped here
     for link, inertial, (a, b, c), atol in _tensors(model, ctx):
@@ -209,7 +216,7 @@ def inertia_triangle_inequality(model, ctx):
 
 
 @check("I005")
-def root_link_inertia(model, ctx):
+def root_link_inertia(model: Model, ctx: Context) -> Iterator[Problem]:
     root = model.root
     if root is None:
         return

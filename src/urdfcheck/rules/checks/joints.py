@@ -11,10 +11,17 @@ MoveIt (see each rule's catalogue entry).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity, closest
 from urdfcheck.model.robot import JOINT_TYPES, MOVABLE_TYPES
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 # joint types whose <axis> every consumer uses. A planar joint's axis (the plane normal in the URDF spec) is
 # ignored by KDL (planar becomes fixed), MoveIt and Pinocchio (always the joint frame's XY plane): J011 says so
@@ -57,7 +64,7 @@ def _unreadable(model) -> set:
 
 
 @check("J001")
-def unknown_joint_type(model, ctx):
+def unknown_joint_type(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in model.joint_list:
         if not j.type or j.type in JOINT_TYPES:  # a missing type is U006
             continue
@@ -70,7 +77,7 @@ def unknown_joint_type(model, ctx):
 
 
 @check("J002")
-def missing_limit(model, ctx):
+def missing_limit(model: Model, ctx: Context) -> Iterator[Problem]:
     unreadable = _unreadable(model)
     v12 = model.version >= (1, 2)
     for j in model.joint_list:
@@ -100,7 +107,7 @@ def missing_limit(model, ctx):
 
 
 @check("J003")
-def inverted_limits(model, ctx):
+def inverted_limits(model: Model, ctx: Context) -> Iterator[Problem]:
     unreadable = _unreadable(model)
     for j in model.joint_list:
         if j.type not in POSITION_LIMITED or j.limit is None or j.limit.loc in unreadable:
@@ -128,7 +135,7 @@ def inverted_limits(model, ctx):
 
 
 @check("J004")
-def non_positive_effort_or_velocity(model, ctx):
+def non_positive_effort_or_velocity(model: Model, ctx: Context) -> Iterator[Problem]:
     # joints the model gives an actuator (<transmission>, <ros2_control>); effort="0" on any other joint is the
     # convention for an un-actuated one (Drake: "<effort>0</effort> for un-actuated joints"; a passive spring
     # such as the Create 3 wheel drop), so its zero limits are not reported
@@ -161,7 +168,7 @@ def non_positive_effort_or_velocity(model, ctx):
 
 
 @check("J012")
-def limit_derivatives(model, ctx):
+def limit_derivatives(model: Model, ctx: Context) -> Iterator[Problem]:
     """URDF 1.2 acceleration, deceleration and jerk limits (urdfdom 6.0 joint.cpp parseJointLimits)."""
     if model.version < (1, 2):
         return  # not read (U008)
@@ -188,7 +195,7 @@ def limit_derivatives(model, ctx):
 
 
 @check("J005")
-def continuous_with_position_limits(model, ctx):
+def continuous_with_position_limits(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in model.joint_list:
         if j.type != "continuous" or j.limit is None:
             continue
@@ -204,7 +211,7 @@ def continuous_with_position_limits(model, ctx):
 
 
 @check("J006")
-def zero_axis(model, ctx):
+def zero_axis(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in model.joint_list:
         if j.type not in AXIS_TYPES or j.axis_loc is None:
             continue
@@ -217,7 +224,7 @@ def zero_axis(model, ctx):
 
 
 @check("J007")
-def non_unit_axis(model, ctx):
+def non_unit_axis(model: Model, ctx: Context) -> Iterator[Problem]:
     tol = float(ctx.options["tolerance"])  # typed and defaulted by the catalogue (rules/J007.yaml)
     for j in model.joint_list:
         if j.type not in AXIS_TYPES or j.axis_loc is None:
@@ -239,7 +246,7 @@ def non_unit_axis(model, ctx):
 
 
 @check("J008")
-def invalid_mimic(model, ctx):
+def invalid_mimic(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in model.joint_list:
         mi = j.mimic
         if mi is None or j.type not in JOINT_TYPES:  # an unknown type is J001
@@ -280,7 +287,7 @@ def invalid_mimic(model, ctx):
 
 
 @check("J009")
-def mimic_cycle(model, ctx):
+def mimic_cycle(model: Model, ctx: Context) -> Iterator[Problem]:
     follows = {}
     for name, j in model.joints.items():
         if (j.mimic is not None and j.type != "fixed" and j.mimic.joint != name
@@ -291,7 +298,9 @@ def mimic_cycle(model, ctx):
     for start in model.joints:
         if start in done or start not in follows:
             continue
-        path, where, cur = [], {}, start
+        path: list = []
+        where: dict = {}
+        cur = start
         while cur in follows and cur not in done and cur not in where:
             where[cur] = len(path)
             path.append(cur)
@@ -311,7 +320,7 @@ def mimic_cycle(model, ctx):
 
 
 @check("J010")
-def floating_joint(model, ctx):
+def floating_joint(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in model.joint_list:
         if j.type == "floating":
             yield Problem(
@@ -322,7 +331,7 @@ def floating_joint(model, ctx):
 
 
 @check("J011")
-def planar_joint(model, ctx):
+def planar_joint(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in model.joint_list:
         if j.type != "planar":
             continue

@@ -7,9 +7,16 @@ Every problem rests on the config's pairing with the model (`MoveItConfig.step`)
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, closest
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 # MoveIt lets a start state stray this far outside the bounds (move_group's start_state_max_bounds_error default)
 START_STATE_SLACK = 0.05
@@ -58,7 +65,8 @@ def _changed_args(ctx) -> dict:
 
     try:
         defaults = {**{k: v for k, v in (getattr(exp, "declared_args", None) or {}).items() if v is not None},
-                    **defaulted_args(exp.entry, None)}
+                    # (type: ignore below) inside the try: no expansion, no defaults
+                    **defaulted_args(exp.entry, None)}  # type: ignore[union-attr]
     except Exception:  # noqa: BLE001 - defaults not told: every argument counts as changed
         defaults = {}
     return {k: str(v) for k, v in args.items() if str(defaults.get(k)) != str(v)}
@@ -80,7 +88,7 @@ def _hint(name: str, options) -> str:
 
 
 @check("M001", "M002", "M003", "M004", "M005")
-def srdf_names(model, ctx):
+def srdf_names(model: Model, ctx: Context) -> Iterator[Problem]:
     links = set(model.links)
     for cfg in _configs(ctx):
         s, why = cfg.srdf, (cfg.step,)
@@ -172,7 +180,7 @@ def _angular(j) -> bool:
 
 
 @check("M010", "M011", "M012")
-def joint_limits(model, ctx):
+def joint_limits(model: Model, ctx: Context) -> Iterator[Problem]:
     joints = set(model.joints)
     for cfg in _configs(ctx):
         doc, why = cfg.joint_limits, (cfg.step,)
@@ -230,7 +238,7 @@ def _limit_values(doc, name, lim, j, why):
 
 
 @check("M013")
-def kinematics_groups(model, ctx):
+def kinematics_groups(model: Model, ctx: Context) -> Iterator[Problem]:
     for cfg in _configs(ctx):
         doc, why = cfg.kinematics, (cfg.step,)
         if doc is None or not cfg.srdf.groups:
@@ -268,7 +276,7 @@ def _base(path: str) -> str:
 
 
 @check("M014")
-def moveit_controllers(model, ctx):
+def moveit_controllers(model: Model, ctx: Context) -> Iterator[Problem]:
     joints = set(model.joints)
     for cfg in _configs(ctx):
         why = (cfg.step,)
@@ -294,7 +302,9 @@ def moveit_controllers(model, ctx):
                 if theirs is not None and theirs and n.name not in theirs and n.name in grouped:
                     yield Problem(f"MoveIt controller {name!r} names joint {n.name!r}, which the ros2_control "
                                   f"controller {name!r} does not command: it refuses MoveIt's trajectories",
-                                  at=n.loc, related=(same.loc,) if getattr(same, "loc", None) else (),
+                                  at=n.loc,
+                                  # (type: ignore below) same has a loc (getattr)
+                                  related=(same.loc,) if getattr(same, "loc", None) else (),  # type: ignore[union-attr]
                                   code="M014", rests_on=why)
                 elif n.name not in grouped and n.name not in controlled and cfg.srdf.groups:
                     yield Problem(f"MoveIt controller {name!r} names joint {n.name!r}, which no SRDF group plans and "
@@ -309,7 +319,7 @@ def _warning():
 
 
 @check("M015")
-def initial_positions(model, ctx):
+def initial_positions(model: Model, ctx: Context) -> Iterator[Problem]:
     for cfg in _configs(ctx):
         doc, why = cfg.initial_positions, (cfg.step,)
         if doc is None:

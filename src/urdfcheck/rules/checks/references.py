@@ -2,9 +2,17 @@
 joint, a Gazebo sensor's frame. Each names it by a string nothing else checks, so a typo loses the block silently."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Problem, Severity, closest
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 # (and the old Gazebo 0.x bodies and joints: <body:box name=...>, <joint:hinge name=...>)
 _SDF_PART = lazyre.compile(r"<(?:link|joint|body)(?::\w+)?\s[^>]*?\bname=\"([^\"]+)\"")
@@ -32,7 +40,7 @@ def _sdf_parts(model) -> set[str]:
 
 
 @check("S012")
-def gazebo_reference_unknown(model, ctx):
+def gazebo_reference_unknown(model: Model, ctx: Context) -> Iterator[Problem]:
     names = set(model.links) | set(model.joints)
     sdf = None
     for b in model.blocks:
@@ -51,7 +59,7 @@ def gazebo_reference_unknown(model, ctx):
 
 
 @check("S013")
-def transmission_unknown_joint(model, ctx):
+def transmission_unknown_joint(model: Model, ctx: Context) -> Iterator[Problem]:
     joints = set(model.joints)
     for t in model.transmissions:
         for j in t.joints:
@@ -63,7 +71,7 @@ def transmission_unknown_joint(model, ctx):
 
 
 @check("S014")
-def sensor_frame_unknown(model, ctx):
+def sensor_frame_unknown(model: Model, ctx: Context) -> Iterator[Problem]:
     links = set(model.links)
     tails = {n.rsplit("/", 1)[1] for n in links if "/" in n}
     sdf = _sdf_parts(model) if model.frame_refs else set()

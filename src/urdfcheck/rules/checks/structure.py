@@ -22,10 +22,17 @@ Behaviour of the tools quoted in the messages was checked against urdfdom 3.0.1 
 from __future__ import annotations
 
 import weakref
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity, closest
 from urdfcheck.core.records import Record
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterable, Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _RGBA_TOL = 1e-6
 
@@ -214,7 +221,9 @@ class _Graph:
             entered = any(n in reach for n in comp)
             if len(comp) >= 2:
                 start = min(comp, key=position.__getitem__)
-                walk, visited, cur = [], {}, start
+                walk: list = []
+                visited: dict = {}
+                cur = start
                 while cur not in visited:
                     visited[cur] = len(walk)
                     up = next(j for j in self.parents[cur] if j.parent in members and j.parent != cur)
@@ -261,7 +270,7 @@ def _graph(model) -> _Graph:
 
 
 @check("S001")
-def multiple_roots(model, ctx):
+def multiple_roots(model: Model, ctx: Context) -> Iterator[Problem]:
     g = _graph(model)
     if len(model.links) < 2:
         return
@@ -296,7 +305,7 @@ def multiple_roots(model, ctx):
 
 
 @check("S002")
-def no_root(model, ctx):
+def no_root(model: Model, ctx: Context) -> Iterator[Problem]:
     g = _graph(model)
     if not model.links or g.roots:
         return
@@ -331,7 +340,7 @@ def _attach_point(model, g) -> str | None:
 
 
 @check("S003")
-def missing_link(model, ctx):
+def missing_link(model: Model, ctx: Context) -> Iterator[Problem]:
     links = model.links
     g = _graph(model)
     attach = _attach_point(model, g)
@@ -354,7 +363,7 @@ def missing_link(model, ctx):
 
 
 @check("S004")
-def multiple_parents(model, ctx):
+def multiple_parents(model: Model, ctx: Context) -> Iterator[Problem]:
     g = _graph(model)
     for child in g.nodes:
         if child not in g.defined:
@@ -377,7 +386,7 @@ def multiple_parents(model, ctx):
 
 
 @check("S005")
-def kinematic_cycle(model, ctx):
+def kinematic_cycle(model: Model, ctx: Context) -> Iterator[Problem]:
     g = _graph(model)
     if not g.roots:  # no root at all: S002 names the cycles
         return
@@ -397,7 +406,7 @@ def kinematic_cycle(model, ctx):
 
 
 @check("S006")
-def disconnected_link(model, ctx):
+def disconnected_link(model: Model, ctx: Context) -> Iterator[Problem]:
     g = _graph(model)
     if len(model.links) < 2 or not (g.touched & g.defined):
         return  # a single link is a valid model; links without any joint at all are S001
@@ -426,12 +435,12 @@ def _redefined(parts, by_name, kind: str):
 
 
 @check("S007")
-def duplicate_link(model, ctx):
+def duplicate_link(model: Model, ctx: Context) -> Iterable[Problem]:
     return _redefined(model.link_list, model.links, "link")
 
 
 @check("S008")
-def duplicate_joint(model, ctx):
+def duplicate_joint(model: Model, ctx: Context) -> Iterable[Problem]:
     return _redefined(model.joint_list, model.joints, "joint")
 
 
@@ -453,7 +462,7 @@ def _look(rgba, texture) -> str:
 
 
 @check("S009")
-def duplicate_material(model, ctx):
+def duplicate_material(model: Model, ctx: Context) -> Iterator[Problem]:
     # 1. a top-level <material> name twice: urdfdom refuses the model even when both are identical
     for m in model.material_list:
         first = model.materials[m.name]
@@ -489,7 +498,7 @@ def duplicate_material(model, ctx):
 
 
 @check("S010")
-def link_joint_name_clash(model, ctx):
+def link_joint_name_clash(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in _first_joints(model):
         link = model.links.get(j.name)
         if link is None:
@@ -502,7 +511,7 @@ def link_joint_name_clash(model, ctx):
 
 
 @check("S011")
-def empty_model(model, ctx):
+def empty_model(model: Model, ctx: Context) -> Iterator[Problem]:
     if model.link_list or any(i.code == "U001" for i in model.issues):
         return
     extra = ""

@@ -3,9 +3,16 @@ an rpy component or a revolute limit of exactly 90, 180, 270 or 360 (either sign
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 DEGREE_VALUES = (90.0, 180.0, 270.0, 360.0)
 
@@ -25,7 +32,7 @@ def _origins(model):
 
 
 @check("U011")
-def angle_in_degrees(model, ctx):
+def angle_in_degrees(model: Model, ctx: Context) -> Iterator[Problem]:
     for what, pose in _origins(model):
         if pose is None or pose.quat is not None or not any(_degrees(a) for a in pose.rpy):
             continue
@@ -37,8 +44,8 @@ def angle_in_degrees(model, ctx):
         lim = j.limit
         if j.type != "revolute" or lim is None or not (_degrees(lim.lower) or _degrees(lim.upper)):
             continue
-        vals = [f"{k}={v:g} ({math.radians(v):.6g} rad)" for k, v in (("lower", lim.lower), ("upper", lim.upper))
-                if _degrees(v)]
+        vals = [f"{k}={v:g} ({math.radians(v):.6g} rad)"  # type: ignore[arg-type]  # _degrees(v): v is a number
+                for k, v in (("lower", lim.lower), ("upper", lim.upper)) if _degrees(v)]
         yield Problem(f"revolute joint {j.name!r}: the <limit> {' and '.join(vals)} looks like degrees; URDF "
                       "limits are in radians", at=lim.loc, related=(j,))
 
@@ -90,7 +97,7 @@ def _unscaled(g) -> bool:
 
 
 @check("U012")
-def mesh_in_millimetres(model, ctx):
+def mesh_in_millimetres(model: Model, ctx: Context) -> Iterator[Problem]:
     """A mesh without `scale` about 1000x the size its link's other geometry or inertia gives it."""
     if not any(_unscaled(s.geometry) for link in model.link_list for s in (*link.visuals, *link.collisions)):
         return
@@ -136,7 +143,8 @@ def mesh_in_millimetres(model, ctx):
                 continue
             q, what, r = hit
             shown = " x ".join(f"{x:.4g}" for x in size)
-            yield Problem(f"mesh {s.geometry.filename!r} of the {s.kind} of link {link.name!r} is {shown} m as "
+            filename = s.geometry.filename  # type: ignore[union-attr]  # an unscaled mesh (_unscaled)
+            yield Problem(f"mesh {filename!r} of the {s.kind} of link {link.name!r} is {shown} m as "
                           f"written ({q:.0f}x the {r:.3g} m that {what} gives the link) and has no scale: the file "
                           f"is in millimetres and URDF reads metres; add scale=\"0.001 0.001 0.001\"",
                           at=s.geometry, data={"ratio": round(q, 1), "size": [round(x, 6) for x in size]})

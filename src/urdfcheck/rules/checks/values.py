@@ -5,14 +5,21 @@ from __future__ import annotations
 import math
 import os
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity
 from urdfcheck.model import grammar as G
 from urdfcheck.rules.catalogue import check
 
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
+
 
 @check("U001", "U002", "U003", "U004", "U005", "U006", "U008", "U009")
-def unreadable_values(model, ctx):
+def unreadable_values(model: Model, ctx: Context) -> Iterator[Problem]:
     for issue in model.issues:
         yield Problem(issue.message, at=issue.loc, code=issue.code, severity=issue.severity)
 
@@ -77,7 +84,7 @@ def _catkin_package(source: str) -> bool:
 
 
 @check("U007")
-def urdf_version(model, ctx):
+def urdf_version(model: Model, ctx: Context) -> Iterator[Problem]:
     raw = model.declared_version
     if raw is None:
         return  # URDF 1.0, read by every urdfdom
@@ -88,7 +95,8 @@ def urdf_version(model, ctx):
                       f"write version=\"1.0\" (or leave it out)", at=model)
         return
     if version not in G.VERSIONS:
-        yield Problem(f"{where}: no URDF version {G.version_text(version)} exists; urdfdom refuses the model "
+        text = G.version_text(version)  # type: ignore[arg-type]  # no error: parse_version gave a version
+        yield Problem(f"{where}: no URDF version {text} exists; urdfdom refuses the model "
                       f"(6.0: \"{G.supported_message(G.NEWEST)}\"; before 5.1: \"{G.supported_message(G.V1_0)}\"), "
                       f"so robot_state_publisher does not start", at=model)
         return
@@ -116,7 +124,7 @@ def _origins(model):
 
 
 @check("U010")
-def quaternion_not_unit(model, ctx):
+def quaternion_not_unit(model: Model, ctx: Context) -> Iterator[Problem]:
     if model.version < G.V1_1:
         return  # no quaternion is read (U008 says so)
     tol = float(ctx.options["tolerance"])  # typed and defaulted by the catalogue (rules/U010.yaml)

@@ -1,3 +1,3 @@
-"""The bodies of the contract (C) and TF-ownership (T) checks, imported on first use by
-`rules.checks.contracts`.
+"""Drive geometry for the contract rules (`rules.checks.contracts`): wheel sets of the model against what a drive
+controller or driver is told.
 """

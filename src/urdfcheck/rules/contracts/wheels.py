@@ -69,6 +69,13 @@ class Wheel(TupleRecord):
 
 class WheelProblem(FrozenRecord):
     _fields = ('code', 'message', 'at', 'related', 'severity', 'data', 'rests_on')
+    code: str
+    message: str
+    at: Location
+    related: tuple[Location, ...]
+    severity: Severity | None
+    data: dict
+    rests_on: tuple
 
     def __init__(self, code: str,
                  message: str,
@@ -303,7 +310,8 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
         # ROS 1 controller measures itself (urdf_distance) and what the sides are judged by
         tl = _mean([w.centre or w.position for w in lefts])
         tr = _mean([w.centre or w.position for w in rights])
-        rep.measured_separation = abs(_dot(_sub(tl, tr), ref.axis))
+        # (type: ignore below) ref: a wheel of the pair
+        rep.measured_separation = abs(_dot(_sub(tl, tr), ref.axis))  # type: ignore[union-attr]
         rep.urdf_distance = G.norm(d)
         lateral = d[1]
         if abs(lateral) > tolerance:
@@ -326,7 +334,8 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
             rep.problems_.append(WheelProblem(
                 "C010",
                 f"the wheels of {drive.owner} ({names}) are {_fmt(rep.urdf_distance)} m apart but 0 m apart along "
-                f"their axis {_vec(ref.axis)}: they sit one behind the other, not side by side",
+                f"their axis {_vec(ref.axis)}: "  # type: ignore[union-attr]  # ref: a wheel of the pair
+                "they sit one behind the other, not side by side",
                 lefts[0].joint_loc, (rights[0].joint_loc,), None, data))
         elif slip is not None and base_sep is not None:
             # a declared slip factor (skid steer): compare the base value with the model, say what it does
@@ -352,7 +361,8 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
             else:
                 bad = sep if base_sep is None else drive.separation_multiplier
                 what = "wheel_separation" if base_sep is None else "wheel_separation_multiplier"
-                rep.notes.append((f"{what} {bad.value!r} is not a number", bad.loc))
+                # (type: ignore below) one of the two is set here
+                rep.notes.append((f"{what} {bad.value!r} is not a number", bad.loc))  # type: ignore[union-attr]
         elif abs(expected - rep.measured_separation) > tolerance:
             how = (f"{drive.separation_key} {number_text(sep)}" if sep is not None else drive.separation_key)
             rep.problems_.append(WheelProblem(
@@ -410,7 +420,8 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                 f"wheel link {w.link} ({_fmt(w.radius)} m); the {w.side} wheel radius multiplier {_fmt(slip)} is a "
                 f"declared correction: the controller converts {w.side} wheel rotation to and from ground speed "
                 f"with {_fmt(slip)} x {_fmt(base_r)} = {_fmt(base_r * slip)} m",
-                mult_v.loc, (w.shape_loc or w.joint_loc, rad_v.loc), Severity.INFO, data))
+                # (type: ignore below) set when a multiplier was read
+                mult_v.loc, (w.shape_loc or w.joint_loc, rad_v.loc), Severity.INFO, data))  # type: ignore[union-attr]
             continue
         if abs(expected - w.radius) > tolerance:
             # truly ambiguous: another coaxial shape close to the largest (a rim inside a thin tyre, an inner and an
@@ -427,7 +438,8 @@ def check_drive(model, drive: DriveSpec, *, base_frame: str | None = None, toler
                 f"{drive.owner}: {drive.radius_key} {number_text(rad_v)} m, but wheel link {w.link} ({w.use.joint}) "
                 f"has a {w.shape_from} {w.shape_kind} of radius {_fmt(w.radius)} m{largest} (difference "
                 f"{_fmt(abs(expected - w.radius))} m, tolerance {_fmt(tolerance)} m)",
-                rad_v.loc, (w.shape_loc or w.joint_loc,), None, data, steps))
+                # (type: ignore below) set when a radius was read
+                rad_v.loc, (w.shape_loc or w.joint_loc,), None, data, steps))  # type: ignore[union-attr]
     return rep
 
 

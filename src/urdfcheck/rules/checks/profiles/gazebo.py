@@ -11,10 +11,18 @@ sdformat 12.3 (tests/differential.py); behaviour.gazebo_bodies is the one place 
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 from urdfcheck.core import lazyre
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import actuated, dynamic, fixed_groups, is_tree, names, speak
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.core.findings import Problem
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _JOINT = lazyre.compile(r"<\s*joint\b[^>]*\bname\s*=\s*[\"']([^\"']*)[\"'][^>]*>(.*?)<\s*/\s*joint\s*>", re.S)
 _END = lazyre.compile(r"<\s*(parent|child)\s*>\s*([^<\s]+)\s*<")
@@ -31,7 +39,7 @@ def _extension_joints(model):
 
 
 @check("P010")
-def fixed_joint_lumping(model, ctx):
+def fixed_joint_lumping(model: Model, ctx: Context) -> Iterator[Problem]:
     if "gazebo" not in ctx.profiles or len(model.roots) != 1:
         return
     from urdfcheck.rules.checks.profiles.behaviour import gazebo_keep
@@ -47,7 +55,7 @@ def fixed_joint_lumping(model, ctx):
 
 
 @check("P011")
-def massless_link_dropped(model, ctx):
+def massless_link_dropped(model: Model, ctx: Context) -> Iterator[Problem]:
     from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies, sdformat_of
 
     if not is_tree(model):
@@ -83,7 +91,7 @@ def massless_link_dropped(model, ctx):
 
 
 @check("P012")
-def gazebo_refuses(model, ctx):
+def gazebo_refuses(model: Model, ctx: Context) -> Iterator[Problem]:
     """What sdformat's converter leaves that its own validation (`ign sdf -k`, and Gazebo's loader) refuses, or a
     model with no link left at all. Measured with sdformat 12.3."""
     from urdfcheck.rules.checks.profiles.behaviour import gazebo_bodies, sdformat_of
@@ -100,7 +108,8 @@ def gazebo_refuses(model, ctx):
                   "so sdformat's URDF converter drops it with everything below it (parser_urdf.cc CreateSDF: \"has "
                   "no inertia, not modeled in sdf\") and the model has no link left; give the root an <inertial>, "
                   "or attach it by a fixed joint to a link that has one (it is then lumped into that link's mass)",
-                  model.links[first] if first in model.links else model,
+                  # (type: ignore below) the root of a tree model has a name
+                  model.links[first] if first in model.links else model,  # type: ignore[index]
                   quiet=not dynamic(model))  # no <inertial> anywhere: kinematic by intent (a tutorial, MoveIt's)
         if p is not None:
             yield p
@@ -130,7 +139,8 @@ def gazebo_refuses(model, ctx):
                       f"Gazebo refuses the model: the inertia of link '{links[0]}' (the only one in SDFormat link "
                       f"'{body}') is not a rigid body's: \"A link named {body} has invalid inertia\" (sdformat "
                       "validation, gz-math MassMatrix3::IsValid: principal moments >= 0 and each two adding up to "
-                      "the third); I003/I004 say what is wrong with it", inr.inertia_loc or inr,
+                      "the third); I003/I004 say what is wrong with it",
+                      inr.inertia_loc or inr,  # type: ignore[union-attr]  # the link's tensor was found invalid
                       quiet=True)  # I003/I004 report the tensor for every consumer
             if p is not None:
                 yield p
@@ -157,7 +167,7 @@ def gazebo_refuses(model, ctx):
 
 
 @check("P013")
-def undrivable_joint(model, ctx):
+def undrivable_joint(model: Model, ctx: Context) -> Iterator[Problem]:
     """effort="0" on a movable joint nothing actuates. Gazebo copies the limit into SDFormat, where 0 clamps every
     commanded force to 0; Isaac Sim's importer reads 0 as no limit (configureDriveAPI: maxForce FLT_MAX). ROS-Industrial
     arms write effort 0 because their driver commands positions: a <transmission> or <ros2_control> joint tells them
@@ -179,7 +189,7 @@ def undrivable_joint(model, ctx):
 
 
 @check("P020")
-def isaac_merges_fixed_joints(model, ctx):
+def isaac_merges_fixed_joints(model: Model, ctx: Context) -> Iterator[Problem]:
     if "isaac" not in ctx.profiles or len(model.roots) != 1:
         return
     keep = _dont_collapse(model)

@@ -6,12 +6,21 @@ inertia gets "The root link %s has an inertia specified in the URDF, but KDL doe
 inertia" (I005)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import speak
 
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.core.findings import Problem
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
+
 
 @check("P030")
-def floating_or_planar_fixed(model, ctx):
+def floating_or_planar_fixed(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in model.joint_list:
         if j.type == "floating":
             # PyBullet too (UrdfParser.cpp parseJoint, "joint unsupported, creating a fixed joint instead";

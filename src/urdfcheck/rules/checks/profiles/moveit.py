@@ -6,8 +6,17 @@ range between the soft and the hard limits; a velocity limit of 0 becomes "no ve
 (velocity_bounded_ = false when the URDF value is 0)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import speak
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.core.findings import Problem
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 
 def _number(text):
@@ -18,7 +27,7 @@ def _number(text):
 
 
 @check("P060")
-def soft_limits_narrow_bounds(model, ctx):
+def soft_limits_narrow_bounds(model: Model, ctx: Context) -> Iterator[Problem]:
     if "moveit" not in ctx.profiles:
         return
     for j in model.joints.values():  # urdfdom keeps the first joint of a name

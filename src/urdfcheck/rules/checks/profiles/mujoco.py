@@ -11,10 +11,17 @@ breaks the triangle inequality is refused on any link. <mimic> becomes an equali
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import dynamic, fixed_groups, is_tree, names, speak
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 MJMINVAL = 1e-15
 DENSITY = 1000.0  # mjsGeom default density: collision geometry of a link without <inertial> gets mass from it
@@ -55,7 +62,7 @@ def _part(link) -> tuple[float, float] | None:
     got = [_geom_mass(shape.geometry) for shape in link.collisions]
     if any(g is None for g in got):
         return None
-    mass = sum(g[0] for g in got)
+    mass = sum(g[0] for g in got)  # type: ignore[index, misc]  # no None in got (tested above)
     if len(got) == 1:
         return got[0]
     return mass, mass  # several shapes: apart, they add moments (parallel axes); one alone decides otherwise
@@ -88,7 +95,7 @@ def moving_bodies(model) -> dict[str, list[str]]:
 
 
 @check("P001")
-def massless_moving_body(model, ctx):
+def massless_moving_body(model: Model, ctx: Context) -> Iterator[Problem]:
     if not is_tree(model):
         return  # S001/S002: no single tree to reason about
     kinematic = not dynamic(model)
@@ -99,13 +106,16 @@ def massless_moving_body(model, ctx):
         parts = [(n, _part(model.links[n])) for n in links if n in model.links]
         if any(p is None for _, p in parts):
             continue  # a mesh's volume decides: the consumers command measures it
-        massive = [(n, p) for n, p in parts if p[0] >= MJMINVAL]
-        mass = sum(p[0] for _, p in massive)
-        if mass >= MJMINVAL and (len(massive) > 1 or massive[0][1][1] >= MJMINVAL):
+        # (type: ignore below) no None in parts (tested above)
+        massive = [(n, p) for n, p in parts if p[0] >= MJMINVAL]  # type: ignore[index]
+        mass = sum(p[0] for _, p in massive)  # type: ignore[index, misc]  # no None in parts (tested above)
+        # (type: ignore below) no None in parts (tested above)
+        if mass >= MJMINVAL and (len(massive) > 1 or massive[0][1][1] >= MJMINVAL):  # type: ignore[index]
             continue
         explicit = any(model.links[n].inertial is not None for n in links)
         what = (f"mass {mass:.3g} kg" if mass < MJMINVAL else
-                f"smallest principal moment {massive[0][1][1]:.3g} kg·m²")
+                # (type: ignore below) no None in parts (tested above)
+                f"smallest principal moment {massive[0][1][1]:.3g} kg·m²")  # type: ignore[index]
         fused = f" (with fused links {names([n for n in links if n != body])})" if len(links) > 1 else ""
         source = ("from its <inertial>" if explicit else
                   "from its collision geometry (no <inertial>; density 1000)" if any(
@@ -122,7 +132,7 @@ def massless_moving_body(model, ctx):
 
 
 @check("P002")
-def inertia_refused(model, ctx):
+def inertia_refused(model: Model, ctx: Context) -> Iterator[Problem]:
     """An explicit tensor MuJoCo refuses on any link (fixed or root too): not positive definite ("inertia must
     have positive eigenvalues"), or breaking A + B >= C. All six zero is "undefined" and accepted."""
     from urdfcheck.rules.checks.inertial import principal_moments
@@ -150,7 +160,7 @@ _SHAPES = ("box", "cylinder", "sphere", "capsule", "mesh")
 
 
 @check("P005")
-def collision_geometry_refused(model, ctx):
+def collision_geometry_refused(model: Model, ctx: Context) -> Iterator[Problem]:
     """xml_urdf.cc mjXURDF::Geom: a <collision> without <geometry> ("missing element: 'geometry'") or with a shape
     other than box, cylinder, sphere, capsule and mesh ("visual geometry specification not found") is refused.
     Visual elements are discarded first (discardvisual, the URDF default), so theirs do not matter."""
@@ -182,7 +192,7 @@ _SCOPES = ("joint", "link", "link/inertial", "link/collision", "link/visual", "l
 
 
 @check("P006")
-def repeated_element(model, ctx):
+def repeated_element(model: Model, ctx: Context) -> Iterator[Problem]:
     # the builder noted every repeat while reading (model.repeated): a second walk over the XML cost 0.15 s on
     # 10,000 links, for a finding almost no model has
     parts = {"joint": model.joints, "link": model.links}
@@ -193,8 +203,9 @@ def repeated_element(model, ctx):
         part = parts[kind].get(owner)
         if path not in _SCOPES or not twice or part is None:
             continue
+        name = part.name  # type: ignore[attr-defined]  # a link or a joint (parts[kind] maps names to them)
         p = speak(ctx, ("mujoco",),
-                  f"MuJoCo refuses the model: <{scope}> of {kind} '{part.name}' has more than one "
+                  f"MuJoCo refuses the model: <{scope}> of {kind} '{name}' has more than one "
                   f"<{twice[0]}> (xml_util.cc FindSubElem: \"repeated element: '{twice[0]}'\"); urdfdom "
                   "reads the first one only", part)
         if p is not None:
@@ -202,7 +213,7 @@ def repeated_element(model, ctx):
 
 
 @check("P003")
-def mimic_becomes_equality(model, ctx):
+def mimic_becomes_equality(model: Model, ctx: Context) -> Iterator[Problem]:
     if "mujoco" not in ctx.profiles:
         return
     for j in model.joint_list:
@@ -219,7 +230,7 @@ def mimic_becomes_equality(model, ctx):
 
 
 @check("P004")
-def fused_links(model, ctx):
+def fused_links(model: Model, ctx: Context) -> Iterator[Problem]:
     if "mujoco" not in ctx.profiles or len(model.roots) != 1:
         return
     group = fixed_groups(model)
@@ -236,7 +247,7 @@ def fused_links(model, ctx):
 
 
 @check("P007")
-def joint_refused(model, ctx):
+def joint_refused(model: Model, ctx: Context) -> Iterator[Problem]:
     """Joints MuJoCo's compiler refuses (measured with mujoco 4.0): a floating joint whose parent is not welded to
     the world becomes a free joint below a moving body ("free joint can only be used on top level"); a <mimic>
     naming its own joint makes an equality constraint on one joint twice ("element 'X' is repeated in equality
@@ -246,7 +257,8 @@ def joint_refused(model, ctx):
     group = fixed_groups(model)
     top = set(model.roots) | {"world"}
     for j in model.joint_list:
-        if j.type == "floating" and group.get(j.parent, j.parent) not in top:
+        # (type: ignore below) a floating joint has a parent
+        if j.type == "floating" and group.get(j.parent, j.parent) not in top:  # type: ignore[arg-type, operator]
             p = speak(ctx, ("mujoco",),
                       f"MuJoCo refuses the model: floating joint '{j.name}' hangs below a moving body, and MuJoCo "
                       "makes it a free joint: \"free joint can only be used on top level\" (user_objects.cc); "
@@ -266,7 +278,7 @@ MESH_DECODERS = (".stl", ".obj", ".msh")  # mujoco 4.0 user_mesh.cc; anything el
 
 
 @check("P008")
-def collision_mesh_refused(model, ctx):
+def collision_mesh_refused(model: Model, ctx: Context) -> Iterator[Problem]:
     """A collision mesh MuJoCo cannot open (measured with mujoco 4.0): it opens the filename as a path, relative to
     the URDF's folder, with no package:// or file:// resolution ("Error opening file 'package:/...'"), and decodes
     only STL, OBJ and MSH ("no decoder found for mesh file"). Visual meshes are discarded first and never opened.

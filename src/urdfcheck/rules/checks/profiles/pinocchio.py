@@ -6,12 +6,21 @@ lower bound greater than the upper one, and the model is refused ("Some componen
 than max_effort"; the same for velocity). Verified with pin 4.1 (`urdfcheck consumers --consumer pinocchio`)."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import speak
 
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.core.findings import Problem
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
+
 
 @check("P040")
-def negative_effort_or_velocity(model, ctx):
+def negative_effort_or_velocity(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in model.joint_list:
         lim = j.limit
         if lim is None or j.type == "fixed":

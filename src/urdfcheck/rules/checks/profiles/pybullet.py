@@ -9,12 +9,21 @@ shapes (calculateLocalInertia) and the URDF's <inertia> is ignored. Measured wit
 (tests/differential.py): <mimic> is never read, a floating joint becomes fixed, inverted limits are no limit."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import names, speak
 
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from collections.abc import Iterator
+
+    from urdfcheck.core.findings import Problem
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
+
 
 @check("P050")
-def default_mass(model, ctx):
+def default_mass(model: Model, ctx: Context) -> Iterator[Problem]:
     if "pybullet" not in ctx.profiles:
         return
     # the root too: loadURDF's default is a free base, and the root's 1 kg moves with the robot (measured); only
@@ -28,7 +37,7 @@ def default_mass(model, ctx):
 
 
 @check("P051")
-def inertia_recomputed(model, ctx):
+def inertia_recomputed(model: Model, ctx: Context) -> Iterator[Problem]:
     if "pybullet" not in ctx.profiles:
         return
     given = [lk for lk in model.link_list if lk.inertial is not None and lk.inertial.inertia is not None
@@ -75,7 +84,7 @@ def same_as_bullet(link) -> bool:
 
 
 @check("P052")
-def mimic_ignored(model, ctx):
+def mimic_ignored(model: Model, ctx: Context) -> Iterator[Problem]:
     """<mimic> that a consumer drops: PyBullet's UrdfParser never reads it (measured: a joint of its own, with its own
     motor); sdformat's URDF converter only converts it from 14.1 on (parser_urdf.cc; measured with 12.3: no <mimic>
     in the SDFormat joint); Pinocchio's buildModelFromUrdf builds it only when asked (mimic=True gives a

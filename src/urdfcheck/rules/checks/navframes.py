@@ -10,8 +10,14 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
+from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity
+from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _REP105 = ("map", "odom", "earth")
 _OWN_EDGE_OF = {"amcl": "odom_frame_id", "slam_toolbox": "odom_frame"}
@@ -49,11 +55,14 @@ def _tail(path: str) -> str:
     return "/".join(path.replace(os.sep, "/").split("/")[-2:])
 
 
-def navigation_frame_unknown(model, ctx) -> Iterator[Problem]:
+@check("C024", needs="consumers")
+def navigation_frame_unknown(model: Model, ctx: Context) -> Iterator[Problem]:
     from urdfcheck.consumers.consumers import _Reader
-    from urdfcheck.consumers.graph import vouched_claims
+    from urdfcheck.consumers.consumers import consumers_of as consumers
     from urdfcheck.consumers.navigation import nav_frames
-    from urdfcheck.rules.contracts.impl import _graph, _suggest_frame, _unresolved, consumers
+    from urdfcheck.rules.checks.contracts import _suggest_frame, _unresolved
+    from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
+    from urdfcheck.rules.checks.tf.graph import vouched_claims
 
     c = consumers(model, ctx)
     paths, launched = _files(c)

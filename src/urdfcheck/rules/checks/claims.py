@@ -16,8 +16,14 @@ joints) that a launch file starts one at a time, so declaring is never running.
 from __future__ import annotations
 
 from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.rules.catalogue import check
+
+if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from urdfcheck.model.robot import Model
+    from urdfcheck.rules.engine import Context
 
 _SPAWNER_EXES = ("spawner", "spawner.py")
 _VALUE_FLAGS = frozenset((
@@ -85,7 +91,7 @@ def _followed(inc, included) -> bool:
 MAX_INCLUDE_DEPTH = 8
 
 
-def _spawn_groups(c) -> Iterator[tuple[object, list]]:
+def _spawn_groups(c) -> Iterator[tuple[Any, list]]:
     """(launch info, [(controller name, spawner node, include locations), ...]) of the controllers each launch
     file spawns active, its own spawners and those of the launch files it includes (followed as `_followed`
     says), per controller manager (a spawner's `-c` and namespace)."""
@@ -133,11 +139,12 @@ def _claims(ctrl) -> dict[str, object]:
     return out
 
 
-def interface_claimed_twice(model, ctx) -> Iterator[Problem]:
+@check("C022", needs="consumers")
+def interface_claimed_twice(model: Model, ctx: Context) -> Iterator[Problem]:
     """Two controllers one launch file spawns active, itself or through the files it includes, claim the same
     command interface."""
+    from urdfcheck.consumers.consumers import consumers_of as consumers
     from urdfcheck.core.paths import shown as shown_path
-    from urdfcheck.rules.contracts.impl import consumers
 
     c = consumers(model, ctx)
     if not len(c.controllers) or not c.launch:
@@ -177,9 +184,10 @@ def interface_claimed_twice(model, ctx) -> Iterator[Problem]:
                     data={"controllers": [other, ctrl.name], "interfaces": ifaces})
 
 
-def chained_reference_missing(model, ctx) -> Iterator[Problem]:
+@check("C023", needs="consumers")
+def chained_reference_missing(model: Model, ctx: Context) -> Iterator[Problem]:
     """A chained controller names a reference interface the controller it follows does not export."""
-    from urdfcheck.rules.contracts.impl import consumers
+    from urdfcheck.consumers.consumers import consumers_of as consumers
 
     c = consumers(model, ctx)
     if not len(c.controllers):

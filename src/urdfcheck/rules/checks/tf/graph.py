@@ -1,49 +1,26 @@
-"""The deployment TF graph: who publishes which parent -> child transform, and what is wrong with it.
+"""The deployment TF graph: the claims (`consumers.tfclaims`) of one deployment, and what is wrong with it.
 
-Claims (`TFClaim(parent, child, owner, kind, loc)`) come from
-
-* the model, published by robot_state_publisher (`claims_from_model`): fixed and planar joints are static
-  (/tf_static; RSP publishes a planar joint at its zero position), revolute/continuous/prismatic joints are
-  dynamic (/tf), floating joints are skipped (RSP does not publish them). Only the first joint per child
-  link is used (a second parent is the model's own structure error);
-* static_transform_publisher nodes in launch files (static);
-* controllers and drivers that broadcast odometry (dynamic odom -> base);
-* localization, SLAM and drivers that broadcast frames (robot_localization, AMCL, slam_toolbox, cartographer,
-  realsense2_camera: `localization.py`, data in `tfowners.yaml`);
-* Gazebo plugins and gz-sim systems in the model's <gazebo> blocks (`consumers.gazebo.plugin_claims`, source
-  "gazebo"): their odometry transforms (dynamic), counted against the controllers' only when the controllers run
-  in the simulator (rules_impl `_apart`);
-* owners declared in the config (`tf_owners: {"map->odom": amcl}`) (dynamic). A declaration that names the
-  publisher already read for that edge (`add_declared`: the same owner, its node name, or its kind, e.g.
-  `map_to_odom`, `static_transform_publisher`, `diff_drive_controller`) documents that publisher and adds no
-  second claim; one naming somebody else is a second publisher (T001/T002).
-
-Frame names are compared without a leading "/". Analyses return `TFProblem`s (never findings): the check
-layer turns them into T001..T006.
+Analyses return `TFProblem`s (never findings): the T rules beside this module (`rules.checks.tf`) turn them into
+T001..T006, and `deployment_graph` builds the graph of a model and its consumers for them and for C020/C024.
 """
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
 
+from urdfcheck.consumers.tfclaims import (
+    DECLARED,
+    DYNAMIC,
+    STATIC,
+    UNTRUSTED,
+    TFClaim,
+    claims_from_localization,
+    claims_from_model,
+    claims_from_odom,
+    claims_from_static_tfs,
+    norm,
+)
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record, TupleRecord
-
-STATIC = "static"
-DYNAMIC = "dynamic"
-RSP = "robot_state_publisher"
-
-
-class TFClaim(TupleRecord):
-    parent: str
-    child: str
-    owner: str  # "robot_state_publisher", "static_transform_publisher <name>", a controller name, "amcl", ...
-    kind: str  # "static" or "dynamic"
-    loc: Location
-    source: str = ""  # "model", "launch", "controller", "driver", "localization", "config"
-
-    @property
-    def edge(self) -> tuple[str, str]:
-        return (self.parent, self.child)
 
 
 class TFProblem(TupleRecord):
@@ -67,10 +44,6 @@ class TFProblem(TupleRecord):
             if c.loc != first and c.loc not in out:
                 out.append(c.loc)
         return tuple(out)
-
-
-def norm(frame: str) -> str:
-    return str(frame).strip().lstrip("/")
 
 
 class TFGraph(Record):
@@ -126,85 +99,6 @@ class TFGraph(Record):
         return any(c.parent == f or c.child == f for c in self.claims)
 
 
-# --- claim sources -----------------------------------------------------------------------------------
-def claims_from_model(model, prefix: str = "", owner: str = RSP) -> list[TFClaim]:
-    """robot_state_publisher's transforms for a Model (frame_prefix applied)."""
-    out = []
-    seen: set[str] = set()
-    for j in model.joint_list:
-        if j.parent is None or j.child is None or j.child in seen:
-            continue
-        seen.add(j.child)
-        if j.type == "floating":
-            continue
-        kind = STATIC if j.type in ("fixed", "planar") else DYNAMIC
-        out.append(TFClaim(prefix + j.parent, prefix + j.child, owner, kind, j.loc, "model"))
-    return out
-
-
-def claims_from_static_tfs(static_tfs: Iterable, notes: list | None = None) -> list[TFClaim]:
-    out = []
-    for s in static_tfs:
-        if getattr(s, "condition", None):
-            if notes is not None:
-                notes.append((f"static transform {s.parent} -> {s.child} is conditional ({s.condition}); "
-                               f"left out of the TF graph", s.loc))
-            continue
-        owner = "static_transform_publisher" + (f" {s.node_name}" if getattr(s, "node_name", "") else "")
-        out.append(TFClaim(s.parent, s.child, owner, STATIC, s.loc, "launch"))
-    return out
-
-
-def claims_from_odom(odom_tfs: Iterable, base_frame: str = "base_link", source: str = "controller") -> list[TFClaim]:
-    """From `controllers.OdomTF`s (enabled ones); an empty child means the configured base frame."""
-    out = []
-    for o in odom_tfs:
-        if o is None or not o.enabled:
-            continue
-        out.append(TFClaim(o.parent, o.child or base_frame, o.owner, DYNAMIC, o.loc, source))
-    return out
-
-
-def claims_from_localization(nodes: Iterable) -> list[TFClaim]:
-    out = []
-    for n in nodes:
-        owner = {"ekf": "robot_localization (ekf)", "ukf": "robot_localization (ukf)"}.get(n.kind, n.kind)
-        for e in n.edges():  # localization, SLAM and drivers: every edge the node's parameters turn on
-            kind = STATIC if e.kind == STATIC else DYNAMIC
-            out.append(TFClaim(e.parent, e.child, f"{owner} {n.node}", kind, e.loc, "localization"))
-    return out
-
-
-def parse_edge(text: str) -> tuple[str, str] | None:
-    """"map->odom", "map -> odom", "map/odom"? only the arrow forms."""
-    for sep in ("->", "→", " to "):
-        if sep in text:
-            a, b = text.split(sep, 1)
-            a, b = norm(a), norm(b)
-            if a and b:
-                return a, b
-    return None
-
-
-# the source of a `tf_owners` declaration in a config the runner did not vouch for (found in the checkout, or named
-# without --trust-config; issue 36). It may add a publisher, and so a conflict (T001..T004), never make a frame
-# published that nothing read publishes: T005, C020 and C024 judge the graph without it (`vouched_claims`).
-UNTRUSTED = "config (untrusted)"
-DECLARED = ("config", UNTRUSTED)
-
-
-def claims_from_owners(owners: Mapping[str, str], locs: Mapping[str, Location] | None = None,
-                       default_loc: Location | None = None, source: str = "config") -> list[TFClaim]:
-    out = []
-    for edge_text, owner in owners.items():
-        e = parse_edge(edge_text)
-        if e is None:
-            continue
-        loc = (locs or {}).get(edge_text) or default_loc or Location("<config>")
-        out.append(TFClaim(e[0], e[1], str(owner), DYNAMIC, loc, source))
-    return out
-
-
 def vouched_claims(g: TFGraph) -> TFGraph:
     """`g` without the declarations of a config the runner did not vouch for: what may count as published."""
     if not any(c.source == UNTRUSTED for c in g.claims):
@@ -243,6 +137,42 @@ def add_declared(g: TFGraph, declared: Iterable[TFClaim]) -> TFGraph:
             continue
         g.add(c)
     return g
+
+
+def deployment_graph(model, c) -> TFGraph:
+    """The TF graph of a model and its consumers (kept on the consumers for the model last asked about)."""
+    cache = getattr(c, "_graph_cache", None)
+    key = id(model)
+    if cache is not None and cache[0] == key:
+        return cache[1]
+    g = TFGraph()
+    g.extend(claims_from_model(model, c.rsp_prefix))
+    for li in c.launch:
+        g.extend(claims_from_static_tfs(li.static_tfs, g.notes))
+    base = c.frames.get("base", "base_link")
+    # files no launch file of this deployment reads claim no transform in it (issue 20)
+    g.extend(claims_from_odom((ctrl.odom_tf for ctrl in c.controllers if not getattr(ctrl, "elsewhere", None)),
+                              base, "controller"))
+    g.extend(claims_from_odom((d.odom_tf for d in c.drivers if not getattr(d, "elsewhere", None)), base, "driver"))
+    g.extend(claims_from_localization(c.localization))
+    if model.plugins:  # Gazebo plugins' odometry transforms (consumers/gazebo.py)
+        from urdfcheck.consumers.gazebo import plugin_claims
+
+        g.extend(plugin_claims(model))
+    add_declared(g, c.tf_owners)  # after the claims read from files: a declaration may name one of them
+    c._graph_cache = (key, g)
+    return g
+
+
+def distinct_locations(locs, at=None) -> tuple:
+    """Each location (or part with a .loc) once, in order, leaving out `at`: a finding's related places."""
+    out: dict[str, Location] = {}
+    for loc in locs:
+        loc = getattr(loc, "loc", loc)
+        if loc is None or (at is not None and str(loc) == str(at)):
+            continue
+        out.setdefault(str(loc), loc)
+    return tuple(out.values())
 
 
 # --- analyses ----------------------------------------------------------------------------------------
