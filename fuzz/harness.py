@@ -189,6 +189,21 @@ def _account(stats: dict, examples: list, case, out: dict, show) -> None:
                              "case": show(case)})
 
 
+def steps(count: int, step: int, seconds: float | None, t0: float, make, run_cases, stats: dict, examples: list,
+          report: str | None) -> int:
+    """Inputs made and run `step` at a time (`make(done, n)` -> cases, `run_cases(cases)`), the figures written to
+    `report` after each step, no new step begun after `seconds`; returns how many inputs were made."""
+    done = 0
+    while done < count and (seconds is None or time.monotonic() - t0 < seconds):
+        n = min(step, count - done)
+        run_cases(make(done, n))
+        done += n
+        if report:
+            Path(report).write_text(json.dumps({**stats, "examples": examples[:20],
+                                                "seconds": round(time.monotonic() - t0, 1)}, indent=1))
+    return done
+
+
 def new_stats() -> dict:
     return {"inputs": 0, **{k: 0 for k in KINDS}, "outcomes": {}}
 

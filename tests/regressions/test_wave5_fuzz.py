@@ -1,0 +1,115 @@
+"""Inputs the wave-5 fuzzers (fuzz/jointstates.py, fuzz/configbags.py) found, minimised: a joint-state file the
+runner names (`publish --joint-states`, `bag MODEL FILE`, `lint --bag`) that ended in an internal error, ran past
+the budget, or printed the pull request's bidi controls as they are."""
+import json
+import shutil
+from pathlib import Path
+
+import pytest
+from conftest import run_cli
+
+FIXTURES = Path(__file__).resolve().parent.parent / "fixtures" / "ros1"
+ALL_JOINTS = ["left_wheel_joint", "right_wheel_joint", "arm_joint"]
+
+
+def _robot(tmp_path):
+    shutil.copyfile(FIXTURES / "robot.urdf", tmp_path / "robot.urdf")
+
+
+def _no_internal_error(code, out, err):
+    assert code in (1, 2), (code, err)
+    assert "internal error" not in out + err and "Traceback" not in out + err, err
+
+
+@pytest.mark.parametrize("stamp", ["[.inf, 0]", "{sec: .inf}"])
+def test_publish_an_infinite_stamp_part_is_a_rejected_message(tmp_path, stamp):
+    """fuzz/jointstates.py: `stamp: [.inf, 0]` raised OverflowError (int(inf)) out of JointState.from_dict, which
+    `publish` caught as TypeError/ValueError only."""
+    _robot(tmp_path)
+    (tmp_path / "js.yaml").write_text(f"- {{name: [arm_joint], position: [1], stamp: {stamp}}}\n")
+    code, out, err = run_cli(["publish", "robot.urdf", "--joint-states", "js.yaml"], cwd=tmp_path)
+    _no_internal_error(code, out, err)
+
+
+def test_publish_a_position_past_a_double_is_a_rejected_message(tmp_path):
+    """fuzz/jointstates.py: a 400-digit integer position raised OverflowError (float(int)) out of from_dict."""
+    _robot(tmp_path)
+    (tmp_path / "js.json").write_text(json.dumps([{"name": ["arm_joint"], "position": [10**400], "stamp": 1}]))
+    code, out, err = run_cli(["publish", "robot.urdf", "--joint-states", "js.json"], cwd=tmp_path)
+    _no_internal_error(code, out, err)
+    assert "out of range" in out
+
+
+def test_publish_an_infinite_position_publishes_nan(tmp_path):
+    """fuzz/jointstates.py: `position: [.inf]` for a revolute joint: math.sin(inf) raised ValueError in the
+    publisher (robot_state_publisher, through C's sin, publishes NaN)."""
+    _robot(tmp_path)
+    (tmp_path / "js.yaml").write_text("- {name: [arm_joint], position: [.inf], stamp: 1}\n")
+    code, out, err = run_cli(["publish", "robot.urdf", "--joint-states", "js.yaml"], cwd=tmp_path)
+    assert "internal error" not in err and "Traceback" not in err, err
+    doc = json.loads(out)
+    (tf,) = [t for t in doc["messages"][0]["/tf"] if t["child"] == "arm_link"]
+    assert all(v != v for v in tf["rotation"])  # NaN
+
+
+@pytest.mark.parametrize("command", [["bag", "robot.urdf", "js.yaml"], ["lint", "robot.urdf", "--bag", "js.yaml"],
+                                     ["publish", "robot.urdf", "--joint-states", "js.yaml"]])
+def test_a_stamp_past_int64_nanoseconds_is_a_finding(tmp_path, command):
+    """fuzz/jointstates.py: a stamp of 10**400 seconds was read; the finding's "(at +N s)" divided it into a float:
+    OverflowError out of the recording checks."""
+    _robot(tmp_path)
+    (tmp_path / "js.yaml").write_text(
+        "- {name: [arm_joint, left_wheel_joint, right_wheel_joint], position: [1, 0, 0], stamp: 1}\n"
+        "- {name: [arm_joint], position: [1, 2], stamp: {sec: " + "9" * 400 + "}}\n")
+    code, out, err = run_cli(command + ["--no-cache"] * (command[0] != "publish"), cwd=tmp_path)
+    _no_internal_error(code, out, err)
+    if command[0] != "publish":
+        assert "B014" in out and "out of range" in out
+
+
+def test_a_huge_joint_name_gets_no_hint_and_costs_no_memory():
+    """fuzz/jointstates.py: a recording naming a 48 MB joint spent 14 s and 2 GB in "did you mean" (difflib indexes
+    the word first), past `--budget 3`. A word whose length no option comes near gets no hint, at no cost."""
+    import tracemalloc
+
+    from urdfcheck.core.findings import closest
+
+    word = "a" * 4_000_000
+    tracemalloc.start()
+    try:
+        assert closest(word, ["arm_joint", "left_wheel_joint"]) is None
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert peak < 4_000_000, peak  # difflib's index of the word: over 100 MB
+    assert closest("arm_jiont", ["arm_joint", "left_wheel_joint"]) == "arm_joint"
+
+
+@pytest.mark.parametrize("name", ["\u202ejs.yaml", "\u2066js.yaml"])
+def test_publish_shows_bidi_controls_of_a_file_name(tmp_path, name):
+    """fuzz/jointstates.py: a joint-state file whose name holds U+202E: `publish` printed it as it is in its error
+    and in the recording findings on stderr (lint's reports show `\\u202e`)."""
+    _robot(tmp_path)
+    (tmp_path / name).write_text("- {name: [ghost_joint], position: [1], stamp: 1}\n")
+    code, out, err = run_cli(["publish", "robot.urdf", "--joint-states", name], cwd=tmp_path)
+    assert code == 1
+    assert name[0] not in err and f"\\u{ord(name[0]):04x}" in err
+    (tmp_path / name).unlink()
+    (tmp_path / name).symlink_to("/proc/self/environ")
+    code, out, err = run_cli(["publish", "robot.urdf", "--joint-states", name], cwd=tmp_path)
+    assert code == 2
+    assert name[0] not in err and f"\\u{ord(name[0]):04x}" in err
+
+
+def test_publish_stops_at_the_budget(tmp_path):
+    """fuzz/jointstates.py: `publish --budget 3` of a 24 MB list of 100,000 JointStates ran on for minutes (the
+    budget covered only the model's loading) and held every message in memory. Its output now stops when the
+    budget is spent, and says so (exit 1)."""
+    _robot(tmp_path)
+    item = json.dumps({"name": ALL_JOINTS, "position": [0.1, 0.2, 0.3], "stamp": 1.0})
+    (tmp_path / "js.json").write_text("[" + ",".join([item] * 400_000) + "]")
+    code, out, err = run_cli(["publish", "robot.urdf", "--joint-states", "js.json", "--budget", "1"], cwd=tmp_path)
+    assert code == 1, err
+    assert "time budget (1 s) ran out" in err
+    doc = json.loads(out)  # what was written is a whole document
+    assert 0 < len(doc["messages"]) < 400_000
