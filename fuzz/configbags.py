@@ -25,9 +25,7 @@ from __future__ import annotations
 import json
 import os
 import random
-import shutil
 import sys
-import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -114,15 +112,9 @@ def do_one_factory(base: Path, out: Path, marks):
 
     def do_one(case: dict) -> dict:
         place(ws, case, out)
-        os.chdir(ws)
-        before = harness.snapshot(ws)
-        code, text = harness.cli(case["argv"])
-        os.chdir(base)
-        bad = harness.judge(code, text, marks, must_fail=True)
-        if harness.snapshot(ws) != before:
-            bad.append("writes")
+        code, text, bad = harness.in_checkout(ws, base, case["argv"], marks, must_fail=True)
         return {"bad": bad, "outcome": f"{case['kind'].split('-')[0]} exit {code}",
-                "detail": text[:4000] if code == "EXC" else text[-1500:]}
+                "detail": harness.detail(code, text)}
 
     return do_one
 
@@ -133,25 +125,14 @@ def show(case: dict) -> dict:
 
 def run(count: int, seed: int, hang: float, batch: int, report: str | None, seconds: float | None = None,
         small: bool = False):
-    base = harness.base_dir("urdfcheck-fuzzcfgbag-")
-    out = harness.outside(base)
-    marks = harness.markers(base)
-    stats, examples = harness.new_stats(), []
-    t0 = time.monotonic()
-    try:
-        seeds = recordings.make_seeds(base / "seeds")
-        bombs = recordings.make_bombs(small)
-        dbs = recordings.sqlite_variants(next(v for k, v in seeds["sqlite3"].items() if k.endswith(".db3")),
-                                         base / "seeds")
-        r = random.Random(seed)
-        do_one = do_one_factory(base, out, marks)
-        harness.steps(count, 500, seconds, t0,
-                      lambda done, n: [generate(r, seeds, bombs, dbs, done + k, small) for k in range(n)],
-                      lambda cases: harness.run_batches(cases, do_one, hang, batch, stats, examples, show=show),
-                      stats, examples, report)
-    finally:
-        shutil.rmtree(base, ignore_errors=True)
-    return stats, examples, t0
+    r = random.Random(seed)
+    with harness.Session("urdfcheck-fuzzcfgbag-") as run_:
+        seeds, bombs, dbs = recordings.pieces(run_.base / "seeds", small)
+        do_one = do_one_factory(run_.base, run_.out, run_.marks)
+        run_.steps(count, 500, seconds, report,
+                   lambda done, n: [generate(r, seeds, bombs, dbs, done + k, small) for k in range(n)], do_one,
+                   hang, batch, show=show)
+    return run_.result()
 
 
 def main(argv=None) -> int:
