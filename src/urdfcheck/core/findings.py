@@ -202,17 +202,18 @@ def reset_hints() -> None:
 
 def closest(word: str, options, cutoff: float = 0.75) -> str | None:
     """The option most like `word` (for "did you mean"), or None (also once the run's hints are spent)."""
-    # difflib indexes `word` first, in time and memory linear in its length: a 60 MB joint name in a recording
-    # took 14 s and 2 GB. No option whose length is too far from the word's can reach the cutoff (a ratio is at
-    # most 2 * shorter / (sum of lengths)), so those are dropped before, and with them every hint for such a word.
-    n = len(word)
-    options = [o for o in options if 2 * min(n, len(o)) >= cutoff * (n + len(o))]
-    if not options:
-        return None
+    options = list(options)
     if len(options) > SMALL_SET:
         if len(options) > _hints_left[0]:
             return None
         _hints_left[0] -= len(options)
+    # difflib indexes `word` first, in time and memory linear in its length: a 48 MB joint name in a recording
+    # took 14 s and 2 GB. An option whose length is too far from the word's cannot reach the cutoff (difflib's own
+    # first test, real_quick_ratio, is this bound): those go first, and with them every hint for such a word.
+    n = len(word)
+    options = [o for o in options if (2.0 * min(n, len(o)) / (n + len(o)) if n + len(o) else 1.0) >= cutoff]
+    if not options:
+        return None
     import difflib  # only when something is misspelt: its import costs more than most lint runs spend here
 
     close = difflib.get_close_matches(word, options, n=1, cutoff=cutoff)
