@@ -113,3 +113,33 @@ def test_publish_stops_at_the_budget(tmp_path):
     assert "time budget (1 s) ran out" in err
     doc = json.loads(out)  # what was written is a whole document
     assert 0 < len(doc["messages"]) < 400_000
+
+
+def test_a_megabyte_joint_name_is_quoted_cut(tmp_path):
+    """fuzz/jointstates.py: `bag` of a 63 MiB recording naming one 63 MiB joint ran past `--budget 3` by 7 s:
+    the findings quoted the name whole (B001, B002) and every report's text cleaning ran its expressions over it
+    before cutting it to 500 characters. The name is cut where it is quoted, and the cleaning cuts first."""
+    import tracemalloc
+
+    from urdfcheck.bag import check_recording
+    from urdfcheck.core.findings import clean_text
+    from urdfcheck.model.build import model_from_string
+
+    _robot(tmp_path)
+    doc = [{"name": ["ghost_joint", "arm_joint"], "position": [0.1, 0.2], "stamp": 0.5},
+           {"name": ["n" * 2_000_000], "position": [1], "stamp": 1}]
+    (tmp_path / "js.json").write_text(json.dumps(doc))
+    model = model_from_string((tmp_path / "robot.urdf").read_text())
+    found = check_recording(model, str(tmp_path / "js.json"), text=True, runner=True)
+    assert {f.code for f in found} >= {"B001"}
+    assert all(len(f.message) < 5000 for f in found), [len(f.message) for f in found]
+
+    text = "\x1b[31m" + "x" * 5_000_000
+    tracemalloc.start()
+    try:
+        out = clean_text(text)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert out == "x" * 499 + "\u2026"
+    assert peak < 1_000_000, peak  # each expression copied the 5 MB text

@@ -116,7 +116,10 @@ def clean_text(text: object, limit: int = MAX_TEXT) -> str:
     Strips ANSI escapes and control characters, defuses CI workflow commands (`##vso[`, and `::` where it would
     start a line: `::error`), and truncates absurdly long values.
     """
-    s = _CONTROL.sub("", str(text).replace("\n", " ").replace("\t", " "))
+    s = str(text)
+    if len(s) > 4 * limit + 64:  # a 60 MB joint name from a recording: cut before the expressions run over it
+        s = s[: 4 * limit + 64]
+    s = _CONTROL.sub("", s.replace("\n", " ").replace("\t", " "))
     s = _WORKFLOW.sub(lambda m: m.group(0)[0] + "\u200b" + m.group(0)[1:], s)
     s = guard_lines(s)
     if _SURROGATE.search(s):  # a file name that is not UTF-8 (surrogateescape): its bytes as `\xff`
