@@ -177,21 +177,27 @@ def run_batches(cases, do_one, hang: float, batch: int, stats: dict, examples: l
             finally:
                 os._exit(0)
         os.close(w)
-        buf, done, last = b"", 0, time.monotonic()
-        while done < len(chunk):
-            ready, _, _ = select.select([r], [], [], 0.2)
-            if ready:
-                block = os.read(r, 1 << 16)
-                if not block:
+        try:
+            buf, done, last = b"", 0, time.monotonic()
+            while done < len(chunk):
+                ready, _, _ = select.select([r], [], [], 0.2)
+                if ready:
+                    block = os.read(r, 1 << 16)
+                    if not block:
+                        break
+                    buf += block
+                    while b"\n" in buf:
+                        line, buf = buf.split(b"\n", 1)
+                        _account(stats, examples, chunk[done], json.loads(line), show)
+                        done += 1
+                        last = time.monotonic()
+                elif time.monotonic() - last > hang:
                     break
-                buf += block
-                while b"\n" in buf:
-                    line, buf = buf.split(b"\n", 1)
-                    _account(stats, examples, chunk[done], json.loads(line), show)
-                    done += 1
-                    last = time.monotonic()
-            elif time.monotonic() - last > hang:
-                break
+        except BaseException:  # stopped (SIGTERM, ^C): the child goes too, before the temp folder is removed
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+            raise
         if done < len(chunk):  # the child hung (or died) on chunk[done]
             with contextlib.suppress(ProcessLookupError):
                 os.kill(pid, signal.SIGKILL)
