@@ -18,12 +18,14 @@ the checkout itself, the same recording 40 times, non-strings, a NUL. The config
 `urdfcheck lint` runs in-process in a forked child (harness.py) with `--budget 3`, in a report format in turn.
 Counted as in harness.py: the broken robot must fail every time (exit 0 or "All checks passed" is a silent pass),
 no leak of the canary file or of an absolute temp path, no traceback, no hang past the budget, no write into the
-checkout. Exit 1 when any count is non-zero.
+checkout; and **unread**: a run that went past the config (exit 1) whose report names no B rule (the declared
+recording neither checked nor said unreadable). Exit 1 when any count is non-zero.
 """
 from __future__ import annotations
 
 import json
 import os
+import re
 import random
 import sys
 from pathlib import Path
@@ -113,6 +115,8 @@ def do_one_factory(base: Path, out: Path, marks):
     def do_one(case: dict) -> dict:
         place(ws, case, out)
         code, text, bad = harness.in_checkout(ws, base, case["argv"], marks, must_fail=True)
+        if code == 1 and not re.search(r"\bB0\d\d\b", text):
+            bad.append("unread")  # the config's recording neither checked nor said unreadable
         return {"bad": bad, "outcome": f"{case['kind'].split('-')[0]} exit {code}",
                 "detail": harness.detail(code, text)}
 
@@ -126,7 +130,7 @@ def show(case: dict) -> dict:
 def run(count: int, seed: int, hang: float, batch: int, report: str | None, seconds: float | None = None,
         small: bool = False):
     r = random.Random(seed)
-    with harness.Session("urdfcheck-fuzzcfgbag-") as run_:
+    with harness.Session("urdfcheck-fuzzcfgbag-", "unread") as run_:
         seeds, bombs, dbs = recordings.pieces(run_.base / "seeds", small)
         do_one = do_one_factory(run_.base, run_.out, run_.marks)
         run_.steps(count, 500, seconds, report,
@@ -139,7 +143,7 @@ def main(argv=None) -> int:
     ap = harness.parser(__doc__, count=1000, seed=3639, hang=20.0, batch=100)
     ns = ap.parse_args(argv)
     stats, examples, t0 = run(ns.count, ns.seed, ns.hang, ns.batch, ns.report, seconds=ns.seconds)
-    return harness.finish(stats, examples, t0, ns.report)
+    return harness.finish(stats, examples, t0, ns.report) or (1 if stats["unread"] else 0)
 
 
 if __name__ == "__main__":

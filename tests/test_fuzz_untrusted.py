@@ -16,7 +16,7 @@ COUNTS = ("leaks", "tracebacks", "hangs", "silent", "writes")
 
 
 def _clean(stats, examples):
-    bad = {k: stats[k] for k in COUNTS + ("exec",) if stats.get(k)}
+    bad = {k: stats[k] for k in COUNTS + ("exec", "controls", "unread") if stats.get(k)}
     assert not bad, (bad, examples[:3])
     assert stats["inputs"] > 0
 
