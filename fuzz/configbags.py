@@ -25,8 +25,8 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import random
+import re
 import sys
 from pathlib import Path
 

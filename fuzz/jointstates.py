@@ -211,7 +211,8 @@ def whole_file(r: random.Random, small: bool = False) -> tuple[bytes, bool]:
         return (anchor + "- {name: [arm_joint], position: [1], stamp: " + "9" * r.choice([400, 5000]) + "}\n"
                 ).encode(), True
     if k == "long-name":
-        return (anchor + "- {name: [" + "n" * r.choice([10_000, 500_000 if small else 5_000_000]) + "], position: [1]}\n").encode(), True
+        n = r.choice([10_000, 500_000 if small else 5_000_000])
+        return (anchor + "- {name: [" + "n" * n + "], position: [1]}\n").encode(), True
     if k == "anchors":
         return (anchor + "- &x {name: [ghost_joint], position: [0.1], stamp: 0.1}\n" + "- *x\n" * 20_000
                 ).encode(), True
@@ -339,8 +340,8 @@ def run(count: int, seed: int, hang: float, batch: int, report: str | None, seco
     r = random.Random(seed)
     with harness.Session("urdfcheck-fuzzjs-", "controls") as run_:
         do_one = do_one_factory(run_.base, run_.out, run_.marks)
-        run_.steps(count, 500, seconds, report, lambda done, n: [generate(r, done + k, small) for k in range(n)], do_one,
-                   hang, batch, show=show)
+        run_.steps(count, 500, seconds, report, lambda done, n: [generate(r, done + k, small) for k in range(n)],
+                   do_one, hang, batch, show=show)
     return run_.result()
 
 
