@@ -143,3 +143,30 @@ def test_a_megabyte_joint_name_is_quoted_cut(tmp_path):
         tracemalloc.stop()
     assert out == "x" * 499 + "\u2026"
     assert peak < 1_000_000, peak  # each expression copied the 5 MB text
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
+@pytest.mark.parametrize("target", ["/nowhere/robot.urdf", "../../outside.urdf"])
+def test_diff_base_and_config_from_a_revision_whose_model_is_a_link_names_no_absolute_path(tmp_path, target):
+    """fuzz/gitrev.py (seed 3641): `lint --diff-base REV --config-from REV` where REV's model is a link out of the
+    checkout (git keeps it; the base revision's copy leaves it out) and REV's config names that model: the config
+    error said "no such file: /abs/tmp/urdfcheck-rev-XXXX/pkg/urdf/robot.urdf"."""
+    import os
+    import subprocess
+    import tempfile
+
+    env = dict(os.environ, GIT_CONFIG_NOSYSTEM="1", HOME=str(tmp_path), GIT_AUTHOR_NAME="a",
+               GIT_AUTHOR_EMAIL="a@b", GIT_COMMITTER_NAME="a", GIT_COMMITTER_EMAIL="a@b")
+    repo = tmp_path / "r"
+    (repo / "pkg" / "urdf").mkdir(parents=True)
+    (repo / "pkg" / "urdf" / "robot.urdf").symlink_to(target)
+    (repo / "urdfcheck.yaml").write_text("models:\n  - path: pkg/urdf/robot.urdf\n")
+    for args in (["init", "-q"], ["add", "-A"], ["commit", "-q", "-m", "x"]):
+        subprocess.run(["git", *args], cwd=repo, env=env, check=True, capture_output=True)
+    (repo / "pkg" / "urdf" / "robot.urdf").unlink()
+    (repo / "pkg" / "urdf" / "robot.urdf").write_text("<robot name='r'><link name='base_link'/></robot>\n")
+    code, out, err = run_cli(["lint", "--diff-base", "HEAD", "--config-from", "HEAD"], cwd=repo)
+    assert code in (1, 2), err
+    assert "internal error" not in out + err
+    for p in (str(tmp_path), os.path.realpath(tmp_path), tempfile.gettempdir(), "urdfcheck-rev-"):
+        assert p not in out + err, (p, err)
