@@ -25,13 +25,10 @@ on). Exit status 1 when any is non-zero. tests/test_fuzz.py runs a few hundred o
 """
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import random
-import select
 import shutil
-import signal
 import sys
 import tempfile
 import time
@@ -39,9 +36,11 @@ from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE.parent / "src"))
+sys.path.insert(0, str(HERE))
+import harness  # noqa: E402
 
-SECRET_VAR = "URDFCHECK_FUZZ_SECRET"
-SECRET = "fuzz-s3cr3t-0d9e7c"
+SECRET_VAR = harness.SECRET_VAR
+SECRET = harness.SECRET  # what harness.run_batches puts in a child's environment
 ARGV_MARK = "FUZZ_ARGV_MARK_71c3"
 FILE_SECRET = "fuzz-file-s3cr3t-5a1b"
 NS = 'xmlns:xacro="http://www.ros.org/wiki/xacro"'
@@ -206,117 +205,80 @@ def leaks(text: str, ws: Workspace) -> list[str]:
     return [m for m in LEAK_MARKERS + (str(ws.root),) if m in text]
 
 
-def _child(conn_w: int, cases: list[dict], ws_root: str) -> None:
-    """In a forked child: expand each case in-process (xacro's module state restored after each)."""
-    import resource
+def do_one_factory(ws_root: str):
+    """`do_one(case)` for harness.run_batches: in its forked child, the sandbox's expander in-process (xacro's
+    module state restored after each input); the child's first input sets it up (the argv marker, the resolver)."""
+    state: dict = {}
 
-    resource.setrlimit(resource.RLIMIT_AS, (3 * 1024**3, 3 * 1024**3))
-    os.environ[SECRET_VAR] = SECRET
-    sys.argv.append(ARGV_MARK)
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # this folder: the shared harness helpers
-    import xacrostate
+    def setup() -> None:
+        sys.argv.append(ARGV_MARK)
+        import xacrostate
 
-    from urdfcheck.load.packages import Resolver
-    from urdfcheck.load.xacro import expand as xexpand
+        from urdfcheck.load.packages import Resolver
+        from urdfcheck.load.xacro import expand as xexpand
 
-    restore = xacrostate.snapshot()
-    ws = Workspace.__new__(Workspace)
-    ws.root = Path(ws_root)
-    ws.pkg = ws.root / "ws" / "fuzz_description"
-    ws.entry = ws.pkg / "urdf" / "p.urdf.xacro"
-    os.chdir(ws.root)
-    resolver = Resolver({}, near=ws.entry.resolve())
-    for case in cases:
+        ws = Workspace.__new__(Workspace)
+        ws.root = Path(ws_root)
+        ws.pkg = ws.root / "ws" / "fuzz_description"
+        ws.entry = ws.pkg / "urdf" / "p.urdf.xacro"
+        os.chdir(ws.root)
+        state.update(ws=ws, expand=xexpand, restore=xacrostate.snapshot(),
+                     resolver=Resolver({}, near=ws.entry.resolve()))
+
+    def do_one(case: dict) -> dict:
+        if not state:
+            setup()
+        ws, xexpand = state["ws"], state["expand"]
         entry = ws.place(case)
         err = sys.stderr
         try:
-            res = xexpand.expand(os.path.relpath(entry, ws.root), xexpand.Options(resolver=resolver))
+            res = xexpand.expand(os.path.relpath(entry, ws.root), xexpand.Options(resolver=state["resolver"]))
             text = res.get("xml") or ""
             error = res.get("error") or {}
             msg = str(error.get("message", ""))
+            code = error.get("code") or "ok"
             # whole outputs are checked for leaks here; only a bounded excerpt travels to the parent
             found = [m for m in LEAK_MARKERS + (str(ws.root),) if m in text or m in msg]
-            out = {"ok": True, "code": error.get("code"), "text": text[-2000:] + " " + msg[:2000], "found": found}
+            ok, shown = True, text[-2000:] + " " + msg[:2000]
         except BaseException as e:  # noqa: BLE001 - this is what is counted
-            out = {"ok": False, "code": "EXC", "text": f"{type(e).__name__}: {e}"[:2000]}
+            code, found, ok, shown = "EXC", [], False, f"{type(e).__name__}: {e}"[:2000]
         finally:
             sys.stderr = err
-            restore()
-        os.write(conn_w, (json.dumps(out) + "\n").encode())
-    os._exit(0)
+            state["restore"]()
+        bad = []
+        if found:
+            bad.append("leaks")
+        if not ok or any(m in shown for m in INTERNAL):
+            bad.append("tracebacks")
+        return {"bad": bad, "outcome": code, "detail": f"{found} {shown[:500]}" if bad else ""}
+
+    return do_one
 
 
-def run(count: int, seed: int, hang: float, cli_every: int, batch: int = 400, log=None) -> dict:
+def run(count: int, seed: int, hang: float, cli_every: int, batch: int = 400) -> tuple[dict, list]:
+    """(figures, failing examples): every input expanded in forked children (harness.run_batches), then every
+    `cli_every`-th through the whole CLI."""
     from urdfcheck.load.xacro import expand as xexpand
 
     xexpand.preload()
     rng = random.Random(seed)
     cases = [generate(rng) for _ in range(count)]
     ws = Workspace()
-    stats = {"inputs": count, "leaks": 0, "tracebacks": 0, "hangs": 0, "cli_runs": 0, "codes": {}, "examples": []}
+    stats, examples = harness.new_stats(), []
+    stats["cli_runs"] = 0
     t0 = time.monotonic()
-    i = 0
     try:
-        while i < count:
-            chunk = cases[i:i + batch]
-            r, w = os.pipe()
-            pid = os.fork()
-            if pid == 0:
-                os.close(r)
-                try:
-                    _child(w, chunk, str(ws.root))
-                finally:
-                    os._exit(70)
-            os.close(w)
-            buf, done, last = b"", 0, time.monotonic()
-            while done < len(chunk):
-                ready, _, _ = select.select([r], [], [], 0.2)
-                if ready:
-                    block = os.read(r, 1 << 16)
-                    if not block:
-                        break
-                    buf += block
-                    while b"\n" in buf:
-                        line, buf = buf.split(b"\n", 1)
-                        _account(stats, chunk[done], json.loads(line), ws, log)
-                        done += 1
-                        last = time.monotonic()
-                elif time.monotonic() - last > hang:
-                    break
-            if done < len(chunk):  # the child hung (or died) on chunk[done]
-                try:
-                    os.kill(pid, signal.SIGKILL)
-                except ProcessLookupError:
-                    pass
-                stats["hangs"] += 1
-                stats["examples"].append(("hang", chunk[done]["xacro"][-400:]))
-                done += 1
-            os.waitpid(pid, 0)
-            os.close(r)
-            i += done
+        harness.run_batches(cases, do_one_factory(str(ws.root)), hang, batch, stats, examples,
+                            show=lambda case: case["xacro"][-400:])
         if cli_every:
-            stats["cli_runs"] = _cli_runs(cases[::cli_every], ws, stats, hang)
+            stats["cli_runs"] = _cli_runs(cases[::cli_every], ws, stats, examples, hang)
     finally:
         shutil.rmtree(ws.root, ignore_errors=True)
     stats["seconds"] = round(time.monotonic() - t0, 1)
-    return stats
+    return stats, examples
 
 
-def _account(stats: dict, case: dict, out: dict, ws: Workspace, log) -> None:
-    code = out["code"] or "ok"
-    stats["codes"][code] = stats["codes"].get(code, 0) + 1
-    found = sorted(set(out.get("found", [])) | set(leaks(out["text"], ws)))
-    if found:
-        stats["leaks"] += 1
-        stats["examples"].append(("leak", found, case["xacro"][-400:]))
-    if not out["ok"] or any(m in out["text"] for m in INTERNAL):
-        stats["tracebacks"] += 1
-        stats["examples"].append(("traceback", out["text"][:500], case["xacro"][-400:]))
-    if log is not None:
-        log.write(json.dumps({"code": code, "leak": found}) + "\n")
-
-
-def _cli_runs(cases: list[dict], ws: Workspace, stats: dict, hang: float) -> int:
+def _cli_runs(cases: list[dict], ws: Workspace, stats: dict, examples: list, hang: float) -> int:
     """The same inputs through the real CLI in a subprocess-free way: the CLI entry point, the forked worker."""
     import contextlib
     import gc
@@ -343,14 +305,14 @@ def _cli_runs(cases: list[dict], ws: Workspace, stats: dict, hang: float) -> int
             text = out.getvalue() + err.getvalue()
             if code not in (0, 1) or any(m in text for m in INTERNAL):
                 stats["tracebacks"] += 1
-                stats["examples"].append(("cli", code, text[:500], case["xacro"][-400:]))
+                examples.append(("cli", code, text[:500], case["xacro"][-400:]))
             found = leaks(text, ws)
             if found:
                 stats["leaks"] += 1
-                stats["examples"].append(("cli-leak", found, case["xacro"][-400:]))
+                examples.append(("cli-leak", found, case["xacro"][-400:]))
             if took > hang + 5:  # the worker's own limit is 5 s
                 stats["hangs"] += 1
-                stats["examples"].append(("cli-slow", round(took, 1), case["xacro"][-400:]))
+                examples.append(("cli-slow", round(took, 1), case["xacro"][-400:]))
     finally:
         os.chdir(old)
         sys.argv[:] = old_argv
@@ -362,21 +324,13 @@ def _cli_runs(cases: list[dict], ws: Workspace, stats: dict, hang: float) -> int
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--count", type=int, default=5000)
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--hang", type=float, default=5.0, help="seconds one input may take")
+    ap = harness.parser(__doc__, count=5000, seed=1, hang=5.0, batch=400)
     ap.add_argument("--cli-every", type=int, default=50, help="every N-th input also through the whole CLI (0: none)")
-    ap.add_argument("--report", help="write the figures as JSON here")
-    ap.add_argument("--show", type=int, default=5, help="print this many failing examples")
     ns = ap.parse_args(argv)
-    stats = run(ns.count, ns.seed, ns.hang, ns.cli_every)
-    examples = stats.pop("examples")
-    print(json.dumps(stats, indent=1))
-    for ex in examples[:ns.show]:
-        print("---", ex)
-    if ns.report:
-        Path(ns.report).write_text(json.dumps({**stats, "examples": examples[:50]}, indent=1))
+    t0 = time.monotonic()
+    stats, examples = run(ns.count, ns.seed, ns.hang, ns.cli_every, ns.batch)
+    stats.pop("seconds")
+    harness.finish(stats, examples, t0, ns.report)
     return 1 if stats["leaks"] or stats["tracebacks"] or stats["hangs"] else 0
 
 

@@ -28,7 +28,6 @@ import os
 import random
 import shutil
 import sys
-import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -36,13 +35,7 @@ sys.path.insert(0, str(HERE))
 import harness  # noqa: E402
 
 FORMATS = ("text", "json", "sarif", "markdown", "github", "junit")
-BROKEN = """<?xml version="1.0"?>
-<robot name="r"><link name="base_link"/><link name="tool"/>
-<joint name="j" type="revolute"><parent link="base_link"/><child link="tool"/>
-<limit lower="1" upper="-1" effort="1" velocity="1"/></joint>
-<joint name="k" type="fixed"><parent link="base_link"/><child link="ghost"/></joint>
-</robot>
-"""
+BROKEN = harness.BROKEN  # J003 and S003, both errors
 CLEAN = '<robot name="c"><link name="base_link"/><link name="b"/>' \
         '<joint name="f" type="fixed"><parent link="base_link"/><child link="b"/></joint></robot>\n'
 CONTROLLERS = "controller_manager:\n  ros__parameters:\n    update_rate: 100\n" \
@@ -241,39 +234,19 @@ def do_one_factory(base: Path, out: Path, marks):
         build(ws, out)
         for rel, text in case["files"].items():
             (ws / rel).write_text(text, encoding="utf-8", errors="surrogatepass")
-        os.chdir(ws)
-        before = harness.snapshot(ws)
-        code, text = harness.cli(case["argv"])
-        os.chdir(base)
-        bad = harness.judge(code, text, marks, must_fail=True)
-        if harness.snapshot(ws) != before:
-            bad.append("writes")
-        return {"bad": bad, "outcome": f"exit {code}", "detail": text[:4000] if code == "EXC" else text[-1500:]}
+        code, text, bad = harness.in_checkout(ws, base, case["argv"], marks, must_fail=True)
+        return {"bad": bad, "outcome": f"exit {code}", "detail": harness.detail(code, text)}
 
     return do_one
 
 
 def run(count: int, seed: int, hang: float, batch: int, report: str | None, seconds: float | None = None):
-    base = harness.base_dir("urdfcheck-fuzzcfg-")
-    out = harness.outside(base)
-    marks = harness.markers(base)
-    stats, examples = harness.new_stats(), []
-    t0 = time.monotonic()
     r = random.Random(seed)
-    do_one = do_one_factory(base, out, marks)
-    try:
-        done, step = 0, 1000
-        while done < count and (seconds is None or time.monotonic() - t0 < seconds):
-            n = min(step, count - done)
-            cases = [generate(r, done + k) for k in range(n)]
-            harness.run_batches(cases, do_one, hang, batch, stats, examples)
-            done += n
-            if report:
-                Path(report).write_text(json.dumps({**stats, "examples": examples[:20],
-                                                    "seconds": round(time.monotonic() - t0, 1)}, indent=1))
-    finally:
-        shutil.rmtree(base, ignore_errors=True)
-    return stats, examples, t0
+    with harness.Session("urdfcheck-fuzzcfg-") as run_:
+        do_one = do_one_factory(run_.base, run_.out, run_.marks)
+        run_.steps(count, 1000, seconds, report, lambda done, n: [generate(r, done + k) for k in range(n)], do_one,
+                   hang, batch)
+    return run_.result()
 
 
 def main(argv=None) -> int:

@@ -38,13 +38,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 import harness  # noqa: E402
 
-BROKEN = """<?xml version="1.0"?>
-<robot name="r"><link name="base_link"/><link name="tool"/>
-<joint name="j" type="revolute"><parent link="base_link"/><child link="tool"/>
-<limit lower="1" upper="-1" effort="1" velocity="1"/></joint>
-<joint name="k" type="fixed"><parent link="base_link"/><child link="ghost"/></joint>
-</robot>
-"""
+BROKEN = harness.BROKEN  # J003 and S003, both errors
 CLEAN = """<?xml version="1.0"?>
 <robot name="r"><link name="base_link"/><link name="tool"/><link name="ghost"/>
 <joint name="j" type="revolute"><parent link="base_link"/><child link="tool"/>
@@ -303,39 +297,22 @@ def do_one_factory(base: Path, repos: list[dict], marks, pwned: Path, tmp: Path)
 
 
 def run(count: int, seed: int, nrepos: int, hang: float, batch: int, report: str | None, seconds: float | None = None):
-    base = harness.base_dir("urdfcheck-fuzzgit-")
-    out = harness.outside(base)
-    marks = harness.markers(base)
-    pwned = base / "PWNED"
-    tmp = base / "tmp"
-    tmp.mkdir()
-    home = base / "home"
-    home.mkdir()
-    stats, examples = harness.new_stats(), []
-    stats["exec"] = 0
-    t0 = time.monotonic()
     r = random.Random(seed)
-    try:
-        repos = [make_repo(base / f"r{k}", r, pwned, out, home) for k in range(nrepos)]
-        print(json.dumps({"repos_built": nrepos, "seconds": round(time.monotonic() - t0, 1)}), flush=True)
-        do_one = do_one_factory(base, repos, marks, pwned, tmp)
+    with harness.Session("urdfcheck-fuzzgit-", "exec") as run_:
+        base = run_.base
+        pwned, tmp, home = base / "PWNED", base / "tmp", base / "home"
+        tmp.mkdir()
+        home.mkdir()
+        repos = [make_repo(base / f"r{k}", r, pwned, run_.out, home) for k in range(nrepos)]
+        print(json.dumps({"repos_built": nrepos, "seconds": round(time.monotonic() - run_.t0, 1)}), flush=True)
+        do_one = do_one_factory(base, repos, run_.marks, pwned, tmp)
 
         def show(case):
             return {**case, "feats": repos[case["repo"]]["feats"]}
 
-        done, step = 0, 50
-        env = {"TMPDIR": str(tmp), "HOME": str(home)}
-        while done < count and (seconds is None or time.monotonic() - t0 < seconds):
-            n = min(step, count - done)
-            cases = [generate(r, repos, done + k) for k in range(n)]
-            harness.run_batches(cases, do_one, hang, batch, stats, examples, env=env, show=show)
-            done += n
-            if report:
-                Path(report).write_text(json.dumps({**stats, "examples": examples[:20],
-                                                    "seconds": round(time.monotonic() - t0, 1)}, indent=1))
-    finally:
-        shutil.rmtree(base, ignore_errors=True)
-    return stats, examples, t0
+        run_.steps(count, 50, seconds, report, lambda done, n: [generate(r, repos, done + k) for k in range(n)],
+                   do_one, hang, batch, env={"TMPDIR": str(tmp), "HOME": str(home)}, show=show)
+    return run_.result()
 
 
 def main(argv=None) -> int:

@@ -38,6 +38,15 @@ FILE_SECRET = "fuzz-w4-file-s3cr3t-c41e"
 SECRET_VARS = (SECRET_VAR, "GITHUB_TOKEN", "AWS_SECRET_ACCESS_KEY")
 INTERNAL = ("Traceback (most recent call last)", "internal error")
 KINDS = ("leaks", "tracebacks", "hangs", "silent", "writes")
+# the seeded broken robot: a joint whose lower limit lies above its upper one (J003), a joint naming a missing link
+# (S003); no config the pull request writes may make it pass
+BROKEN = """<?xml version="1.0"?>
+<robot name="r"><link name="base_link"/><link name="tool"/>
+<joint name="j" type="revolute"><parent link="base_link"/><child link="tool"/>
+<limit lower="1" upper="-1" effort="1" velocity="1"/></joint>
+<joint name="k" type="fixed"><parent link="base_link"/><child link="ghost"/></joint>
+</robot>
+"""
 
 
 def base_dir(prefix: str) -> Path:
@@ -102,6 +111,24 @@ def cli(argv: list[str]) -> tuple[int | str, str]:
     return code, out.getvalue() + err.getvalue()
 
 
+def in_checkout(ws: Path, back: Path, argv: list[str], marks, must_fail: bool) -> tuple:
+    """The CLI run from inside the checkout `ws` (then back to `back`): (code, text, problem kinds), writes into
+    the checkout counted."""
+    os.chdir(ws)
+    before = snapshot(ws)
+    code, text = cli(argv)
+    os.chdir(back)
+    bad = judge(code, text, marks, must_fail=must_fail)
+    if snapshot(ws) != before:
+        bad.append("writes")
+    return code, text, bad
+
+
+def detail(code, text: str) -> str:
+    """What an example keeps of the output: where a traceback started, else the end."""
+    return text[:4000] if code == "EXC" else text[-1500:]
+
+
 def judge(code, text: str, marks, must_fail: bool, checked: bool = True) -> list[str]:
     """The problem kinds of one run."""
     bad = []
@@ -150,21 +177,27 @@ def run_batches(cases, do_one, hang: float, batch: int, stats: dict, examples: l
             finally:
                 os._exit(0)
         os.close(w)
-        buf, done, last = b"", 0, time.monotonic()
-        while done < len(chunk):
-            ready, _, _ = select.select([r], [], [], 0.2)
-            if ready:
-                block = os.read(r, 1 << 16)
-                if not block:
+        try:
+            buf, done, last = b"", 0, time.monotonic()
+            while done < len(chunk):
+                ready, _, _ = select.select([r], [], [], 0.2)
+                if ready:
+                    block = os.read(r, 1 << 16)
+                    if not block:
+                        break
+                    buf += block
+                    while b"\n" in buf:
+                        line, buf = buf.split(b"\n", 1)
+                        _account(stats, examples, chunk[done], json.loads(line), show)
+                        done += 1
+                        last = time.monotonic()
+                elif time.monotonic() - last > hang:
                     break
-                buf += block
-                while b"\n" in buf:
-                    line, buf = buf.split(b"\n", 1)
-                    _account(stats, examples, chunk[done], json.loads(line), show)
-                    done += 1
-                    last = time.monotonic()
-            elif time.monotonic() - last > hang:
-                break
+        except BaseException:  # stopped (SIGTERM, ^C): the child goes too, before the temp folder is removed
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+            raise
         if done < len(chunk):  # the child hung (or died) on chunk[done]
             with contextlib.suppress(ProcessLookupError):
                 os.kill(pid, signal.SIGKILL)
@@ -187,6 +220,52 @@ def _account(stats: dict, examples: list, case, out: dict, show) -> None:
         if len(examples) < 40:
             examples.append({"kind": kind, "outcome": o, "detail": str(out.get("detail", ""))[:8000],
                              "case": show(case)})
+
+
+def steps(count: int, step: int, seconds: float | None, t0: float, make, run_cases, stats: dict, examples: list,
+          report: str | None) -> int:
+    """Inputs made and run `step` at a time (`make(done, n)` -> cases, `run_cases(cases)`), the figures written to
+    `report` after each step, no new step begun after `seconds`; returns how many inputs were made."""
+    done = 0
+    while done < count and (seconds is None or time.monotonic() - t0 < seconds):
+        n = min(step, count - done)
+        run_cases(make(done, n))
+        done += n
+        if report:
+            Path(report).write_text(json.dumps({**stats, "examples": examples[:20],
+                                                "seconds": round(time.monotonic() - t0, 1)}, indent=1))
+    return done
+
+
+class Session:
+    """One fuzzing run: its temp folder (removed at the end, SIGTERM included), the canary folder outside every
+    checkout, the markers no output may hold, the figures and failing examples, the start time."""
+
+    def __init__(self, prefix: str, *kinds: str):
+        self.base = base_dir(prefix)
+        self.out = outside(self.base)
+        self.marks = markers(self.base)
+        self.stats, self.examples = new_stats(), []
+        self.stats.update({k: 0 for k in kinds})
+        self.t0 = time.monotonic()
+
+    def __enter__(self) -> Session:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        import shutil
+
+        shutil.rmtree(self.base, ignore_errors=True)
+
+    def steps(self, count: int, step: int, seconds: float | None, report: str | None, make, do_one, hang: float,
+              batch: int, **kw) -> int:
+        """`steps` of `make(done, n)` inputs, each run by `do_one` in forked children (run_batches)."""
+        return steps(count, step, seconds, self.t0, make,
+                     lambda cases: run_batches(cases, do_one, hang, batch, self.stats, self.examples, **kw),
+                     self.stats, self.examples, report)
+
+    def result(self) -> tuple[dict, list, float]:
+        return self.stats, self.examples, self.t0
 
 
 def new_stats() -> dict:

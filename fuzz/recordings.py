@@ -32,7 +32,6 @@ import shutil
 import sqlite3
 import struct
 import sys
-import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -625,40 +624,30 @@ def show(case: dict) -> dict:
             "files": {k: (list(v) if isinstance(v, tuple) else f"{len(v)} bytes") for k, v in case["files"].items()}}
 
 
+def pieces(folder: Path, small: bool = False) -> tuple[dict, dict, dict]:
+    """(seeds, bombs, hostile .db3 files) the grammar draws from, made once per run in `folder`."""
+    seeds = make_seeds(folder)
+    dbs = sqlite_variants(next(v for k, v in seeds["sqlite3"].items() if k.endswith(".db3")), folder)
+    return seeds, make_bombs(small), dbs
+
+
 def run(count: int, seed: int, hang: float, batch: int = 100, report: str | None = None, only: str | None = None,
         cli_every: int = 5, seconds: float | None = None, small: bool = False):
-    base = harness.base_dir("urdfcheck-fuzzrec-")
-    out = harness.outside(base)
-    marks = harness.markers(base)
-    stats, examples = harness.new_stats(), []
-    t0 = time.monotonic()
-    try:
-        seeds = make_seeds(base / "seeds")
-        bombs = make_bombs(small)
-        dbs = sqlite_variants(next(v for k, v in seeds["sqlite3"].items() if k.endswith(".db3")), base / "seeds")
-        r = random.Random(seed)
-        do_one = do_one_factory(base, out, marks, cli_every)
-        step = 2000
+    r = random.Random(seed)
+    with harness.Session("urdfcheck-fuzzrec-") as run_:
+        seeds, bombs, dbs = pieces(run_.base / "seeds", small)
+        do_one = do_one_factory(run_.base, run_.out, run_.marks, cli_every)
 
-        def save(n):
-            if report and n % step < batch:
-                Path(report).write_text(json.dumps({**stats, "examples": examples[:20],
-                                                    "seconds": round(time.monotonic() - t0, 1)}, indent=1))
-
-        done = 0
-        while done < count and (seconds is None or time.monotonic() - t0 < seconds):
-            n = min(step, count - done)
+        def make(done: int, n: int) -> list:
             cases = []
             while len(cases) < n:
                 c = generate(r, seeds, bombs, dbs, done + len(cases), small)
                 if only is None or c["kind"].startswith(only):
                     cases.append(c)
-            harness.run_batches(cases, do_one, hang, batch, stats, examples, show=show)
-            done += n
-            save(done)
-    finally:
-        shutil.rmtree(base, ignore_errors=True)
-    return stats, examples, t0
+            return cases
+
+        run_.steps(count, 2000, seconds, report, make, do_one, hang, batch, show=show)
+    return run_.result()
 
 
 def main(argv=None) -> int:

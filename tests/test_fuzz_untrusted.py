@@ -1,7 +1,8 @@
-"""A small, fixed slice of the wave-4 fuzzers (issue 36) on every `pytest` run: hostile recordings, the pull
-request's config against a broken robot, and hostile git repositories, each through the real CLI in a forked
-child. Every input must end with no leak, traceback, hang, silent pass or write into the checkout. The seeds are
-fixed, so a CI run sees the same inputs every time; the full runs are `python3 fuzz/<name>.py --count N`."""
+"""A small, fixed slice of the untrusted-input fuzzers (issue 36) on every `pytest` run: hostile recordings, the
+pull request's config against a broken robot, hostile git repositories, joint-state files the runner names and
+recordings the config declares, each through the real CLI in a forked child. Every input must end with no leak,
+traceback, hang, silent pass or write into the checkout. The seeds are fixed, so a CI run sees the same inputs every
+time; the full runs are `python3 fuzz/<name>.py --count N`."""
 import shutil
 import sys
 from pathlib import Path
@@ -15,7 +16,7 @@ COUNTS = ("leaks", "tracebacks", "hangs", "silent", "writes")
 
 
 def _clean(stats, examples):
-    bad = {k: stats[k] for k in COUNTS + ("exec",) if stats.get(k)}
+    bad = {k: stats[k] for k in COUNTS + ("exec", "controls", "unread") if stats.get(k)}
     assert not bad, (bad, examples[:3])
     assert stats["inputs"] > 0
 
@@ -45,5 +46,31 @@ def test_git_revisions_slice():
     import gitrev
 
     stats, examples, _ = gitrev.run(40, 20261128, nrepos=3, hang=120, batch=20, report=None)
+    assert stats["inputs"] == 40
+    _clean(stats, examples)
+
+
+def test_joint_state_files_slice():
+    """fuzz/jointstates.py: the joint-state file the runner names (publish --joint-states, bag, lint --bag) as the
+    pull request left it: grammar documents, hostile whole files, links out, FIFOs, odd names."""
+    pytest.importorskip("yaml")
+    import jointstates
+
+    stats, examples, _ = jointstates.run(50, 20261128, hang=120, batch=50, report=None, small=True)
+    assert stats["inputs"] == 50
+    assert not stats["controls"], examples[:3]
+    # the slice reaches the readers: most runs end in findings (exit 1), not in a refusal
+    assert sum(v for k, v in stats["outcomes"].items() if k.endswith("exit 1")) >= 25, stats["outcomes"]
+    _clean(stats, examples)
+
+
+def test_config_declared_recordings_slice():
+    """fuzz/configbags.py: `bags:` in the pull request's config, beside a broken robot, with the recordings
+    grammar's hostile recordings and hostile entries (links out, absolute paths, FIFOs)."""
+    pytest.importorskip("rosbags")
+    pytest.importorskip("lz4")
+    import configbags
+
+    stats, examples, _ = configbags.run(40, 20261128, hang=120, batch=40, report=None, small=True)
     assert stats["inputs"] == 40
     _clean(stats, examples)

@@ -478,9 +478,15 @@ def _median(xs) -> float:
     return s[n // 2] if n % 2 else 0.5 * (s[n // 2 - 1] + s[n // 2])
 
 
+def _name(n: str) -> str:
+    """A recorded name as a message quotes it: a name of megabytes (a hostile recording) is cut first, never
+    quoted whole to be cut by the report."""
+    return repr(n) if len(n) <= 200 else repr(n[:200]) + "…"
+
+
 def _names(names) -> str:
     names = list(names)
-    shown = ", ".join(repr(n) for n in names[:6])
+    shown = ", ".join(_name(n) for n in names[:6])
     return shown + (f" and {len(names) - 6} more" if len(names) > 6 else "")
 
 
@@ -491,5 +497,5 @@ def _close(names, joints) -> str:
     for n in names[:3]:
         c = closest(n, list(joints), cutoff=0.6)
         if c:
-            hints.append(f"{n!r} -> {c!r}")
+            hints.append(f"{_name(n)} -> {c!r}")
     return f" (did you mean: {', '.join(hints)}?)" if hints else ""

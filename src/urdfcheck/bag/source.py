@@ -775,8 +775,19 @@ def _floats(v) -> tuple:
                  for x in v)
 
 
+MAX_NS = 2**63 - 1  # rclcpp::Time is int64 nanoseconds: no message carries a stamp past it
+
+
 def _ns(stamp) -> int:
-    """Integer nanoseconds from float seconds, [sec, nanosec] or {sec, nanosec}."""
+    """Integer nanoseconds from float seconds, [sec, nanosec] or {sec, nanosec}; a stamp past int64 nanoseconds
+    is a ValueError (its offset from the first message would not fit a float where the finding says it)."""
+    ns = _ns_any(stamp)
+    if not -MAX_NS <= ns <= MAX_NS:
+        raise ValueError("stamp out of range (past int64 nanoseconds)")
+    return ns
+
+
+def _ns_any(stamp) -> int:
     if stamp is None:
         return 0
     if isinstance(stamp, bool):

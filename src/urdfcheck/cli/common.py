@@ -140,11 +140,17 @@ def load_one(ns, path: str, build: bool = True):
 
 def print_findings(findings, stream=None) -> None:
     """Loader findings on stderr, one line each (commands that print a model, not a report)."""
-    from urdfcheck.core.findings import clean_text
+    from urdfcheck.core.findings import clean_text, escape_bidi
 
-    for f in findings:
-        print(f"{clean_text(str(f.location), 4096)}: {f.code} {clean_text(f.message)}", file=stream or sys.stderr)
+    for f in findings:  # a file name may hold bidi controls (the pull request names its files)
+        print(escape_bidi(f"{clean_text(str(f.location), 4096)}: {f.code} {clean_text(f.message)}"),
+              file=stream or sys.stderr)
 
 
 def usage_message(command: str, error: Exception) -> str:
-    return f"urdfcheck {command}: error: {error}"
+    """The one line of an unusable invocation; the paths it names may be the pull request's file names, so
+    control and bidi characters are shown, not obeyed (lines kept: some reasons list choices one a line)."""
+    from urdfcheck.core.findings import clean_text, escape_bidi
+
+    text = "\n".join(escape_bidi(clean_text(line, 4096)) for line in str(error).split("\n"))
+    return f"urdfcheck {command}: error: {text}"

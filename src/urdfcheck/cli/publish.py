@@ -230,12 +230,13 @@ def cmd_tf(ns) -> int:
 
 
 # --- publish ----------------------------------------------------------------------------------------------------
-def _read_joint_states(path: str) -> list:
-    """The runner's joint-state file (urdfcheck.bag.source: through core.door, bounded, YAML guarded)."""
+def _read_joint_states(path: str):
+    """The runner's joint-state file (urdfcheck.bag.source: through core.door, bounded, YAML guarded), its items
+    one at a time (a JSON list is never held whole: a 60 MB file would take gigabytes as objects)."""
     from urdfcheck.bag.source import RecordingError, text_items
 
     try:
-        return list(text_items(path, runner=True))
+        return iter(text_items(path, runner=True))
     except RecordingError as e:
         raise UsageError(f"{path}: {e}") from None
 
@@ -245,10 +246,35 @@ def _tf_dict(t) -> dict:
             "rotation": list(t.rotation), "stamp": {"sec": t.stamp.sec, "nanosec": t.stamp.nanosec}}
 
 
+def _first_stamp(items) -> tuple[float, list]:
+    """The stamp of the first readable message, and the items read to find it (to be replayed first)."""
+    from urdfcheck.publisher import JointState
+
+    seen = []
+    for r in items:
+        seen.append(r)
+        try:
+            return JointState.from_dict(r).stamp, seen
+        except (TypeError, ValueError, OverflowError):
+            continue
+    return 0.0, seen
+
+
 def cmd_publish(ns) -> int:
+    from urdfcheck.load.budget import run_budget
+
+    # the joint-state file may be the pull request's: its messages are replayed within the run's budget
+    with run_budget(getattr(ns, "budget", None)) as budget:
+        return _publish(ns, budget)
+
+
+def _publish(ns, budget) -> int:
+    import itertools
+
+    from urdfcheck.bag.source import RecordingError
     from urdfcheck.publisher import JointState, JointStateError, StatePublisher
 
-    raw = _read_joint_states(ns.joint_states)
+    items = _read_joint_states(ns.joint_states)
     loaded = _load(ns)
     if loaded is None:
         return EXIT_FINDINGS
@@ -259,13 +285,10 @@ def cmd_publish(ns) -> int:
                              use_tf_static=ns.use_tf_static)
     except ValueError as e:
         raise UsageError(str(e)) from None
-    first_stamp = 0.0
-    for r in raw:
-        try:
-            first_stamp = JointState.from_dict(r).stamp
-            break
-        except (TypeError, ValueError):
-            continue
+    try:
+        first_stamp, seen = _first_stamp(items)
+    except RecordingError as e:
+        raise UsageError(f"{ns.joint_states}: {e}") from None
     start = pub.startup(first_stamp)
     out = {
         "model": model.name,
@@ -279,38 +302,65 @@ def cmd_publish(ns) -> int:
         "startup": {"/tf_static": [_tf_dict(t) for t in start.get("/tf_static", [])], "/tf": []},
         "messages": [],
     }
-    errors = 0
-    for i, r in enumerate(raw):
-        entry = {"index": i}
-        try:
-            msg = JointState.from_dict(r)
-        except (TypeError, ValueError) as e:
-            entry.update({"error": f"not a JointState: {e}", "/tf_static": [], "/tf": []})
-            out["messages"].append(entry)
-            errors += 1
-            continue
-        st = msg.stamp_ns
-        entry["stamp"] = {"sec": st // 1_000_000_000, "nanosec": st % 1_000_000_000}
-        fixed = pub.tick(msg.stamp)
-        try:
-            tfs = pub.on_joint_state(msg)
-        except JointStateError as e:
-            entry.update({"error": str(e), "/tf_static": [], "/tf": [_tf_dict(t) for t in fixed]})
-            out["messages"].append(entry)
-            errors += 1
-            continue
-        entry.update({"published": not pub.last_throttled, "throttled": pub.last_throttled,
-                      "/tf_static": [], "/tf": [_tf_dict(t) for t in fixed + tfs]})
-        if pub.last_unknown:
-            entry["unknown_joints"] = list(pub.last_unknown)
-        if pub.last_ignored:
-            entry["ignored_joints"] = list(pub.last_ignored)
-        out["messages"].append(entry)
-    json.dump(out, sys.stdout, indent=2)
-    sys.stdout.write("\n")
+    # the document as json.dump(out, indent=2) writes it, the messages written as they are made
+    head = json.dumps(out, indent=2)  # ends with '"messages": []\n}'
+    sys.stdout.write(head[:-len("[]\n}")] + "[")
+    errors = written = 0
+    stopped = None
+
+    def emit(entry: dict) -> None:
+        nonlocal written
+        text = json.dumps(entry, indent=2).replace("\n", "\n    ")
+        sys.stdout.write(("," if written else "") + "\n    " + text)
+        written += 1
+
+    try:
+        for i, r in enumerate(itertools.chain(seen, items)):
+            if i % 256 == 255 and budget.remaining() < 0:
+                stopped = i
+                break
+            entry = {"index": i}
+            try:
+                msg = JointState.from_dict(r)
+            except (TypeError, ValueError, OverflowError) as e:
+                entry.update({"error": f"not a JointState: {e}", "/tf_static": [], "/tf": []})
+                emit(entry)
+                errors += 1
+                continue
+            st = msg.stamp_ns
+            entry["stamp"] = {"sec": st // 1_000_000_000, "nanosec": st % 1_000_000_000}
+            fixed = pub.tick(msg.stamp)
+            try:
+                tfs = pub.on_joint_state(msg)
+            except JointStateError as e:
+                entry.update({"error": str(e), "/tf_static": [], "/tf": [_tf_dict(t) for t in fixed]})
+                emit(entry)
+                errors += 1
+                continue
+            entry.update({"published": not pub.last_throttled, "throttled": pub.last_throttled,
+                          "/tf_static": [], "/tf": [_tf_dict(t) for t in fixed + tfs]})
+            if pub.last_unknown:
+                entry["unknown_joints"] = list(pub.last_unknown)
+            if pub.last_ignored:
+                entry["ignored_joints"] = list(pub.last_ignored)
+            emit(entry)
+    except RecordingError as e:  # a JSON list broken after its first messages
+        stopped = f"{e}"
+    sys.stdout.write("\n  ]\n}\n" if written else "]\n}\n")
     if errors:
         print(f"urdfcheck publish: {errors} message(s) rejected (see \"error\" in the output)", file=sys.stderr)
+    if stopped is not None:
+        why = (f"the run's time budget ({budget.seconds:g} s) ran out after {stopped} messages"
+               if isinstance(stopped, int) else clean(stopped))
+        print(f"urdfcheck publish: the output stops early: {why}", file=sys.stderr)
+        return EXIT_FINDINGS
     return EXIT_FINDINGS if _check_states(model, ns.joint_states) else EXIT_CLEAN
+
+
+def clean(text: str) -> str:
+    from urdfcheck.core.findings import clean_text, escape_bidi
+
+    return escape_bidi(clean_text(text))
 
 
 def _check_states(model, path: str) -> bool:

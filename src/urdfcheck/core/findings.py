@@ -116,7 +116,10 @@ def clean_text(text: object, limit: int = MAX_TEXT) -> str:
     Strips ANSI escapes and control characters, defuses CI workflow commands (`##vso[`, and `::` where it would
     start a line: `::error`), and truncates absurdly long values.
     """
-    s = _CONTROL.sub("", str(text).replace("\n", " ").replace("\t", " "))
+    s = str(text)
+    if len(s) > 4 * limit + 64:  # a 60 MB joint name from a recording: cut before the expressions run over it
+        s = s[: 4 * limit + 64]
+    s = _CONTROL.sub("", s.replace("\n", " ").replace("\t", " "))
     s = _WORKFLOW.sub(lambda m: m.group(0)[0] + "\u200b" + m.group(0)[1:], s)
     s = guard_lines(s)
     if _SURROGATE.search(s):  # a file name that is not UTF-8 (surrogateescape): its bytes as `\xff`
@@ -207,6 +210,13 @@ def closest(word: str, options, cutoff: float = 0.75) -> str | None:
         if len(options) > _hints_left[0]:
             return None
         _hints_left[0] -= len(options)
+    # difflib indexes `word` first, in time and memory linear in its length: a 48 MB joint name in a recording
+    # took 14 s and 2 GB. An option whose length is too far from the word's cannot reach the cutoff (difflib's own
+    # first test, real_quick_ratio, is this bound): those go first, and with them every hint for such a word.
+    n = len(word)
+    options = [o for o in options if (2.0 * min(n, len(o)) / (n + len(o)) if n + len(o) else 1.0) >= cutoff]
+    if not options:
+        return None
     import difflib  # only when something is misspelt: its import costs more than most lint runs spend here
 
     close = difflib.get_close_matches(word, options, n=1, cutoff=cutoff)

@@ -29,6 +29,7 @@ class BaseConfig:
         self.folder, self.path, self.shown, self.info = folder, path, shown, info
         self.data, self.found = data, found
         self.said: dict[str, str] = {}  # a path made absolute -> as the config wrote it (for `scrub`)
+        self.tree_dirs: list[str] = []  # the config's folder in the base revision's temporary tree (`for_tree`)
 
     def for_tree(self, in_tree) -> str | None:
         """The same config with its paths in another tree (`lint --diff-base`: the base revision's files);
@@ -36,7 +37,9 @@ class BaseConfig:
         if self.path is None:
             return None
         sub = tempfile.mkdtemp(prefix="base-", dir=self.folder)
-        return _rewrite(self.data, os.path.basename(self.found), sub, _tree_dir(self.config_dir, in_tree), self.said)
+        tree_dir = _tree_dir(self.config_dir, in_tree)
+        self.tree_dirs.append(os.path.normpath(tree_dir))
+        return _rewrite(self.data, os.path.basename(self.found), sub, tree_dir, self.said)
 
     def cleanup(self) -> None:
         if self.folder:
@@ -57,7 +60,10 @@ class BaseConfig:
         config_dir = getattr(self, "config_dir", None)
         if config_dir:  # its paths were made absolute in the working tree: shown relative again
             rel = os.path.relpath(config_dir, root or os.getcwd())
-            text = text.replace(config_dir.rstrip(os.sep) + os.sep, "" if rel == "." else rel + os.sep)
+            # and in the base revision's temporary tree (`lint --diff-base REV --config-from REV`): a model the
+            # base revision lacks (a link git keeps but the copy leaves out) named that temporary folder
+            for d in sorted([*self.tree_dirs, config_dir], key=len, reverse=True):
+                text = text.replace(d.rstrip(os.sep) + os.sep, "" if rel == "." else rel + os.sep)
         return text
 
     def __enter__(self):

@@ -128,8 +128,7 @@ class Segment:
                 t0[1] + (r[1][0] * ax + r[1][1] * ay + r[1][2] * az) * q,
                 t0[2] + (r[2][0] * ax + r[2][1] * ay + r[2][2] * az) * q,
             ), self.origin_q
-        h = 0.5 * q
-        s, c = math.sin(h), math.cos(h)
+        s, c = _sincos(0.5 * q)
         quat = (
             x0 * c + (w0 * ax + y0 * az - z0 * ay) * s,
             y0 * c + (w0 * ay + z0 * ax - x0 * az) * s,
@@ -183,8 +182,11 @@ class Segment:
 
         def revolute(q, stamp):
             h = 0.5 * q
-            s = sin(h)
-            c = cos(h)
+            try:
+                s = sin(h)
+                c = cos(h)
+            except ValueError:  # an infinite position: C's sin gives NaN, as KDL then publishes
+                s = c = NAN
             x = x0 * c + kx * s
             y = y0 * c + ky * s
             z = z0 * c + kz * s
@@ -439,3 +441,11 @@ def _notes(model, tree: KinematicTree):
                        "after it: robot_state_publisher fills mimic joints in name order from the message "
                        f"and values filled before, so {name!r} is never published (unless the message names it)",
                        j.mimic.loc if j is not None else None)
+
+
+def _sincos(h: float) -> tuple[float, float]:
+    """sin and cos as C gives them: NaN for an infinite angle (Python raises ValueError)."""
+    try:
+        return math.sin(h), math.cos(h)
+    except ValueError:
+        return NAN, NAN

@@ -34,8 +34,22 @@ def stamp_from_ns(ns: int) -> Stamp:
     return Stamp(sec, nsec)
 
 
+MAX_NS = 2**63 - 1  # rclcpp::Time is int64 nanoseconds: no message carries a stamp past it
+
+
 def to_ns(stamp) -> int:
-    """Integer nanoseconds of a stamp given in any of the accepted forms."""
+    """Integer nanoseconds of a stamp given in any of the accepted forms. Raises TypeError or ValueError (an
+    infinite part, or a stamp past int64 nanoseconds, which no ROS message holds)."""
+    try:
+        ns = _to_ns(stamp)
+    except OverflowError:
+        raise ValueError(f"stamp {stamp!r} is not finite") from None
+    if not -MAX_NS <= ns <= MAX_NS:
+        raise ValueError("stamp out of range (past int64 nanoseconds)")
+    return ns
+
+
+def _to_ns(stamp) -> int:
     if stamp is None:
         return 0
     if isinstance(stamp, Stamp):
@@ -91,7 +105,10 @@ class JointState(TupleRecord):
         for p in positions:
             if isinstance(p, bool) or not isinstance(p, (int, float)):
                 raise TypeError(f"position {p!r} is not a number")
-            pos.append(float(p))
+            try:
+                pos.append(float(p))
+            except OverflowError:  # an integer past a double's range: not a position any message carries
+                raise ValueError(f"position {p} is out of range") from None
         to_ns(stamp if stamp is not None else 0.0)  # validate early
         return cls(names, pos, stamp if stamp is not None else 0.0)
 
