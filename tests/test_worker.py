@@ -91,7 +91,9 @@ def test_running_ahead_changes_no_finding(tmp_path):
     together = lint.lint_targets(targets).findings
     from urdfcheck.rules.engine import Selection
 
-    one_by_one = lint._dedupe([f for t in targets for f in lint.lint_target(t, Selection())[0]])
+    from urdfcheck.finish.result import dedupe
+
+    one_by_one = dedupe([f for t in targets for f in lint.lint_target(t, Selection())[0]])
     assert together == one_by_one
     assert {f.code for f in together} == {"J002"}  # the revolute ones, in target order
     assert [f.location.file for f in together] == sorted(f.location.file for f in together)

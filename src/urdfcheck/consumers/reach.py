@@ -11,10 +11,16 @@ from pathlib import Path
 
 
 def in_package(path) -> bool:
-    """A package.xml in the folder of `path` (symlinks resolved, as the model is read) or above it."""
+    """A package.xml in the folder of `path` (symlinks resolved, as the model is read) or above it. A path whose
+    real place the run's door refuses is in none: nothing beside it is looked at."""
+    from urdfcheck.core import door
     from urdfcheck.load.packages import enclosing_package
 
-    return enclosing_package(Path(path).resolve()) is not None
+    try:
+        real = door.confine(path)
+    except OSError:
+        return False
+    return enclosing_package(Path(real)) is not None
 
 
 def may_have_consumers(model, ctx) -> bool:
