@@ -21,7 +21,8 @@ environment). Every `--cli-every`-th input also goes through the whole CLI (work
 Counted: leaks (the secret, the argv marker, the outside file's text, a module file path or the workspace's absolute
 path in any output), tracebacks (an exception out of `expand`, an internal name in a message, a CLI exit code other
 than 0/1 or an "internal error"), hangs (an input taking longer than --hang seconds: the child is killed, the run goes
-on). Exit status 1 when any is non-zero. tests/test_fuzz.py runs a few hundred of the same inputs through hypothesis.
+on). Exit status 1 when any is non-zero. tests/project/test_fuzz.py runs a few hundred of the same inputs through
+hypothesis.
 """
 from __future__ import annotations
 

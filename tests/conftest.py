@@ -1,5 +1,6 @@
 import json
 import os
+import sys
 from pathlib import Path
 
 import pytest
@@ -11,6 +12,14 @@ if os.environ.get("CI"):
     settings.load_profile("ci")
 
 REPO = Path(__file__).resolve().parent.parent
+
+# One folder of tests per stage (tests/<stage>/). A few tests share another test module's helpers by importing
+# it (`from test_tf_owners import write`), so each stage folder is importable as tests/ itself is.
+STAGE_FOLDERS = ("bag cli consumers core diff finish load model "
+                 "plan project publisher report request rules server verify").split()
+for _stage in STAGE_FOLDERS:
+    if str(REPO / "tests" / _stage) not in sys.path:
+        sys.path.append(str(REPO / "tests" / _stage))
 
 # Runs of the console entry (`python -m urdfcheck` in subprocesses) use the lint cache: never the user's own
 # cache folder from the test suite, locally or in CI.

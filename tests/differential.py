@@ -9,7 +9,7 @@ small C++ probe compiled once from Debian libkdl-parser-dev). Each load runs in 
 PyBullet and kdl_parser crash on some models, and a crash is an answer (refused), not a failure of the harness.
 Meshes are replaced by boxes first (`verify.consumers.without_meshes`): the corpus has none.
 
-Used by tests/test_profiles_diff.py (the mutants, in the normal suite) and tools/profiles_table.py (the corpus).
+Used by tests/rules/test_profiles_diff.py (the mutants, in the normal suite) and tools/profiles_table.py (the corpus).
 """
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """Seeded mutants of one small arm, each with its clean twin: the condition of every P rule and of the general
-rules a consumer refuses on, and their exclusions (tests/test_profiles_diff.py, tools/profiles_table.py)."""
+rules a consumer refuses on, and their exclusions (tests/rules/test_profiles_diff.py, tools/profiles_table.py)."""
 from __future__ import annotations
 
 INR = ('<inertial><origin xyz="0 0 0"/><mass value="{m}"/><inertia ixx="{a}" ixy="0" ixz="0" iyy="{b}" iyz="0" '

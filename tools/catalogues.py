@@ -1,7 +1,7 @@
 """Write the JSON twins of the hand-edited YAML catalogues that a lint run reads.
 
     python tools/catalogues.py          # rewrite the twins
-    python tools/catalogues.py --check  # exit 1 when a twin is stale (tests/test_catalogue_twins.py runs this)
+    python tools/catalogues.py --check  # exit 1 when a twin is stale (tests/rules/test_catalogue_twins.py runs this)
 
 The YAML files are what people edit (comments, anchors). A lint run reads the JSON twin: the standard library's
 json is already imported by then, PyYAML is not, and importing it costs ~16 ms of a 130 ms run on a plain URDF.

@@ -1,4 +1,4 @@
-"""Extract the real-history fixtures of tests/test_diff_history.py from local clones of the upstream repositories.
+"""Extract the real-history fixtures of tests/diff/test_diff_history.py from local clones of the upstream repositories.
 
     python tools/history_fixtures.py MIRRORS    # MIRRORS/<owner+name>/repo is a clone holding the commits below
 
@@ -106,8 +106,8 @@ def main(mirrors: Path) -> None:
         (dest / "LICENSE").write_bytes(lic)
         (dest / "SOURCES.md").write_text(
             f"# {name}\n\nFiles of {spec['url']} (licence {spec['license']}, copied in LICENSE), unchanged, at the "
-            "commits below and their parents, for tests/test_diff_history.py. `files.tar.xz` holds each file once, "
-            "named by its upstream git blob id (the test checks each name against the content); `<commit>.txt` "
+            "commits below and their parents, for tests/diff/test_diff_history.py. `files.tar.xz` holds each file "
+            "once, named by its upstream git blob id (the test checks each name against the content); `<commit>.txt` "
             "lists the parent's files (`old`, blob, upstream path), then "
             "what the commit adds or changes (`new`) and deletes (`gone`). Made by tools/history_fixtures.py.\n\n"
             + (f"{spec['note']}\n\n" if spec.get("note") else "")

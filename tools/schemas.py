@@ -5,7 +5,7 @@
 
 severity: core.findings.Severity; target: model.grammar.TARGETS; profile(s): rules.checks.profiles.common.PROFILES;
 evidence how: core.evidence.HOW (the CLI's choices come from the same lists: cli/options.py `choices`). Only the
-enum arrays are rewritten; the rest of each file is kept as written. tests/test_schema_enums.py fails when a
+enum arrays are rewritten; the rest of each file is kept as written. tests/project/test_schema_enums.py fails when a
 committed schema is not this output.
 """
 from __future__ import annotations

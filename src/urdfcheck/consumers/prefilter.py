@@ -12,7 +12,7 @@ can write it folded or doubled), a file that cannot be read or is over the
 readers' cap. A file that passes is parsed and judged exactly as before. A package with one model keeps every
 parameter file and reports the ones it cannot read (C007), so there every file is parsed as before.
 
-tests/test_prefilter.py runs this against every YAML file of the corpus and the examples: for each string
+tests/consumers/test_prefilter.py runs this against every YAML file of the corpus and the examples: for each string
 value a file holds (each joint name that would keep it), the file passes.
 """
 from __future__ import annotations

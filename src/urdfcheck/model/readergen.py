@@ -3,7 +3,7 @@
 One function per grammar element and URDF version, `read(builder, el) -> tuple of values in grammar order`.
 The good path is straight-line code; anything else calls back into the builder (build._Builder), which reports
 it. readers.py is generated rather than compiled at run time so that a run loads bytecode instead of compiling
-81 functions (several milliseconds of every small lint); tests/test_grammar.py fails when it is stale, and
+81 functions (several milliseconds of every small lint); tests/model/test_grammar.py fails when it is stale, and
 build.readers compiles the functions in memory if it ever is.
 """
 from __future__ import annotations

@@ -3,7 +3,7 @@
 Importing jsonschema takes ~60 ms, as long as the rest of a small lint run; the config is read on every
 run and is almost always valid. `verdict` evaluates the few keywords our config schema uses and answers
 True (valid), False (invalid) or None (a keyword or value it does not know). Only True is acted upon:
-anything else goes to jsonschema, which also writes the error message. tests/test_schemagate.py checks
+anything else goes to jsonschema, which also writes the error message. tests/core/test_schemagate.py checks
 that every True or False agrees with jsonschema's Draft 2020-12 validator.
 """
 from __future__ import annotations

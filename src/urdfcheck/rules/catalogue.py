@@ -32,7 +32,7 @@ if TYPE_CHECKING:
 
 CHECKS: dict[str, Check] = {}  # code -> check function (one function may serve several codes)
 # every module of rules/checks, named here so that a run imports them without walking the folder (pkgutil: ~4 ms of
-# imports); tests/test_catalogue.py fails when a module of the folder is missing from the list
+# imports); tests/rules/test_catalogue.py fails when a module of the folder is missing from the list
 MODEL_MODULES = tuple(f"urdfcheck.rules.checks.{m}" for m in (
     "frames", "geometry", "inertial", "joints", "moveit", "profiles", "references", "structure", "units", "values"))
 # the rules over a model's consumers (contracts C, TF ownership T) and the readers behind them: imported when a
@@ -219,7 +219,7 @@ def read_entries(folder: Path | None = None) -> dict[str, dict]:
 
 def write_index(folder: Path | None = None) -> Path:
     """rules/index.json and rules/details.json: the parsed catalogue, so a lint run reads one small JSON file
-    instead of ~80 YAML files. Generated; tests/test_catalogue.py fails when they are stale. Returns the
+    instead of ~80 YAML files. Generated; tests/rules/test_catalogue.py fails when they are stale. Returns the
     index's path."""
     import json
 

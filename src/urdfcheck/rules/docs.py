@@ -143,7 +143,7 @@ DESIGN_HEAD = "| code | name | default |"
 
 
 def design_table() -> str:
-    """The rule table of docs/design.md (generated; tests/test_ruledocs.py keeps the committed one current)."""
+    """The rule table of docs/design.md (generated; tests/rules/test_ruledocs.py keeps the committed one current)."""
     rules = sorted(rulebook.catalogue().values(), key=lambda r: r.code)
     return "\n".join([DESIGN_HEAD, "| --- | --- | --- |"]
                      + [f"| {r.code} | {r.name} | {r.severity} |" for r in rules]) + "\n"

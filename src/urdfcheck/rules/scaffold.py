@@ -1,7 +1,7 @@
 """Start a new rule: `python -m urdfcheck.rules.scaffold J013 joint-name-too-long --module joints`.
 
 Writes the catalogue entry `rules/J013.yaml` (every required field; its failing example does not fail yet, so
-tests/test_catalogue.py stays red until the rule and its examples are written), appends a typed check function
+tests/rules/test_catalogue.py stays red until the rule and its examples are written), appends a typed check function
 that yields nothing to `src/urdfcheck/rules/checks/<module>.py` (or `<module>/__init__.py`), and regenerates what
 is generated from the catalogue: rules/index.json and details.json, docs/rules.md and the rule table of
 docs/design.md. Refuses to
