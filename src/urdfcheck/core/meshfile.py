@@ -237,10 +237,10 @@ def _geometry(geom) -> tuple[list[float], list[int]] | None:
 
 
 def _dae(data: bytes) -> Mesh | None:
+    from urdfcheck.core import xmlfront
     from urdfcheck.core.lxmlimport import etree
 
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False)
-    root = etree.fromstring(data, parser)
+    root = etree.fromstring(data, xmlfront.parser())
     unit = 1.0
     asset = next((c for c in root if _local(c.tag) == "asset"), None)
     for c in asset if asset is not None else ():

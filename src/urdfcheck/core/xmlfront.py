@@ -48,18 +48,16 @@ class XmlRefused(Exception):
         self.issue = issue
 
 
-def _parser(recover: bool = False) -> etree.XMLParser:
-    return etree.XMLParser(
-        recover=recover,
-        resolve_entities=False,
-        no_network=True,
-        load_dtd=False,
-        dtd_validation=False,
-        huge_tree=False,
-        remove_comments=False,
-        remove_pis=False,
-        collect_ids=False,
-    )
+def options(*, recover: bool = False, comments: bool = True, huge: bool = False) -> dict:
+    """The one set-up of lxml's parsers for everything urdfcheck reads: no entity resolved, no DTD loaded, no
+    network, no ids collected, libxml2's size limits kept. `comments=False` drops comments and processing
+    instructions; `huge` lifts the size limits, only for XML a real consumer wrote from the model."""
+    return dict(recover=recover, resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
+                huge_tree=huge, remove_comments=not comments, remove_pis=not comments, collect_ids=False)
+
+
+def parser(*, recover: bool = False, comments: bool = True, huge: bool = False) -> etree.XMLParser:
+    return etree.XMLParser(**options(recover=recover, comments=comments, huge=huge))
 
 
 def _line_of(data: bytes, offset: int) -> int:
@@ -143,11 +141,11 @@ def parse(data: bytes) -> tuple[etree._Element, list[XmlIssue]]:
     """Parse untrusted bytes. Returns (root, warnings); raises XmlRefused for unusable documents."""
     warnings, data = precheck(data)
     try:
-        parser = _parser()
+        strict = parser()
         try:
-            root = etree.fromstring(data, parser)
+            root = etree.fromstring(data, strict)
         except etree.XMLSyntaxError as e:
-            root, ns_warnings = _undeclared_prefixes(data, e, parser.error_log)
+            root, ns_warnings = _undeclared_prefixes(data, e, strict.error_log)
             warnings = warnings + ns_warnings
     except etree.XMLSyntaxError as e:
         line, col = (e.position if e.position else (e.lineno, None))
@@ -206,12 +204,10 @@ def stream(data: bytes):
     """The root element (its attributes read; its children still coming), then each child of the root, in
     document order, once it is whole; a child is removed when the next one is asked for. Raises
     etree.XMLSyntaxError."""
-    parser = etree.XMLPullParser(events=("end",), tag=_PARTS, recover=False, resolve_entities=False,
-                                 no_network=True, load_dtd=False, dtd_validation=False, huge_tree=False,
-                                 remove_comments=False, remove_pis=False, collect_ids=False)
+    pull = etree.XMLPullParser(events=("end",), tag=_PARTS, **options())
     root = None
     whole: list = []  # the root once the parser is closed
-    for el in _ends(parser, data, whole):
+    for el in _ends(pull, data, whole):
         parent = el.getparent()
         if root is None:
             root = _top(el)
@@ -230,13 +226,13 @@ def stream(data: bytes):
 _PIECE = 32768
 
 
-def _ends(parser, data: bytes, whole: list):
+def _ends(pull, data: bytes, whole: list):
     for i in range(0, len(data), _PIECE):
-        parser.feed(data[i:i + _PIECE])
-        for _, el in parser.read_events():
+        pull.feed(data[i:i + _PIECE])
+        for _, el in pull.read_events():
             yield el
-    whole.append(parser.close())
-    for _, el in parser.read_events():
+    whole.append(pull.close())
+    for _, el in pull.read_events():
         yield el
 
 
@@ -276,17 +272,17 @@ def _undeclared_prefixes(data: bytes, err: etree.XMLSyntaxError, log) -> tuple[e
         if at is None:
             raise err
         decl = "".join(f' xmlns:{p}="urn:urdfcheck:undeclared:{p}"' for p in prefixes).encode("ascii")
-        parser = _parser()
+        strict = parser()
         try:
-            etree.fromstring(data[:at] + decl + data[at:], parser)  # raises what a strict parser finds besides
+            etree.fromstring(data[:at] + decl + data[at:], strict)  # raises what a strict parser finds besides
             break
         except etree.XMLSyntaxError as e:
-            err, log = e, parser.error_log
+            err, log = e, strict.error_log
     else:
         raise err
-    parser = _parser(recover=True)
-    root = etree.fromstring(data, parser)
-    if root is None or any(e.type != _NS_UNDEFINED for e in parser.error_log):
+    tolerant = parser(recover=True)
+    root = etree.fromstring(data, tolerant)
+    if root is None or any(e.type != _NS_UNDEFINED for e in tolerant.error_log):
         raise err
     return root, [XmlIssue("X005", f"namespace prefix {p!r} is used but never declared (no xmlns:{p}=\"...\"): "
                                    "urdfdom, MuJoCo and Drake read it as part of the name, but xacro, urdf_parser_py "

@@ -19,7 +19,7 @@ from __future__ import annotations
 import os
 import re
 
-from urdfcheck.core import lazyre
+from urdfcheck.core import lazyre, xmlfront
 from urdfcheck.core.lxmlimport import etree
 from urdfcheck.core.records import TupleRecord
 from urdfcheck.core.walk import SKIP_DIRS  # noqa: F401  (read from here too)
@@ -109,9 +109,7 @@ def _is_library(text: str, includes: bool = False) -> bool:
     """Only definitions at the top level (macros, properties, args; with `includes`, includes too): without
     includes it expands to an empty robot, certainly; with them, the expansion tells (a probe)."""
     try:
-        parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False,
-                                 remove_comments=True, remove_pis=True, recover=False)
-        root = etree.fromstring(text.encode("utf-8"), parser)
+        root = etree.fromstring(text.encode("utf-8"), xmlfront.parser(comments=False))
     except etree.XMLSyntaxError:
         return False  # let the linter report it
     kids = [c for c in root if isinstance(c.tag, str)]

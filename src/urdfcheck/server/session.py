@@ -327,11 +327,11 @@ def _find_word(line: str, word: str) -> int:
 
 def _xacro_defs(text: str, name: str):
     """(kind, line, detail) of `<xacro:macro name=NAME params=...>` and `<xacro:property name=NAME value=...>`."""
+    from urdfcheck.core import xmlfront
     from urdfcheck.core.lxmlimport import etree
 
     try:
-        root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(recover=True, resolve_entities=False,
-                                                                       no_network=True, huge_tree=False))
+        root = etree.fromstring(text.encode("utf-8"), xmlfront.parser(recover=True))
     except etree.XMLSyntaxError:
         return
     if root is None:

@@ -66,11 +66,11 @@ def without_meshes(xml: str, folder: str | None = None) -> tuple[str, int]:
     """The document with every <mesh> file replaced, and how many were. With `folder`: each mesh points to a box
     STL written there, sized so that after the mesh's own `scale` it is a 0.1 m cube (the scale stays, so a
     consumer still reads and checks it); without: the <mesh> becomes a 0.1 m <box>."""
+    from urdfcheck.core import xmlfront
     from urdfcheck.core.lxmlimport import etree
 
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
     try:
-        root = etree.fromstring(re.sub(r"^\s*<\?xml[^>]*\?>", "", xml).encode("utf-8"), parser)
+        root = etree.fromstring(re.sub(r"^\s*<\?xml[^>]*\?>", "", xml).encode("utf-8"), xmlfront.parser())
     except etree.XMLSyntaxError:
         return xml, 0  # the consumers get it as it is, and say what they think of it
     n = 0
@@ -213,6 +213,7 @@ def _sdformat_job(path: str, timeout: float) -> dict:
     as Gazebo's loader validates it (Debian ignition-tools + libsdformat)."""
     import subprocess
 
+    from urdfcheck.core import xmlfront
     from urdfcheck.core.lxmlimport import etree
 
     exe = shutil.which("ign")
@@ -228,8 +229,7 @@ def _sdformat_job(path: str, timeout: float) -> dict:
         f.write(text)
     check = subprocess.run([exe, "sdf", "-k", sdf], capture_output=True, text=True, timeout=timeout, env=env)
     # <gazebo> extension XML is copied as written, undeclared namespace prefixes included
-    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(recover=True, huge_tree=True, resolve_entities=False,
-                                                                  no_network=True))
+    root = etree.fromstring(text.encode("utf-8"), xmlfront.parser(recover=True, huge=True))
     model = root.find("model") if root is not None else None
     links = [] if model is None else [lk.get("name") for lk in model.findall("link")]
     said = [ln for ln in (check.stdout + check.stderr).splitlines() if ln.strip() and not any(n in ln for n in noise)]

@@ -55,7 +55,7 @@ from urdfcheck.consumers.launch.info import (  # noqa: F401 - the records are pa
     parse_static_tf_args,
     record_node,
 )
-from urdfcheck.core import lazyre
+from urdfcheck.core import lazyre, xmlfront
 from urdfcheck.core.findings import Location
 from urdfcheck.core.lxmlimport import etree
 
@@ -257,10 +257,8 @@ def _split_args(text: str) -> list[str] | None:
 def _xml_root(data: bytes, path: str):
     if b"<!DOCTYPE" in data[:4096].upper() or b"<!ENTITY" in data.upper():
         raise ConsumerError("launch file has a DOCTYPE or entity declaration; refused", Location(path, 1))
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, dtd_validation=False,
-                             huge_tree=False, remove_comments=True, remove_pis=True, collect_ids=False)
     try:
-        root = etree.fromstring(data, parser)
+        root = etree.fromstring(data, xmlfront.parser(comments=False))
     except etree.XMLSyntaxError as e:
         line = e.position[0] if getattr(e, "position", None) else None
         col = e.position[1] + 1 if getattr(e, "position", None) else None
