@@ -81,7 +81,7 @@ def _enums(node, key, out):
 @pytest.mark.parametrize("schema", ["config", "report"])
 def test_every_severity_and_profile_enum_of_the_schemas_is_the_one_list(schema):
     data = json.loads((REPO / "src" / "urdfcheck" / "schemas" / f"{schema}.schema.json").read_text())
-    severities = _enums(data, "severity", [])
+    severities = _enums(data, "severity", []) + _enums(data, "fail_on", [])
     assert severities and all(set(e) == set(options.choices("severities")) for e in severities)
     profiles = _enums(data, "profile", []) + _enums(data, "profiles", [])
     assert profiles and all(e == options.choices("profiles") for e in profiles)

@@ -24,6 +24,33 @@ def render(fmt: str, result, **opts) -> str:
     return finish_text(mod.render(result, **opts), fmt)
 
 
+def gate(result, fail_on=None) -> tuple[list, list]:
+    """(the findings that fail the run, those at or above the level that do not gate): `Result.gate`, so that every
+    headline says what the exit code judged (with `lint --diff-base`, the new findings only)."""
+    judge = getattr(result, "gate", None)
+    if judge is not None:
+        return judge(fail_on)
+    from urdfcheck.core.findings import Severity
+
+    level = fail_on or getattr(result, "fail_on", Severity.WARNING)
+    return [f for f in result.findings if f.severity >= level], []
+
+
+def gate_words(result, fail_on) -> tuple[str, str] | None:
+    """With `lint --diff-base REV`: (what gates, what does not), e.g. ("1 new finding at or above warning",
+    "2 unchanged since HEAD at or above it, not gating"); the second is "" when there are none. None without it."""
+    changes = getattr(result, "changes", None)
+    if changes is None:
+        return None
+    from urdfcheck.core.findings import clean_text
+
+    gating, quiet = gate(result, fail_on)
+    n = len(gating)
+    head = f"{n or 'no'} new finding{'s' if n != 1 else ''} at or above {fail_on}"
+    rest = (f"{len(quiet)} unchanged since {clean_text(changes.rev)} at or above it, not gating" if quiet else "")
+    return head, rest
+
+
 def finish_text(text: str, fmt: str) -> str:
     """What every report (lint's, diff's, consumers') goes through last: bidi controls and the bytes of a
     non-UTF-8 file name made visible, no line starting a GitHub workflow command (github's own lines aside)."""
