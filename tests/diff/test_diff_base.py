@@ -181,3 +181,30 @@ def test_a_pass_with_old_debts_says_no_new_finding_and_what_did_not_gate(repo, t
     assert res.returncode == 0 and "Gate: no new findings at or above warning;" in res.stdout, res.stdout
     res = lint("--diff-base", "HEAD", "--fail-on", "error", cwd=repo, tmp=tmp)  # the level as given
     assert res.returncode == 0 and "Gate: no new findings at or above error;" in res.stdout, res.stdout
+
+
+def test_a_workspace_headline_counts_by_each_packages_level_as_the_exit_code_does():
+    """Package a fails on warnings, package b on errors only (its config): a new warning in b does not fail the run,
+    and the headline does not count it; one in a does."""
+    from urdfcheck.core.findings import Finding, Location, Severity
+    from urdfcheck.diff.findings import FindingsDiff
+    from urdfcheck.finish.result import Result
+    from urdfcheck.plan.plan import Target
+    from urdfcheck.report import render
+    from urdfcheck.request.request import Settings
+
+    ta = Target(Path("a/r.urdf"), settings=Settings(None, None, fail_on=Severity.WARNING))
+    tb = Target(Path("b/r.urdf"), settings=Settings(None, None, fail_on=Severity.ERROR))
+    for new_in, fails in (("b", False), ("a", True)):
+        old = Finding("J003", Severity.WARNING, "old", Location("a/r.urdf", 3), "x", model="a/r.urdf")
+        new = Finding("J004", Severity.WARNING, "new", Location(f"{new_in}/r.urdf", 4), "x", model=f"{new_in}/r.urdf")
+        by = [[old] + ([new] if new_in == "a" else []), [new] if new_in == "b" else []]
+        result = Result([old, new], [ta, tb], {}, by, fail_on=Severity.WARNING)
+        result.changes = FindingsDiff("HEAD", [new], [], 1)
+        assert result.failed() is fails
+        head = next(ln for ln in render("markdown", result, fail_on=result.fail_on).splitlines()
+                    if ln.startswith(("❌", "✅")))
+        n = "1 new finding" if fails else "no new findings"
+        assert head.startswith(("❌" if fails else "✅") + f" **{n} at or above each package's own level** in 2 models "
+                               "(1 unchanged since HEAD at or above it, not gating;"), head
+        assert f"Gate: {n} at or above each package's own level;" in render("text", result)

@@ -163,7 +163,7 @@ def _with_changes(fmt: str, text: str, result) -> str:
 
         data = json.loads(text)
         data["diff_base"] = changes.as_dict()
-        gating, quiet = gate(result, result.fail_on)  # what the exit code judged, as the other formats say it
+        gating, quiet = gate(result)  # what the exit code judged (each model's config level), as the headlines say
         data["diff_base"]["gate"] = {"fail_on": str(result.fail_on), "gating": len(gating), "not_gating": len(quiet)}
         return json.dumps(data, indent=2, sort_keys=True) + "\n"
     return text

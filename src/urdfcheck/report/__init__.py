@@ -36,19 +36,23 @@ def gate(result, fail_on=None) -> tuple[list, list]:
     return [f for f in result.findings if f.severity >= level], []
 
 
-def gate_words(result, fail_on) -> tuple[str, str] | None:
-    """With `lint --diff-base REV`: (what gates, what does not), e.g. ("1 new finding at or above warning",
-    "2 unchanged since HEAD at or above it, not gating"); the second is "" when there are none. None without it."""
+def gate_words(result, fail_on) -> tuple[int, str, str] | None:
+    """With `lint --diff-base REV`: (how many fail the run, what gates, what does not), e.g. (1, "1 new finding at or
+    above warning", "2 unchanged since HEAD at or above it, not gating"); the last is "" when none. None without it.
+    At the run's own level the count is the exit code's judgement (each package's config level in a workspace)."""
     changes = getattr(result, "changes", None)
     if changes is None:
         return None
     from urdfcheck.core.findings import clean_text
 
-    gating, quiet = gate(result, fail_on)
+    own = fail_on == getattr(result, "fail_on", None)
+    gating, quiet = gate(result, None if own else fail_on)
+    levels = {t.settings.fail_on for t in getattr(result, "targets", ()) if getattr(t, "settings", None) is not None}
+    level = "each package's own level" if own and len(levels) > 1 else str(fail_on)
     n = len(gating)
-    head = f"{n or 'no'} new finding{'s' if n != 1 else ''} at or above {fail_on}"
+    head = f"{n or 'no'} new finding{'s' if n != 1 else ''} at or above {level}"
     rest = (f"{len(quiet)} unchanged since {clean_text(changes.rev)} at or above it, not gating" if quiet else "")
-    return head, rest
+    return n, head, rest
 
 
 def finish_text(text: str, fmt: str) -> str:

@@ -58,6 +58,6 @@ def render(result, **_) -> str:
     n = len(result.findings)
     m = len(result.targets)
     words = gate_words(result, getattr(result, "fail_on", Severity.WARNING))
-    gated = f"; {words[0]}" + (f", {words[1]}" if words[1] else "") if words is not None else ""  # --diff-base
+    gated = f"; {words[1]}" + (f", {words[2]}" if words[2] else "") if words is not None else ""  # --diff-base
     out.append(f"urdfcheck: {n} finding{'s' if n != 1 else ''} in {m} model{'s' if m != 1 else ''}{defuse(gated)}")
     return "\n".join(out) + "\n"

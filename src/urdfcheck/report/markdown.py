@@ -101,8 +101,10 @@ def _summary(result, fail_on: Severity, max_rows: int = MAX_ROWS) -> list[str]:
     models = f"{n_models} model{'s' if n_models != 1 else ''}"
     why_not = getattr(result, "not_passed", lambda: None)()  # no robot, or a model that did not load
     words = gate_words(result, fail_on)
+    if words is not None:
+        failing = words[0]  # the exit code's own count
     if words is not None and (failing or not why_not):
-        gating, rest = words
+        _, gating, rest = words
         mark = "❌" if failing else "✅"
         head = (f"{mark} **{md(gating)}** in {models} ({md(rest) + '; ' if rest else ''}"
                 f"{total[Severity.ERROR]} errors, {total[Severity.WARNING]} warnings, {total[Severity.INFO]} info "

@@ -65,7 +65,7 @@ def render(result, colour: bool = False, **_) -> str:
         level = getattr(result, "fail_on", Severity.WARNING)
         words = gate_words(result, level)
         if words is not None:  # --diff-base: the exit code judges the new findings only
-            gating, rest = words
+            _, gating, rest = words
             lines.append(f"Gate: {gating}" + (f"; {rest}" if rest else "") + ".")
         if why_not:
             lines.append(f"Not a pass: {why_not}.")
