@@ -386,6 +386,10 @@ def test_fork_pull_request_from_a_subfolder_reports_what_it_adds(tmp_path, sourc
     lint = next(res for name, _, res in log if name == "urdfcheck lint")
     assert set(re.findall(r"^::\w+ file=([^,]+),", lint.stdout, re.M)) == {urdf}  # every finding annotated
     assert "1 new, 0 fixed, 3 unchanged" in summary  # the two errors and an info were there before
+    # the headline says what the job's status judged: the new finding; the old errors do not gate (the info is
+    # below the level)
+    assert f"❌ **1 new finding at or above warning** in 1 model (2 unchanged since {base} at or above it, not " \
+           "gating;" in summary, summary
     new = [ln for ln in summary.splitlines() if ln.startswith("- :new:")]
     assert len(new) == 1 and "J004" in new[0] and f"{urdf}:77" in new[0], summary
     assert str(ws) not in summary and str(tmp_path) not in summary
@@ -399,6 +403,7 @@ def test_a_pull_request_with_only_old_debts_passes_and_says_so(tmp_path, source)
     ctx, log, summary, _ = run_action(tmp_path, ws, source, event_name="pull_request", event=event)
     assert ctx.steps["lint"]["exit-code"] == "0" and status(log)["urdfcheck result"] == 0
     assert "0 new, 0 fixed, 3 unchanged" in summary and "J003" in summary
+    assert "✅ **no new findings at or above warning** in 1 model (2 unchanged since " in summary, summary
 
 
 def test_diff_base_off_gates_a_pull_request_on_every_finding(tmp_path, source):

@@ -81,7 +81,7 @@ def _enums(node, key, out):
 @pytest.mark.parametrize("schema", ["config", "report"])
 def test_every_severity_and_profile_enum_of_the_schemas_is_the_one_list(schema):
     data = json.loads((REPO / "src" / "urdfcheck" / "schemas" / f"{schema}.schema.json").read_text())
-    severities = _enums(data, "severity", [])
+    severities = _enums(data, "severity", []) + _enums(data, "fail_on", [])
     assert severities and all(set(e) == set(options.choices("severities")) for e in severities)
     profiles = _enums(data, "profile", []) + _enums(data, "profiles", [])
     assert profiles and all(e == options.choices("profiles") for e in profiles)
@@ -96,6 +96,100 @@ def test_lint_format_and_target_choices_come_from_the_lists():
     assert tuple(by_dest["target"].choices) == options.choices("targets")
     for name in options.choices("profiles"):  # --profile takes a comma-separated list: its help names them all
         assert name in by_dest["profile"].help
+
+
+# --- every --format: the list its renderer declares ---------------------------------------------------------
+
+TINY = """<robot name="r"><link name="a"/><link name="b"/>
+<joint name="j" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0 0 1"/><axis xyz="0 0 1"/>
+<limit lower="-1" upper="1" effort="1" velocity="1"/></joint></robot>"""
+
+
+def _rules(fmt):
+    from urdfcheck.rules import docs
+
+    return docs.listing(fmt)
+
+
+def _consumers(fmt):
+    from urdfcheck.cli.consumers import render
+
+    return render(fmt, "robot.urdf", [], [])
+
+
+def _diff(fmt):
+    from urdfcheck.diff.compare import DiffResult, Pair
+    from urdfcheck.report.diff import render
+
+    return render(fmt, DiffResult("HEAD", "working tree", [Pair("urdf/r.urdf", "", "added")]))
+
+
+def _tree(fmt):
+    from urdfcheck.model.build import model_from_string
+    from urdfcheck.publisher.tree_view import render
+
+    return render(model_from_string(TINY), fmt)
+
+
+def _tf(fmt):
+    from urdfcheck.cli.publish import render_tf
+
+    return render_tf(fmt, "a", "b", {"j": 0.5}, [[1.0, 0, 0, 0], [0, 1.0, 0, 0], [0, 0, 1.0, 1.0], [0, 0, 0, 1.0]])
+
+
+def _verify(fmt):
+    from urdfcheck.cli.publish import render_verify
+    from urdfcheck.verify.compare import VerifyReport
+
+    return render_verify(fmt, VerifyReport("r", "robot.urdf", 10, 0, 1e-9, ["j"]))
+
+
+def _lint(fmt):
+    from urdfcheck.finish.result import Result
+    from urdfcheck.report import render
+
+    return render(fmt, Result([], []))
+
+
+# command -> (module, name of the renderer's list, one render per format)
+RENDERERS = {
+    "rules": ("urdfcheck.rules.docs", "FORMATS", _rules),
+    "consumers": ("urdfcheck.cli.consumers", "FORMATS", _consumers),
+    "diff": ("urdfcheck.report.diff", "FORMATS", _diff),
+    "tree": ("urdfcheck.publisher.tree_view", "FORMATS", _tree),
+    "tf": ("urdfcheck.cli.publish", "TF_FORMATS", _tf),
+    "verify": ("urdfcheck.cli.publish", "VERIFY_FORMATS", _verify),
+    "lint": ("urdfcheck.report", "FORMATS", _lint),
+}
+
+
+def test_every_command_with_a_format_has_its_renderer_listed_here():
+    with_format = {c for c, p in _all_parsers().items() if any(a.dest == "format" for a in p._actions)}
+    assert with_format == set(RENDERERS)
+
+
+def _all_parsers():
+    from urdfcheck.cli.main import build_parser
+
+    sub = next(a for a in build_parser()._actions if a.dest == "command")
+    return sub.choices
+
+
+@pytest.mark.parametrize("command", sorted(RENDERERS))
+def test_format_choices_are_what_the_renderer_renders(command):
+    """The CLI offers exactly the renderer's list; each format in it is rendered (each differently: none falls back
+    to another), and a format outside it is refused by the renderer, so no format is rendered but not offered."""
+    import importlib
+
+    module, name, render = RENDERERS[command]
+    formats = tuple(getattr(importlib.import_module(module), name))
+    by_dest = {a.dest: a for a in _all_parsers()[command]._actions}
+    assert tuple(by_dest["format"].choices) == formats
+    outputs = {fmt: render(fmt) for fmt in formats}
+    assert all(isinstance(o, str) and o for o in outputs.values()), outputs
+    assert len(set(outputs.values())) == len(formats), outputs
+    with pytest.raises(ValueError):
+        render("no-such-format")
 
 
 # --- the bugs of issue 42 ------------------------------------------------------------------------------------

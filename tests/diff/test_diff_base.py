@@ -131,3 +131,80 @@ def test_the_json_report_with_diff_base_follows_the_schema(repo, tmp_path):
     schema = json.loads((ROOT / "src/urdfcheck/schemas/report.schema.json").read_text())
     jsonschema.validate(data, schema)
     assert data["diff_base"]["new"]
+
+
+# --- the headline says what the gate judged: the new findings only ------------------------------------------
+
+def _debt_and_a_new_finding(repo):
+    edit(repo / CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [left_wheel_jointX]")
+    git("commit", "-qam", "debt", cwd=repo)
+    macro = repo / "agv_description/urdf/macros/components.xacro"
+    edit(macro, '<axis xyz="0 1 0"/>', '<axis xyz="0 0 0"/>')  # J006, an error, in another file
+
+
+def test_every_headline_counts_the_new_findings_the_gate_judged(repo, tmp_path):
+    """The Markdown headline said "2 findings at or above warning" while the exit code judged the 1 new one."""
+    _debt_and_a_new_finding(repo)
+    tmp = tmp_path / "tmp"
+    data = json.loads(lint("--diff-base", "HEAD", "--format", "json", cwd=repo, tmp=tmp).stdout)
+    assert [x["code"] for x in data["diff_base"]["new"]] == ["J006"] and data["diff_base"]["unchanged"] >= 1
+    above = sum(1 for f in data["findings"] if f["severity"] in ("error", "warning"))
+    assert above >= 2
+    assert data["diff_base"]["gate"] == {"fail_on": "warning", "gating": 1, "not_gating": above - 1}
+    rest = f"{above - 1} unchanged since HEAD at or above it, not gating"
+    res = lint("--diff-base", "HEAD", cwd=repo, tmp=tmp)
+    assert res.returncode == 1, res.stderr
+    assert f"Gate: 1 new finding at or above warning; {rest}." in res.stdout
+    res = lint("--diff-base", "HEAD", "--format", "markdown", cwd=repo, tmp=tmp)
+    assert res.returncode == 1
+    head = next(ln for ln in res.stdout.splitlines() if ln.startswith(("❌", "✅", "⚠️")))
+    assert head.startswith("❌ **1 new finding at or above warning** in ") and f" models ({rest}; " in head, head
+    assert f"{above} findings at or above" not in res.stdout
+    res = lint("--diff-base", "HEAD", "--format", "github", cwd=repo, tmp=tmp)
+    assert res.returncode == 1
+    assert res.stdout.splitlines()[-1].endswith(f"; 1 new finding at or above warning, {rest}"), res.stdout
+
+
+def test_a_pass_with_old_debts_says_no_new_finding_and_what_did_not_gate(repo, tmp_path):
+    _debt_and_a_new_finding(repo)
+    git("commit", "-qam", "more debt", cwd=repo)
+    tmp = tmp_path / "tmp"
+    data = json.loads(lint("--diff-base", "HEAD", "--format", "json", cwd=repo, tmp=tmp).stdout)
+    above = sum(1 for f in data["findings"] if f["severity"] in ("error", "warning"))
+    assert data["diff_base"]["gate"] == {"fail_on": "warning", "gating": 0, "not_gating": above} and above >= 2
+    res = lint("--diff-base", "HEAD", "--format", "markdown", cwd=repo, tmp=tmp)
+    assert res.returncode == 0, res.stderr
+    head = next(ln for ln in res.stdout.splitlines() if ln.startswith(("❌", "✅", "⚠️")))
+    assert head.startswith("✅ **no new findings at or above warning** in "), head
+    assert f" models ({above} unchanged since HEAD at or above it, not gating; " in head, head
+    res = lint("--diff-base", "HEAD", cwd=repo, tmp=tmp)
+    assert res.returncode == 0 and "Gate: no new findings at or above warning;" in res.stdout, res.stdout
+    res = lint("--diff-base", "HEAD", "--fail-on", "error", cwd=repo, tmp=tmp)  # the level as given
+    assert res.returncode == 0 and "Gate: no new findings at or above error;" in res.stdout, res.stdout
+
+
+def test_a_workspace_headline_counts_by_each_packages_level_as_the_exit_code_does():
+    """Package a fails on warnings, package b on errors only (its config): a new warning in b does not fail the run,
+    and the headline does not count it; one in a does."""
+    from urdfcheck.core.findings import Finding, Location, Severity
+    from urdfcheck.diff.findings import FindingsDiff
+    from urdfcheck.finish.result import Result
+    from urdfcheck.plan.plan import Target
+    from urdfcheck.report import render
+    from urdfcheck.request.request import Settings
+
+    ta = Target(Path("a/r.urdf"), settings=Settings(None, None, fail_on=Severity.WARNING))
+    tb = Target(Path("b/r.urdf"), settings=Settings(None, None, fail_on=Severity.ERROR))
+    for new_in, fails in (("b", False), ("a", True)):
+        old = Finding("J003", Severity.WARNING, "old", Location("a/r.urdf", 3), "x", model="a/r.urdf")
+        new = Finding("J004", Severity.WARNING, "new", Location(f"{new_in}/r.urdf", 4), "x", model=f"{new_in}/r.urdf")
+        by = [[old] + ([new] if new_in == "a" else []), [new] if new_in == "b" else []]
+        result = Result([old, new], [ta, tb], {}, by, fail_on=Severity.WARNING)
+        result.changes = FindingsDiff("HEAD", [new], [], 1)
+        assert result.failed() is fails
+        head = next(ln for ln in render("markdown", result, fail_on=result.fail_on).splitlines()
+                    if ln.startswith(("❌", "✅")))
+        n = "1 new finding" if fails else "no new findings"
+        assert head.startswith(("❌" if fails else "✅") + f" **{n} at or above each package's own level** in 2 models "
+                               "(1 unchanged since HEAD at or above it, not gating;"), head
+        assert f"Gate: {n} at or above each package's own level;" in render("text", result)

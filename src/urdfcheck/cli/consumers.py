@@ -24,7 +24,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("model", metavar="MODEL")
     p.add_argument("--consumer", default=None, metavar="NAMES",
                    help="comma-separated: mujoco, pinocchio, pybullet, yourdfpy, urdfdom, sdformat (default: all)")
-    p.add_argument("--format", choices=["text", "json", "markdown"], default="text")
+    p.add_argument("--format", choices=FORMATS, default="text")
     p.add_argument("--consumer-timeout", type=float, default=None, metavar="SECONDS",
                    help="wall-clock and CPU limit for each consumer (default 30)")
     p.add_argument("--consumer-memory", type=float, default=None, metavar="GIB",
@@ -67,8 +67,14 @@ def cmd_consumers(ns) -> int:
     return EXIT_FINDINGS if found else EXIT_CLEAN
 
 
+FORMATS = ("text", "json", "markdown")  # what `render` renders: the --format choices above
+
+
 def render(fmt: str, model_path: str, outcomes, found) -> str:
     from urdfcheck.report import finish_text
+
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown format {fmt!r} (choose from {', '.join(FORMATS)})")
 
     return finish_text(_render(fmt, model_path, outcomes, found), fmt)
 

@@ -12,6 +12,8 @@ from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, UsageError, add_opti
 
 
 def add_parser(sub) -> None:
+    from urdfcheck.report.diff import FORMATS
+
     p = sub.add_parser(
         "diff", help="what a change does to the robot (frames moved, joints, limits, inertia, contracts)",
         description="Compare the robots two trees describe (every model, deployment and variant that `lint` "
@@ -20,7 +22,7 @@ def add_parser(sub) -> None:
     p.add_argument("paths", nargs="*", metavar="PATH",
                    help="OLD NEW (two files or folders); with --git: the paths to compare (default .)")
     p.add_argument("--git", metavar="REV", help="compare the working tree with this revision (e.g. HEAD, origin/main)")
-    p.add_argument("--format", choices=["text", "json", "markdown"], default="text")
+    p.add_argument("--format", choices=FORMATS, default="text")
     p.add_argument("--output", "-o", metavar="FILE", help="write the report to FILE instead of stdout")
     p.add_argument("--fail-on-change", action="store_true", help="exit 1 when anything changed (frozen descriptions)")
     p.add_argument("--findings", action="store_true",

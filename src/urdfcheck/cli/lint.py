@@ -119,20 +119,7 @@ def _run(ns, usage_error) -> int:
         except ValueError as e:
             raise usage_error(str(e)) from None
         _write(path, extra, usage_error)
-    return 1 if _failed(result) else 0
-
-
-def _failed(result) -> bool:
-    """With --diff-base, --fail-on looks at the new findings only (a model that does not load still fails)."""
-    changes = getattr(result, "changes", None)
-    if changes is None:
-        return result.failed()
-    kept = result.findings
-    result.findings = changes.new
-    try:
-        return result.failed()
-    finally:
-        result.findings = kept
+    return 1 if result.failed() else 0  # with --diff-base: the new findings only (Result.gate)
 
 
 def _diff_base(ns, usage_error):
@@ -172,8 +159,12 @@ def _with_changes(fmt: str, text: str, result) -> str:
     if fmt == "json":
         import json
 
+        from urdfcheck.report import gate
+
         data = json.loads(text)
         data["diff_base"] = changes.as_dict()
+        gating, quiet = gate(result)  # what the exit code judged (each model's config level), as the headlines say
+        data["diff_base"]["gate"] = {"fail_on": str(result.fail_on), "gating": len(gating), "not_gating": len(quiet)}
         return json.dumps(data, indent=2, sort_keys=True) + "\n"
     return text
 

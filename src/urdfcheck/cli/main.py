@@ -64,7 +64,9 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
 
     rules = sub.add_parser("rules", help="list the rules, or show one rule's page")
     rules.add_argument("code", nargs="?", metavar="CODE")
-    rules.add_argument("--format", choices=["text", "json", "markdown"], default="text")
+    from urdfcheck.rules.docs import FORMATS as RULE_FORMATS
+
+    rules.add_argument("--format", choices=RULE_FORMATS, default="text")
     rules.set_defaults(func=cmd_rules)
 
     srv = sub.add_parser("server", help="a language server (LSP over stdio) for editors: findings as you type")

@@ -117,6 +117,8 @@ def _run(fn):
 
 
 def add_parsers(subparsers) -> None:
+    from urdfcheck.publisher import tree_view
+
     p = subparsers.add_parser("tf", help="transform between two frames for given joint values (like tf2_echo)",
                               description="Print the pose of TARGET in SOURCE (what `tf2_echo SOURCE TARGET` "
                               "prints) from the transforms robot_state_publisher would publish.")
@@ -127,7 +129,7 @@ def add_parsers(subparsers) -> None:
                    help="joint position (rad or m; repeatable)")
     p.add_argument("--zero-missing", action="store_true",
                    help="movable joints without --joint are at 0 (default: an error naming them)")
-    p.add_argument("--format", choices=["text", "json"], default="text")
+    p.add_argument("--format", choices=TF_FORMATS, default="text")
     p.add_argument("--precision", type=int, default=6, help="decimals in text output (default 6)")
     add_options(p, "tf")
     p.set_defaults(func=_run(cmd_tf))
@@ -152,7 +154,7 @@ def add_parsers(subparsers) -> None:
 
     p = subparsers.add_parser("tree", help="the TF tree robot_state_publisher builds (static/dynamic edges)")
     p.add_argument("model", metavar="MODEL")
-    p.add_argument("--format", choices=["text", "mermaid", "dot", "json"], default="text")
+    p.add_argument("--format", choices=tree_view.FORMATS, default="text")
     p.add_argument("--frame-prefix", default="", metavar="PREFIX")
     _add_ros(p)
     add_options(p, "tree")
@@ -168,7 +170,7 @@ def add_parsers(subparsers) -> None:
     p.add_argument("-n", "--configurations", dest="n", type=int, default=1000, metavar="N")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--tolerance", type=float, default=1e-9, help="metres and radians (default 1e-9)")
-    p.add_argument("--format", choices=["text", "json"], default="text")
+    p.add_argument("--format", choices=VERIFY_FORMATS, default="text")
     p.add_argument("--no-yourdfpy", action="store_true", help="compare with Pinocchio only")
     p.add_argument("--yourdfpy-samples", type=int, default=None, metavar="N",
                    help="configurations checked with yourdfpy (slow; default 50, 0 = all)")
@@ -187,7 +189,6 @@ def add_parsers(subparsers) -> None:
 def cmd_tf(ns) -> int:
     from urdfcheck.core.findings import clean_text
     from urdfcheck.publisher import TransformLookupError, lookup_matrix
-    from urdfcheck.publisher.kinematics import quat_from_matrix, rpy_from_matrix
 
     loaded = _load(ns)
     if loaded is None:
@@ -201,32 +202,44 @@ def cmd_tf(ns) -> int:
         m = lookup_matrix(model, ns.source, ns.target, joints, default=0.0 if ns.zero_missing else None)
     except TransformLookupError as e:
         raise UsageError(clean_text(str(e))) from None
+    sys.stdout.write(render_tf(ns.format, ns.source, ns.target, joints, m, ns.precision))
+    if any(x != x for row in m for x in row):
+        print("warning: NaN: a joint on the path has a zero axis (robot_state_publisher publishes NaN too)",
+              file=sys.stderr)
+    return EXIT_CLEAN
+
+
+TF_FORMATS = ("text", "json")  # what `render_tf` renders: `urdfcheck tf --format` offers these
+
+
+def render_tf(fmt: str, source: str, target: str, joints: dict, m, precision: int = 6) -> str:
+    """The pose of `target` in `source` (matrix `m`) as tf2_echo prints it, or as JSON."""
+    from urdfcheck.core.findings import clean_text
+    from urdfcheck.publisher.kinematics import quat_from_matrix, rpy_from_matrix
+
+    if fmt not in TF_FORMATS:
+        raise ValueError(f"unknown format {fmt!r} (choose from {', '.join(TF_FORMATS)})")
     t = [m[0][3], m[1][3], m[2][3]]
     q = list(quat_from_matrix(m))
     rpy = list(rpy_from_matrix(m))
-    if ns.format == "json":
-        print(json.dumps({"source": ns.source, "target": ns.target, "joints": joints, "translation": t,
-                          "rotation": q, "rpy": rpy, "rpy_degrees": [math.degrees(a) for a in rpy],
-                          "matrix": [list(r) for r in m]}, indent=2))
-        return EXIT_CLEAN
-    d = max(0, ns.precision)
+    if fmt == "json":
+        return json.dumps({"source": source, "target": target, "joints": joints, "translation": t,
+                           "rotation": q, "rpy": rpy, "rpy_degrees": [math.degrees(a) for a in rpy],
+                           "matrix": [list(r) for r in m]}, indent=2) + "\n"
+    d = max(0, precision)
 
     def vec(v):
         return "[" + ", ".join(f"{x:.{d}f}" for x in v) + "]"
 
-    print(f"Pose of {clean_text(ns.target)} in {clean_text(ns.source)} (tf2_echo {clean_text(ns.source)} "
-          f"{clean_text(ns.target)})")
-    print(f"- Translation: {vec(t)}")
-    print(f"- Rotation: in Quaternion (xyzw) {vec(q)}")
-    print(f"- Rotation: in RPY (radian) {vec(rpy)}")
-    print(f"- Rotation: in RPY (degree) {vec([math.degrees(a) for a in rpy])}")
-    print("- Matrix:")
-    for row in m:
-        print("  " + " ".join(f"{x:{d + 4}.{d}f}" for x in row))
-    if any(x != x for x in t + q):
-        print("warning: NaN: a joint on the path has a zero axis (robot_state_publisher publishes NaN too)",
-              file=sys.stderr)
-    return EXIT_CLEAN
+    lines = [f"Pose of {clean_text(target)} in {clean_text(source)} (tf2_echo {clean_text(source)} "
+             f"{clean_text(target)})",
+             f"- Translation: {vec(t)}",
+             f"- Rotation: in Quaternion (xyzw) {vec(q)}",
+             f"- Rotation: in RPY (radian) {vec(rpy)}",
+             f"- Rotation: in RPY (degree) {vec([math.degrees(a) for a in rpy])}",
+             "- Matrix:"]
+    lines += ["  " + " ".join(f"{x:{d + 4}.{d}f}" for x in row) for row in m]
+    return "\n".join(lines) + "\n"
 
 
 # --- publish ----------------------------------------------------------------------------------------------------
@@ -459,6 +472,15 @@ def format_report(report) -> str:
     return "\n".join(lines)
 
 
+VERIFY_FORMATS = ("text", "json")  # what `render_verify` renders: `urdfcheck verify --format` offers these
+
+
+def render_verify(fmt: str, report) -> str:
+    if fmt not in VERIFY_FORMATS:
+        raise ValueError(f"unknown format {fmt!r} (choose from {', '.join(VERIFY_FORMATS)})")
+    return json.dumps(report.to_dict(), indent=2) if fmt == "json" else format_report(report)
+
+
 def cmd_verify(ns) -> int:
     from urdfcheck.verify import compare as V
 
@@ -500,8 +522,5 @@ def cmd_verify(ns) -> int:
     finally:
         if progress is not None:
             progress.close()
-    if ns.format == "json":
-        print(json.dumps(report.to_dict(), indent=2))
-    else:
-        print(format_report(report))
+    print(render_verify(ns.format, report))
     return EXIT_CLEAN if report.passed else EXIT_FINDINGS

@@ -25,6 +25,7 @@ class Result(Record):
     libraries: int = 0  # xacro libraries the plan saw (not linted alone)
     read: set = frozenset()  # the files the expansions read
     baselined: int = 0  # findings the baseline file hid (said in the text report)
+    changes = None  # `lint --diff-base REV`: what the change does to the findings (diff.findings.FindingsDiff)
 
     def __init__(self, findings: list[Finding], targets: list[Target], models: dict | None = None,
                  by_target: list | None = None, fail_on: Severity = Severity.WARNING, root: str = ""):
@@ -92,19 +93,30 @@ class Result(Record):
         return max((f.severity for f in self.findings), default=None)
 
     def failed(self, fail_on: Severity | None = None) -> bool:
-        """Any finding at or above `fail_on`; by default the level of the config each finding's model was
-        planned under (a workspace run: each package's own `fail_on`; a flag sets them all)."""
-        if self.unchecked():  # a model that did not load was not checked: never a pass
+        """Any finding the gate judges (`gate`); a model that did not load was not checked: never a pass."""
+        if self.unchecked():
             return True
+        return bool(self.gate(fail_on)[0])
+
+    def gate(self, fail_on: Severity | None = None) -> tuple[list[Finding], list[Finding]]:
+        """(the findings that fail the run, those at or above their level that do not gate). A finding fails at or
+        above `fail_on`; by default the level of the config its model was planned under (a workspace run: each
+        package's own `fail_on`; a flag sets them all). With `changes` (`lint --diff-base`) only the new findings
+        gate: the unchanged ones at or above the level are the second list. Every report's headline says this."""
         if fail_on is not None:
-            return any(f.severity >= fail_on for f in self.findings)
-        levels: dict[tuple, Severity] = {}
-        for t, found in zip(self.targets, self.by_target):
-            level = t.settings.fail_on if t.settings is not None else self.fail_on
-            for f in found:
-                key = (f.code, f.location)
-                levels[key] = min(levels.get(key, level), level)
-        return any(f.severity >= levels.get((f.code, f.location), self.fail_on) for f in self.findings)
+            above = [f for f in self.findings if f.severity >= fail_on]
+        else:
+            levels: dict[tuple, Severity] = {}
+            for t, found in zip(self.targets, self.by_target):
+                level = t.settings.fail_on if t.settings is not None else self.fail_on
+                for f in found:
+                    key = (f.code, f.location)
+                    levels[key] = min(levels.get(key, level), level)
+            above = [f for f in self.findings if f.severity >= levels.get((f.code, f.location), self.fail_on)]
+        if self.changes is None:
+            return above, []
+        new = {id(f) for f in self.changes.new}
+        return [f for f in above if id(f) in new], [f for f in above if id(f) not in new]
 
 
 def _how_to_load(f: Finding) -> str:

@@ -125,7 +125,12 @@ def render_dot(data: dict) -> str:
     return "\n".join(lines)
 
 
+FORMATS = ("text", "mermaid", "dot", "json")  # what `render` renders: `urdfcheck tree --format` offers these
+
+
 def render(model, fmt: str = "text", frame_prefix: str = "", profile="ros2") -> str:
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown format {fmt!r} (choose from {', '.join(FORMATS)})")
     data = tree_data(model, frame_prefix, profile)
     if fmt == "json":
         return json.dumps(data, indent=2)
@@ -133,6 +138,4 @@ def render(model, fmt: str = "text", frame_prefix: str = "", profile="ros2") -> 
         return render_mermaid(data)
     if fmt == "dot":
         return render_dot(data)
-    if fmt == "text":
-        return render_text(data)
-    raise ValueError(f"unknown format {fmt!r}")
+    return render_text(data)

@@ -17,8 +17,14 @@ def clean_text(text, limit: int = 500) -> str:
 MAX_MERMAID_EDGES = 300  # GitHub renders larger diagrams poorly (and stops at its text limit)
 
 
+FORMATS = ("text", "json", "markdown")  # what `render` renders: `urdfcheck diff --format` offers these
+
+
 def render(fmt: str, result, shown=str) -> str:
     from urdfcheck.report import finish_text
+
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown format {fmt!r} (choose from {', '.join(FORMATS)})")
 
     if fmt == "json":
         return finish_text(json.dumps(result.as_dict(), indent=2, sort_keys=False) + "\n", "json")

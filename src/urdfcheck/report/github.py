@@ -51,10 +51,13 @@ def command(f, totals: dict | None = None) -> str:
 
 def render(result, **_) -> str:
     from urdfcheck.finish.collapse import variant_totals
+    from urdfcheck.report import gate_words
 
     totals = variant_totals(result.targets, result.root)
     out = [command(f, totals) for f in result.findings]
     n = len(result.findings)
     m = len(result.targets)
-    out.append(f"urdfcheck: {n} finding{'s' if n != 1 else ''} in {m} model{'s' if m != 1 else ''}")
+    words = gate_words(result, getattr(result, "fail_on", Severity.WARNING))
+    gated = f"; {words[1]}" + (f", {words[2]}" if words[2] else "") if words is not None else ""  # --diff-base
+    out.append(f"urdfcheck: {n} finding{'s' if n != 1 else ''} in {m} model{'s' if m != 1 else ''}{defuse(gated)}")
     return "\n".join(out) + "\n"

@@ -93,12 +93,23 @@ def _where(f) -> str:
 
 
 def _summary(result, fail_on: Severity, max_rows: int = MAX_ROWS) -> list[str]:
+    from urdfcheck.report import gate, gate_words
+
     total = _counts(result.findings)
-    failing = sum(1 for f in result.findings if f.severity >= fail_on)
+    failing = len(gate(result, fail_on)[0])  # what the exit code judges (with --diff-base: the new ones)
     n_models = len(result.targets)
     models = f"{n_models} model{'s' if n_models != 1 else ''}"
     why_not = getattr(result, "not_passed", lambda: None)()  # no robot, or a model that did not load
-    if failing:
+    words = gate_words(result, fail_on)
+    if words is not None:
+        failing = words[0]  # the exit code's own count
+    if words is not None and (failing or not why_not):
+        _, gating, rest = words
+        mark = "❌" if failing else "✅"
+        head = (f"{mark} **{md(gating)}** in {models} ({md(rest) + '; ' if rest else ''}"
+                f"{total[Severity.ERROR]} errors, {total[Severity.WARNING]} warnings, {total[Severity.INFO]} info "
+                "in all)")
+    elif failing:
         head = (f"❌ **{failing} finding{'s' if failing != 1 else ''} at or above {fail_on}** in {models} "
                 f"({total[Severity.ERROR]} errors, {total[Severity.WARNING]} warnings, "
                 f"{total[Severity.INFO]} info)")

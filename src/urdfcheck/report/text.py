@@ -60,9 +60,16 @@ def render(result, colour: bool = False, **_) -> str:
                                                                            Severity.INFO) if counts[s]]
         lines.append(f"Found {len(result.findings)} finding{'s' if len(result.findings) != 1 else ''} "
                      f"({', '.join(parts)}) in {n_models} model{'s' if n_models != 1 else ''}{deployed}.")
+        from urdfcheck.report import gate, gate_words
+
+        level = getattr(result, "fail_on", Severity.WARNING)
+        words = gate_words(result, level)
+        if words is not None:  # --diff-base: the exit code judges the new findings only
+            _, gating, rest = words
+            lines.append(f"Gate: {gating}" + (f"; {rest}" if rest else "") + ".")
         if why_not:
             lines.append(f"Not a pass: {why_not}.")
-        failing = [f for f in result.findings if f.severity >= getattr(result, "fail_on", Severity.WARNING)]
+        failing = gate(result, level)[0]
         if failing and all(f.code == "G001" for f in failing):
             # the model itself passed: only the mesh files it names are absent (a checkout without its meshes, Git
             # LFS not pulled, a package of meshes outside the checkout)

@@ -100,7 +100,16 @@ def page_text(r: rulebook.RuleInfo) -> str:
     return "\n".join(lines).rstrip() + "\n"
 
 
+FORMATS = ("text", "json", "markdown")  # what `page` and `listing` render: `urdfcheck rules --format` offers these
+
+
+def _known(fmt: str) -> None:
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown format {fmt!r} (choose from {', '.join(FORMATS)})")
+
+
 def page(code: str, fmt: str = "text") -> str | None:
+    _known(fmt)
     r = rulebook.catalogue().get(code)
     if r is None:
         return None
@@ -116,6 +125,7 @@ def _as_dict(r: rulebook.RuleInfo) -> dict:
 
 
 def listing(fmt: str = "text") -> str:
+    _known(fmt)
     rules = sorted(rulebook.catalogue().values(), key=lambda r: r.code)
     if fmt == "json":
         return json.dumps([_as_dict(r) for r in rules], indent=2, sort_keys=True) + "\n"
