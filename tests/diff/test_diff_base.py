@@ -62,6 +62,21 @@ def test_an_old_debt_that_moved_lines_is_unchanged_and_passes(repo, tmp_path):
     assert lint(cwd=repo, tmp=tmp_path / "tmp").returncode == 1  # without --diff-base: it fails
 
 
+def test_a_second_line_of_an_old_problem_is_new(repo, tmp_path):
+    """Two wrong joint names in one file are one finding with an `also` line; the change that adds the second
+    adds a problem though the finding's first line is the old one (it passed as "1 unchanged" before)."""
+    edit(repo / CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [left_wheel_jointX]")
+    git("commit", "-qam", "debt", cwd=repo)
+    edit(repo / CTRL, "right_wheel_names: [right_wheel_joint]", "right_wheel_names: [right_wheel_jointX]")
+    res = lint("--diff-base", "HEAD", "--format", "json", cwd=repo, tmp=tmp_path / "tmp")
+    assert res.returncode == 1, res.stderr
+    d = json.loads(res.stdout)["diff_base"]
+    assert [x["code"] for x in d["new"]] == ["C001"] and d["fixed"] == [] and d["unchanged"] == 0
+    git("commit", "-qam", "second debt", cwd=repo)  # both lines old: unchanged again
+    d = json.loads(lint("--diff-base", "HEAD", "--format", "json", cwd=repo, tmp=tmp_path / "tmp").stdout)["diff_base"]
+    assert (d["new"], d["fixed"], d["unchanged"]) == ([], [], 1)
+
+
 def test_a_fixed_finding_is_fixed(repo, tmp_path):
     edit(repo / CTRL, "left_wheel_names: [left_wheel_joint]", "left_wheel_names: [left_wheel_jointX]")
     git("commit", "-qam", "debt", cwd=repo)

@@ -132,6 +132,14 @@ def _mesh_named(message: str) -> str:
     return f"mesh {mesh_name(os.path.abspath(path), None)!r}" + message[m.end():]
 
 
+def also_keys(f: Finding, root: str) -> tuple:
+    """The loose keys (code, file, message) of the other lines a finding stands for (its `also`: the same problem
+    written again in the same file, one line in the reports). A change that adds such a line adds a problem even
+    though the finding's first line is unchanged."""
+    return tuple(sorted({key(f._replace(location=a.location, message=a.message, also=()), root)[:3]
+                         for a in f.also}))
+
+
 def places(f: Finding, root: str) -> tuple[tuple[str, str], ...]:
     """The (model relative to `root`, variant) pairs a finding was found in."""
     from urdfcheck.finish import baseline
@@ -161,20 +169,28 @@ def classify(rev: str, base: list[tuple[tuple, dict]], findings: list[Finding], 
         loose.setdefault(k[:3], []).append(j)
     taken = [False] * len(base)
     matched = [False] * len(findings)
+    grew = [False] * len(findings)
+
+    def take(i: int, j: int) -> None:
+        taken[j] = matched[i] = True
+        before = {tuple(x) for x in base[j][1].get("_also") or ()} | {base[j][0][:3]}
+        grew[i] = any(a not in before for a in also_keys(findings[i], root))
+
     for i, k in enumerate(keys):  # the same text at the same place
         free = [j for j in exact.get(k, ()) if not taken[j]]
         if free:
-            taken[free[0]] = matched[i] = True
+            take(i, free[0])
     for i, k in enumerate(keys):  # the line it points at was edited, the finding was not
         if matched[i]:
             continue
         free = [j for j in loose.get(k[:3], ()) if not taken[j]]
         if free:
-            taken[free[0]] = matched[i] = True
+            take(i, free[0])
+    matched = [m and not g for m, g in zip(matched, grew)]  # one more line of the same problem: new
     fixed, gone = [], []
     for (_, summary), t in zip(base, taken):
         where = summary.get("_places") or ()
-        summary = {k: v for k, v in summary.items() if k != "_places"}
+        summary = {k: v for k, v in summary.items() if k not in ("_places", "_also")}
         if not t:
             (gone if where and all(tuple(w) in unchecked for w in where) else fixed).append(summary)
     new = [f for f, m in zip(findings, matched) if not m]
@@ -234,7 +250,8 @@ def base_findings(rev: str, paths: list[str], make_request, *, start: str | None
             baseline._LINES_CACHE.clear()
             shown_wt = os.path.relpath(wt, here)
             out = [(key(f, tree.root), {**_scrubbed(_summary(f), tree.root, shown_wt),
-                                        "_places": places(f, tree.root)}) for f in result.findings]
+                                        "_places": places(f, tree.root), "_also": also_keys(f, tree.root)})
+                   for f in result.findings]
         finally:
             os.chdir(here)
         return wt, out, tree.notes
