@@ -159,3 +159,27 @@ def test_filter_new_api(tmp_path):
     baseline.write(path, [f1])
     assert baseline.filter_new(path, [f1]) == []
     assert baseline.filter_new(path, [f1, f2]) == [f2]
+
+
+def test_a_second_line_of_a_baselined_problem_is_new(tmp_path):
+    """Two wrong joint names in one controller file are one finding with an `also` line in the reports; the
+    baseline is matched line by line (before findings are grouped), so the added line is new on its own. A guard:
+    `--diff-base` once let the same change pass as "unchanged" (tests/diff/test_diff_base.py)."""
+    import shutil
+
+    from conftest import REPO
+
+    pkg = tmp_path / "agv"
+    shutil.copytree(REPO / "examples" / "agv", pkg)
+    ctrl = pkg / "config" / "agv_controllers.yaml"
+    ctrl.write_text(ctrl.read_text().replace("[left_wheel_joint]", "[left_wheel_jointX]"))
+    code, _, err = run_cli(["lint", "--write-baseline", "baseline.json"], cwd=pkg)
+    assert code == 0, err
+    assert run_cli(["lint", "--baseline", "baseline.json"], cwd=pkg)[0] == 0
+    ctrl.write_text(ctrl.read_text().replace("[right_wheel_joint]", "[right_wheel_jointX]"))
+    code, out, _ = run_cli(["lint", "--baseline", "baseline.json", "--format", "json"], cwd=pkg)
+    assert code == 1 and [f["code"] for f in json.loads(out)["findings"]] == ["C001"]
+    assert [f["location"]["line"] for f in json.loads(out)["findings"]] == [16]  # the new line only
+    # written again, the baseline holds both lines
+    assert run_cli(["lint", "--write-baseline", "baseline.json"], cwd=pkg)[0] == 0
+    assert run_cli(["lint", "--baseline", "baseline.json"], cwd=pkg)[0] == 0
