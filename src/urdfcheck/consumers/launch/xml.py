@@ -128,70 +128,27 @@ class _Subst:
 
     def _eval(self, expr: str) -> str | None:
         """`$(eval ...)` when it only joins strings and numbers with `+` from literals, `arg('x')` (or the
-        argument's bare name), `find('pkg')` and `dirname()`; evaluated here on the parsed tree, never by
+        argument's bare name), `find('pkg')` and `dirname()`; evaluated by consumers.launch.expr, never by
         Python. None otherwise (decided at launch time)."""
-        if len(expr) > 2000:
+        from urdfcheck.consumers.launch import expr as launch_expr
+
+        def name(arg: str):
+            v = self._one("arg", arg)
+            if v is None:
+                return None
+            # roslaunch reads a bare argument name with its type guessed ('true' is True), so that
+            # `$(eval simulation_mode and not gazebo)` is a boolean (ned_ros picks its model this way)
+            return {"true": True, "false": False}.get(v.strip().lower(), v)
+
+        def call(func: str, args: list):
+            if func in ("arg", "find") and len(args) == 1 and isinstance(args[0], str):
+                return self._one(func, args[0])
+            if func == "dirname" and not args:
+                return self._one("dirname", "")
             return None
-        import ast  # here: most launch files have no $(eval), and ast costs 5 ms to import
 
-        try:
-            tree = ast.parse(expr.strip(), mode="eval")
-        except (SyntaxError, ValueError, RecursionError, MemoryError):
-            return None
-
-        def ev(n, depth=0):
-            if depth > 30:
-                raise ValueError
-            if isinstance(n, ast.Expression):
-                return ev(n.body, depth + 1)
-            if isinstance(n, ast.Constant) and isinstance(n.value, (str, int, float)):
-                return n.value
-            if isinstance(n, ast.Name):
-                v = self._one("arg", n.id)
-                if v is None:
-                    raise ValueError
-                # roslaunch reads a bare argument name with its type guessed ('true' is True), so that
-                # `$(eval simulation_mode and not gazebo)` is a boolean (ned_ros picks its model this way)
-                return {"true": True, "false": False}.get(v.strip().lower(), v)
-            if isinstance(n, ast.BoolOp) and len(n.values) <= 16:
-                vals = [ev(x, depth + 1) for x in n.values]
-                if not all(isinstance(x, bool) for x in vals):
-                    raise ValueError
-                return all(vals) if isinstance(n.op, ast.And) else any(vals)
-            if isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.Not):
-                x = ev(n.operand, depth + 1)
-                if not isinstance(x, bool):
-                    raise ValueError
-                return not x
-            if isinstance(n, ast.Compare) and len(n.ops) == 1 and isinstance(n.ops[0], (ast.Eq, ast.NotEq)):
-                a, b = ev(n.left, depth + 1), ev(n.comparators[0], depth + 1)
-                if type(a) is not type(b):
-                    raise ValueError
-                return (a == b) if isinstance(n.ops[0], ast.Eq) else (a != b)
-            if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and not n.keywords:
-                args = [ev(a, depth + 1) for a in n.args]
-                if n.func.id in ("arg", "find") and len(args) == 1 and isinstance(args[0], str):
-                    v = self._one(n.func.id, args[0])
-                elif n.func.id == "dirname" and not args:
-                    v = self._one("dirname", "")
-                else:
-                    v = None
-                if v is None:
-                    raise ValueError
-                return v
-            if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Add):
-                a, b = ev(n.left, depth + 1), ev(n.right, depth + 1)
-                if isinstance(a, str) != isinstance(b, str) or isinstance(a, bool) or isinstance(b, bool):
-                    raise ValueError
-                out = a + b
-                if isinstance(out, str) and len(out) > 4096:
-                    raise ValueError
-                return out
-            raise ValueError
-
-        try:
-            v = ev(tree)
-        except (ValueError, TypeError, RecursionError):
+        v = launch_expr.evaluate(expr, name=name, call=call, typed=True)
+        if v is None:
             return None
         return v if isinstance(v, str) else str(v)
 
