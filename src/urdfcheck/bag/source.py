@@ -8,7 +8,6 @@ with an optional `topic` (default /joint_states): JointState fields (`name`, `po
 """
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Iterator
 
@@ -658,6 +657,8 @@ def text_items(path: str, runner: bool = False):
 
 
 def _text_messages(path, joint_topic, tf_topics, others, runner=False) -> Iterator[Message]:
+    from urdfcheck.publisher.messages import fields
+
     items = text_items(path, runner)
     counters: dict[str, int] = {}
     start = None
@@ -680,13 +681,11 @@ def _text_messages(path, joint_topic, tf_topics, others, runner=False) -> Iterat
                 start = stamp if start is None else start
                 yield Message(topic, i, stamp, kind, edges, str(item.get("callerid") or ""), start)
             else:
-                header = item.get("header")
-                st = _ns(item.get("stamp") if "stamp" in item or not isinstance(header, dict)
-                         else header.get("stamp"))
+                names, pos, vel, eff, stamp = fields(item)  # the keys as `urdfcheck publish` reads them
+                st = _ns(stamp)
                 start = st if start is None else start
                 yield Message(topic, i, st, "joint_state", JointStateMsg(
-                    tuple(str(x) for x in item.get("name") or ()), _floats(item.get("position")),
-                    _floats(item.get("velocity")), _floats(item.get("effort")), st),
+                    tuple(str(x) for x in names or ()), _floats(pos), _floats(vel), _floats(eff), st),
                     str(item.get("callerid") or ""), start)
         except (TypeError, ValueError, KeyError, OverflowError, AttributeError) as e:
             raise RecordingError(f"{topic} message {i + 1} cannot be read: {_reason(e)}") from None
@@ -775,33 +774,12 @@ def _floats(v) -> tuple:
                  for x in v)
 
 
-MAX_NS = 2**63 - 1  # rclcpp::Time is int64 nanoseconds: no message carries a stamp past it
-
-
 def _ns(stamp) -> int:
-    """Integer nanoseconds from float seconds, [sec, nanosec] or {sec, nanosec}; a stamp past int64 nanoseconds
-    is a ValueError (its offset from the first message would not fit a float where the finding says it)."""
-    ns = _ns_any(stamp)
-    if not -MAX_NS <= ns <= MAX_NS:
-        raise ValueError("stamp out of range (past int64 nanoseconds)")
-    return ns
+    """Integer nanoseconds of a stamp: publisher.messages.to_ns, the one reading of a stamp (float seconds,
+    [sec, nanosec], {sec, nanosec}; past int64 nanoseconds a ValueError)."""
+    from urdfcheck.publisher.messages import to_ns
 
-
-def _ns_any(stamp) -> int:
-    if stamp is None:
-        return 0
-    if isinstance(stamp, bool):
-        raise TypeError("a stamp is not a boolean")
-    if isinstance(stamp, (int, float)):
-        if not math.isfinite(stamp):
-            raise ValueError(f"stamp {stamp!r} is not finite")
-        sec = math.floor(stamp)
-        return int(sec) * NS + int(round((stamp - sec) * 1e9))
-    if isinstance(stamp, dict):
-        return int(stamp.get("sec", stamp.get("secs", 0))) * NS + int(stamp.get("nanosec", stamp.get("nsecs", 0)))
-    if isinstance(stamp, (list, tuple)) and len(stamp) == 2:
-        return int(stamp[0]) * NS + int(stamp[1])
-    raise TypeError(f"cannot read a stamp from {stamp!r}")
+    return to_ns(stamp)
 
 
 def _edge_from_dict(t, stamp) -> Edge:

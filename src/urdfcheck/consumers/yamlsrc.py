@@ -5,13 +5,12 @@
 
 Safety:
 
-* the pure-Python `yaml.SafeLoader` composer is used (libyaml's C composer recurses on the C stack and
-  crashes the process on deeply nested input; the Python one raises RecursionError, which we catch);
+* size, nesting and alias expansion are refused first by `core.yamldoor` (the one YAML door, with the
+  limits stated once), so libyaml's recursive C composer is safe;
 * only nodes are composed; no constructor runs on collections and no tag is honoured beyond the YAML core
   schema scalars (an unknown or `!!python/...` tag leaves the scalar as its plain text);
-* aliases are expanded by our own walk, which counts every node it produces and refuses documents that
-  expand beyond `max_nodes` (a "billion laughs" bomb) or refer to themselves;
-* files larger than `max_bytes` are refused before parsing.
+* aliases are expanded by our own walk, which counts every node it produces (a second bound, by the same
+  `max_nodes`) and refuses documents that refer to themselves.
 
 Every failure is a `ConsumerError(message, Location)`, never a traceback.
 """
@@ -21,17 +20,13 @@ import os
 
 from urdfcheck.consumers.common import ConsumerError
 from urdfcheck.consumers.yamldoc import YamlDoc
-from urdfcheck.core import lazyre
+from urdfcheck.core import yamldoor
 from urdfcheck.core.findings import Location
 from urdfcheck.core.yamlimport import yaml
 
-MAX_BYTES = 2 * 1024 * 1024
-MAX_NODES = 100_000
-MAX_DEPTH = 256
-
-_BRACKETS = lazyre.compile(r"[\[\]{}]")
-_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-_RUNS = lazyre.compile(r"[\[{][\[{\s,]*|(?:-[ \t]+)+")  # maximal runs of flow openers / block dashes
+# the guards and their limits are core.yamldoor's (the one YAML door); these name the consumer defaults
+MAX_BYTES = yamldoor.CONSUMER.max_bytes
+MAX_NODES = yamldoor.CONSUMER.max_nodes
 _MERGE_TAG = "tag:yaml.org,2002:merge"
 _STR_TAG = "tag:yaml.org,2002:str"
 _CORE_SCALARS = {
@@ -85,8 +80,8 @@ class _Builder:
 
     def build(self, node, path: tuple, depth: int = 0):
         self._tick(node)
-        if depth > MAX_DEPTH:
-            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused",
+        if depth > yamldoor.MAX_DEPTH:
+            raise ConsumerError(f"YAML nested deeper than {yamldoor.MAX_DEPTH} levels; refused",
                                 _mark_loc(self.file, node.start_mark))
         self.value_locs[path] = _mark_loc(self.file, node.start_mark)
         if isinstance(node, yaml.ScalarNode):
@@ -173,98 +168,32 @@ def _deep_update(dst: dict, src: dict) -> None:
             dst[k] = v
 
 
-def _children(node):
-    if isinstance(node, yaml.SequenceNode):
-        return list(node.value)
-    if isinstance(node, yaml.MappingNode):
-        return [n for kv in node.value for n in kv]
-    return []
-
-
-def _refuse_bombs(root, file: str, max_nodes: int) -> None:
-    """Cheap pre-pass: expanded node count with memoisation (aliases share node objects), so a bomb is
-    refused in time proportional to its text, before anything is expanded."""
-    sizes: dict[int, int] = {}
-    state: dict[int, int] = {}  # 1: on the stack, 2: done
-    stack = [(root, False)]
-    while stack:  # iterative post-order over unique nodes
-        node, expanded = stack.pop()
-        key = id(node)
-        if expanded:
-            total = 1 + sum(sizes.get(id(c), 1) for c in _children(node))
-            sizes[key] = min(total, max_nodes + 1)
-            state[key] = 2
-            continue
-        if key in state:
-            continue  # done already, or a cycle (the builder reports cycles)
-        state[key] = 1
-        stack.append((node, True))
-        for c in _children(node):
-            if id(c) not in state:
-                stack.append((c, False))
-    if sizes[id(root)] <= max_nodes:
-        return
-    node = root
-    while True:  # descend to the smallest node that is still too big: that is where the bomb is
-        big = [c for c in _children(node) if sizes.get(id(c), 1) > max_nodes]
-        if not big:
-            break
-        node = big[0]
-    raise ConsumerError(
-        f"YAML expands to more than {max_nodes} nodes through aliases (a YAML bomb); refused",
-        _mark_loc(file, node.start_mark),
-    )
-
-
-def _refuse_deep_events(text: str, file: str) -> None:
-    depth = 0
-    try:
-        for ev in yaml.parse(text, Loader=_LOADER):
-            if isinstance(ev, (yaml.SequenceStartEvent, yaml.MappingStartEvent)):
-                depth += 1
-                if depth > MAX_DEPTH:
-                    raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused",
-                                        _mark_loc(file, ev.start_mark))
-            elif isinstance(ev, (yaml.SequenceEndEvent, yaml.MappingEndEvent)):
-                depth -= 1
-    except yaml.YAMLError:
-        pass  # the composer below reports it, located
+def _refusal(e, file: str) -> ConsumerError:
+    """A core.yamldoor refusal, worded for a consumer file (C007 at the place)."""
+    if e.what == "size":
+        return ConsumerError(f"file is larger than {e.limit} bytes; refused", Location(file))
+    loc = Location(file, e.line, e.column) if e.line is not None else Location(file)
+    if e.what == "depth":
+        return ConsumerError(f"YAML nested deeper than {e.limit} levels; refused", loc)
+    return ConsumerError(f"YAML expands to more than {e.limit} nodes through aliases (a YAML bomb); refused", loc)
 
 
 def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_nodes: int = MAX_NODES) -> YamlDoc:
     """Parse one YAML document (the first non-empty one of a stream). Raises ConsumerError."""
-    if isinstance(text, bytes):
-        if len(text) > max_bytes:
-            raise ConsumerError(f"file is larger than {max_bytes} bytes; refused", Location(file))
-        try:
-            text = text.decode("utf-8-sig")
-        except UnicodeDecodeError as e:
-            line = text.count(b"\n", 0, e.start) + 1
-            raise ConsumerError(f"not valid UTF-8 ({e.reason})", Location(file, line)) from None
-    if len(text) > max_bytes:
-        raise ConsumerError(f"file is larger than {max_bytes} bytes; refused", Location(file))
-    for m in _RUNS.finditer(text):  # linear guard for the usual shapes; anything else deep ends in RecursionError
-        run = m.group()
-        if run.count("[") + run.count("{") + run.count("-") > MAX_DEPTH:
-            line = text.count("\n", 0, m.start()) + 1
-            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", Location(file, line))
-    depth = 0
-    for m in _BRACKETS.finditer(text):  # flow nesting with text between the brackets ([a, [b, [c ...)
-        depth += 1 if m.group() in "[{" else -1
-        if depth > MAX_DEPTH:
-            line = text.count("\n", 0, m.start()) + 1
-            raise ConsumerError(f"YAML nested deeper than {MAX_DEPTH} levels; refused", Location(file, line))
-    # With flow nesting bounded above and block nesting bounded by the file size (indentation grows with
-    # depth), libyaml's recursive C composer is safe, and ~10x faster than the pure-Python one.
-    # Compact block nesting (`? ? ? x`, 2 bytes a level) gets past the guards above and overflows the C stack:
-    # count the depth on libyaml's event stream first (its parser is not recursive).
-    _refuse_deep_events(text, file)
+    limits = yamldoor.Limits(max_bytes, max_nodes)
     try:
-        root = None
-        for node in yaml.compose_all(text, Loader=_LOADER):
-            if node is not None:
-                root = node
-                break
+        if isinstance(text, bytes):
+            yamldoor.check_size(len(text), limits)
+            try:
+                text = text.decode("utf-8-sig")
+            except UnicodeDecodeError as e:
+                line = text.count(b"\n", 0, e.start) + 1
+                raise ConsumerError(f"not valid UTF-8 ({e.reason})", Location(file, line)) from None
+        # the door bounds size, nesting (so libyaml's recursive C composer, ~10x faster than the pure-Python one,
+        # is safe) and alias expansion
+        root = yamldoor.compose_first(text, limits)
+    except yamldoor.Refused as e:
+        raise _refusal(e, file) from None
     except yaml.MarkedYAMLError as e:
         mark = e.problem_mark or e.context_mark
         msg = " ".join(x for x in (e.context, e.problem) if x) or "YAML syntax error"
@@ -275,7 +204,6 @@ def parse_yaml(text: str | bytes, file: str, *, max_bytes: int = MAX_BYTES, max_
         raise ConsumerError("YAML nested too deeply; refused", Location(file)) from None
     if root is None:
         return YamlDoc(file, None)
-    _refuse_bombs(root, file, max_nodes)
     b = _Builder(file, max_nodes)
     try:
         data = b.build(root, ())

@@ -275,38 +275,27 @@ class _Workspace:
         return pylaunch.inactive_include_files(path, tree, lambda name: self.find(name, path))
 
     def read(self, path: str, args: Mapping[str, str | None] | None):
-        """LaunchInfo for `path` with `args`, or a ConsumerError."""
-        import ast
-
-        from urdfcheck.consumers.common import ConsumerError, read_capped
-        from urdfcheck.consumers.launch import python as pylaunch
-        from urdfcheck.consumers.launch.xml import MAX_BYTES, launch_format, parse_launch
+        """LaunchInfo for `path` with `args`, or a ConsumerError; read and parsed once, through the launch door
+        (consumers.launch.xml.parse_launch), the Python tree kept for `inactive_includes`."""
+        from urdfcheck.consumers.common import ConsumerError
+        from urdfcheck.consumers.launch.xml import launch_format, parse_launch, python_tree, read_source
 
         got = self._parsed.get(path)
         if got is None:
             try:
-                data = read_capped(path, MAX_BYTES, "launch file")
+                data = read_source(path)
                 self.raw[path] = data
-                if launch_format(path) == "py":
-                    try:
-                        got = ast.parse(data.decode("utf-8-sig"), filename=path)
-                    except (SyntaxError, ValueError, UnicodeDecodeError, RecursionError, MemoryError):
-                        got = ConsumerError("Python launch file not readable", Location(path))
-                else:
-                    got = data
+                got = python_tree(data, path) if launch_format(path) == "py" else data
             except ConsumerError as e:
                 got = e
             self._parsed[path] = got
         if isinstance(got, ConsumerError):
             return got
         try:
-            if isinstance(got, bytes):
-                return parse_launch(got, path, args=args, packages=self.package_map(path))
-            return pylaunch.read(path, got, args, lambda name: self.find(name, path))
+            return parse_launch(got, path, args=args, packages=self.package_map(path),
+                                find_package=lambda name: self.find(name, path))
         except ConsumerError as e:
             return e
-        except (RecursionError, MemoryError, ValueError):
-            return ConsumerError("launch file not understood", Location(path))
 
 
 def _below_root(path: str, root: str) -> bool:

@@ -72,6 +72,19 @@ def _to_ns(stamp) -> int:
     raise TypeError(f"cannot read a stamp from {stamp!r}: use float seconds or (sec, nanosec)")
 
 
+def fields(d: dict) -> tuple:
+    """The one reading of a JointState mapping's keys (issue 42), for `urdfcheck publish` and for a text recording
+    (bag.source): (names, positions, velocities, efforts, stamp), each None when absent. Keys: ``name``/``names``,
+    ``position``/``positions``, ``velocity``, ``effort``, and ``stamp`` or ``header: {stamp: ...}`` (``ros2 topic
+    echo``'s shape). The values are the caller's to convert: a recording keeps NaN samples (what the robot
+    published, which the B rules judge), `publish` refuses anything but numbers (what it replays)."""
+    stamp = d.get("stamp")
+    if stamp is None and isinstance(d.get("header"), dict):
+        stamp = d["header"].get("stamp")
+    return (d.get("name", d.get("names")), d.get("position", d.get("positions")), d.get("velocity"),
+            d.get("effort"), stamp)
+
+
 class JointState(TupleRecord):
     """sensor_msgs/JointState reduced to what robot_state_publisher reads."""
 
@@ -91,11 +104,9 @@ class JointState(TupleRecord):
         """
         if not isinstance(d, dict):
             raise TypeError(f"a JointState must be a mapping, not {type(d).__name__}")
-        names = d.get("name", d.get("names", []))
-        positions = d.get("position", d.get("positions", []))
-        stamp = d.get("stamp")
-        if stamp is None and isinstance(d.get("header"), dict):
-            stamp = d["header"].get("stamp")
+        names, positions, _, _, stamp = fields(d)
+        names = [] if names is None else names
+        positions = [] if positions is None else positions
         if isinstance(names, str) or not isinstance(names, (list, tuple)):
             raise TypeError("'name' must be a list of joint names")
         if not isinstance(positions, (list, tuple)):

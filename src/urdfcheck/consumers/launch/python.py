@@ -835,42 +835,12 @@ def _read_node(r: PyLaunch, info, call: ast.Call, pushed: dict) -> None:
 
 def _python_expression(text: str) -> Any:
     """A PythonExpression whose pieces are all known, when it only uses literals, `+`, `==`/`!=`, `not`,
-    `and`/`or` and `x if c else y` (evaluated here, never by Python); otherwise None."""
-    if UNKNOWN in text or len(text) > 2000:
-        return None
-    try:
-        tree = ast.parse(text.strip(), mode="eval")
-    except (SyntaxError, ValueError, RecursionError):
-        return None
+    `and`/`or` and `x if c else y` (evaluated by consumers.launch.expr, never by Python); otherwise None."""
+    from urdfcheck.consumers.launch import expr as launch_expr
 
-    def ev(n, depth=0):
-        if depth > 30:
-            raise ValueError
-        if isinstance(n, ast.Expression):
-            return ev(n.body, depth + 1)
-        if isinstance(n, ast.Constant) and isinstance(n.value, (str, int, float, bool)):
-            return n.value
-        if isinstance(n, ast.Name) and n.id in ("true", "false"):
-            return n.id == "true"
-        if isinstance(n, ast.IfExp):
-            return ev(n.body, depth + 1) if ev(n.test, depth + 1) else ev(n.orelse, depth + 1)
-        if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Add):
-            a, b = ev(n.left, depth + 1), ev(n.right, depth + 1)
-            if type(a) is not type(b) or not isinstance(a, (str, int, float)):
-                raise ValueError
-            return a + b
-        if isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.Not):
-            return not ev(n.operand, depth + 1)
-        if isinstance(n, ast.BoolOp):
-            vals = [ev(v, depth + 1) for v in n.values]
-            return all(vals) if isinstance(n.op, ast.And) else any(vals)
-        if isinstance(n, ast.Compare) and len(n.ops) == 1 and isinstance(n.ops[0], (ast.Eq, ast.NotEq)):
-            same = ev(n.left, depth + 1) == ev(n.comparators[0], depth + 1)
-            return same if isinstance(n.ops[0], ast.Eq) else not same
-        raise ValueError
-
-    try:
-        v = ev(tree)
-    except (ValueError, RecursionError):
+    if UNKNOWN in text:
+        return None
+    v = launch_expr.evaluate(text, name={"true": True, "false": False}.get, conditional=True)
+    if v is None:
         return None
     return v if isinstance(v, str) else ("true" if v is True else "false" if v is False else str(v))

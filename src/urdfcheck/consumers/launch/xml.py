@@ -128,70 +128,27 @@ class _Subst:
 
     def _eval(self, expr: str) -> str | None:
         """`$(eval ...)` when it only joins strings and numbers with `+` from literals, `arg('x')` (or the
-        argument's bare name), `find('pkg')` and `dirname()`; evaluated here on the parsed tree, never by
+        argument's bare name), `find('pkg')` and `dirname()`; evaluated by consumers.launch.expr, never by
         Python. None otherwise (decided at launch time)."""
-        if len(expr) > 2000:
+        from urdfcheck.consumers.launch import expr as launch_expr
+
+        def name(arg: str):
+            v = self._one("arg", arg)
+            if v is None:
+                return None
+            # roslaunch reads a bare argument name with its type guessed ('true' is True), so that
+            # `$(eval simulation_mode and not gazebo)` is a boolean (ned_ros picks its model this way)
+            return {"true": True, "false": False}.get(v.strip().lower(), v)
+
+        def call(func: str, args: list):
+            if func in ("arg", "find") and len(args) == 1 and isinstance(args[0], str):
+                return self._one(func, args[0])
+            if func == "dirname" and not args:
+                return self._one("dirname", "")
             return None
-        import ast  # here: most launch files have no $(eval), and ast costs 5 ms to import
 
-        try:
-            tree = ast.parse(expr.strip(), mode="eval")
-        except (SyntaxError, ValueError, RecursionError, MemoryError):
-            return None
-
-        def ev(n, depth=0):
-            if depth > 30:
-                raise ValueError
-            if isinstance(n, ast.Expression):
-                return ev(n.body, depth + 1)
-            if isinstance(n, ast.Constant) and isinstance(n.value, (str, int, float)):
-                return n.value
-            if isinstance(n, ast.Name):
-                v = self._one("arg", n.id)
-                if v is None:
-                    raise ValueError
-                # roslaunch reads a bare argument name with its type guessed ('true' is True), so that
-                # `$(eval simulation_mode and not gazebo)` is a boolean (ned_ros picks its model this way)
-                return {"true": True, "false": False}.get(v.strip().lower(), v)
-            if isinstance(n, ast.BoolOp) and len(n.values) <= 16:
-                vals = [ev(x, depth + 1) for x in n.values]
-                if not all(isinstance(x, bool) for x in vals):
-                    raise ValueError
-                return all(vals) if isinstance(n.op, ast.And) else any(vals)
-            if isinstance(n, ast.UnaryOp) and isinstance(n.op, ast.Not):
-                x = ev(n.operand, depth + 1)
-                if not isinstance(x, bool):
-                    raise ValueError
-                return not x
-            if isinstance(n, ast.Compare) and len(n.ops) == 1 and isinstance(n.ops[0], (ast.Eq, ast.NotEq)):
-                a, b = ev(n.left, depth + 1), ev(n.comparators[0], depth + 1)
-                if type(a) is not type(b):
-                    raise ValueError
-                return (a == b) if isinstance(n.ops[0], ast.Eq) else (a != b)
-            if isinstance(n, ast.Call) and isinstance(n.func, ast.Name) and not n.keywords:
-                args = [ev(a, depth + 1) for a in n.args]
-                if n.func.id in ("arg", "find") and len(args) == 1 and isinstance(args[0], str):
-                    v = self._one(n.func.id, args[0])
-                elif n.func.id == "dirname" and not args:
-                    v = self._one("dirname", "")
-                else:
-                    v = None
-                if v is None:
-                    raise ValueError
-                return v
-            if isinstance(n, ast.BinOp) and isinstance(n.op, ast.Add):
-                a, b = ev(n.left, depth + 1), ev(n.right, depth + 1)
-                if isinstance(a, str) != isinstance(b, str) or isinstance(a, bool) or isinstance(b, bool):
-                    raise ValueError
-                out = a + b
-                if isinstance(out, str) and len(out) > 4096:
-                    raise ValueError
-                return out
-            raise ValueError
-
-        try:
-            v = ev(tree)
-        except (ValueError, TypeError, RecursionError):
+        v = launch_expr.evaluate(expr, name=name, call=call, typed=True)
+        if v is None:
             return None
         return v if isinstance(v, str) else str(v)
 
@@ -761,37 +718,60 @@ def launch_format(path: str) -> str | None:
     return None
 
 
-def parse_launch(data: bytes | str, path: str, *, args: Mapping[str, str] | None = None,
-                 packages: Mapping[str, str] | None = None) -> LaunchInfo:
-    """Read launch file content. Raises ConsumerError when it cannot be read at all."""
+def read_source(path: str) -> bytes:
+    """The bytes of a launch file, through the door, capped at MAX_BYTES. Raises ConsumerError."""
+    from urdfcheck.consumers.common import read_capped
+
+    return read_capped(path, MAX_BYTES, "launch file")
+
+
+def python_tree(raw: bytes, path: str) -> ast.AST:
+    """The syntax tree of a Python launch file, never run. Raises ConsumerError."""
+    import ast
+
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise ConsumerError(f"not valid UTF-8 ({e.reason})", Location(path)) from None
+    try:
+        return ast.parse(text, filename=path)
+    except SyntaxError as e:
+        raise ConsumerError(f"Python syntax error: {e.msg}", Location(path, e.lineno, e.offset)) from None
+    except (RecursionError, MemoryError, ValueError):
+        raise ConsumerError("Python launch file nested too deeply or otherwise unparsable; refused",
+                            Location(path)) from None
+
+
+def parse_launch(data: bytes | str | ast.AST, path: str, *, args: Mapping[str, str | None] | None = None,
+                 packages: Mapping[str, str] | None = None, find_package=None) -> LaunchInfo:
+    """THE entry point for launch content (issue 42): every reader of a launch file (a config's, zero-config
+    discovery, the deployment finder) comes through here, so a limit or a refusal is made once. `data`: the bytes
+    (`read_source`), or the tree `python_tree` made of them (a reader that keeps it for other questions).
+    `find_package(name)`: the Python reader's package finder, when the caller knows more than `packages`.
+    Raises ConsumerError when it cannot be read at all."""
+    if not isinstance(data, (bytes, str)):
+        return _guarded(lambda: _read_python(path, data, args, packages, find_package), path)
     raw = data.encode("utf-8") if isinstance(data, str) else data
     if len(raw) > MAX_BYTES:
         raise ConsumerError(f"launch file is larger than {MAX_BYTES} bytes; refused", Location(path))
+    return _guarded(lambda: _parse(raw, path, args, packages, find_package), path)
+
+
+def _guarded(read, path: str) -> LaunchInfo:
     try:
-        return _parse(raw, path, args, packages)
+        return read()
     except (RecursionError, MemoryError):  # any reader: a located error, never a traceback (issue 19)
         raise ConsumerError("launch file nested too deeply or too large to read; refused", Location(path)) from None
+    except ValueError:
+        raise ConsumerError("launch file not understood", Location(path)) from None
 
 
-def _parse(raw: bytes, path: str, args, packages) -> LaunchInfo:
+def _parse(raw: bytes, path: str, args, packages, find_package) -> LaunchInfo:
     fmt = launch_format(path)
     if fmt == "yaml":
         return _YamlReader(parse_yaml(raw, path), args, packages).run()
     if fmt == "py":
-        try:
-            text = raw.decode("utf-8-sig")
-        except UnicodeDecodeError as e:
-            raise ConsumerError(f"not valid UTF-8 ({e.reason})", Location(path)) from None
-        import ast
-
-        try:
-            tree = ast.parse(text, filename=path)
-        except SyntaxError as e:
-            raise ConsumerError(f"Python syntax error: {e.msg}", Location(path, e.lineno, e.offset)) from None
-        except (RecursionError, MemoryError, ValueError):
-            raise ConsumerError("Python launch file nested too deeply or otherwise unparsable; refused",
-                                Location(path)) from None
-        return _read_python(path, tree, args, packages)
+        return _read_python(path, python_tree(raw, path), args, packages, find_package)
     if fmt == "xml":
         root = _xml_root(raw, path)
         return _XmlReader(path, root, args, packages).run()
@@ -799,28 +779,28 @@ def _parse(raw: bytes, path: str, args, packages) -> LaunchInfo:
                         Location(path))
 
 
-def _read_python(path: str, tree: ast.AST, args, packages) -> LaunchInfo:
+def _read_python(path: str, tree: ast.AST, args, packages, find_package=None) -> LaunchInfo:
     """The one Python reader (`pylaunch.read`), whoever asks: a config's launch files, zero-config discovery
     and the deployment finder read the same `LaunchInfo` from the same file."""
     from urdfcheck.consumers.launch import python as pylaunch
 
+    if find_package is not None:
+        return pylaunch.read(path, tree, args, find_package)
     known = dict(packages or {})
     own: list = []
 
-    def find_package(name: str) -> str | None:
+    def find_in_map(name: str) -> str | None:
         if name in known:
             return known[name]
         if not own:
             own.append(_own(path))
         return own[0][1] if own[0][0] == name else None
 
-    return pylaunch.read(path, tree, args, find_package)
+    return pylaunch.read(path, tree, args, find_in_map)
 
 
 def read_launch(path: str | os.PathLike, *, args: Mapping[str, str] | None = None,
                 packages: Mapping[str, str] | None = None) -> LaunchInfo:
     """Read a launch file. Raises ConsumerError (unreadable, too large, bad syntax)."""
-    from urdfcheck.consumers.common import read_capped
-
     file = str(path)
-    return parse_launch(read_capped(file, MAX_BYTES, "launch file"), file, args=args, packages=packages)
+    return parse_launch(read_source(file), file, args=args, packages=packages)
