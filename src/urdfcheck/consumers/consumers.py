@@ -46,6 +46,9 @@ class Consumers(Record):
     moveit: list = ()  # consumers.moveit.MoveItConfig: the MoveIt configs paired with the model (issue 41)
 
     plugin_files: tuple = ()
+    # real paths of the `controllers:`/`drivers:` files an unvouched config declares that nothing known to run with
+    # the model starts (`unstarted`): their odometry transforms may conflict, never publish (issue 36)
+    claim_only: frozenset = frozenset()
 
     def settle(self, model) -> Consumers:
         """Add the package's unread parameter files, once, now that the model is known; and, for a deployment or
@@ -245,6 +248,8 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
                  "launch": list(mc.launch), "localization": list(mc.localization)}
     out.pair([f for fs in out.files.values() for f in fs], "config")
     out.pair([li.path for li in out.launch], "config")  # what the named launch files include runs with them
+    if config is not None and not getattr(config, "vouched", True):
+        out.claim_only = unstarted(mc, out)
     from urdfcheck.consumers.openworld import launch_unknowns
 
     # the config declares the world, but for what its launch files run that was not understood (issue 20)
@@ -477,6 +482,38 @@ def consumers_of(model, ctx) -> Consumers:
     packages = {k: str(v) for k, v in getattr(resolver, "explicit", {}).items()} if resolver is not None else {}
     return consumers_near(getattr(exp, "entry", None) or model.source, model, packages=packages,
                           config=getattr(ctx, "config", None))
+
+
+def unstarted(mc, out: Consumers) -> frozenset:
+    """The declared controller and driver files (real paths) that a config the runner did not vouch for makes run
+    with the model, and zero config would not (issue 36). Zero config counts a file's odometry transform when a
+    launch file that starts robot_state_publisher (or one it includes) loads it, and, in a package without such a
+    launch file, when the file lies in the model's package. A file the config merely names counts as a claim: it
+    may conflict with another publisher, never publish a frame (rules.checks.tf.graph.vouched_claims)."""
+    declared = {os.path.realpath(p) for p in (*mc.controllers, *(d.file for d in mc.drivers))}
+    if not declared:
+        return frozenset()
+    by_path = {os.path.realpath(li.path): li for li in out.launch}
+    chain = [r for r, li in by_path.items() if li.state_publishers]
+    started: set = set()
+    if chain:
+        seen = set(chain)
+        while chain:
+            li = by_path[chain.pop()]
+            started.update(os.path.realpath(f) for f, _ in li.param_files)
+            for inc in li.includes:
+                real = os.path.realpath(inc.file) if inc.file else None
+                if real in by_path and real not in seen:
+                    seen.add(real)
+                    chain.append(real)
+    else:
+        from urdfcheck.load.packages import enclosing_package
+
+        pkg = enclosing_package(Path(os.path.abspath(mc.path)).parent)
+        if pkg is not None:
+            root = os.path.realpath(pkg)
+            started = {p for p in declared if p.startswith(root.rstrip(os.sep) + os.sep)}
+    return frozenset(declared - started)
 
 
 def _owner_source(config) -> str:

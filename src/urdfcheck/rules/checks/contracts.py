@@ -21,14 +21,13 @@ from urdfcheck.consumers.common import as_bool
 from urdfcheck.consumers.consumers import Consumers
 from urdfcheck.consumers.consumers import consumers_of as consumers
 from urdfcheck.consumers.controllers import JSB, JSC
-from urdfcheck.consumers.tfclaims import UNTRUSTED
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
-from urdfcheck.rules.checks.tf.graph import untrusted_hint
+from urdfcheck.rules.checks.tf.graph import claim_only, untrusted_hint
 from urdfcheck.rules.contracts.wheels import check_drive
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)
@@ -637,9 +636,9 @@ def unknown_frame(model: Model, ctx: Context) -> Iterator[Problem]:
         if not name or _unresolved(name) or name in links or (name, v.loc) in seen:
             continue
         # a frame somebody else publishes is in the tree; the user's own odometry claim does not count, nor an
-        # untrusted config's declaration (consumers.tfclaims.UNTRUSTED)
+        # untrusted config's declaration or a file only it names (rules.checks.tf.graph.claim_only)
         others = {f for cl in g.claims if cl.owner != owner and not cl.owner.endswith(owner)
-                  and cl.source != UNTRUSTED for f in (cl.parent, cl.child)}
+                  and not claim_only(g, cl) for f in (cl.parent, cl.child)}
         if name in others:
             continue
         seen.add((name, v.loc))

@@ -49,6 +49,7 @@ class TFProblem(TupleRecord):
 class TFGraph(Record):
     # notes: (message, Location): claims left out (conditional launch nodes)
     _fields = ('claims', 'notes')
+    claim_only: frozenset = frozenset()  # claims that may conflict, never publish (`claim_only`; issue 36)
 
     def __init__(self, claims: list[TFClaim] | None = None, notes: list | None = None, _seen: set | None = None):
         self.claims = [] if claims is None else claims
@@ -99,22 +100,31 @@ class TFGraph(Record):
         return any(c.parent == f or c.child == f for c in self.claims)
 
 
+def claim_only(g: TFGraph, c: TFClaim) -> bool:
+    """Does `c` only claim (a conflict), never publish? An untrusted config's `tf_owners` declaration, or the
+    odometry of a controller or driver file such a config names that nothing known to run with the model starts."""
+    return c.source == UNTRUSTED or c in g.claim_only
+
+
 def vouched_claims(g: TFGraph) -> TFGraph:
     """`g` without the declarations of a config the runner did not vouch for: what may count as published."""
-    if not any(c.source == UNTRUSTED for c in g.claims):
+    if not any(claim_only(g, c) for c in g.claims):
         return g
-    return TFGraph([c for c in g.claims if c.source != UNTRUSTED])
+    return TFGraph([c for c in g.claims if not claim_only(g, c)])
 
 
 def untrusted_hint(g: TFGraph, frames) -> str:
     """What to say when a frame is published only by an untrusted config's declaration."""
-    said = [c for c in g.claims if c.source == UNTRUSTED and ({c.parent, c.child} & set(frames))]
+    said = [c for c in g.claims if claim_only(g, c) and ({c.parent, c.child} & set(frames))]
     if not said:
         return ""
     c = said[0]
-    return (f"; the config's tf_owners declares {c.parent} -> {c.child} ({c.owner}, {c.loc.shown()}), which counts "
-            "only in a config the runner names with --config FILE --trust-config (or --config-from REV): one found "
-            "in the checkout may add a publisher, never publish a frame")
+    how = ("counts only in a config the runner names with --config FILE --trust-config (or --config-from REV): one "
+           "found in the checkout may add a publisher, never publish a frame")
+    if c.source != UNTRUSTED:
+        return (f"; {c.owner} ({c.loc.shown()}) would publish {c.parent} -> {c.child}, but only the config names its "
+                f"file for this model (no launch file that starts robot_state_publisher loads it), which {how}")
+    return f"; the config's tf_owners declares {c.parent} -> {c.child} ({c.owner}, {c.loc.shown()}), which {how}"
 
 
 def declared_matches(owner: str, claim: TFClaim) -> bool:
@@ -160,6 +170,12 @@ def deployment_graph(model, c) -> TFGraph:
 
         g.extend(plugin_claims(model))
     add_declared(g, c.tf_owners)  # after the claims read from files: a declaration may name one of them
+    only = getattr(c, "claim_only", ())
+    if only:  # an unvouched config's declared files that nothing starts with the model (consumers.unstarted)
+        import os
+
+        g.claim_only = frozenset(cl for cl in g.claims if cl.source in ("controller", "driver")
+                                 and os.path.realpath(cl.loc.file) in only)
     c._graph_cache = (key, g)
     return g
 
