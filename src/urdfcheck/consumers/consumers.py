@@ -46,9 +46,18 @@ class Consumers(Record):
     moveit: list = ()  # consumers.moveit.MoveItConfig: the MoveIt configs paired with the model (issue 41)
 
     plugin_files: tuple = ()
-    # real paths of the `controllers:`/`drivers:` files an unvouched config declares that nothing known to run with
-    # the model starts (`unstarted`): their odometry transforms may conflict, never publish (issue 36)
-    claim_only: frozenset = frozenset()
+    # for a config the runner did not vouch for (`run_with`, issue 36): the files whose transforms count as published
+    # (real paths), and a folder whose every file does; None: every file read counts
+    run_files: frozenset | None = None
+    run_root: str | None = None
+
+    def runs(self, path: str) -> bool:
+        """Does a transform read from `path` count as published (not only claimed)?"""
+        if self.run_files is None:
+            return True
+        real = os.path.realpath(path)
+        root = self.run_root
+        return real in self.run_files or bool(root and (real == root or real.startswith(root.rstrip(os.sep) + os.sep)))
 
     def settle(self, model) -> Consumers:
         """Add the package's unread parameter files, once, now that the model is known; and, for a deployment or
@@ -249,7 +258,7 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
     out.pair([f for fs in out.files.values() for f in fs], "config")
     out.pair([li.path for li in out.launch], "config")  # what the named launch files include runs with them
     if config is not None and not getattr(config, "vouched", True):
-        out.claim_only = unstarted(mc, out)
+        out.run_files, out.run_root = run_with(mc, out)
     from urdfcheck.consumers.openworld import launch_unknowns
 
     # the config declares the world, but for what its launch files run that was not understood (issue 20)
@@ -484,36 +493,36 @@ def consumers_of(model, ctx) -> Consumers:
                           config=getattr(ctx, "config", None))
 
 
-def unstarted(mc, out: Consumers) -> frozenset:
-    """The declared controller and driver files (real paths) that a config the runner did not vouch for makes run
-    with the model, and zero config would not (issue 36). Zero config counts a file's odometry transform when a
-    launch file that starts robot_state_publisher (or one it includes) loads it, and, in a package without such a
-    launch file, when the file lies in the model's package. A file the config merely names counts as a claim: it
-    may conflict with another publisher, never publish a frame (rules.checks.tf.graph.vouched_claims)."""
-    declared = {os.path.realpath(p) for p in (*mc.controllers, *(d.file for d in mc.drivers))}
-    if not declared:
-        return frozenset()
-    by_path = {os.path.realpath(li.path): li for li in out.launch}
-    chain = [r for r, li in by_path.items() if li.state_publishers]
-    started: set = set()
-    if chain:
-        seen = set(chain)
-        while chain:
-            li = by_path[chain.pop()]
-            started.update(os.path.realpath(f) for f, _ in li.param_files)
-            for inc in li.includes:
-                real = os.path.realpath(inc.file) if inc.file else None
-                if real in by_path and real not in seen:
-                    seen.add(real)
-                    chain.append(real)
-    else:
-        from urdfcheck.load.packages import enclosing_package
+def run_with(mc, out: Consumers) -> tuple[frozenset, str | None]:
+    """What runs with the model by the files alone, for a config the runner did not vouch for (issue 36): the
+    (real paths of the) files whose transforms count as published, and a folder whose every file counts.
 
-        pkg = enclosing_package(Path(os.path.abspath(mc.path)).parent)
-        if pkg is not None:
-            root = os.path.realpath(pkg)
-            started = {p for p in declared if p.startswith(root.rstrip(os.sep) + os.sep)}
-    return frozenset(declared - started)
+    Such a config declares which files run together; zero config counts only a launch file that starts
+    robot_state_publisher with the model (or includes one that does), what it includes and the parameter files
+    they load, each such launch file a deployment of its own. So: the files every declared launch file that
+    reaches a robot_state_publisher runs; with none, the model's package (zero config reads the files beside the
+    model). The `localization:` files too: they make the twin "consumers found beside it" (plan.plan). A file the
+    config merely names may claim a transform (a conflict), never publish one (rules.checks.tf.graph.claim_only).
+    """
+    by_path = {os.path.realpath(li.path): li for li in out.launch}
+    chains = []
+    for top in mc.launch:
+        todo, seen = [os.path.realpath(top)], set()
+        while todo:
+            real = todo.pop()
+            if real in seen or real not in by_path:
+                continue
+            seen.add(real)
+            todo.extend(os.path.realpath(inc.file) for inc in by_path[real].includes if inc.file)
+        if any(by_path[r].state_publishers for r in seen):
+            chains.append(seen | {os.path.realpath(f) for r in seen for f, _ in by_path[r].param_files})
+    declared = {os.path.realpath(p) for p in mc.localization}
+    if chains:
+        return frozenset(set.intersection(*chains) | declared), None
+    from urdfcheck.load.packages import enclosing_package
+
+    pkg = enclosing_package(Path(os.path.abspath(mc.path)).parent)
+    return frozenset(declared), (os.path.realpath(pkg) if pkg is not None else None)
 
 
 def _owner_source(config) -> str:

@@ -646,7 +646,7 @@ def unknown_frame(model: Model, ctx: Context) -> Iterator[Problem]:
         # a near miss of a frame that exists is evidence of a typo; without one, the claim is that nothing
         # publishes the frame, which holds only where the whole deployment was understood (issue 20)
         yield Problem(f"{who} uses frame {name!r}, which is neither a link of the model nor published by "
-                      f"anything else{hint}{untrusted_hint(g, (name,))}", at=v.loc, data={"frame": name},
+                      f"anything else{hint}{untrusted_hint(g, (name,), owner)}", at=v.loc, data={"frame": name},
                       severity=_WARNING() if owner in inferred else None, absent=None if hint else "publish it")
 
 

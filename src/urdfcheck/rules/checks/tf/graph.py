@@ -100,9 +100,12 @@ class TFGraph(Record):
         return any(c.parent == f or c.child == f for c in self.claims)
 
 
+READ = ("launch", "controller", "driver", "localization")  # the claims read from consumer files
+
+
 def claim_only(g: TFGraph, c: TFClaim) -> bool:
     """Does `c` only claim (a conflict), never publish? An untrusted config's `tf_owners` declaration, or the
-    odometry of a controller or driver file such a config names that nothing known to run with the model starts."""
+    transform of a file such a config names that nothing known to run with the model starts (consumers.run_with)."""
     return c.source == UNTRUSTED or c in g.claim_only
 
 
@@ -113,17 +116,19 @@ def vouched_claims(g: TFGraph) -> TFGraph:
     return TFGraph([c for c in g.claims if not claim_only(g, c)])
 
 
-def untrusted_hint(g: TFGraph, frames) -> str:
-    """What to say when a frame is published only by an untrusted config's declaration."""
-    said = [c for c in g.claims if claim_only(g, c) and ({c.parent, c.child} & set(frames))]
+def untrusted_hint(g: TFGraph, frames, owner: str = "") -> str:
+    """What to say when a frame is published only by an untrusted config's declaration (`owner`: the node the
+    finding is about, whose own claim never counts for it)."""
+    said = [c for c in g.claims if claim_only(g, c) and ({c.parent, c.child} & set(frames))
+            and not (owner and (c.owner == owner or c.owner.endswith(owner)))]
     if not said:
         return ""
     c = said[0]
     how = ("counts only in a config the runner names with --config FILE --trust-config (or --config-from REV): one "
            "found in the checkout may add a publisher, never publish a frame")
     if c.source != UNTRUSTED:
-        return (f"; {c.owner} ({c.loc.shown()}) would publish {c.parent} -> {c.child}, but only the config names its "
-                f"file for this model (no launch file that starts robot_state_publisher loads it), which {how}")
+        return (f"; {c.owner} ({c.loc.shown()}) would publish {c.parent} -> {c.child}, but only the config makes its "
+                f"file run with the model (no launch file that starts robot_state_publisher runs it), which {how}")
     return f"; the config's tf_owners declares {c.parent} -> {c.child} ({c.owner}, {c.loc.shown()}), which {how}"
 
 
@@ -170,12 +175,8 @@ def deployment_graph(model, c) -> TFGraph:
 
         g.extend(plugin_claims(model))
     add_declared(g, c.tf_owners)  # after the claims read from files: a declaration may name one of them
-    only = getattr(c, "claim_only", ())
-    if only:  # an unvouched config's declared files that nothing starts with the model (consumers.unstarted)
-        import os
-
-        g.claim_only = frozenset(cl for cl in g.claims if cl.source in ("controller", "driver")
-                                 and os.path.realpath(cl.loc.file) in only)
+    if getattr(c, "run_files", None) is not None:  # an unvouched config's reading (consumers.run_with)
+        g.claim_only = frozenset(cl for cl in g.claims if cl.source in READ and not c.runs(cl.loc.file))
     c._graph_cache = (key, g)
     return g
 
