@@ -25,9 +25,9 @@ from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
 from urdfcheck.rules.catalogue import check
+from urdfcheck.rules.checks.tf.graph import claim_only, untrusted_hint
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
-from urdfcheck.rules.checks.tf.graph import claim_only, untrusted_hint
 from urdfcheck.rules.contracts.wheels import check_drive
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)
