@@ -552,3 +552,20 @@ def test_a_declared_launch_file_does_not_publish_a_frame_for_the_deployment(tmp_
     assert code == 1 and SENSOR_C020 in found, found
     code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
     assert SENSOR_C020 not in found, found
+
+
+def test_a_declared_driver_file_nothing_starts_supplies_no_joint_state(tmp_path):
+    """C003: a driver declared on a one-key file naming the caster joint nothing publishes a state for."""
+    ws = _example(tmp_path, "contract_joint_no_state",
+                  "models:\n  - path: urdf/agv.urdf\n    controllers: [config/agv_controllers.yaml]\n"
+                  "    drivers:\n      - file: fake/d.yaml\n        name: caster_driver\n        joints: [caster]\n"
+                  "    launch: [launch/agv.launch.xml]\n")
+    (ws / "fake").mkdir()
+    (ws / "fake" / "d.yaml").write_text("caster: rear_caster_swivel_joint\n")
+    code, found = _lint(ws, "--no-config")
+    c003 = [c for c in found if c[0] == "C003"]
+    assert c003 == [("C003", "urdf/agv.urdf", 160, "warning")] and code == 1, found  # what zero config says
+    code, found = _lint(ws)
+    assert code == 1 and [c for c in found if c[0] == "C003"] == c003, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert code == 0 and found == [], found

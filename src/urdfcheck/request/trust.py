@@ -136,7 +136,8 @@ def _keep_gate(data: dict, key_loc) -> list[Finding]:
 #   read from them counts as published only when zero config would count it: from the files every declared launch
 #   file reaching robot_state_publisher runs (includes and the parameter files they load), else from the model's
 #   package. Any other may claim it (a conflict), never publish it (consumers.consumers.run_with,
-#   rules.checks.tf.graph.claim_only: T005, C020 and C024 judge the graph without it and say why).
+#   rules.checks.tf.graph.claim_only: T005, C020 and C024 judge the graph without it and say why); a controller or
+#   driver in such a file supplies no joint state either (C003 says why).
 REP105 = {"map": "map", "odom": "odom", "base": "base_link"}  # request.config.DEFAULT_FRAMES
 
 

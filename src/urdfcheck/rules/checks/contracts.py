@@ -231,7 +231,10 @@ def joint_without_state_source(model: Model, ctx: Context) -> Iterator[Problem]:
         return
     hw_joints = {h.name for r in model.ros2_control if not r.in_gazebo for h in r.joints}
     trans_joints = {i.name for t in model.transmissions for i in t.joints}
-    sources, got, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=True)
+    # a supplier whose file only an unvouched config makes run supplies nothing (consumers.run_with, issue 36)
+    ctrls, drivers = [x for x in c.controllers if c.runs(x.file)], [d for d in c.drivers if c.runs(d.file)]
+    unrun = [x for x in (*c.controllers, *c.drivers) if not c.runs(x.file)]
+    sources, got, everything = _state_cover(ctrls, drivers, hw_joints, trans_joints, local=True)
     if everything:
         return  # a broadcaster of hardware described elsewhere: assume it covers the model
     covered |= got
@@ -239,7 +242,7 @@ def joint_without_state_source(model: Model, ctx: Context) -> Iterator[Problem]:
     if not missing:
         return
     # suppliers not known to run in this deployment: the package's unread files, then the workspace's
-    far, far_covered, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=False)
+    far, far_covered, everything = _state_cover(ctrls, drivers, hw_joints, trans_joints, local=False)
     workspace = False
     if not far:  # a broadcaster in a workspace file that names these joints (a `*_control` package)
         from urdfcheck.consumers.openworld import workspace_broadcasters
@@ -276,7 +279,17 @@ def joint_without_state_source(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in missing:
         yield Problem(f"nothing publishes the state of joint {j.name!r} (the joint state broadcaster does not "
                       f"cover it and no driver names it); robot_state_publisher will not publish "
-                      f"{j.child!r}", at=j, data={"joint": j.name}, rests_on=rests)
+                      f"{j.child!r}{_unrun_hint(unrun, j.name)}", at=j, data={"joint": j.name}, rests_on=rests)
+
+
+def _unrun_hint(unrun, joint: str) -> str:
+    """What to say when a supplier only an unvouched config makes run names the joint (issue 36)."""
+    for x in unrun:
+        if any(u.joint == joint for u in (*getattr(x, "state_joints", ()), *x.joints)):
+            return (f"; {x.name} ({shown(x.file)}) names it, but only the config makes its file run with the model "
+                    "(no launch file that starts robot_state_publisher loads it), which counts only in a config the "
+                    "runner names with --config FILE --trust-config (or --config-from REV)")
+    return ""
 
 
 def _far_pairing(c, far, model, workspace: bool) -> tuple:
