@@ -138,6 +138,10 @@ def _keep_gate(data: dict, key_loc) -> list[Finding]:
 #   package. Any other may claim it (a conflict), never publish it (consumers.consumers.run_with,
 #   rules.checks.tf.graph.claim_only: T005, C020 and C024 judge the graph without it and say why); a controller or
 #   driver in such a file supplies no joint state either (C003 says why).
+# Not closed: a `drivers:` spec chooses which keys of a driver file are its wheels, joints and frames; a spec naming a
+# decoy key (`wheel_separation: wheel_sep_nominal`, beside the file's real `wheel_separation: 0.52`) replaces the
+# driver zero config infers from that file when every file of the package is declared (no twin), hiding its C010.
+# Making the twin for every declared driver closes it but lints those models once more (the agv example 3 -> 5).
 REP105 = {"map": "map", "odom": "odom", "base": "base_link"}  # request.config.DEFAULT_FRAMES
 
 
