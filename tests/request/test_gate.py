@@ -458,3 +458,114 @@ def test_a_declared_localization_file_does_not_hide_the_driver_beside_it(tmp_pat
     assert code == 1 and ("C020", "config/agv_driver_ros1.yaml", 9, "warning") in found, found
     code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
     assert [c[:3] for c in found if c[0] == "C020"] == [("C020", "fake/ekf.yaml", 5)], found
+
+
+# --- declared consumer files that nothing runs with the model: a claim, never a publication -----------------------
+FAKE_DRIVE = """controller_manager:
+  ros__parameters:
+    fake_drive:
+      type: diff_drive_controller/DiffDriveController
+fake_drive:
+  ros__parameters:
+    left_wheel_names: [left_wheel_joint]
+    right_wheel_names: [right_wheel_joint]
+    wheel_separation: 0.50
+    wheel_radius: 0.10
+    odom_frame_id: odom
+    base_frame_id: base_link
+    enable_odom_tf: true
+"""
+
+
+def test_a_declared_controller_file_nothing_starts_does_not_join_two_trees(tmp_path):
+    """T005: the seed with its controller's odometry TF turned off, and a second controllers file (a drive controller
+    with enable_odom_tf) that no launch file loads, declared beside the real one: its odom -> base_link joined the
+    trees. Zero config counts only what the launch file starting robot_state_publisher loads."""
+    import shutil
+
+    from conftest import REPO
+
+    ws = tmp_path / "agv"
+    shutil.copytree(REPO / "examples" / "agv", ws)
+    (ws / ".git").mkdir()
+    ctl = ws / "config" / "agv_controllers.yaml"
+    ctl.write_text(ctl.read_text().replace("enable_odom_tf: true", "enable_odom_tf: false"))
+    (ws / "test").mkdir()
+    (ws / "test" / "fake.yaml").write_text(FAKE_DRIVE)
+    cfg = ws / "urdfcheck.yaml"
+    text = cfg.read_text().replace("controllers: [config/agv_controllers.yaml]",
+                                   "controllers: [config/agv_controllers.yaml, test/fake.yaml]")
+    cfg.write_text(text.split("tf_owners:")[0] + "packages: {agv_description: .}\n")
+    code, found = _lint(ws, "--no-config")
+    t005 = sorted({c for c in found if c[0] == "T005"})
+    assert t005 and code == 1, found  # what zero config says
+    code, out, _ = run_cli(["lint", "--format", "json"], cwd=ws)
+    said = [f for f in json.loads(out)["findings"] if f["code"] == "T005"]
+    assert code == 1 and t005 == sorted({("T005", f["location"]["file"], f["location"]["line"], f["severity"])
+                                         for f in said}), said
+    assert all("test/fake.yaml" in f["message"] and "--trust-config" in f["message"] for f in said), said
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")  # the runner says it runs
+    assert code == 0 and found == [], found
+    # the seed's own controllers file, declared without launch files: the model's package, as zero config reads it
+    ctl.write_text(ctl.read_text().replace("enable_odom_tf: false", "enable_odom_tf: true"))
+    cfg.write_text(cfg.read_text().replace(", test/fake.yaml", "").replace("    launch: [launch/agv.launch.xml]\n", ""))
+    code, found = _lint(ws)
+    assert code == 0 and found == [], found
+
+
+def test_a_declared_driver_file_nothing_starts_does_not_publish_a_frame(tmp_path):
+    """C020: a second driver declared on a file of three keys, publishing base_link -> imu (the real driver's typo)."""
+    ws = _example(tmp_path, "contract_sensor_frame_id", SENSOR.replace(
+        "    launch:", "      - file: fake/imu.yaml\n        name: imu_driver\n        odom_tf: publish_tf\n"
+                      "        odom_frame: parent_frame\n        base_frame: child_frame\n    launch:"))
+    (ws / "fake").mkdir()
+    (ws / "fake" / "imu.yaml").write_text("publish_tf: true\nparent_frame: base_link\nchild_frame: imu\n")
+    code, found = _lint(ws)
+    assert code == 1 and SENSOR_C020 in found, found
+    _, out, _ = run_cli(["lint", "--format", "json"], cwd=ws)
+    said = [f["message"] for f in json.loads(out)["findings"]
+            if (f["code"], f["location"]["file"]) == SENSOR_C020[:2]]
+    assert said and "fake/imu.yaml" in said[0] and "--trust-config" in said[0], said
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert SENSOR_C020 not in found, found
+
+
+RSP_NODE = """  <node pkg="robot_state_publisher" exec="robot_state_publisher" name="rsp2">
+    <param name="robot_description"
+           value="$(command 'xacro $(find-pkg-share broken_contract_sensor_frame_id_description)/urdf/agv.urdf')"/>
+  </node>
+"""
+
+
+@pytest.mark.parametrize("robot", [False, True], ids=["beside", "a second deployment"])
+def test_a_declared_launch_file_does_not_publish_a_frame_for_the_deployment(tmp_path, robot):
+    """C020: a launch file with a static_transform_publisher base_link -> imu, declared beside the real one. Zero config
+    reads each launch file that starts robot_state_publisher as a deployment of its own, and no other; the config read
+    them together. What the declared launch files that start the robot do not all run only claims."""
+    both = "launch: [launch/agv.launch.xml, fake/tf.launch.xml]"
+    ws = _example(tmp_path, "contract_sensor_frame_id", SENSOR.replace("launch: [launch/agv.launch.xml]", both))
+    (ws / "fake").mkdir()
+    (ws / "fake" / "tf.launch.xml").write_text(
+        "<launch>\n" + (RSP_NODE if robot else "") + '  <node pkg="tf2_ros" exec="static_transform_publisher" '
+        'name="imu_tf"\n        args="--frame-id base_link --child-frame-id imu"/>\n</launch>\n')
+    code, found = _lint(ws)
+    assert code == 1 and SENSOR_C020 in found, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert SENSOR_C020 not in found, found
+
+
+def test_a_declared_driver_file_nothing_starts_supplies_no_joint_state(tmp_path):
+    """C003: a driver declared on a one-key file naming the caster joint nothing publishes a state for."""
+    ws = _example(tmp_path, "contract_joint_no_state",
+                  "models:\n  - path: urdf/agv.urdf\n    controllers: [config/agv_controllers.yaml]\n"
+                  "    drivers:\n      - file: fake/d.yaml\n        name: caster_driver\n        joints: [caster]\n"
+                  "    launch: [launch/agv.launch.xml]\n")
+    (ws / "fake").mkdir()
+    (ws / "fake" / "d.yaml").write_text("caster: rear_caster_swivel_joint\n")
+    code, found = _lint(ws, "--no-config")
+    c003 = [c for c in found if c[0] == "C003"]
+    assert c003 == [("C003", "urdf/agv.urdf", 160, "warning")] and code == 1, found  # what zero config says
+    code, found = _lint(ws)
+    assert code == 1 and [c for c in found if c[0] == "C003"] == c003, found
+    code, found = _lint(ws, "--config", "urdfcheck.yaml", "--trust-config")
+    assert code == 0 and found == [], found

@@ -46,6 +46,18 @@ class Consumers(Record):
     moveit: list = ()  # consumers.moveit.MoveItConfig: the MoveIt configs paired with the model (issue 41)
 
     plugin_files: tuple = ()
+    # for a config the runner did not vouch for (`run_with`, issue 36): the files whose transforms count as published
+    # (real paths), and a folder whose every file does; None: every file read counts
+    run_files: frozenset | None = None
+    run_root: str | None = None
+
+    def runs(self, path: str) -> bool:
+        """Does a transform read from `path` count as published (not only claimed)?"""
+        if self.run_files is None:
+            return True
+        real = os.path.realpath(path)
+        root = self.run_root
+        return real in self.run_files or bool(root and (real == root or real.startswith(root.rstrip(os.sep) + os.sep)))
 
     def settle(self, model) -> Consumers:
         """Add the package's unread parameter files, once, now that the model is known; and, for a deployment or
@@ -245,6 +257,8 @@ def consumers_for_model(mc, config=None, *, packages: Mapping[str, str] | None =
                  "launch": list(mc.launch), "localization": list(mc.localization)}
     out.pair([f for fs in out.files.values() for f in fs], "config")
     out.pair([li.path for li in out.launch], "config")  # what the named launch files include runs with them
+    if config is not None and not getattr(config, "vouched", True):
+        out.run_files, out.run_root = run_with(mc, out)
     from urdfcheck.consumers.openworld import launch_unknowns
 
     # the config declares the world, but for what its launch files run that was not understood (issue 20)
@@ -477,6 +491,38 @@ def consumers_of(model, ctx) -> Consumers:
     packages = {k: str(v) for k, v in getattr(resolver, "explicit", {}).items()} if resolver is not None else {}
     return consumers_near(getattr(exp, "entry", None) or model.source, model, packages=packages,
                           config=getattr(ctx, "config", None))
+
+
+def run_with(mc, out: Consumers) -> tuple[frozenset, str | None]:
+    """What runs with the model by the files alone, for a config the runner did not vouch for (issue 36): the
+    (real paths of the) files whose transforms count as published, and a folder whose every file counts.
+
+    Such a config declares which files run together; zero config counts only a launch file that starts
+    robot_state_publisher with the model (or includes one that does), what it includes and the parameter files
+    they load, each such launch file a deployment of its own. So: the files every declared launch file that
+    reaches a robot_state_publisher runs; with none, the model's package (zero config reads the files beside the
+    model). The `localization:` files too: they make the twin "consumers found beside it" (plan.plan). A file the
+    config merely names may claim a transform (a conflict), never publish one (rules.checks.tf.graph.claim_only).
+    """
+    by_path = {os.path.realpath(li.path): li for li in out.launch}
+    chains = []
+    for top in mc.launch:
+        todo, seen = [os.path.realpath(top)], set()
+        while todo:
+            real = todo.pop()
+            if real in seen or real not in by_path:
+                continue
+            seen.add(real)
+            todo.extend(os.path.realpath(inc.file) for inc in by_path[real].includes if inc.file)
+        if any(by_path[r].state_publishers for r in seen):
+            chains.append(seen | {os.path.realpath(f) for r in seen for f, _ in by_path[r].param_files})
+    declared = {os.path.realpath(p) for p in mc.localization}
+    if chains:
+        return frozenset(set.intersection(*chains) | declared), None
+    from urdfcheck.load.packages import enclosing_package
+
+    pkg = enclosing_package(Path(os.path.abspath(mc.path)).parent)
+    return frozenset(declared), (os.path.realpath(pkg) if pkg is not None else None)
 
 
 def _owner_source(config) -> str:

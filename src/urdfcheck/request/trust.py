@@ -12,7 +12,8 @@ than ALL, a `severity` below a rule's default, a `fail_on` above warning, a rule
 `packages` pointing a package the checkout defines elsewhere, `frames` renaming a REP-105 frame, a `target`
 distribution: each an X018 error at the key, and ignored. Its `models` add to discovery (plan.plan), `args` that
 replace a xacro default add the defaults variant (request.config), `launch_args` and `frame_prefix` add the launch
-defaults twin, and `tf_owners` may add a publisher, never publish a frame (see the list below `_keep_gate`).
+defaults twin, and `tf_owners`, like a declared file that nothing starting the robot runs, may add a publisher,
+never publish a frame (see the list below `_keep_gate`).
 A config named with `--config FILE` alone is as untrusted as one found.
 
     screen(data, path, key_loc, trusted) -> [Finding]   # drops what an untrusted config may not say
@@ -131,9 +132,16 @@ def _keep_gate(data: dict, key_loc) -> list[Finding]:
 #   never removes one (rules/checks/profiles/common.speak); `cache: false` only turns the lint cache off.
 # - `packages` for a package the checkout does not define adds a place to resolve it (refused for its own: below);
 #   `max_elements` below the default tightens; `bags` add recordings to check against the model (B rules).
-# Not closed: declared `controllers`/`drivers` files count as run with the model (their odometry TF), which zero
-# config grants only to what a launch file starts; the twin is made only when the package holds files the config
-# leaves out (linting every declared model twice repeats each driver finding in a second wording).
+# - the files `controllers`, `drivers` and `launch` declare run with the model as the config says, but a transform
+#   read from them counts as published only when zero config would count it: from the files every declared launch
+#   file reaching robot_state_publisher runs (includes and the parameter files they load), else from the model's
+#   package. Any other may claim it (a conflict), never publish it (consumers.consumers.run_with,
+#   rules.checks.tf.graph.claim_only: T005, C020 and C024 judge the graph without it and say why); a controller or
+#   driver in such a file supplies no joint state either (C003 says why).
+# Not closed: a `drivers:` spec chooses which keys of a driver file are its wheels, joints and frames; a spec naming a
+# decoy key (`wheel_separation: wheel_sep_nominal`, beside the file's real `wheel_separation: 0.52`) replaces the
+# driver zero config infers from that file when every file of the package is declared (no twin), hiding its C010.
+# Making the twin for every declared driver closes it but lints those models once more (the agv example 3 -> 5).
 REP105 = {"map": "map", "odom": "odom", "base": "base_link"}  # request.config.DEFAULT_FRAMES
 
 

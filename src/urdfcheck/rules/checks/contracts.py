@@ -21,14 +21,13 @@ from urdfcheck.consumers.common import as_bool
 from urdfcheck.consumers.consumers import Consumers
 from urdfcheck.consumers.consumers import consumers_of as consumers
 from urdfcheck.consumers.controllers import JSB, JSC
-from urdfcheck.consumers.tfclaims import UNTRUSTED
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
 from urdfcheck.rules.catalogue import check
+from urdfcheck.rules.checks.tf.graph import claim_only, untrusted_hint
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
 from urdfcheck.rules.checks.tf.graph import distinct_locations as _dedupe_locs
-from urdfcheck.rules.checks.tf.graph import untrusted_hint
 from urdfcheck.rules.contracts.wheels import check_drive
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)
@@ -232,7 +231,10 @@ def joint_without_state_source(model: Model, ctx: Context) -> Iterator[Problem]:
         return
     hw_joints = {h.name for r in model.ros2_control if not r.in_gazebo for h in r.joints}
     trans_joints = {i.name for t in model.transmissions for i in t.joints}
-    sources, got, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=True)
+    # a supplier whose file only an unvouched config makes run supplies nothing (consumers.run_with, issue 36)
+    ctrls, drivers = [x for x in c.controllers if c.runs(x.file)], [d for d in c.drivers if c.runs(d.file)]
+    unrun = [x for x in (*c.controllers, *c.drivers) if not c.runs(x.file)]
+    sources, got, everything = _state_cover(ctrls, drivers, hw_joints, trans_joints, local=True)
     if everything:
         return  # a broadcaster of hardware described elsewhere: assume it covers the model
     covered |= got
@@ -240,7 +242,7 @@ def joint_without_state_source(model: Model, ctx: Context) -> Iterator[Problem]:
     if not missing:
         return
     # suppliers not known to run in this deployment: the package's unread files, then the workspace's
-    far, far_covered, everything = _state_cover(c.controllers, c.drivers, hw_joints, trans_joints, local=False)
+    far, far_covered, everything = _state_cover(ctrls, drivers, hw_joints, trans_joints, local=False)
     workspace = False
     if not far:  # a broadcaster in a workspace file that names these joints (a `*_control` package)
         from urdfcheck.consumers.openworld import workspace_broadcasters
@@ -277,7 +279,17 @@ def joint_without_state_source(model: Model, ctx: Context) -> Iterator[Problem]:
     for j in missing:
         yield Problem(f"nothing publishes the state of joint {j.name!r} (the joint state broadcaster does not "
                       f"cover it and no driver names it); robot_state_publisher will not publish "
-                      f"{j.child!r}", at=j, data={"joint": j.name}, rests_on=rests)
+                      f"{j.child!r}{_unrun_hint(unrun, j.name)}", at=j, data={"joint": j.name}, rests_on=rests)
+
+
+def _unrun_hint(unrun, joint: str) -> str:
+    """What to say when a supplier only an unvouched config makes run names the joint (issue 36)."""
+    for x in unrun:
+        if any(u.joint == joint for u in (*getattr(x, "state_joints", ()), *x.joints)):
+            return (f"; {x.name} ({shown(x.file)}) names it, but only the config makes its file run with the model "
+                    "(no launch file that starts robot_state_publisher loads it), which counts only in a config the "
+                    "runner names with --config FILE --trust-config (or --config-from REV)")
+    return ""
 
 
 def _far_pairing(c, far, model, workspace: bool) -> tuple:
@@ -637,9 +649,9 @@ def unknown_frame(model: Model, ctx: Context) -> Iterator[Problem]:
         if not name or _unresolved(name) or name in links or (name, v.loc) in seen:
             continue
         # a frame somebody else publishes is in the tree; the user's own odometry claim does not count, nor an
-        # untrusted config's declaration (consumers.tfclaims.UNTRUSTED)
+        # untrusted config's declaration or a file only it names (rules.checks.tf.graph.claim_only)
         others = {f for cl in g.claims if cl.owner != owner and not cl.owner.endswith(owner)
-                  and cl.source != UNTRUSTED for f in (cl.parent, cl.child)}
+                  and not claim_only(g, cl) for f in (cl.parent, cl.child)}
         if name in others:
             continue
         seen.add((name, v.loc))
@@ -647,7 +659,7 @@ def unknown_frame(model: Model, ctx: Context) -> Iterator[Problem]:
         # a near miss of a frame that exists is evidence of a typo; without one, the claim is that nothing
         # publishes the frame, which holds only where the whole deployment was understood (issue 20)
         yield Problem(f"{who} uses frame {name!r}, which is neither a link of the model nor published by "
-                      f"anything else{hint}{untrusted_hint(g, (name,))}", at=v.loc, data={"frame": name},
+                      f"anything else{hint}{untrusted_hint(g, (name,), owner)}", at=v.loc, data={"frame": name},
                       severity=_WARNING() if owner in inferred else None, absent=None if hint else "publish it")
 
 

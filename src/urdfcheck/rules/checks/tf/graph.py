@@ -49,6 +49,7 @@ class TFProblem(TupleRecord):
 class TFGraph(Record):
     # notes: (message, Location): claims left out (conditional launch nodes)
     _fields = ('claims', 'notes')
+    claim_only: frozenset = frozenset()  # claims that may conflict, never publish (`claim_only`; issue 36)
 
     def __init__(self, claims: list[TFClaim] | None = None, notes: list | None = None, _seen: set | None = None):
         self.claims = [] if claims is None else claims
@@ -99,22 +100,36 @@ class TFGraph(Record):
         return any(c.parent == f or c.child == f for c in self.claims)
 
 
+READ = ("launch", "controller", "driver", "localization")  # the claims read from consumer files
+
+
+def claim_only(g: TFGraph, c: TFClaim) -> bool:
+    """Does `c` only claim (a conflict), never publish? An untrusted config's `tf_owners` declaration, or the
+    transform of a file such a config names that nothing known to run with the model starts (consumers.run_with)."""
+    return c.source == UNTRUSTED or c in g.claim_only
+
+
 def vouched_claims(g: TFGraph) -> TFGraph:
     """`g` without the declarations of a config the runner did not vouch for: what may count as published."""
-    if not any(c.source == UNTRUSTED for c in g.claims):
+    if not any(claim_only(g, c) for c in g.claims):
         return g
-    return TFGraph([c for c in g.claims if c.source != UNTRUSTED])
+    return TFGraph([c for c in g.claims if not claim_only(g, c)])
 
 
-def untrusted_hint(g: TFGraph, frames) -> str:
-    """What to say when a frame is published only by an untrusted config's declaration."""
-    said = [c for c in g.claims if c.source == UNTRUSTED and ({c.parent, c.child} & set(frames))]
+def untrusted_hint(g: TFGraph, frames, owner: str = "") -> str:
+    """What to say when a frame is published only by an untrusted config's declaration (`owner`: the node the
+    finding is about, whose own claim never counts for it)."""
+    said = [c for c in g.claims if claim_only(g, c) and ({c.parent, c.child} & set(frames))
+            and not (owner and (c.owner == owner or c.owner.endswith(owner)))]
     if not said:
         return ""
     c = said[0]
-    return (f"; the config's tf_owners declares {c.parent} -> {c.child} ({c.owner}, {c.loc.shown()}), which counts "
-            "only in a config the runner names with --config FILE --trust-config (or --config-from REV): one found "
-            "in the checkout may add a publisher, never publish a frame")
+    how = ("counts only in a config the runner names with --config FILE --trust-config (or --config-from REV): one "
+           "found in the checkout may add a publisher, never publish a frame")
+    if c.source != UNTRUSTED:
+        return (f"; {c.owner} ({c.loc.shown()}) would publish {c.parent} -> {c.child}, but only the config makes its "
+                f"file run with the model (no launch file that starts robot_state_publisher runs it), which {how}")
+    return f"; the config's tf_owners declares {c.parent} -> {c.child} ({c.owner}, {c.loc.shown()}), which {how}"
 
 
 def declared_matches(owner: str, claim: TFClaim) -> bool:
@@ -160,6 +175,8 @@ def deployment_graph(model, c) -> TFGraph:
 
         g.extend(plugin_claims(model))
     add_declared(g, c.tf_owners)  # after the claims read from files: a declaration may name one of them
+    if getattr(c, "run_files", None) is not None:  # an unvouched config's reading (consumers.run_with)
+        g.claim_only = frozenset(cl for cl in g.claims if cl.source in READ and not c.runs(cl.loc.file))
     c._graph_cache = (key, g)
     return g
 
