@@ -267,11 +267,11 @@ class _Workspace:
         """Files a Python launch file includes under a condition that is false with its defaults."""
         import ast
 
-        from urdfcheck.consumers.launch import python as pylaunch
-
         tree = self._parsed.get(path)
         if not isinstance(tree, ast.AST):
             return []
+        from urdfcheck.consumers.launch import python as pylaunch
+
         return pylaunch.inactive_include_files(path, tree, lambda name: self.find(name, path))
 
     def read(self, path: str, args: Mapping[str, str | None] | None):
@@ -279,7 +279,6 @@ class _Workspace:
         import ast
 
         from urdfcheck.consumers.common import ConsumerError, read_capped
-        from urdfcheck.consumers.launch import python as pylaunch
         from urdfcheck.consumers.launch.xml import MAX_BYTES, launch_format, parse_launch
 
         got = self._parsed.get(path)
@@ -302,6 +301,8 @@ class _Workspace:
         try:
             if isinstance(got, bytes):
                 return parse_launch(got, path, args=args, packages=self.package_map(path))
+            from urdfcheck.consumers.launch import python as pylaunch  # a Python launch file only (70 KB of code)
+
             return pylaunch.read(path, got, args, lambda name: self.find(name, path))
         except ConsumerError as e:
             return e
@@ -443,7 +444,7 @@ def _required(tree: _Tree) -> set[str]:
 
 # --- deployments of one tree --------------------------------------------------------------------------------
 def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[Deployment]:
-    from urdfcheck.consumers.launch.python import UNKNOWN
+    from urdfcheck.consumers.launch.info import UNKNOWN
 
     rsps = [(info, sp) for info in tree.infos for sp in info.state_publishers]
     out = []
