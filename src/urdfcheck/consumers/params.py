@@ -221,7 +221,32 @@ def read_params(path: str | os.PathLike, *, max_bytes: int | None = None) -> Par
             return value
     from urdfcheck.consumers.yamlsrc import MAX_BYTES, load_yaml
 
-    return params_from_doc(load_yaml(path, max_bytes=MAX_BYTES if max_bytes is None else max_bytes))
+    if max_bytes is not None:
+        return params_from_doc(load_yaml(path, max_bytes=max_bytes))
+    # a run reads a package's parameter files once: two models of one config name the same controllers and
+    # drivers (each model's consumers are read apart). Kept pickled: each reader gets a fresh copy, as a parse gives
+    import pickle
+
+    from urdfcheck.core.walk import run_memo
+
+    memo = run_memo("params")
+    key = str(path)
+    got = memo.get(key) if memo is not None else None
+    if got is None:
+        try:
+            value = params_from_doc(load_yaml(path, max_bytes=MAX_BYTES))
+        except ConsumerError as e:
+            value = e
+        if memo is not None:
+            try:
+                memo[key] = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+            except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
+                pass
+    else:
+        value = pickle.loads(got)
+    if isinstance(value, ConsumerError):
+        raise value
+    return value
 
 
 # --- parameter files parsed ahead, in the xacro worker ------------------------------------------------------

@@ -74,6 +74,19 @@ def installed_modules() -> list[tuple[str, str]]:
     return sorted(out)
 
 
+def snapshot() -> frozenset | None:
+    """What was seen so far (None when not recording), for `restore`."""
+    return frozenset(_SEEN) if _SEEN is not None else None
+
+
+def restore(snap: frozenset | None) -> None:
+    """Back to a `snapshot`: a step run in this process as a forked child would be (an expansion in the xacro
+    worker) keeps its reads to its own result."""
+    if _SEEN is not None and snap is not None:
+        _SEEN.clear()
+        _SEEN.update(snap)
+
+
 def forked() -> None:
     """First thing in a forked worker. A child of the recording process starts afresh: what the run saw so far is
     that process's to report, and the child's result then carries only its own part. A child of a worker keeps

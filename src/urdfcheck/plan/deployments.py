@@ -267,11 +267,11 @@ class _Workspace:
         """Files a Python launch file includes under a condition that is false with its defaults."""
         import ast
 
-        from urdfcheck.consumers.launch import python as pylaunch
-
         tree = self._parsed.get(path)
         if not isinstance(tree, ast.AST):
             return []
+        from urdfcheck.consumers.launch import python as pylaunch
+
         return pylaunch.inactive_include_files(path, tree, lambda name: self.find(name, path))
 
     def read(self, path: str, args: Mapping[str, str | None] | None):
@@ -432,7 +432,7 @@ def _required(tree: _Tree) -> set[str]:
 
 # --- deployments of one tree --------------------------------------------------------------------------------
 def _deployments(ws: _Workspace, root: str, tree: _Tree, variant: str) -> list[Deployment]:
-    from urdfcheck.consumers.launch.python import UNKNOWN
+    from urdfcheck.consumers.launch.info import UNKNOWN
 
     rsps = [(info, sp) for info in tree.infos for sp in info.state_publishers]
     out = []

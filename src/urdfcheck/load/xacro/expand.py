@@ -128,8 +128,13 @@ def expand_batch(jobs: list, also=None) -> dict:
     imported); "also": its value, None when it failed."""
     from urdfcheck.core import worker
 
+    # every expansion but the last in a child forked now, before this process runs any xacro code; the last one
+    # here, as the last xacro code this process runs (a fork and a process's exit less: ~5 ms of CPU a run, on
+    # a package whose variants are each expanded in ~12). This process is under the same limits as a child
+    # (`Batch.takes`: the spare's are the jobs'); if it dies or overruns, the loader expands each model alone.
     started = [worker.start(expand_with, path, options, timeout=lim.timeout, memory=lim.memory,
-                            env_keep=lim.env_keep, scrub_env=lim.scrub_env) for path, options, lim in jobs]
+                            env_keep=lim.env_keep, scrub_env=lim.scrub_env) for path, options, lim in jobs[:-1]]
+    last = _expand_here(*jobs[-1]) if jobs else None
     extra = None
     if also is not None:
         try:
@@ -137,7 +142,44 @@ def expand_batch(jobs: list, also=None) -> dict:
         except Exception:  # noqa: BLE001 - the console does it itself
             extra = None
     worker.wait(started)
-    return {"outcomes": [j.value for j in started], "also": extra}
+    return {"outcomes": [j.value for j in started] + ([last] if jobs else []), "also": extra}
+
+
+def _expand_here(path: str, options: dict, lim):
+    """`expand_with` in this process, its outcome as a child's would come back (`core.worker.start`): the result,
+    or a `Failure` for what the child would have reported, with the child's wall clock (`lim.timeout`). What it
+    reads is its own record for the lint cache (as a child's is): afterwards this process's record is as before."""
+    import gc
+    import signal
+
+    from urdfcheck.core import observe
+    from urdfcheck.core.worker import Failure
+
+    def overrun(signum, frame):
+        raise _Overrun()
+
+    before = observe.snapshot()
+    gc.enable()  # as in a child: an expansion makes cyclic garbage (DOM trees)
+    old = signal.signal(signal.SIGALRM, overrun)
+    signal.setitimer(signal.ITIMER_REAL, lim.timeout)
+    try:
+        return expand_with(path, options)
+    except _Overrun:
+        return Failure("timeout", f"did not finish within {lim.timeout:g} s")
+    except MemoryError:
+        return Failure("memory", "out of memory")
+    except RecursionError:
+        return Failure("error", "recursion too deep")
+    except Exception as e:  # noqa: BLE001 - reported, as a child reports it
+        return Failure("error", f"{type(e).__name__}: {e}")
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+        observe.restore(before)
+
+
+class _Overrun(BaseException):
+    """The wall clock of an expansion run in the worker itself (a BaseException: xacro's handlers let it by)."""
 
 
 def expand(path: str, opts: Options) -> dict:
