@@ -301,7 +301,7 @@ class Pending:
 
 class Batch:
     """Xacro models begun together (the run's first few) go to the console's spare as one job: each is expanded
-    in a child forked from the spare, where xacro is already imported. Without it, the second model of a run
+    there or in a child forked from it (`xacro.batch_children`), where xacro is already imported. Without it, the second model of a run
     (a package's argument variant) made this process import xacro before forking its worker: 40 ms on the
     critical path and the import done twice. Models the spare cannot take (other limits, no spare) start alone."""
 
@@ -342,7 +342,9 @@ class Batch:
         else:
             spare.send(xacro_pkg.EXPAND_BATCH, [(str(p), _options(out, opts), worker_limits(*opts[:4]))
                                                 for out, p, opts in self.items], self.also)
-            spare.deadline += xacro_pkg.BATCH_GRACE  # the expansions' own time-outs come first
+            # the expansions' own time-outs come first, one after another for those the spare runs itself
+            alone = len(self.items) - xacro_pkg.batch_children(len(self.items))
+            spare.deadline += (alone - 1) * lim.timeout + xacro_pkg.BATCH_GRACE
         self.job = spare
 
     def _batch(self) -> dict | None:
