@@ -31,6 +31,7 @@ import os
 import threading
 
 from urdfcheck.core import safeio
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 
 DEFAULT_RUN_BYTES = 2 * 1024**3  # what one run may read in all, every reader together, unless the runner raises it
 DEFAULT_FILE_BYTES = 64 * 1024**2  # one file read whole, unless the reader asks for a smaller or larger cap
@@ -72,7 +73,7 @@ class _Run:
             self.add_root(r)
 
     def add_root(self, root) -> None:
-        real = os.path.realpath(os.fspath(root))
+        real = realpath(os.fspath(root))
         if real not in self.roots:
             self.roots.append(real)
 
@@ -119,7 +120,7 @@ def confine(path, *, runner: bool = False) -> str:
     `runner`: the path was typed by the person running the tool. Typed outside every root, it is theirs to name
     (it becomes a root of its own); typed inside a root, its real path must stay inside one."""
     p = os.path.abspath(os.fspath(path))
-    real = os.path.realpath(p)
+    real = realpath(p)
     run = _current()
     if run is None or not run.roots or run.unconfined:
         return real
@@ -255,7 +256,7 @@ def guarding(typed=()):
     if run is None:
         return guarded(roots)
     for r in roots:  # an inner run (the base revision's tree of --diff-base): what it was typed is the runner's
-        if not any(_under(os.path.realpath(r), x) for x in run.roots):
+        if not any(_under(realpath(r), x) for x in run.roots):
             run.add_root(r)
     return contextlib.nullcontext()
 

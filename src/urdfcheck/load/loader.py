@@ -301,9 +301,10 @@ class Pending:
 
 class Batch:
     """Xacro models begun together (the run's first few) go to the console's spare as one job: each is expanded
-    there or in a child forked from it (`xacro.batch_children`), where xacro is already imported. Without it, the second model of a run
-    (a package's argument variant) made this process import xacro before forking its worker: 40 ms on the
-    critical path and the import done twice. Models the spare cannot take (other limits, no spare) start alone."""
+    there or in a child forked from it (`xacro.batch_children`), where xacro is already imported. Without it,
+    the second model of a run (a package's argument variant) made this process import xacro before forking its
+    worker: 40 ms on the critical path and the import done twice. Models the spare cannot take (other limits, no
+    spare) start alone."""
 
     def __init__(self):
         self.items: list[tuple[Expanded, Path, tuple]] = []

@@ -171,12 +171,7 @@ def forget() -> None:
     _RESOLVED.clear()
 
 
-def real(path: str) -> str:
-    """os.path.realpath, remembered for the run in progress: the confinement checks ask about the same package
-    roots and folders for every file of every model (a workspace run asked 16,000 times, an lstat per path
-    component each). Outside a run, looked up afresh."""
-    key = os.path.abspath(path)
-    return walk.run_cached("realpath", key, lambda: os.path.realpath(key), 50_000)
+real = walk.real  # os.path.realpath, remembered for the run (core.walk)
 
 
 def _subdirs(folder: str) -> list[str]:
