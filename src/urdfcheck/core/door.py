@@ -25,10 +25,10 @@ they name.
 """
 from __future__ import annotations
 
+import _thread  # threading's lock and thread-local state, without importing threading (start-up)
 import contextlib
 import errno
 import os
-import threading
 
 from urdfcheck.core import safeio
 from urdfcheck.core.walk import real as realpath  # remembered for the run
@@ -55,7 +55,7 @@ class RunBytes:
     def __init__(self, total: int = DEFAULT_RUN_BYTES):
         self.total = total
         self.used = 0
-        self._lock = threading.Lock()
+        self._lock = _thread.allocate_lock()
 
     def take(self, n: int, shown: str) -> None:
         with self._lock:
@@ -78,7 +78,7 @@ class _Run:
             self.roots.append(real)
 
 
-_state = threading.local()
+_state = _thread._local()
 
 
 def _current() -> _Run | None:

@@ -62,10 +62,12 @@ import re
 from collections.abc import Mapping
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
 
 from urdfcheck.core.findings import Location, Severity
-from urdfcheck.core.records import FrozenRecord
+from urdfcheck.core.records import TYPE_CHECKING, FrozenRecord
+
+if TYPE_CHECKING:
+    from typing import Any
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")
 PYPROJECT = "pyproject.toml"

@@ -16,12 +16,14 @@ joints) that a launch file starts one at a time, so declaring is never running.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import TYPE_CHECKING, Any
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from typing import Any
+
     from urdfcheck.model.robot import Model
     from urdfcheck.rules.engine import Context
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
 
 from urdfcheck.consumers.common import as_bool
 from urdfcheck.consumers.consumers import Consumers
@@ -24,6 +23,7 @@ from urdfcheck.consumers.controllers import JSB, JSC
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.tf.graph import claim_only, untrusted_hint
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
