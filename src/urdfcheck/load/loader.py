@@ -14,6 +14,7 @@ from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem
 from urdfcheck.core.suppress import Suppression
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 from urdfcheck.load import budget, reuse
 from urdfcheck.load.packages import Resolver
 from urdfcheck.load.xacro import XACRO_MEMORY, XACRO_TIMEOUT, worker_limits
@@ -442,10 +443,10 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
         return True
     if not os.path.islink(lexical):
         return False
-    real = os.path.realpath(lexical)
+    real = realpath(lexical)
     roots = [workspace_root(lexical.parent)] + [Path(v) for v in (packages or {}).values()]
     for r in roots:
-        base = os.path.realpath(r)
+        base = realpath(r)
         if real == base or real.startswith(base.rstrip(os.sep) + os.sep):
             return False
     return True

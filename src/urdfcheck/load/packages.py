@@ -62,7 +62,7 @@ def leaves_cwd(path: str | os.PathLike, roots=(), cache: dict | None = None) -> 
     def real_dir(d: str) -> str:
         got = cache.get(d)
         if got is None:
-            got = cache[d] = os.path.realpath(d)
+            got = cache[d] = walk.real(d)
         return got
 
     head, tail = os.path.split(lexical)

@@ -65,6 +65,7 @@ from types import MappingProxyType
 
 from urdfcheck.core.findings import Location, Severity
 from urdfcheck.core.records import TYPE_CHECKING, FrozenRecord
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 
 if TYPE_CHECKING:
     from typing import Any
@@ -207,9 +208,9 @@ class Config(FrozenRecord):
         return Location(self.path)
 
     def model_for(self, path: str | os.PathLike) -> ModelConfig | None:
-        real = os.path.realpath(str(path))
+        real = realpath(str(path))
         for m in self.models:
-            if os.path.realpath(m.path) == real:
+            if realpath(m.path) == real:
                 return m
         return None
 
@@ -548,7 +549,7 @@ def _own_packages(packages: dict, data: dict, root: str, key_loc, files: list[st
         homes = own.get(name)
         # two copies of one package in the checkout: choosing one is the runner's (the pull request could commit a
         # clean copy under the same name); zero config resolves the copy nearest each model
-        if homes and (len(homes) > 1 or os.path.realpath(packages[name]) != os.path.realpath(homes[0])):
+        if homes and (len(homes) > 1 or realpath(packages[name]) != realpath(homes[0])):
             shown = [os.path.relpath(h, top) for h in homes]  # no absolute runner path in a message
             out.append(trust.refuse_package(name, str(data["packages"][name]), shown, key_loc("packages", name)))
             del packages[name]
@@ -560,8 +561,8 @@ def _holds_as(folder: str, name: str, files: list[str]) -> bool:
     nearer to it than to any other copy of the package, which zero config would resolve instead."""
     from urdfcheck.load.packages import package_name
 
-    home = os.path.realpath(folder)
-    if not all(os.path.realpath(f).startswith(home.rstrip(os.sep) + os.sep) for f in files):
+    home = realpath(folder)
+    if not all(realpath(f).startswith(home.rstrip(os.sep) + os.sep) for f in files):
         return False
     return package_name(Path(home, "package.xml")) == name
 
