@@ -113,3 +113,21 @@ def test_children_only_for_idle_cores(monkeypatch):
     for cores, n, expected in ((1, 3, 0), (2, 2, 0), (2, 4, 0), (3, 2, 1), (4, 4, 2), (8, 4, 3), (8, 1, 0)):
         monkeypatch.setattr(os, "sched_getaffinity", lambda pid, c=cores: set(range(c)))
         assert batch_children(n) == expected, (cores, n)
+
+
+def test_xacro_is_imported_without_its_command_line():
+    """The worker imports xacro without xacro.cli (optparse, textwrap): the stand-in's process_args still reaches
+    the real one, and the stand-in leaves no trace in sys.modules. In a fresh interpreter (pytest imports
+    textwrap itself)."""
+    import subprocess
+    import sys
+
+    code = """
+import sys
+from urdfcheck.load.xacro.xacroimport import xacro
+before = sorted(m for m in ("optparse", "textwrap", "xacro.cli") if m in sys.modules)
+opts, _ = xacro.process_args(["robot.urdf.xacro", "a:=1"])
+print(before, "optparse" in sys.modules, getattr(sys.modules.get("xacro.cli"), "_stand_in", False))
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.stdout.split("\n")[-2] == "[] True False", out.stdout + out.stderr

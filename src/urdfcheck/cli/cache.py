@@ -474,9 +474,7 @@ def _both_import() -> None:
 
     ast and glob: the worker always imports them (xacro, the expander), this process for any launch file."""
     import ast  # noqa: F401 - xacro there, Python launch files here
-    import gettext  # noqa: F401 - argparse here, optparse (xacro.cli) there
     import glob  # noqa: F401 - the expander there, the deployment finder here
-    import locale  # noqa: F401 - gettext's first lookup
     import math  # noqa: F401
     import resource  # noqa: F401 - the worker's limits there, the run's memory budget here
     import weakref  # noqa: F401

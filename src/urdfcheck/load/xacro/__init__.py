@@ -25,9 +25,10 @@ def worker_limits(trusted: bool, allow_env=(), timeout: float = XACRO_TIMEOUT, m
 
 
 SPARE = "xacro"
-# PyYAML first, through our import (its patterns compile on first use): xacro.substitution_args imports it too
-SPARE_PRELOAD = ("urdfcheck.core.yamlimport", "xacro", "xacro.substitution_args", "urdfcheck.load.xacro.expand",
-                 "urdfcheck.load.xacro.safeeval", "urdfcheck.load.xacro.yamlguard")
+# PyYAML first, through our import (its patterns compile on first use): xacro.substitution_args imports it too;
+# xacro through ours (without its command-line module)
+SPARE_PRELOAD = ("urdfcheck.core.yamlimport", "urdfcheck.load.xacro.xacroimport", "xacro.substitution_args",
+                 "urdfcheck.load.xacro.expand", "urdfcheck.load.xacro.safeeval", "urdfcheck.load.xacro.yamlguard")
 EXPAND = "urdfcheck.load.xacro.expand:expand_with"  # (path, options as a dict)
 EXPAND_BATCH = "urdfcheck.load.xacro.expand:expand_batch"  # ([(path, options, limits), ...], also)
 BATCH_GRACE = 5.0  # seconds the spare has past its expansions' own time-out to report them all

@@ -190,8 +190,9 @@ def expand(path: str, opts: Options) -> dict:
     """
     import contextlib
 
-    import xacro
     from xacro import substitution_args as subst
+
+    from urdfcheck.load.xacro.xacroimport import xacro
 
     kept = _stock(xacro, subst)
     try:
@@ -229,8 +230,9 @@ def _put_back(kept: list) -> None:
 
 
 def _expand(path: str, opts: Options) -> dict:
-    import xacro
     from xacro import substitution_args as subst
+
+    from urdfcheck.load.xacro.xacroimport import xacro
 
     state = _State()
     resolver = opts.resolver
