@@ -452,3 +452,25 @@ def test_only_a_few_small_parameter_files_are_parsed_ahead(tmp_path):
     for i in range(2, lint.PARAMS_AHEAD_FILES + 1):
         (tmp_path / "config" / f"c{i}.yaml").write_text("a: 1\n")
     assert lint._params_ahead([t]) is None
+
+
+def _collector_state():
+    import gc
+
+    return gc.isenabled(), gc.get_freeze_count()
+
+
+def test_a_child_collects_only_what_it_makes():
+    """A child runs its job with the collector on (an expansion makes cyclic garbage), and what it inherited
+    from the parent frozen: tracing it would write to every inherited object, copying the parent's pages."""
+    import gc
+
+    inherited = [[i] for i in range(1000)]  # noqa: F841 - objects the child inherits
+    was = gc.isenabled()
+    gc.disable()  # as a lint run forks its worker
+    try:
+        enabled, frozen = worker.run(_collector_state, timeout=30)
+    finally:
+        if was:
+            gc.enable()
+    assert enabled and frozen >= 1000

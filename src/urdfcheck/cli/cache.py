@@ -377,6 +377,12 @@ def console() -> None:
     except Exception:  # noqa: BLE001 - the cache never stops a run: without it, lint runs as usual
         if os.environ.get("URDFCHECK_DEBUG"):
             raise
+    if lint_argv(sys.argv[1:])[:1] == ["lint"]:
+        # a lint run pauses the collector (cli.main.cmd_lint): from here already, as the imports allocate many
+        # objects and free few (and the xacro worker forked next starts with nothing to trace: core.worker)
+        import gc
+
+        gc.disable()
     fork_early(sys.argv[1:])
     from urdfcheck.cli import main
 
