@@ -155,7 +155,9 @@ def _fork_xacro_worker(ns) -> None:
     meanwhile, and the first expansion is sent to it (load.loader). With other limits than these flags give
     (a config file can set them) it is not used. Only where a path may hold xacro."""
     paths = ns.paths or ["."]
-    if ns.list or ns.write_baseline or not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths):
+    from urdfcheck.cli.cache import may_hold_xacro
+
+    if ns.list or ns.write_baseline or not may_hold_xacro(paths, ns.config or ("" if ns.no_config else None)):
         return
     reuse = sys.modules.get("urdfcheck.load.reuse")  # the lint cache offers every expansion (cli/cache.py)
     if reuse is not None and reuse.all_expected():
