@@ -12,12 +12,11 @@ from __future__ import annotations
 import contextlib
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from urdfcheck.core import progress
 from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.paths import shown
-from urdfcheck.core.records import Record
+from urdfcheck.core.records import TYPE_CHECKING, Record
 from urdfcheck.finish.result import Result, dedupe, fragment  # noqa: F401  (Result: imported from here too)
 from urdfcheck.finish.stage import finish_run, not_understood
 from urdfcheck.finish.suppressions import YamlUse, finish_target

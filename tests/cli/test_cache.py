@@ -424,3 +424,28 @@ def test_a_link_that_points_elsewhere_looks_different(tmp_path):
     assert observe.fingerprint("q", str(link), cache.digest) != before
     assert observe.fingerprint("r", str(link), cache.digest) == observe.fingerprint("r", str(tmp_path / "in" /
                                                                                                "m.xacro"), cache.digest)
+
+
+def test_a_package_of_plain_urdfs_starts_no_xacro_worker(monkeypatch, tmp_path):
+    """A folder without a .xacro file (nor a config that could name one elsewhere) forks no spare: its imports
+    would be a sixth of the lint's CPU for nothing. One .xacro anywhere below, or a config, and it does."""
+    from urdfcheck.core import worker
+
+    got = []
+    monkeypatch.setattr(worker, "keep_spare", lambda key, limits, preload: got.append(limits))
+    pkg = tmp_path / "bot_description"
+    (pkg / "urdf" / "deep").mkdir(parents=True)
+    (pkg / "urdf" / "bot.urdf").write_text('<robot name="b"><link name="base_link"/></robot>')
+    monkeypatch.chdir(tmp_path)
+    cache.fork_early(["lint", "bot_description"])
+    assert got == []
+    (pkg / "urdf" / "deep" / "part.urdf.xacro").write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"/>')
+    cache.fork_early(["lint", "bot_description"])
+    assert len(got) == 1
+    (pkg / "urdf" / "deep" / "part.urdf.xacro").unlink()
+    (pkg / "urdfcheck.yaml").write_text("models:\n  - path: ../elsewhere/robot.urdf.xacro\n")
+    worker.drop_spares()
+    cache.fork_early(["lint", "bot_description"])
+    assert len(got) == 2
+    cache.fork_early(["lint", "--no-config", "bot_description"])  # the config is not read: no xacro
+    assert len(got) == 2

@@ -66,3 +66,39 @@ def test_a_tuple_record_refuses_what_namedtuple_would_break():
 
             def _replace(self):
                 return self
+
+
+def test_a_frozen_record_reads_its_values_once_and_pickles_as_before():
+    """The values a FrozenRecord hashes and compares are read once (the sandbox hashes its limits for each
+    expression); a pickled record equals and hashes like the original in a process with another hash seed."""
+    import os
+    import pickle
+    import subprocess
+    import sys
+
+    from urdfcheck.load.xacro.safeeval import Limits
+
+    reads = []
+
+    class Counted(FrozenRecord):
+        _fields = ("a", "b")
+
+        def __getattribute__(self, name):
+            if name in ("a", "b"):
+                reads.append(name)
+            return super().__getattribute__(name)
+
+    x = Counted(1, (2, 3))
+    for _ in range(5):
+        hash(x)
+        assert x == Counted(1, (2, 3)) and x != Counted(1, (2, 4))
+    assert reads.count("a") == 1 + 5 + 5  # x once; each fresh record compared with it once
+    assert repr(x) == "Counted(a=1, b=(2, 3))"
+    limits = Limits(max_depth=50)
+    assert {limits: 1}[Limits(max_depth=50)] == 1
+    data = pickle.dumps(limits)
+    code = ("import pickle, sys; from urdfcheck.load.xacro.safeeval import Limits; "
+            f"got = pickle.loads({data!r}); print(got == Limits(max_depth=50), {{Limits(max_depth=50): 1}}.get(got))")
+    env = dict(os.environ, PYTHONHASHSEED="12345")
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    assert out.stdout.split() == ["True", "1"], out.stderr

@@ -356,10 +356,12 @@ def test_a_hung_expansion_in_a_batch_times_out_alone(tmp_path, monkeypatch):
 
 
 def test_cancelling_a_batch_ends_the_spare_and_its_children(tmp_path, monkeypatch):
+    import urdfcheck.load.xacro as xacro_pkg
     from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, worker_limits
     from urdfcheck.load.xacro import expand as xexpand
 
     monkeypatch.setattr(xexpand, "expand_with", lambda path, options: time.sleep(60))  # inherited by the spare
+    monkeypatch.setattr(xacro_pkg, "batch_children", lambda n: n - 1)  # as with idle cores: a child for "a"
     worker.keep_spare(SPARE, worker_limits(False, (), 30.0), SPARE_PRELOAD)
     spare_pid = worker._SPARES[SPARE].pid
     try:
@@ -369,7 +371,7 @@ def test_cancelling_a_batch_ends_the_spare_and_its_children(tmp_path, monkeypatc
         batch.send()
         assert batch.job is not None and batch.job.pid == spare_pid and batch.job.group
         end = time.monotonic() + 10
-        # the spare (expanding the last model itself) and a child for each model before it
+        # the spare (expanding the last model itself) and a child for the model before it
         while len(_group_alive(spare_pid)) < 2 and time.monotonic() < end:
             time.sleep(0.02)
         assert len(_group_alive(spare_pid)) == 2
@@ -450,3 +452,25 @@ def test_only_a_few_small_parameter_files_are_parsed_ahead(tmp_path):
     for i in range(2, lint.PARAMS_AHEAD_FILES + 1):
         (tmp_path / "config" / f"c{i}.yaml").write_text("a: 1\n")
     assert lint._params_ahead([t]) is None
+
+
+def _collector_state():
+    import gc
+
+    return gc.isenabled(), gc.get_freeze_count()
+
+
+def test_a_child_collects_only_what_it_makes():
+    """A child runs its job with the collector on (an expansion makes cyclic garbage), and what it inherited
+    from the parent frozen: tracing it would write to every inherited object, copying the parent's pages."""
+    import gc
+
+    inherited = [[i] for i in range(1000)]  # noqa: F841 - objects the child inherits
+    was = gc.isenabled()
+    gc.disable()  # as a lint run forks its worker
+    try:
+        enabled, frozen = worker.run(_collector_state, timeout=30)
+    finally:
+        if was:
+            gc.enable()
+    assert enabled and frozen >= 1000

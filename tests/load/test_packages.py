@@ -158,3 +158,27 @@ def test_the_environment_still_wins_over_the_enclosing_package(tmp_path):
     ros = pkg(tmp_path / "ros1" / "mine", "mine")
     r = Resolver(near=mine / "r.urdf", environ={"ROS_PACKAGE_PATH": str(tmp_path / "ros1")})
     assert r.find("mine") == ros
+
+
+def test_a_package_xml_linked_out_of_the_scanned_folder_is_not_listed(tmp_path):
+    """The scans read only package.xml files that really lie below the folder scanned: a linked package.xml
+    leading out of it is not listed (one leading to a file inside is), and a linked folder is never entered.
+    Regular files are not resolved one by one (the walk never enters a linked folder), links are."""
+    from urdfcheck.load.packages import scan, workspace_packages
+
+    def package(folder, name):
+        folder.mkdir(parents=True)
+        (folder / "package.xml").write_text(f"<package><name>{name}</name></package>")
+        return folder
+
+    ws, outside = tmp_path / "ws", tmp_path / "outside"
+    package(ws / "real_pkg", "real_pkg")
+    package(outside / "far", "far_pkg")
+    (ws / "linked_file").mkdir()
+    os.symlink(outside / "far" / "package.xml", ws / "linked_file" / "package.xml")
+    (ws / "linked_inside").mkdir()
+    os.symlink(ws / "real_pkg" / "package.xml", ws / "linked_inside" / "package.xml")
+    os.symlink(outside / "far", ws / "linked_folder")
+    assert sorted(scan(ws)) == ["real_pkg"]
+    assert scan(ws)["real_pkg"] in (ws / "real_pkg", ws / "linked_inside")
+    assert workspace_packages(ws) == {"real_pkg": [ws / "real_pkg"]}  # a linked package.xml is not a package

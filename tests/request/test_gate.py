@@ -170,6 +170,31 @@ def test_packages_may_not_point_the_checkouts_own_package_at_a_clean_copy(tmp_pa
     assert _x018(found) == [("urdfcheck.yaml", 1)]
 
 
+
+def test_a_config_naming_the_package_that_holds_it_needs_no_scan(tmp_path, monkeypatch):
+    """`packages: {bot: .}` in bot's own config, its models inside bot: zero config resolves that same copy for
+    them (the nearest), so the entry is kept without scanning the repository for other copies of bot, even with a
+    second copy committed. A model of the config outside bot takes the scan again, and the choice is refused."""
+    from urdfcheck.load import packages as pkgs
+
+    scanned = []
+    real_scan = pkgs.workspace_packages
+    monkeypatch.setattr(pkgs, "workspace_packages", lambda root: scanned.append(str(root)) or real_scan(root))
+    ws = _ws(tmp_path, "models:\n  - path: urdf/broken.urdf\npackages: {bot: .}\n", "bot/urdfcheck.yaml")
+    (ws / "vendor" / "bot_clean").mkdir(parents=True)
+    (ws / "vendor" / "bot_clean" / "package.xml").write_text("<package format='3'><name>bot</name></package>")
+    code, found = _lint(ws, "bot")
+    assert code == 1 and _has_broken(found) and not _x018(found), found
+    assert str(ws) not in scanned
+    (ws / "vendor" / "bot_clean" / "urdf").mkdir()
+    (ws / "vendor" / "bot_clean" / "urdf" / "clean.urdf").write_text(GOOD)
+    (ws / "bot" / "urdfcheck.yaml").write_text("models:\n  - path: urdf/broken.urdf\n"
+                                                "  - path: ../vendor/bot_clean/urdf/clean.urdf\npackages: {bot: .}\n")
+    code, found = _lint(ws, "bot")
+    assert _has_broken(found) and _x018(found) == [("bot/urdfcheck.yaml", 4)], found
+    assert str(ws) in scanned
+
+
 TYPO = """<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">
   <xacro:arg name="typo" default="true"/>
   <link name="base_link"/>

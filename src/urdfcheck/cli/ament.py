@@ -15,7 +15,8 @@ import argparse
 import os
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, EXIT_USAGE, add_options
+from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, EXIT_USAGE
+from urdfcheck.cli.parsing import add_options
 from urdfcheck.request.request import LintRequest, UsageError, make_request
 
 SUFFIXES = (".urdf", ".xacro")

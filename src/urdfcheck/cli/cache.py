@@ -377,6 +377,12 @@ def console() -> None:
     except Exception:  # noqa: BLE001 - the cache never stops a run: without it, lint runs as usual
         if os.environ.get("URDFCHECK_DEBUG"):
             raise
+    if lint_argv(sys.argv[1:])[:1] == ["lint"]:
+        # a lint run pauses the collector (cli.main.cmd_lint): from here already, as the imports allocate many
+        # objects and free few (and the xacro worker forked next starts with nothing to trace: core.worker)
+        import gc
+
+        gc.disable()
     fork_early(sys.argv[1:])
     from urdfcheck.cli import main
 
@@ -423,7 +429,7 @@ def fork_early(argv: list[str]) -> None:
                 timeout = float(value)
             except ValueError:
                 return
-    if not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths or ["."]):
+    if not may_hold_xacro(paths or ["."], config):
         return
     if _no_worker_expected():
         return
@@ -437,6 +443,37 @@ def fork_early(argv: list[str]) -> None:
         from urdfcheck.core import yamlimport  # noqa: F401 - the config's reader here, xacro's there
 
     worker.keep_spare(SPARE, worker_limits(trusted, allow_env, timeout or XACRO_TIMEOUT), SPARE_PRELOAD)
+
+
+def may_hold_xacro(paths: list[str], config: str | None = None, max_dirs: int = 2000) -> bool:
+    """Could this lint expand xacro? A .xacro path, a folder holding one (looked for until the first, in at most
+    `max_dirs` folders: past that, assume so), or a config (it may declare a model elsewhere). A package of plain
+    URDFs then starts no xacro worker, whose imports are a sixth of its lint; a xacro reached only through a
+    launch file elsewhere is expanded in a worker started then (load.loader), as without a spare."""
+    if config is not None and config != "":
+        return True
+    if config is None and _reads_yaml_config(None, paths):
+        return True
+    budget = [max_dirs]
+    return any(p.endswith(".xacro") or (os.path.isdir(p) and _xacro_below(p, budget)) for p in paths)
+
+
+def _xacro_below(top: str, budget: list) -> bool:
+    stack = [top]
+    while stack:
+        if budget[0] <= 0:
+            return True
+        budget[0] -= 1
+        try:
+            with os.scandir(stack.pop()) as it:
+                for e in it:
+                    if e.name.endswith(".xacro"):
+                        return True
+                    if not e.name.startswith(".") and e.is_dir(follow_symlinks=False):
+                        stack.append(e.path)
+        except OSError:
+            continue
+    return False
 
 
 def _no_worker_expected() -> bool:
@@ -474,9 +511,7 @@ def _both_import() -> None:
 
     ast and glob: the worker always imports them (xacro, the expander), this process for any launch file."""
     import ast  # noqa: F401 - xacro there, Python launch files here
-    import gettext  # noqa: F401 - argparse here, optparse (xacro.cli) there
     import glob  # noqa: F401 - the expander there, the deployment finder here
-    import locale  # noqa: F401 - gettext's first lookup
     import math  # noqa: F401
     import resource  # noqa: F401 - the worker's limits there, the run's memory budget here
     import weakref  # noqa: F401

@@ -7,8 +7,9 @@ from __future__ import annotations
 import json
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, add_options
+from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS
 from urdfcheck.cli.common import UsageError as _Usage
+from urdfcheck.cli.parsing import add_options
 
 
 def _run(fn):

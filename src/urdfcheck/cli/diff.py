@@ -8,7 +8,8 @@ from __future__ import annotations
 import os
 import sys
 
-from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, UsageError, add_options
+from urdfcheck.cli.common import EXIT_CLEAN, EXIT_FINDINGS, UsageError
+from urdfcheck.cli.parsing import add_options
 
 
 def add_parser(sub) -> None:

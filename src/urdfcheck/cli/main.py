@@ -5,8 +5,6 @@ Exit codes: 0 clean; 1 findings at or above --fail-on (a broken or hostile model
 """
 from __future__ import annotations
 
-import argparse
-import functools
 import os
 import sys
 
@@ -16,20 +14,24 @@ from urdfcheck.cli.common import (  # noqa: F401  (EXIT_*, UsageError: also read
     EXIT_CLEAN,
     EXIT_FINDINGS,
     EXIT_USAGE,
-    Formatter,
-    RawFormatter,
     UsageError,
-    add_options,
-    kv,
     load_one,
     usage_message,
 )
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    import argparse
 
 
 def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse.ArgumentParser:
     """`lint_only`: the other sub-commands are left out (a lint command line never reaches them; each parser costs
     argparse's message-catalogue lookups, about a millisecond)."""
+    import argparse
+    import functools
+
     from urdfcheck import __version__
+    from urdfcheck.cli.parsing import Formatter, RawFormatter, add_options
 
     parser = argparse.ArgumentParser(
         prog="urdfcheck", description="Lint and verify ROS robot descriptions (URDF and xacro).",
@@ -153,7 +155,9 @@ def _fork_xacro_worker(ns) -> None:
     meanwhile, and the first expansion is sent to it (load.loader). With other limits than these flags give
     (a config file can set them) it is not used. Only where a path may hold xacro."""
     paths = ns.paths or ["."]
-    if ns.list or ns.write_baseline or not any(p.endswith(".xacro") or os.path.isdir(p) for p in paths):
+    from urdfcheck.cli.cache import may_hold_xacro
+
+    if ns.list or ns.write_baseline or not may_hold_xacro(paths, ns.config or ("" if ns.no_config else None)):
         return
     reuse = sys.modules.get("urdfcheck.load.reuse")  # the lint cache offers every expansion (cli/cache.py)
     if reuse is not None and reuse.all_expected():
@@ -210,12 +214,14 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
                   + f"; commands: {', '.join(COMMANDS)}, or name files and folders to lint", file=sys.stderr)
             return EXIT_USAGE
         argv = ["lint"] + argv  # `urdfcheck model.urdf` is `urdfcheck lint model.urdf`
-    parser = build_parser(with_publish=not argv or argv[0] not in ("lint", "expand", "rules"),
-                          lint_only=bool(argv) and argv[0] == "lint")
-    ns = parser.parse_args(argv)
-    if ns.command is None:
-        parser.print_help()
-        return EXIT_USAGE
+    ns = _plain_lint(argv)
+    if ns is None:
+        parser = build_parser(with_publish=not argv or argv[0] not in ("lint", "expand", "rules"),
+                              lint_only=bool(argv) and argv[0] == "lint")
+        ns = parser.parse_args(argv)
+        if ns.command is None:
+            parser.print_help()
+            return EXIT_USAGE
     ns.one_shot = one_shot
     try:
         return ns.func(ns)
@@ -235,6 +241,20 @@ def main(argv: list[str] | None = None, *, one_shot: bool = False) -> int:
     finally:
         if "urdfcheck.core.worker" in sys.modules:  # a spare worker nobody took (no xacro model after all)
             sys.modules["urdfcheck.core.worker"].drop_spares()
+
+
+def _plain_lint(argv: list[str]):
+    """`lint [FLAG...] [PATH...]` with flags that take no value: the namespace argparse would give, without
+    importing argparse (`cli.options.plain_lint`); None for anything else (argparse reads it and says what is
+    wrong)."""
+    from urdfcheck.cli.options import plain_lint
+
+    values = plain_lint(argv)
+    if values is None:
+        return None
+    import types
+
+    return types.SimpleNamespace(**values, func=cmd_lint)
 
 
 def run(after=None) -> None:

@@ -128,6 +128,38 @@ def plain_flags(command: str = LINT) -> frozenset[str]:
     return frozenset(f for o in for_command(command) if not o.takes_value for f in o.flags)
 
 
+def plain_lint(argv: list[str]) -> dict | None:
+    """The parsed `lint` command line when it is `lint`, flags that take no value and one run of paths (in any
+    order argparse accepts: the flags before, after or on both sides of the paths), as argparse's namespace would
+    hold it (`cli.main._plain_lint`); None for anything else: a valued option, an abbreviation, `-h`, `--`, a
+    word starting with "-" that is no flag, or paths split by a flag (argparse refuses those)."""
+    if not argv or argv[0] != LINT:
+        return None
+    opts = for_command(LINT)
+    plain = {f: o.dest for o in opts if not o.takes_value for f in o.flags}
+    out: dict = {"command": LINT, "paths": []}
+    for o in opts:
+        if o.takes_value:
+            out[o.dest] = list(o.default) if isinstance(o.default, list) else o.default
+        else:
+            out[o.dest] = None if o.dest in ("trusted", "trust_config") else False
+    runs = 0
+    previous_was_path = False
+    for word in argv[1:]:
+        if word.startswith("-"):
+            dest = plain.get(word)
+            if dest is None:
+                return None
+            out[dest] = True
+            previous_was_path = False
+        else:
+            if not previous_was_path:
+                runs += 1
+            out["paths"].append(word)
+            previous_was_path = True
+    return out if runs <= 1 else None
+
+
 def choices(name: str) -> tuple[str, ...]:
     """The one list behind each named choice (imported on use: the cache fast path never needs them)."""
     if name == "formats":

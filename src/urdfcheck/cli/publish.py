@@ -17,11 +17,11 @@ from urdfcheck.cli.common import (
     EXIT_FINDINGS,
     EXIT_USAGE,
     UsageError,
-    add_options,
     load_one,
     print_findings,
     usage_message,
 )
+from urdfcheck.cli.parsing import add_options
 
 # --- shared ---------------------------------------------------------------------------------------------------
 

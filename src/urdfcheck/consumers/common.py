@@ -1,10 +1,11 @@
 """Shared small types for the consumer readers: a located value and the reader error."""
 from __future__ import annotations
 
-from typing import Any
-
 from urdfcheck.core.findings import Location
-from urdfcheck.core.records import FrozenRecord
+from urdfcheck.core.records import TYPE_CHECKING, FrozenRecord
+
+if TYPE_CHECKING:
+    from typing import Any
 
 
 class ConsumerError(Exception):

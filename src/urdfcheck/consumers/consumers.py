@@ -22,6 +22,7 @@ from urdfcheck.consumers.params import ParamFile, read_params
 from urdfcheck.consumers.tfclaims import TFClaim, claims_from_owners
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 
 DEFAULT_FRAMES = {"map": "map", "odom": "odom", "base": "base_link"}
 
@@ -55,7 +56,7 @@ class Consumers(Record):
         """Does a transform read from `path` count as published (not only claimed)?"""
         if self.run_files is None:
             return True
-        real = os.path.realpath(path)
+        real = realpath(path)
         root = self.run_root
         return real in self.run_files or bool(root and (real == root or real.startswith(root.rstrip(os.sep) + os.sep)))
 
@@ -112,7 +113,7 @@ class Consumers(Record):
         from urdfcheck.consumers.pairing import step
 
         for p in paths:
-            real = os.path.realpath(p)
+            real = realpath(p)
             old = self.pairing.get(real)
             if old is None or (not old.strong and step(p, how).strong):
                 self.pairing[real] = step(p, how, model)
@@ -180,7 +181,7 @@ def _read_launch(paths, out: Consumers, args=None, packages=None, reader: _Reade
     seen: set[str] = set()
     while queue:
         p, a, depth = queue.pop(0)
-        real = os.path.realpath(p)
+        real = realpath(p)
         if real in seen:
             continue
         seen.add(real)
@@ -389,7 +390,7 @@ def discover_consumers(entry: str, model=None, *, packages: Mapping[str, str] | 
     mine, others = _references(entry, root, several, found_params, found_launch, packages)
     skipped = []
     for p in found_params:
-        real = os.path.realpath(p)
+        real = realpath(p)
         if real in others:  # another model of the package names it: its file, not this model's
             skipped.append(p)
             continue
@@ -504,25 +505,25 @@ def run_with(mc, out: Consumers) -> tuple[frozenset, str | None]:
     model). The `localization:` files too: they make the twin "consumers found beside it" (plan.plan). A file the
     config merely names may claim a transform (a conflict), never publish one (rules.checks.tf.graph.claim_only).
     """
-    by_path = {os.path.realpath(li.path): li for li in out.launch}
+    by_path = {realpath(li.path): li for li in out.launch}
     chains = []
     for top in mc.launch:
-        todo, seen = [os.path.realpath(top)], set()
+        todo, seen = [realpath(top)], set()
         while todo:
             real = todo.pop()
             if real in seen or real not in by_path:
                 continue
             seen.add(real)
-            todo.extend(os.path.realpath(inc.file) for inc in by_path[real].includes if inc.file)
+            todo.extend(realpath(inc.file) for inc in by_path[real].includes if inc.file)
         if any(by_path[r].state_publishers for r in seen):
-            chains.append(seen | {os.path.realpath(f) for r in seen for f, _ in by_path[r].param_files})
-    declared = {os.path.realpath(p) for p in mc.localization}
+            chains.append(seen | {realpath(f) for r in seen for f, _ in by_path[r].param_files})
+    declared = {realpath(p) for p in mc.localization}
     if chains:
         return frozenset(set.intersection(*chains) | declared), None
     from urdfcheck.load.packages import enclosing_package
 
     pkg = enclosing_package(Path(os.path.abspath(mc.path)).parent)
-    return frozenset(declared), (os.path.realpath(pkg) if pkg is not None else None)
+    return frozenset(declared), (realpath(pkg) if pkg is not None else None)
 
 
 def _owner_source(config) -> str:

@@ -19,14 +19,16 @@ import functools
 import os
 import re
 from collections.abc import Callable, Iterable
-from typing import Any
 
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.consumers.params import NodeParams, ParamFile
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 from urdfcheck.core.paths import shown
-from urdfcheck.core.records import TupleRecord
+from urdfcheck.core.records import TYPE_CHECKING, TupleRecord
+
+if TYPE_CHECKING:
+    from typing import Any
 
 _RL_INPUT = lazyre.compile(r"^(odom|imu|pose|twist)\d+$")
 

@@ -25,6 +25,7 @@ import os
 
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 
 LOCALIZATION_PACKAGES = ("robot_localization", "nav2_amcl", "amcl", "slam_toolbox", "nav2_bringup",
                          "nav2_controller", "nav2_planner", "nav2_bt_navigator", "nav2_map_server")
@@ -65,7 +66,7 @@ def deployment_unknowns(dep, drivers=()) -> list[tuple[str, Location]]:
     for msg, loc in dep.notes:
         if msg.startswith(("include not followed", "launch file not read")):
             out.append((f"{msg} ({display(loc.file)})", loc))
-    root = [i for i in dep.infos if dep.launch is not None and os.path.realpath(i.path) == os.path.realpath(
+    root = [i for i in dep.infos if dep.launch is not None and realpath(i.path) == realpath(
         dep.launch.file)]
     if getattr(dep, "included_elsewhere", False):
         out.append((f"the launch files that include {display(dep.launch.file)} (not followed to it)", dep.launch))
@@ -171,9 +172,9 @@ def launch_unknowns(c, read=()) -> list[tuple[str, Location]]:
     declared driver), and includes not followed: what a config's launch files run that was not understood."""
     from urdfcheck.core.paths import shown as display
 
-    read = {os.path.realpath(f) for f in read}
+    read = {realpath(f) for f in read}
     out = [(f"{_node_label(n)} in {display(n.loc.file)}", n.loc) for li in c.launch for n in li.nodes
-           if not known_kind(n.package or "") and not ({os.path.realpath(f) for f in n.param_files} & read)]
+           if not known_kind(n.package or "") and not ({realpath(f) for f in n.param_files} & read)]
     out.extend((f"{msg} ({display(loc.file)})", loc) for msg, loc in c.notes
                if msg.startswith("include") and "not followed" in msg)
     return out
@@ -246,7 +247,7 @@ def add_package_files(c, files, model, reader, *, single: bool, why: str) -> Non
     mine, others = _references(entry, files) if not single and entry else (set(), set())
     pfs, skipped = [], []
     for f in files:
-        real = os.path.realpath(f)
+        real = realpath(f)
         if real in others:  # another model of the package names it (consumers.pairing)
             skipped.append(f)
             continue
@@ -341,11 +342,11 @@ def workspace_broadcasters(c, joints: set) -> list:
         return []
     if root not in _WORKSPACE:
         _WORKSPACE[root] = _broadcasters(root)
-    mine = {os.path.realpath(f) for fs in (c.files or {}).values() for f in fs}
+    mine = {realpath(f) for fs in (c.files or {}).values() for f in fs}
     out = []
     for ctl, named in _WORKSPACE[root]:
         hit = named & joints
-        if hit and os.path.realpath(ctl.file) not in mine:
+        if hit and realpath(ctl.file) not in mine:
             out.append((ctl, hit))
     return out
 

@@ -21,11 +21,10 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
 
 from urdfcheck.consumers.common import ConsumerError, Value
 from urdfcheck.core.findings import Location
-from urdfcheck.core.records import Record
+from urdfcheck.core.records import TYPE_CHECKING, Record
 
 if TYPE_CHECKING:  # PyYAML is imported when a file is parsed, not with the readers (consumers/prefilter.py)
     from urdfcheck.consumers.yamlsrc import YamlDoc

@@ -3,10 +3,12 @@ import PyYAML, so a document parsed in the xacro worker is read back here withou
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import Any
 
 from urdfcheck.core.findings import Location
-from urdfcheck.core.records import Record
+from urdfcheck.core.records import TYPE_CHECKING, Record
+
+if TYPE_CHECKING:
+    from typing import Any
 
 
 class YamlDoc(Record):

@@ -25,12 +25,13 @@ they name.
 """
 from __future__ import annotations
 
+import _thread  # threading's lock and thread-local state, without importing threading (start-up)
 import contextlib
 import errno
 import os
-import threading
 
 from urdfcheck.core import safeio
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 
 DEFAULT_RUN_BYTES = 2 * 1024**3  # what one run may read in all, every reader together, unless the runner raises it
 DEFAULT_FILE_BYTES = 64 * 1024**2  # one file read whole, unless the reader asks for a smaller or larger cap
@@ -54,7 +55,7 @@ class RunBytes:
     def __init__(self, total: int = DEFAULT_RUN_BYTES):
         self.total = total
         self.used = 0
-        self._lock = threading.Lock()
+        self._lock = _thread.allocate_lock()
 
     def take(self, n: int, shown: str) -> None:
         with self._lock:
@@ -72,12 +73,12 @@ class _Run:
             self.add_root(r)
 
     def add_root(self, root) -> None:
-        real = os.path.realpath(os.fspath(root))
+        real = realpath(os.fspath(root))
         if real not in self.roots:
             self.roots.append(real)
 
 
-_state = threading.local()
+_state = _thread._local()
 
 
 def _current() -> _Run | None:
@@ -119,7 +120,7 @@ def confine(path, *, runner: bool = False) -> str:
     `runner`: the path was typed by the person running the tool. Typed outside every root, it is theirs to name
     (it becomes a root of its own); typed inside a root, its real path must stay inside one."""
     p = os.path.abspath(os.fspath(path))
-    real = os.path.realpath(p)
+    real = realpath(p)
     run = _current()
     if run is None or not run.roots or run.unconfined:
         return real
@@ -255,7 +256,7 @@ def guarding(typed=()):
     if run is None:
         return guarded(roots)
     for r in roots:  # an inner run (the base revision's tree of --diff-base): what it was typed is the runner's
-        if not any(_under(os.path.realpath(r), x) for x in run.roots):
+        if not any(_under(realpath(r), x) for x in run.roots):
             run.add_root(r)
     return contextlib.nullcontext()
 

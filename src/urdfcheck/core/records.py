@@ -109,6 +109,18 @@ class FrozenRecord(Record):
     def __delattr__(self, name):
         raise AttributeError(f"{type(self).__name__} is immutable: cannot delete {name!r}")
 
+    def _values(self) -> tuple:
+        # immutable: the values are read once (a record used as a cache key is hashed and compared on every lookup:
+        # the sandbox's limits, once per ${...} of an expansion); kept beside the fields, never one of them
+        d = self.__dict__
+        got = d.get(_VALUES)
+        if got is None:
+            got = d[_VALUES] = tuple(getattr(self, n) for n in self._fields)
+        return got
+
     def __hash__(self) -> int:  # type: ignore[override]  # immutable: hashable again
         return hash(self._values())
+
+
+_VALUES = "\0values"  # the key of a FrozenRecord's values in its __dict__ (no field can be named so)
 

@@ -8,11 +8,11 @@ tell "too large" from "exactly the cap".
 """
 from __future__ import annotations
 
+import _thread  # thread-local state without importing threading (start-up)
 import contextlib
 import errno
 import os
 import stat
-import threading
 
 _KINDS = ((stat.S_ISFIFO, "a named pipe"), (stat.S_ISCHR, "a character device"), (stat.S_ISBLK, "a block device"),
           (stat.S_ISSOCK, "a socket"), (stat.S_ISDIR, "a folder"))
@@ -45,7 +45,7 @@ def check_regular(path) -> os.stat_result:
     return st
 
 
-_overlay = threading.local()
+_overlay = _thread._local()
 
 
 @contextlib.contextmanager

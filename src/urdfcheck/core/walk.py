@@ -71,6 +71,14 @@ def run_cached(name: str, key, compute, limit: int = 10_000):
     return got
 
 
+def real(path) -> str:
+    """os.path.realpath, remembered for the run in progress: the confinement checks and the consumer pairing ask
+    about the same package roots, folders and files again and again (an lstat per path component each: a lint
+    of one package asked ~230 times about each folder above it). Outside a run, looked up afresh."""
+    key = os.path.abspath(path)
+    return run_cached("realpath", key, lambda: os.path.realpath(key), 50_000)
+
+
 def _entries(here: str) -> list[os.DirEntry]:
     memo = _LISTED[-1] if _LISTED else None
     if memo is not None:

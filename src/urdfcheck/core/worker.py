@@ -281,7 +281,11 @@ def _child(fn, lim: Limits, call, preload, prog_w, efd_w, capture, go_r, job_fil
     if prog_w is not None:
         args = (_progress_writer(prog_w),) + tuple(args)
     _limit_cpu(lim.timeout)
-    gc.enable()  # a one-shot lint pauses the collector; an expansion makes cyclic garbage (DOM trees)
+    # a one-shot lint pauses the collector; an expansion makes cyclic garbage (DOM trees). What this child
+    # inherited and imported is never garbage here: frozen, the collector never traces it (tracing writes to
+    # every object, and each page written is copied from the parent's)
+    gc.freeze()
+    gc.enable()
     t0 = time.monotonic()
     try:
         payload: tuple = ("ok", fn(*args, **kwargs))

@@ -2,11 +2,9 @@
 one X013 per package): what every front end renders."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from urdfcheck.core.findings import Finding, Severity
 from urdfcheck.core.paths import shown
-from urdfcheck.core.records import Record
+from urdfcheck.core.records import TYPE_CHECKING, Record
 from urdfcheck.finish.packages import merge_x013
 
 if TYPE_CHECKING:

@@ -2,10 +2,9 @@
 understood (C021), the level the run fails at, and the planner's own findings."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from urdfcheck.core.findings import Finding
 from urdfcheck.core.paths import shown
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.finish.packages import missing_packages_once
 from urdfcheck.finish.result import Result, dedupe
 from urdfcheck.request.request import LintRequest, UsageError

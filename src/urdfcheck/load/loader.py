@@ -14,6 +14,7 @@ from urdfcheck.core.findings import Finding, Location, Severity
 from urdfcheck.core.records import Record
 from urdfcheck.core.safeio import UTF8_BOM, encoding_problem
 from urdfcheck.core.suppress import Suppression
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 from urdfcheck.load import budget, reuse
 from urdfcheck.load.packages import Resolver
 from urdfcheck.load.xacro import XACRO_MEMORY, XACRO_TIMEOUT, worker_limits
@@ -301,9 +302,10 @@ class Pending:
 
 class Batch:
     """Xacro models begun together (the run's first few) go to the console's spare as one job: each is expanded
-    in a child forked from the spare, where xacro is already imported. Without it, the second model of a run
-    (a package's argument variant) made this process import xacro before forking its worker: 40 ms on the
-    critical path and the import done twice. Models the spare cannot take (other limits, no spare) start alone."""
+    there or in a child forked from it (`xacro.batch_children`), where xacro is already imported. Without it,
+    the second model of a run (a package's argument variant) made this process import xacro before forking its
+    worker: 40 ms on the critical path and the import done twice. Models the spare cannot take (other limits, no
+    spare) start alone."""
 
     def __init__(self):
         self.items: list[tuple[Expanded, Path, tuple]] = []
@@ -342,7 +344,9 @@ class Batch:
         else:
             spare.send(xacro_pkg.EXPAND_BATCH, [(str(p), _options(out, opts), worker_limits(*opts[:4]))
                                                 for out, p, opts in self.items], self.also)
-            spare.deadline += xacro_pkg.BATCH_GRACE  # the expansions' own time-outs come first
+            # the expansions' own time-outs come first, one after another for those the spare runs itself
+            alone = len(self.items) - xacro_pkg.batch_children(len(self.items))
+            spare.deadline += (alone - 1) * lim.timeout + xacro_pkg.BATCH_GRACE
         self.job = spare
 
     def _batch(self) -> dict | None:
@@ -439,10 +443,10 @@ def _links_outside(p: Path, packages: dict | None) -> bool:
         return True
     if not os.path.islink(lexical):
         return False
-    real = os.path.realpath(lexical)
+    real = realpath(lexical)
     roots = [workspace_root(lexical.parent)] + [Path(v) for v in (packages or {}).values()]
     for r in roots:
-        base = os.path.realpath(r)
+        base = realpath(r)
         if real == base or real.startswith(base.rstrip(os.sep) + os.sep):
             return False
     return True

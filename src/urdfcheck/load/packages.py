@@ -18,13 +18,15 @@ SCAN_DEPTH = 6
 SCAN_LIMIT = 5000  # directories visited at most
 
 
-def _listed_name(package_xml: Path, root) -> str | None:
+def _listed_name(package_xml: Path, root, link: bool = True) -> str | None:
     """`package_name` of a package.xml a workspace scan below `root` listed: the scan looks at folders beside the
-    checkout, not yet roots of the run, so the read is not confined to them, but to `root` (never a link out)."""
+    checkout, not yet roots of the run, so the read is not confined to them, but to `root` (never a link out).
+    `link`: the entry is a symbolic link; one that is not lies where the walk found it, below `root` (the walk
+    never enters a linked folder: core.walk), so its real path is not looked up (an lstat per path component:
+    most of a run's file-system calls in a repository of fifty packages)."""
     from urdfcheck.core import door
 
-    real = os.path.realpath(package_xml)
-    if not _below(real, os.path.realpath(root)):
+    if link and not _below(os.path.realpath(package_xml), real(root)):
         return None
     with door.unconfined():
         return package_name(package_xml)
@@ -60,7 +62,7 @@ def leaves_cwd(path: str | os.PathLike, roots=(), cache: dict | None = None) -> 
     def real_dir(d: str) -> str:
         got = cache.get(d)
         if got is None:
-            got = cache[d] = os.path.realpath(d)
+            got = cache[d] = walk.real(d)
         return got
 
     head, tail = os.path.split(lexical)
@@ -103,7 +105,7 @@ def scan(root: Path, near: Path | None = None) -> dict[str, Path]:
     for d, entries in folders(root, max_dirs=SCAN_LIMIT, max_depth=SCAN_DEPTH):
         for e in entries:
             if e.name == "package.xml" and e.is_file():
-                name = _listed_name(Path(e.path), root)
+                name = _listed_name(Path(e.path), root, e.is_symlink())
                 if name and (name not in found or _closer(Path(d), found[name], near)):
                     found[name] = Path(d)
     return found
@@ -126,7 +128,7 @@ def workspace_packages(root: str | os.PathLike) -> dict[str, list[Path]]:
     for d, entries in folders(key, max_dirs=WORKSPACE_LIMIT):
         for e in entries:
             if e.name == "package.xml" and e.is_file(follow_symlinks=False):
-                name = _listed_name(Path(e.path), key)
+                name = _listed_name(Path(e.path), key, link=False)
                 if name:
                     found.setdefault(name, []).append(Path(d))
     _WORKSPACES[key] = found
@@ -169,12 +171,7 @@ def forget() -> None:
     _RESOLVED.clear()
 
 
-def real(path: str) -> str:
-    """os.path.realpath, remembered for the run in progress: the confinement checks ask about the same package
-    roots and folders for every file of every model (a workspace run asked 16,000 times, an lstat per path
-    component each). Outside a run, looked up afresh."""
-    key = os.path.abspath(path)
-    return walk.run_cached("realpath", key, lambda: os.path.realpath(key), 50_000)
+real = walk.real  # os.path.realpath, remembered for the run (core.walk)
 
 
 def _subdirs(folder: str) -> list[str]:

@@ -28,6 +28,7 @@ from urdfcheck.consumers.openworld import KNOWN_PACKAGES, LOCALIZATION_PACKAGES,
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location
 from urdfcheck.core.records import Record
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 
 MAX_VARIANTS = 24  # launch-argument assignments tried per root launch file
 MAX_MODEL_FILES = 8  # files one model path chosen at launch time may match
@@ -352,7 +353,7 @@ def _walk_tree(ws: _Workspace, root: str, args: Mapping[str, str | None]) -> _Tr
     queue = [(root, dict(args), (), 0)]
     while queue and len(tree.files) < MAX_TREE_FILES:
         path, a, chain, depth = queue.pop(0)
-        real = os.path.realpath(path)
+        real = realpath(path)
         if real in tree.files:
             continue
         tree.files.add(real)
@@ -599,24 +600,24 @@ def find_deployments(root: str | os.PathLike, resolver=None, *, packages: Mappin
     infos = {p: ws.read(p, {}) for p in paths}
     for p, info in infos.items():
         if getattr(info, "state_publishers", None):
-            starts_rsp.add(os.path.realpath(p))
+            starts_rsp.add(realpath(p))
         for inc in getattr(info, "includes", ()):
             target = ws.locate(inc.file) if inc.file else None
             if target is not None:
-                included.add(os.path.realpath(target))
+                included.add(realpath(target))
         for f in ws.inactive_includes(p):
             target = ws.locate(f)
             if target is not None:
-                included.add(os.path.realpath(target))
-    roots = [p for p in paths if os.path.realpath(p) not in included]
+                included.add(realpath(target))
+    roots = [p for p in paths if realpath(p) not in included]
     out: list[Deployment] = []
     seen: dict[tuple, Deployment] = {}
     reached: set[str] = set()
     # then an included file that starts robot_state_publisher itself, when no root reaches it (an include
     # hidden in an OpaqueFunction loop, a file name decided at launch time)
-    later = [p for p in paths if os.path.realpath(p) in included and os.path.realpath(p) in starts_rsp]
+    later = [p for p in paths if realpath(p) in included and realpath(p) in starts_rsp]
     for rootfile in roots + later:
-        if os.path.realpath(rootfile) in reached:
+        if realpath(rootfile) in reached:
             continue
         for dep, tree in _root_deployments(ws, rootfile):
             reached.update(f for f in tree.files)
@@ -716,8 +717,8 @@ def describe(deployments: list[Deployment], show=None) -> str:
             lines.append("  static transforms: " + ", ".join(f"{t.parent}->{t.child}" for t in d.static_tfs))
         if d.localization_files or nodes:
             # each node with the file it was read from: a file is never listed under another node's kind
-            named = {os.path.realpath(f) for _, _, f in nodes if f}
-            rest = [show(f) for f in d.localization_files if os.path.realpath(f) not in named]
+            named = {realpath(f) for _, _, f in nodes if f}
+            rest = [show(f) for f in d.localization_files if realpath(f) not in named]
             lines.append("  localization: " + ", ".join(
                 [f"{kind} {node}" + (f" ({show(f)})" if f else "") for kind, node, f in nodes]
                 + ([f"no TF owner in {', '.join(rest)}"] if rest else [])))

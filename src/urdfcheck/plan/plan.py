@@ -24,6 +24,7 @@ from pathlib import Path
 
 from urdfcheck.core.paths import shown
 from urdfcheck.core.records import Record
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 from urdfcheck.plan.named import Named as _Named
 from urdfcheck.request.request import LintRequest, Settings, UsageError
 
@@ -192,7 +193,7 @@ class Planner:
 
         limit = self.request.max_files or MAX_FILES
         found = discover(folder, trusted=settings.trusted, max_files=limit)
-        self.libraries.update(os.path.realpath(p) for p in found.libraries)
+        self.libraries.update(realpath(p) for p in found.libraries)
         self.included.extend(getattr(found, "included", ()))
         if getattr(found, "truncated", False):
             self.truncated.append(_cut_short(shown(folder), f"{limit} files"))
@@ -291,11 +292,11 @@ class Planner:
         there does not hide the broken robot next to it). A vouched config's models are all that is linted."""
         if _vouched(cfg) or not os.path.isdir(folder):
             return []
-        declared = {os.path.realpath(m.path) for m in cfg.models}
+        declared = {realpath(m.path) for m in cfg.models}
         got = self.discovered(folder, walk if walk is not None else self.walk(folder), self.settings(cfg),
                               exclude, named)
         return [t for t in got if not _covered(t, cfg) if t.deployment is not None
-                or os.path.realpath(t.path) not in declared]
+                or realpath(t.path) not in declared]
 
     def declared(self, cfg, paths) -> list[Target]:
         """The config's models (at or below `paths` when given); paths no model covers: discovered."""
@@ -359,27 +360,27 @@ class Planner:
             found = self.discover(root, settings)
             hinted: dict[str, list] = {}
             for f, by in getattr(found, "hints", ()):
-                hinted.setdefault(os.path.realpath(f), []).append(by)
+                hinted.setdefault(realpath(f), []).append(by)
             for entry in found.probes:  # no link by its text: the expansion decides (plan.robots)
-                if os.path.realpath(entry) not in named.covered:
+                if realpath(entry) not in named.covered:
                     out.append(self.probe(Path(entry), settings, named.root))
                     # whole, if it has links; one that another file may include is a fragment where it fails
                     # only on what that file provides (run: plan.robots.provided)
                     out[-1].evidence = (_step("model", entry, "complete"),)
-                    out[-1].includers = tuple(hinted.get(os.path.realpath(entry), ()))
+                    out[-1].includers = tuple(hinted.get(realpath(entry), ()))
             if not found.models and not found.probes and found.libraries \
                     and not any(_below(t.path, root) for t in out):
                 self.infos.append(f"{shown(root)}: xacro libraries only (macros, properties): "
                                   "linted through the robots that include them")
             for entry in found.models:
-                if os.path.realpath(entry) not in named.covered:  # a deployment gives the args it needs
+                if realpath(entry) not in named.covered:  # a deployment gives the args it needs
                     out.extend(_mark(self.variants(Path(entry), settings, named.root, found=True), "complete"))
         if not out:
             out.extend(self.moveit_model(folder, settings))
         if not inside and walk.packages and walk.loose:  # model files outside every package
             pk = walk.packages
             for entry in self.discover(folder, settings).models:
-                if not _under_any(entry, pk) and os.path.realpath(entry) not in named.covered:
+                if not _under_any(entry, pk) and realpath(entry) not in named.covered:
                     out.extend(_mark(self.variants(Path(entry), settings, named.root, found=True), "complete"))
         return [t for t in out if t.deployment is not None or not _under_any(str(t.path), exclude)]
 
@@ -398,10 +399,10 @@ class Planner:
             return []
         from urdfcheck.load.packages import workspace_root
 
-        real = os.path.realpath(model)
-        inside = _below(real, os.path.realpath(os.getcwd()))
+        real = realpath(model)
+        inside = _below(real, realpath(os.getcwd()))
         if not inside and not _below(real, str(workspace_root(pkg))) \
-                and not any(_below(real, os.path.realpath(p)) for p in settings.packages.values()):
+                and not any(_below(real, realpath(p)) for p in settings.packages.values()):
             # a file of the checkout names it: a package of its workspace (as a launch file's $(find) resolves
             # one) or one the runner named, never an installed package elsewhere on the machine
             return []
@@ -418,7 +419,7 @@ class Planner:
         key = os.path.abspath(root)
         if key not in self._named:
             deps = [d for d in self.find(key, settings) if not _under_any(d.launch.file, skip)]
-            self._named[key] = _Named(key, deps, {os.path.realpath(d.model) for d in deps})
+            self._named[key] = _Named(key, deps, {realpath(d.model) for d in deps})
         return self._named[key]
 
     def find(self, root: str, settings: Settings, files=None) -> list:
@@ -471,18 +472,18 @@ class Planner:
             folder = Path(os.path.abspath(path)).parent
             pkg = enclosing_package(folder)
             found = self.discover(pkg or folder, settings)
-            if os.path.realpath(path) in {os.path.realpath(x) for x in found.libraries} and _robot_file(path):
+            if realpath(path) in {realpath(x) for x in found.libraries} and _robot_file(path):
                 robots = self.robots_including(str(path), str(pkg or folder), settings)
-                real = os.path.realpath(path)
-                for by in (b for f, b in getattr(found, "hints", ()) if os.path.realpath(f) == real):
+                real = realpath(path)
+                for by in (b for f, b in getattr(found, "hints", ()) if realpath(f) == real):
                     if not robots:  # a computed, legacy or commented include: the robots that include its includer
                         robots = [t for t in self.robots_including(by, str(pkg or folder), settings)
-                                  if os.path.realpath(t.path) != real]
+                                  if realpath(t.path) != real]
                         ws = self.library_ws(by, str(pkg or folder))
                         robots = robots or [t for t in self.workspace_targets(ws)
-                                            if os.path.realpath(t.path) == os.path.realpath(by)]
-                maybe = {os.path.realpath(x) for x in (*found.probes, *found.included)}
-                if not robots and os.path.realpath(path) in maybe:  # named: never skipped when it may be a robot
+                                            if realpath(t.path) == realpath(by)]
+                maybe = {realpath(x) for x in (*found.probes, *found.included)}
+                if not robots and realpath(path) in maybe:  # named: never skipped when it may be a robot
                     return _mark([self.probe(path, settings)], "named", force=True)
                 if not robots:  # macros and properties only: certainly no link
                     self.infos.append(f"{shown(str(path))}: a xacro library that no robot of "
@@ -511,12 +512,12 @@ class Planner:
         from urdfcheck.load.packages import included_files
 
         ws = self.library_ws(library, pkg)
-        real, out = os.path.realpath(library), []
+        real, out = realpath(library), []
         for t in self.workspace_targets(ws):
-            key = (os.path.realpath(t.path), tuple(sorted(t.packages.items())))
+            key = (realpath(t.path), tuple(sorted(t.packages.items())))
             if key not in self._closures:
                 self._closures[key] = included_files(t.path, lambda n, pk=t.packages: pk.get(n))
-            if real in self._closures[key] and os.path.realpath(t.path) != real:
+            if real in self._closures[key] and realpath(t.path) != real:
                 out.append(t)
         return out
 
@@ -574,11 +575,11 @@ def reaching_targets(fragment, robots: list[Target], infos: list, named: bool = 
     fragment = Path(fragment)
     out, done = [], set()
     for t in robots:
-        entry = os.path.realpath(t.path)
+        entry = realpath(t.path)
         if entry in done or not str(t.path).endswith(".xacro"):
             continue
         done.add(entry)
-        mine = [r for r in robots if os.path.realpath(r.path) == entry]
+        mine = [r for r in robots if realpath(r.path) == entry]
         r = reaching(str(t.path), str(fragment), lambda n, pk=t.packages: pk.get(n))
         if r is None:
             continue
@@ -677,7 +678,7 @@ def _covered(t: Target, cfg) -> bool:
     if d is None:
         return False
     m = cfg.model_for(t.path)
-    if m is None or os.path.realpath(d.launch.file) not in {os.path.realpath(x) for x in m.launch}:
+    if m is None or realpath(d.launch.file) not in {realpath(x) for x in m.launch}:
         return False
     return not d.args or any(dict(d.args) == a for _, a in m.variant_args())
 
@@ -691,9 +692,9 @@ def _undeclared_consumers(m) -> bool:
     pkg = enclosing_package(Path(os.path.abspath(m.path)).parent)
     if pkg is None:
         return False
-    named = {os.path.realpath(p) for p in (*m.controllers, *m.launch, *m.localization, *(d.file for d in m.drivers))}
+    named = {realpath(p) for p in (*m.controllers, *m.launch, *m.localization, *(d.file for d in m.drivers))}
     found = discover(str(pkg))
-    return any(os.path.realpath(p) not in named for p in (*found.params, *found.launch))
+    return any(realpath(p) not in named for p in (*found.params, *found.launch))
 
 
 def _declares_localization(m) -> bool:
@@ -724,9 +725,9 @@ def _is_launch(path: str) -> bool:
 
 def _models_at(cfg, path: str) -> list:
     """The config's models at or below `path`."""
-    real = os.path.realpath(path)
-    return [m for m in cfg.models if os.path.realpath(m.path) == real
-            or os.path.realpath(m.path).startswith(real.rstrip(os.sep) + os.sep)]
+    real = realpath(path)
+    return [m for m in cfg.models if realpath(m.path) == real
+            or realpath(m.path).startswith(real.rstrip(os.sep) + os.sep)]
 
 
 def _consumers(mc, cfg, packages: dict):
@@ -741,7 +742,7 @@ def _unique(targets: list[Target]) -> list[Target]:
     seen, out = set(), []
     for t in targets:
         launch = getattr(getattr(t.deployment, "launch", None), "file", None)
-        key = (os.path.realpath(t.path), tuple(sorted(t.args.items())), launch,  # realpath: no stat of a link's target
+        key = (realpath(t.path), tuple(sorted(t.args.items())), launch,  # realpath: no stat of a link's target
                getattr(t, "twin", False))
         if key not in seen:
             seen.add(key)

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import os
 
+from urdfcheck.core.walk import real as realpath  # remembered for the run
+
 
 def has_links(root) -> bool:
     """Whether an expanded document (lxml root element; comments are not elements) holds a <link>."""
@@ -26,8 +28,8 @@ def has_links(root) -> bool:
 def missed(candidates, loaded_files) -> list[str]:
     """The `candidates` (files discovery took for included libraries) that no model of the run actually
     read: another file's include was commented out, conditional or never expanded, so nothing checked them."""
-    read = {os.path.realpath(f) for f in loaded_files if f and not str(f).startswith("<")}
-    return [c for c in dict.fromkeys(candidates) if os.path.realpath(c) not in read]
+    read = {realpath(f) for f in loaded_files if f and not str(f).startswith("<")}
+    return [c for c in dict.fromkeys(candidates) if realpath(c) not in read]
 
 
 # --- fragments: a file that fails only on symbols its includers provide (issue 37) ---------------------------
@@ -84,9 +86,9 @@ def includers_of(path: str) -> list[str]:
     if pkg is None:
         return []
     found = discover(str(pkg))
-    base, real, out = os.path.basename(path).encode(), os.path.realpath(path), []
+    base, real, out = os.path.basename(path).encode(), realpath(path), []
     for f in (*found.models, *found.libraries, *found.probes):
-        if os.path.realpath(f) == real or leaves_cwd(f):
+        if realpath(f) == real or leaves_cwd(f):
             continue
         try:
             if base in door.read_bytes(f, limit=4 * 1024 * 1024):

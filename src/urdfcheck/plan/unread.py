@@ -13,6 +13,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from urdfcheck.core.walk import real as realpath  # remembered for the run
+
 
 def mark_unread(deployments, root: str, included=()) -> None:
     from urdfcheck.load.discover import discover
@@ -21,13 +23,13 @@ def mark_unread(deployments, root: str, included=()) -> None:
     read: set[str] = set()
     for d in deployments:
         files = [*d.controller_files, *d.localization_files, *(f for _, fs in d.driver_nodes for f in fs)]
-        read.update(os.path.realpath(f) for f in files)
+        read.update(realpath(f) for f in files)
     found: dict[str, tuple] = {}
     for d in deployments:
         d.workspace = root
         # a root launch file that another launch file includes, which was not followed to it: that one's
         # world is not known (consumers.openworld)
-        d.included_elsewhere = d.launch is not None and os.path.realpath(d.launch.file) in included
+        d.included_elsewhere = d.launch is not None and realpath(d.launch.file) in included
         if d.model is None:
             continue
         pkg = enclosing_package(Path(os.path.abspath(d.model)).parent)
@@ -41,5 +43,5 @@ def mark_unread(deployments, root: str, included=()) -> None:
                 continue
             found[key] = (got.params, len(got.models) <= 1)
         params, single = found[key]
-        d.package_files = tuple(p for p in params if os.path.realpath(p) not in read)
+        d.package_files = tuple(p for p in params if realpath(p) not in read)
         d.package_single = single

@@ -62,10 +62,13 @@ import re
 from collections.abc import Mapping
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
 
 from urdfcheck.core.findings import Location, Severity
-from urdfcheck.core.records import FrozenRecord
+from urdfcheck.core.records import TYPE_CHECKING, FrozenRecord
+from urdfcheck.core.walk import real as realpath  # remembered for the run
+
+if TYPE_CHECKING:
+    from typing import Any
 
 CONFIG_NAMES = ("urdfcheck.yaml", ".urdfcheck.yaml")
 PYPROJECT = "pyproject.toml"
@@ -205,9 +208,9 @@ class Config(FrozenRecord):
         return Location(self.path)
 
     def model_for(self, path: str | os.PathLike) -> ModelConfig | None:
-        real = os.path.realpath(str(path))
+        real = realpath(str(path))
         for m in self.models:
-            if os.path.realpath(m.path) == real:
+            if realpath(m.path) == real:
                 return m
         return None
 
@@ -488,7 +491,7 @@ def load_config(path: str | os.PathLike, trusted: bool = False, root: str | None
         if not os.path.isdir(p):
             raise ConfigError(f"'packages.{k}': not a folder: {data['packages'][k]}", val_loc("packages", k))
     if not trusted and packages:
-        notes += tuple(_own_packages(packages, data, root, key_loc))
+        notes += tuple(_own_packages(packages, data, root, key_loc, [path] + [m.path for m in models]))
     tf_owners = {str(k): str(v) for k, v in (data.get("tf_owners") or {}).items()}
     tf_owner_locs = {k: key_loc("tf_owners", k) for k in tf_owners}
     severity = {str(k): Severity.parse(v) for k, v in (data.get("severity") or {}).items()}
@@ -528,25 +531,40 @@ def _replaced_defaults(model: str, m: dict) -> Mapping:
     return _ro({k: v for k, v in defaulted_args(model).items() if k in given})
 
 
-def _own_packages(packages: dict, data: dict, root: str, key_loc) -> list:
+def _own_packages(packages: dict, data: dict, root: str, key_loc, files: list[str]) -> list:
     """Refuse (X018, and drop) `packages:` entries that point a package the checkout defines (a package.xml of
     that name in the config's repository) at another folder, or choose among two copies of it: the pull request
-    would lint a clean copy."""
+    would lint a clean copy. An entry naming the package that holds the config and its models (`files`) is what
+    zero config resolves for them anyway (the copy nearest each model) and needs no scan of the repository."""
     from urdfcheck.load.packages import workspace_packages
     from urdfcheck.request import trust
 
+    pending = [name for name in packages if not _holds_as(packages[name], name, files)]
+    if not pending:
+        return []
     top = trust.repo_root(root)
     own = workspace_packages(top)
     out = []
-    for name in list(packages):
+    for name in pending:
         homes = own.get(name)
         # two copies of one package in the checkout: choosing one is the runner's (the pull request could commit a
         # clean copy under the same name); zero config resolves the copy nearest each model
-        if homes and (len(homes) > 1 or os.path.realpath(packages[name]) != os.path.realpath(homes[0])):
+        if homes and (len(homes) > 1 or realpath(packages[name]) != realpath(homes[0])):
             shown = [os.path.relpath(h, top) for h in homes]  # no absolute runner path in a message
             out.append(trust.refuse_package(name, str(data["packages"][name]), shown, key_loc("packages", name)))
             del packages[name]
     return out
+
+
+def _holds_as(folder: str, name: str, files: list[str]) -> bool:
+    """Is `folder` package `name` (its package.xml says so), holding every one of `files`? Then each of them is
+    nearer to it than to any other copy of the package, which zero config would resolve instead."""
+    from urdfcheck.load.packages import package_name
+
+    home = realpath(folder)
+    if not all(realpath(f).startswith(home.rstrip(os.sep) + os.sep) for f in files):
+        return False
+    return package_name(Path(home, "package.xml")) == name
 
 
 # --- variants: auto (load.variants; imported from here too) ----------------------------------------------

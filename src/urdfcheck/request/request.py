@@ -13,11 +13,13 @@ from __future__ import annotations
 import os
 from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Any
 
 from urdfcheck.core.findings import Severity
-from urdfcheck.core.records import Record
+from urdfcheck.core.records import TYPE_CHECKING, Record
 from urdfcheck.load.xacro import XACRO_TIMEOUT  # one xacro expansion (a light module: xacro is not imported)
+
+if TYPE_CHECKING:
+    from typing import Any
 
 
 class UsageError(ValueError):

@@ -26,6 +26,7 @@ from __future__ import annotations
 import os
 
 from urdfcheck.core.findings import Finding, Location, Severity
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 
 DEFAULT_MAX_ELEMENTS = 2_000_000  # load.loader.MAX_ELEMENTS (not imported: start-up)
 GUARD_KEYS = ("trusted", "allow_env")
@@ -229,7 +230,7 @@ _ROOTS: dict[str, str] = {}
 
 def repo_root(folder: str) -> str:
     """The nearest folder at or above `folder` holding `.git` (a repository or a worktree), else `folder`."""
-    folder = os.path.realpath(folder)
+    folder = realpath(folder)
     if folder not in _ROOTS:
         root = folder
         for d in (folder, *_parents(folder)):
@@ -258,8 +259,8 @@ def confine(full: str, root: str, trusted: bool) -> str | None:
     path must stay in the config's repository or the working directory, as the loader keeps symlinks."""
     if trusted:
         return None
-    real = os.path.realpath(full)
-    bases = (repo_root(root), os.path.realpath(os.getcwd()))
+    real = realpath(full)
+    bases = (repo_root(root), realpath(os.getcwd()))
     if any(_below(real, b) for b in bases):
         return None
     return ("leaves the checkout (a config found in the checkout may only name files inside its repository "

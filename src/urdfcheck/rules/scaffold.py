@@ -62,7 +62,7 @@ def {func}(model: Model, ctx: Context) -> Iterator[Problem]:
 '''
 
 TYPES = """
-from typing import TYPE_CHECKING
+from urdfcheck.core.records import TYPE_CHECKING  # no typing import at run time
 
 if TYPE_CHECKING:  # the check's argument types (no import at run time)
     from collections.abc import Iterator

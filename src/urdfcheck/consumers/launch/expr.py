@@ -6,7 +6,11 @@ missed once. What the two dialects do differently is a named parameter of `evalu
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any
+
+from urdfcheck.core.records import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from typing import Any
 
 MAX_TEXT = 2000  # longer expressions are decided at launch time
 MAX_DEPTH = 30

@@ -8,12 +8,14 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping
-from typing import Any
 
 from urdfcheck.consumers.common import Value
 from urdfcheck.core import geometry
 from urdfcheck.core.findings import Location
-from urdfcheck.core.records import FrozenRecord, Record, TupleRecord
+from urdfcheck.core.records import TYPE_CHECKING, FrozenRecord, Record, TupleRecord
+
+if TYPE_CHECKING:
+    from typing import Any
 
 UNKNOWN = "\x00"  # a piece of a string decided at launch time
 

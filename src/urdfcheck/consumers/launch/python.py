@@ -16,7 +16,6 @@ from __future__ import annotations
 import ast
 import os
 from collections.abc import Callable, Mapping
-from typing import Any
 
 from urdfcheck.consumers.common import Value, as_bool
 from urdfcheck.consumers.launch.info import (  # noqa: F401 - UNKNOWN, ModelRef, command_model: read here too
@@ -31,7 +30,10 @@ from urdfcheck.consumers.launch.info import (  # noqa: F401 - UNKNOWN, ModelRef,
     record_node,
 )
 from urdfcheck.core.findings import Location
-from urdfcheck.core.records import TupleRecord
+from urdfcheck.core.records import TYPE_CHECKING, TupleRecord
+
+if TYPE_CHECKING:
+    from typing import Any
 
 _MAX_DEPTH = 40
 _MAX_STEPS = 50_000

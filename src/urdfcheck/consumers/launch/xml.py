@@ -32,7 +32,6 @@ import os
 import re
 import shlex
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
 
 from urdfcheck.consumers.common import ConsumerError, Value, as_bool
 from urdfcheck.consumers.launch.info import (  # noqa: F401 - the records are part of this module's interface
@@ -58,6 +57,7 @@ from urdfcheck.consumers.launch.info import (  # noqa: F401 - the records are pa
 from urdfcheck.core import lazyre, xmlfront
 from urdfcheck.core.findings import Location
 from urdfcheck.core.lxmlimport import etree
+from urdfcheck.core.records import TYPE_CHECKING
 
 if TYPE_CHECKING:
     import ast

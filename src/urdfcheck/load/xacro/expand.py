@@ -1,7 +1,8 @@
 """Run the PyPI xacro package as a library, with source markers and (by default) the sandbox.
 
-This module patches xacro's module globals, so it must only run inside a throw-away worker process
-(see core/worker.py): the parent never executes xacro code, so nothing leaks from one file to the next.
+This module patches xacro's module globals, so it only runs inside a worker process (see core/worker.py): the
+parent never executes xacro code. Each expansion puts xacro's module state back when it ends and starts from
+fresh global symbols, so nothing leaks from one file to the next when the spare expands several in turn.
 
 Source map: every element read from a file gets an attribute `__ucsrc="F:L"` (file index, line).
 When an element is first evaluated, the macro call sites active at that moment are appended
@@ -119,22 +120,22 @@ def expand_with(path: str, options: dict) -> dict:
 
 
 def expand_batch(jobs: list, also=None) -> dict:
-    """In the console's spare, where xacro is imported: each (path, options, limits) expanded in a child of its
-    own forked from here, all at once, under the limits the loader gives a lone expansion (`core.worker.start`);
-    "outcomes": theirs (a result dict or a `Failure`) in order. A fresh child per expansion, as everywhere: the
-    expander patches xacro's module state and is never run twice in one process.
+    """In the console's spare, where xacro is imported: each (path, options, limits) expanded under the limits the
+    loader gives a lone expansion, the first `batch_children` each in a child of its own forked now (before
+    this process runs any xacro code), the others here, one after another (each with its own wall clock and
+    xacro's module state put back after it: `expand`); "outcomes": theirs (a result dict or a `Failure`) in
+    order. This process is under the same limits as a child (`Batch.takes`: the spare's are the jobs'); if it
+    dies or overruns, the loader expands each model alone.
 
     `also`: ("module:function", args) run here meanwhile (the package's parameter files, parsed where PyYAML is
     imported); "also": its value, None when it failed."""
     from urdfcheck.core import worker
+    from urdfcheck.load.xacro import batch_children
 
-    # every expansion but the last in a child forked now, before this process runs any xacro code; the last one
-    # here, as the last xacro code this process runs (a fork and a process's exit less: ~5 ms of CPU a run, on
-    # a package whose variants are each expanded in ~12). This process is under the same limits as a child
-    # (`Batch.takes`: the spare's are the jobs'); if it dies or overruns, the loader expands each model alone.
+    forked = batch_children(len(jobs))
     started = [worker.start(expand_with, path, options, timeout=lim.timeout, memory=lim.memory,
-                            env_keep=lim.env_keep, scrub_env=lim.scrub_env) for path, options, lim in jobs[:-1]]
-    last = _expand_here(*jobs[-1]) if jobs else None
+                            env_keep=lim.env_keep, scrub_env=lim.scrub_env) for path, options, lim in jobs[:forked]]
+    here = [_expand_here(*job) for job in jobs[forked:]]
     extra = None
     if also is not None:
         try:
@@ -142,7 +143,7 @@ def expand_batch(jobs: list, also=None) -> dict:
         except Exception:  # noqa: BLE001 - the console does it itself
             extra = None
     worker.wait(started)
-    return {"outcomes": [j.value for j in started] + ([last] if jobs else []), "also": extra}
+    return {"outcomes": [j.value for j in started] + here, "also": extra}
 
 
 def _expand_here(path: str, options: dict, lim):
@@ -189,14 +190,49 @@ def expand(path: str, opts: Options) -> dict:
     """
     import contextlib
 
-    # `--trusted`: the runner lowered the guard; the door still refuses FIFOs and caps, but confines nothing
-    with showing(opts.root), (door.unconfined() if opts.trusted else contextlib.nullcontext()):
-        return _expand(path, opts)
+    from xacro import substitution_args as subst
+
+    from urdfcheck.load.xacro.xacroimport import xacro
+
+    kept = _stock(xacro, subst)
+    try:
+        # `--trusted`: the runner lowered the guard; the door still refuses FIFOs and caps, but confines nothing
+        with showing(opts.root), (door.unconfined() if opts.trusted else contextlib.nullcontext()):
+            return _expand(path, opts)
+    finally:
+        _put_back(kept)
+
+
+# what an expansion replaces in xacro's modules (its hooks, the sandbox) and in this process (stderr)
+_PATCHED = ("get_include_files", "eval_all", "handle_macro_call", "check_attrs", "parse", "eval_extension",
+            "eval_text", "warning", "message", "error", "safe_eval", "_global_symbols")
+_PATCHED_SUBST = ("_eval_env", "_eval_optenv", "_eval_find", "_eval")
+
+
+def _stock(xacro, subst) -> list:
+    """xacro's module state as it is before an expansion (stock: each expansion puts it back), and fresh global
+    symbols for this one: what one expansion did to them (the sandbox's functions, anything a model reached)
+    never reaches the next one the spare runs (`expand_batch`). Returns what `_put_back` restores."""
+    kept = [(mod, name, getattr(mod, name)) for mod, names in ((xacro, _PATCHED), (subst, _PATCHED_SUBST))
+            for name in names if hasattr(mod, name)]
+    units = getattr(xacro, "ConstructUnits", None)
+    if units is not None and hasattr(units, "constructor"):
+        kept.append((units, "constructor", units.constructor))
+    kept.append((sys, "stderr", sys.stderr))
+    if hasattr(xacro, "create_global_symbols"):
+        xacro._global_symbols = xacro.create_global_symbols()
+    return kept
+
+
+def _put_back(kept: list) -> None:
+    for mod, name, value in kept:
+        setattr(mod, name, value)
 
 
 def _expand(path: str, opts: Options) -> dict:
-    import xacro
     from xacro import substitution_args as subst
+
+    from urdfcheck.load.xacro.xacroimport import xacro
 
     state = _State()
     resolver = opts.resolver

@@ -16,12 +16,15 @@ joints) that a launch file starts one at a time, so declaring is never running.
 from __future__ import annotations
 
 from collections.abc import Iterator
-from typing import TYPE_CHECKING, Any
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.core.records import TYPE_CHECKING
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 from urdfcheck.rules.catalogue import check
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)
+    from typing import Any
+
     from urdfcheck.model.robot import Model
     from urdfcheck.rules.engine import Context
 
@@ -95,17 +98,16 @@ def _spawn_groups(c) -> Iterator[tuple[Any, list]]:
     """(launch info, [(controller name, spawner node, include locations), ...]) of the controllers each launch
     file spawns active, its own spawners and those of the launch files it includes (followed as `_followed`
     says), per controller manager (a spawner's `-c` and namespace)."""
-    import os
 
     by_path: dict[str, object] = {}
     for li in c.launch:
-        by_path.setdefault(os.path.realpath(li.path), li)
+        by_path.setdefault(realpath(li.path), li)
 
     def members(li, via: tuple, stack: frozenset) -> list:
         entries = [(line, 0, [(name, node, via)]) for line, name, node in _spawns(li)]
         if len(stack) <= MAX_INCLUDE_DEPTH:
             for inc in li.includes:
-                real = os.path.realpath(inc.file) if inc.file else ""
+                real = realpath(inc.file) if inc.file else ""
                 included = by_path.get(real)
                 if real in stack or not _followed(inc, included):
                     continue
@@ -114,7 +116,7 @@ def _spawn_groups(c) -> Iterator[tuple[Any, list]]:
 
     for li in c.launch:
         groups: dict[tuple, list] = {}
-        for name, node, via in members(li, (), frozenset({os.path.realpath(li.path)})):
+        for name, node, via in members(li, (), frozenset({realpath(li.path)})):
             groups.setdefault((node.namespace or "", _manager(node)), []).append((name, node, via))
         for group in groups.values():
             yield li, group

@@ -15,7 +15,6 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
 
 from urdfcheck.consumers.common import as_bool
 from urdfcheck.consumers.consumers import Consumers
@@ -24,6 +23,8 @@ from urdfcheck.consumers.controllers import JSB, JSC
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Location, Problem, closest
 from urdfcheck.core.paths import shown
+from urdfcheck.core.records import TYPE_CHECKING
+from urdfcheck.core.walk import real as realpath  # remembered for the run
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.tf.graph import claim_only, untrusted_hint
 from urdfcheck.rules.checks.tf.graph import deployment_graph as _graph
@@ -300,7 +301,7 @@ def _far_pairing(c, far, model, workspace: bool) -> tuple:
     out = []
     for s in far[:3]:
         f = getattr(s, "file", "") or ""
-        got = pairing.get(os.path.realpath(f)) if f else None
+        got = pairing.get(realpath(f)) if f else None
         if got is None and f:
             got = step(f, "overlap" if workspace else "package", getattr(model, "source", "") or "")
         if got is not None and got not in out:
@@ -479,9 +480,9 @@ def _home_parameter_files(model) -> Iterator[Problem]:
     """A Gazebo ros2_control plugin whose <parameters> names a file in someone's home folder: it exists on the
     author's machine only, so everywhere else (CI, a colleague, the robot) the controller manager in the simulator
     starts with no controllers. A `$(find pkg)` that xacro resolved to this checkout is not one."""
-    here = [os.path.realpath(os.getcwd())]
+    here = [realpath(os.getcwd())]
     if model.source:
-        here.append(os.path.dirname(os.path.dirname(os.path.realpath(model.source))))
+        here.append(os.path.dirname(os.path.dirname(realpath(model.source))))
     for p in model.plugins or ():
         if "ros2_control" not in f"{p.filename} {p.name}":
             continue
@@ -489,7 +490,7 @@ def _home_parameter_files(model) -> Iterator[Problem]:
             path = par.text.strip()
             if not _HOME.match(path):
                 continue
-            real = os.path.realpath(os.path.expanduser(path)) if path.startswith("/") else path
+            real = realpath(os.path.expanduser(path)) if path.startswith("/") else path
             if any(real == h or real.startswith(h.rstrip("/") + "/") for h in here):
                 continue
             yield Problem(f"{os.path.basename(p.filename) or p.name} <parameters> names {path}, a file in someone's "

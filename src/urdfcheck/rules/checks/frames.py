@@ -2,9 +2,9 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check, options_for
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)

@@ -4,10 +4,10 @@ from __future__ import annotations
 import fnmatch
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
 from urdfcheck.core.paths import shown
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)

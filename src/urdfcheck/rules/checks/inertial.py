@@ -7,9 +7,9 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check, options_for
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)

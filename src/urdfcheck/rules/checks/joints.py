@@ -11,9 +11,9 @@ MoveIt (see each rule's catalogue entry).
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity, closest
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.model.robot import JOINT_TYPES, MOVABLE_TYPES
 from urdfcheck.rules.catalogue import check
 

@@ -7,9 +7,9 @@ Every problem rests on the config's pairing with the model (`MoveItConfig.step`)
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, closest
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)

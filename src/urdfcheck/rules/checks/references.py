@@ -2,10 +2,9 @@
 joint, a Gazebo sensor's frame. Each names it by a string nothing else checks, so a typo loses the block silently."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from urdfcheck.core import lazyre
 from urdfcheck.core.findings import Problem, Severity, closest
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)

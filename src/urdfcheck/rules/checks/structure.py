@@ -22,10 +22,9 @@ Behaviour of the tools quoted in the messages was checked against urdfdom 3.0.1 
 from __future__ import annotations
 
 import weakref
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity, closest
-from urdfcheck.core.records import Record
+from urdfcheck.core.records import TYPE_CHECKING, Record
 from urdfcheck.rules.catalogue import check
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)

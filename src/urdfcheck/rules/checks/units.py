@@ -3,9 +3,9 @@ an rpy component or a revolute limit of exactly 90, 180, 270 or 360 (either sign
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 
 if TYPE_CHECKING:  # the checks' argument types (no import at run time)

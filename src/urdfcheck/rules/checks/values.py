@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem, Severity
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.model import grammar as G
 from urdfcheck.rules.catalogue import check
 

@@ -11,9 +11,9 @@ sdformat 12.3 (tests/differential.py); behaviour.gazebo_bodies is the one place 
 from __future__ import annotations
 
 import re
-from typing import TYPE_CHECKING
 
 from urdfcheck.core import lazyre
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import actuated, dynamic, fixed_groups, is_tree, names, speak
 

@@ -6,8 +6,7 @@ inertia gets "The root link %s has an inertia specified in the URDF, but KDL doe
 inertia" (I005)."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import speak
 

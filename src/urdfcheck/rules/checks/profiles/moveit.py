@@ -6,8 +6,7 @@ range between the soft and the hard limits; a velocity limit of 0 becomes "no ve
 (velocity_bounded_ = false when the URDF value is 0)."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import speak
 

@@ -11,9 +11,9 @@ breaks the triangle inequality is refused on any link. <mimic> becomes an equali
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 from urdfcheck.core.findings import Problem
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import dynamic, fixed_groups, is_tree, names, speak
 

@@ -6,8 +6,7 @@ lower bound greater than the upper one, and the model is refused ("Some componen
 than max_effort"; the same for velocity). Verified with pin 4.1 (`urdfcheck consumers --consumer pinocchio`)."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import speak
 

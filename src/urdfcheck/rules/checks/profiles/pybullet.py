@@ -9,8 +9,7 @@ shapes (calculateLocalInertia) and the URDF's <inertia> is ignored. Measured wit
 (tests/differential.py): <mimic> is never read, a floating joint becomes fixed, inverted limits are no limit."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.profiles.common import names, speak
 

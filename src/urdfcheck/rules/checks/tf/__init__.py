@@ -2,8 +2,6 @@
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from urdfcheck.consumers.consumers import Consumers
 from urdfcheck.consumers.consumers import consumers_of as consumers
 from urdfcheck.consumers.tfclaims import claims_from_localization, claims_from_odom
@@ -11,6 +9,7 @@ from urdfcheck.core import lazyre
 from urdfcheck.core.evidence import Step
 from urdfcheck.core.findings import Problem
 from urdfcheck.core.paths import shown
+from urdfcheck.core.records import TYPE_CHECKING
 from urdfcheck.rules.catalogue import check
 from urdfcheck.rules.checks.tf.graph import (
     PublisherInfo,
