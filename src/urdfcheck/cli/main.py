@@ -37,7 +37,7 @@ def build_parser(with_publish: bool = True, lint_only: bool = False) -> argparse
         prog="urdfcheck", description="Lint and verify ROS robot descriptions (URDF and xacro).",
         epilog=EPILOG, formatter_class=RawFormatter)
     parser.add_argument("--version", action="version", version=f"urdfcheck {__version__}")
-    # every sub-command's parser with our formatter (no shutil import at start-up; see cli.common.Formatter)
+    # every sub-command's parser with our formatter (no shutil import at start-up; see cli.parsing.Formatter)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND",
                                 parser_class=functools.partial(argparse.ArgumentParser, formatter_class=Formatter))
 
@@ -155,7 +155,7 @@ def _fork_xacro_worker(ns) -> None:
     meanwhile, and the first expansion is sent to it (load.loader). With other limits than these flags give
     (a config file can set them) it is not used. Only where a path may hold xacro."""
     paths = ns.paths or ["."]
-    from urdfcheck.cli.cache import may_hold_xacro
+    from urdfcheck.cli.early import may_hold_xacro
 
     if ns.list or ns.write_baseline or not may_hold_xacro(paths, ns.config or ("" if ns.no_config else None)):
         return

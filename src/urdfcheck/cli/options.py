@@ -1,7 +1,7 @@
 """Every option that fills a lint request, declared once: its flags, what it takes, its help, the `LintRequest`
 field it fills and the commands that take it (as sqlfluff's option groups do).
 
-The argparse set-up (`cli.common.add_options`), the request mapping (`request_fields`), the cache fast path's list
+The argparse set-up (`cli.parsing.add_options`), the request mapping (`request_fields`), the cache fast path's list
 of flags that take a value (cli/cache.py) and `urdfcheck bag`'s reading of its command line (cli/main.py) are all
 made from `OPTIONS`. Pure data and plain functions: the cache fast path imports this module before argparse.
 
@@ -19,7 +19,7 @@ CONFIGURED = ("lint", "expand", "tf", "publish", "tree", "verify", "consumers", 
 
 class Option:
     """`flags`: the spellings; `dest`: the parsed name; `field`: the LintRequest field it fills (None: the command
-    uses it itself); `value`: "flag" (no value), "one", "append" (repeatable); `type`: a name `cli.common` turns into
+    uses it itself); `value`: "flag" (no value), "one", "append" (repeatable); `type`: a name `cli.parsing` turns into
     an argparse type ("codes", "severity", "kv:=", "kv=", "float", "int") or None (text); `choices`: a named list
     (`choices`) or None; `commands`: the commands that take it."""
 
