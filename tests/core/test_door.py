@@ -454,3 +454,19 @@ def test_a_refused_tf_owner_file_is_a_finding_at_the_launch_line(tmp_path, outsi
     assert all(f.endswith((".launch.py", ".launch.xml", ".launch")) for f in files), files
     if launch is not None:
         assert files == {launch}, files
+
+
+def test_a_read_past_the_run_budget_names_the_file_as_reports_do(tmp_path, monkeypatch):
+    """The budget's refusal names the file relative to the working directory, never by the runner's absolute path
+    (the name is made only when the budget refuses: a run reads hundreds of files)."""
+    from urdfcheck.core import door
+
+    (tmp_path / "pkg").mkdir()
+    f = tmp_path / "pkg" / "big.yaml"
+    f.write_bytes(b"x" * 100)
+    monkeypatch.chdir(tmp_path)
+    with door.guarded([tmp_path], total_bytes=10):
+        with pytest.raises(door.Refused) as got:
+            door.read_bytes(str(f))
+    text = str(got.value)
+    assert "pkg/big.yaml" in text and str(tmp_path) not in text and "budget" in text, text

@@ -57,10 +57,13 @@ class RunBytes:
         self.used = 0
         self._lock = _thread.allocate_lock()
 
-    def take(self, n: int, shown: str) -> None:
+    def take(self, n: int, shown) -> None:
+        """`shown`: the file as a message names it, or a path to name so (`_shown`, only for the refusal: a run
+        reads hundreds of files)."""
         with self._lock:
             if self.used + n > self.total:
-                raise Refused(shown, f"the run's read budget ({self.total // 2**20} MiB) is used up")
+                raise Refused(shown if isinstance(shown, str) else _shown(shown),
+                              f"the run's read budget ({self.total // 2**20} MiB) is used up")
             self.used += n
 
 
@@ -160,8 +163,20 @@ def read_bytes(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False) -
         raise Refused(_shown(path), e.strerror or "not a regular file") from None
     run = _current()
     if run is not None:
-        run.budget.take(len(data), _shown(path))
+        run.budget.take(len(data), _Path(path))
     return data
+
+
+class _Path:
+    """A path the budget names only if it refuses the read."""
+
+    __slots__ = ("path",)
+
+    def __init__(self, path):
+        self.path = path
+
+    def __fspath__(self):
+        return os.fspath(self.path)
 
 
 def read_text(path, *, limit: int = DEFAULT_FILE_BYTES, runner: bool = False, errors: str = "replace") -> str:

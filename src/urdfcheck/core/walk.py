@@ -76,7 +76,22 @@ def real(path) -> str:
     about the same package roots, folders and files again and again (an lstat per path component each: a lint
     of one package asked ~230 times about each folder above it). Outside a run, looked up afresh."""
     key = os.path.abspath(path)
-    return run_cached("realpath", key, lambda: os.path.realpath(key), 50_000)
+    memo = run_memo("realpath")
+    if memo is None:
+        return os.path.realpath(key)
+    got = memo.get(key)
+    if got is None:
+        # the folder's real path (remembered: the files of one folder share it), then the last component: an lstat
+        # for a file instead of one per component of its path (a corpus-wide name search reads ~400 files)
+        head, tail = os.path.split(key)
+        if not tail or head == key:
+            got = os.path.realpath(key)
+        else:
+            joined = os.path.join(real(head), tail)
+            got = os.path.realpath(joined) if os.path.islink(joined) else joined
+        if len(memo) < 50_000:
+            memo[key] = got
+    return got
 
 
 def _entries(here: str) -> list[os.DirEntry]:

@@ -169,6 +169,7 @@ class _Workspace:
         self.folders = sorted({str(p) for dirs in self.packages.values() for p in dirs} | set(self.explicit.values()),
                               key=len, reverse=True)
         self._parsed: dict[str, object] = {}
+        self._single: dict[str, str] | None = None  # package_map: the packages with one copy
         self.raw: dict[str, bytes] = {}  # launch file bytes, as read
         self.found: list[str] = []  # package folders the resolver found outside the root
         self.notes: list[tuple[str, Location]] = []
@@ -194,7 +195,13 @@ class _Workspace:
     def package_map(self, near: str) -> dict[str, str]:
         from urdfcheck.load.packages import nearest
 
-        out = {k: str(nearest(v, Path(near))) for k, v in self.packages.items()}
+        # a package with one copy maps to it from anywhere: only those with several depend on `near` (this is
+        # asked for every launch file read, and a corpus root holds ~120 packages)
+        if self._single is None:
+            self._single = {k: str(v[0]) for k, v in self.packages.items() if len(v) == 1}
+        near_path = Path(near)
+        single = self._single
+        out = {k: single[k] if k in single else str(nearest(v, near_path)) for k, v in self.packages.items()}
         out.update(self.explicit)
         return out
 
