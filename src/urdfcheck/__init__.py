@@ -16,6 +16,7 @@ from __future__ import annotations
 __version__ = "0.1.0"
 __all__ = ["load", "expand", "lint", "Finding", "Location", "Severity", "LoadError", "UsageError", "__version__"]
 
+import urdfcheck.core.pathimport  # noqa: E402, F401  (pathlib without urllib.parse, before anything imports it)
 import urdfcheck.load as _load_package  # noqa: E402  (empty __init__: cheap)
 
 

@@ -49,3 +49,22 @@ def test_the_one_parser_resolves_no_entity_and_reads_no_dtd(tmp_path):
             continue
         assert "TOKEN" not in etree.tostring(root).decode()
     assert xmlfront.options(comments=False)["remove_comments"] and not xmlfront.options()["huge_tree"]
+
+
+def test_pathlib_is_imported_without_urllib():
+    """urdfcheck imports pathlib without urllib.parse and ipaddress (core/pathimport.py); `Path.as_uri()` still
+    works, and a later `import urllib.parse` is the real module. In an interpreter without site (this venv's
+    site imports urllib itself)."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    import urdfcheck
+
+    code = ("import sys, urdfcheck; before = ('urllib.parse' in sys.modules, 'ipaddress' in sys.modules, "
+            "'pathlib' in sys.modules); from pathlib import Path; uri = Path('/a b').as_uri(); "
+            "import urllib.parse; print(before, uri, urllib.parse.quote('a b'), hasattr(urllib.parse, '_stand_in'))")
+    env = dict(os.environ, PYTHONPATH=str(Path(urdfcheck.__file__).resolve().parents[1]))
+    out = subprocess.run([sys.executable, "-S", "-c", code], env=env, capture_output=True, text=True, timeout=60)
+    assert out.stdout.strip() == "(False, False, True) file:///a%20b a%20b False", out.stdout + out.stderr
