@@ -79,14 +79,15 @@ def read_file(path, limit: int) -> bytes:
         step = max(1 << 20, st.st_size + 1)
         chunks, left = [], limit + 1
         while left > 0:
+            want = min(left, step)
             try:
-                block = os.read(fd, min(left, step))
+                block = os.read(fd, want)
             except BlockingIOError:  # a regular file never does this; be safe rather than spin
-                break
-            if not block:
                 break
             chunks.append(block)
             left -= len(block)
+            if len(block) < want:  # a regular file's short read is its end: no second read to be told so
+                break
         return b"".join(chunks)
     finally:
         os.close(fd)

@@ -75,10 +75,13 @@ def real(path) -> str:
     """os.path.realpath, remembered for the run in progress: the confinement checks and the consumer pairing ask
     about the same package roots, folders and files again and again (an lstat per path component each: a lint
     of one package asked ~230 times about each folder above it). Outside a run, looked up afresh."""
-    key = os.path.abspath(path)
     memo = run_memo("realpath")
     if memo is None:
-        return os.path.realpath(key)
+        return os.path.realpath(os.path.abspath(path))
+    got = memo.get(path) if type(path) is str else None  # asked again as it was stored (absolute, normal)
+    if got is not None:
+        return got
+    key = os.path.abspath(path)
     got = memo.get(key)
     if got is None:
         # the folder's real path (remembered: the files of one folder share it), then the last component: an lstat
