@@ -430,7 +430,8 @@ def fork_early(argv: list[str]) -> None:
                 timeout = float(value)
             except ValueError:
                 return
-    if not may_hold_xacro(paths or ["."], config):
+    yaml_config = reads_yaml_config(config, paths or ["."])  # looked for once: both questions ask it
+    if not may_hold_xacro(paths or ["."], config, yaml_config=yaml_config):
         return
     if _no_worker_expected():
         return
@@ -440,7 +441,7 @@ def fork_early(argv: list[str]) -> None:
     from urdfcheck.load.xacro import SPARE, SPARE_PRELOAD, XACRO_TIMEOUT, worker_limits
 
     _both_import()
-    if reads_yaml_config(config, paths or ["."]):
+    if yaml_config:
         from urdfcheck.core import yamlimport  # noqa: F401 - the config's reader here, xacro's there
 
     worker.keep_spare(SPARE, worker_limits(trusted, allow_env, timeout or XACRO_TIMEOUT), SPARE_PRELOAD)

@@ -27,14 +27,15 @@ def reads_yaml_config(config: str | None, paths: list[str]) -> bool:
     return False
 
 
-def may_hold_xacro(paths: list[str], config: str | None = None, max_dirs: int = 2000) -> bool:
+def may_hold_xacro(paths: list[str], config: str | None = None, max_dirs: int = 2000,
+                   yaml_config: bool | None = None) -> bool:
     """Could this lint expand xacro? A .xacro path, a folder holding one (looked for until the first, in at most
     `max_dirs` folders: past that, assume so), or a config (it may declare a model elsewhere). A package of plain
     URDFs then starts no xacro worker, whose imports are a sixth of its lint; a xacro reached only through a
     launch file elsewhere is expanded in a worker started then (load.loader), as without a spare."""
     if config is not None and config != "":
         return True
-    if config is None and reads_yaml_config(None, paths):
+    if config is None and (reads_yaml_config(None, paths) if yaml_config is None else yaml_config):
         return True
     budget = [max_dirs]
     return any(p.endswith(".xacro") or (os.path.isdir(p) and _xacro_below(p, budget)) for p in paths)

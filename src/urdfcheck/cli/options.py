@@ -35,6 +35,15 @@ class Option:
     def takes_value(self) -> bool:
         return self.value != "flag"
 
+    @property
+    def unset(self):
+        """What the parsed option holds when the command line does not give it (argparse's default, and
+        `plain_lint`'s): None for the flags a config may also set (the config then decides), False for other
+        flags, else the table's default."""
+        if self.value == "flag":
+            return None if self.dest in ("trusted", "trust_config") else False
+        return self.default
+
 
 OPTIONS = (
     # loading a model
@@ -139,10 +148,7 @@ def plain_lint(argv: list[str]) -> dict | None:
     plain = {f: o.dest for o in opts if not o.takes_value for f in o.flags}
     out: dict = {"command": LINT, "paths": []}
     for o in opts:
-        if o.takes_value:
-            out[o.dest] = list(o.default) if isinstance(o.default, list) else o.default
-        else:
-            out[o.dest] = None if o.dest in ("trusted", "trust_config") else False
+        out[o.dest] = list(o.unset) if isinstance(o.unset, list) else o.unset  # argparse copies a list it appends to
     runs = 0
     previous_was_path = False
     for word in argv[1:]:

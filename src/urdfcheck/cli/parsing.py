@@ -100,9 +100,9 @@ def add_options(p: argparse.ArgumentParser, command: str, only=None) -> None:
             continue
         kw: dict = {"dest": o.dest, "help": o.help}
         if o.value == "flag":
-            kw.update(action="store_true", default=None if o.dest in ("trusted", "trust_config") else False)
+            kw.update(action="store_true", default=o.unset)
         else:
-            kw.update(default=o.default, metavar=o.metavar)
+            kw.update(default=o.unset, metavar=o.metavar)
             if o.value == "append":
                 kw["action"] = "append"
             if o.type == "kv=":
